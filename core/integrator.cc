@@ -1,0 +1,208 @@
+#include "core/integrator.h"
+
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_klu.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace moorsim {
+
+static_assert(sizeof(sunindextype) == sizeof(int64_t), "SUNDIALS built with 64-bit indices");
+
+IntegratorStats& IntegratorStats::operator+=(const IntegratorStats& o) {
+  steps += o.steps;
+  rhs_evals += o.rhs_evals;
+  jacobian_evals += o.jacobian_evals;
+  linear_setups += o.linear_setups;
+  newton_iterations += o.newton_iterations;
+  newton_failures += o.newton_failures;
+  error_test_failures += o.error_test_failures;
+  stability_order_reductions += o.stability_order_reductions;
+  last_step = o.last_step;
+  last_order = o.last_order;
+  return *this;
+}
+
+namespace {
+
+void Check(int flag, const char* call) {
+  if (flag < 0) {
+    std::ostringstream msg;
+    msg << "SUNDIALS call " << call << " failed with flag " << flag;
+    throw Error(msg.str());
+  }
+}
+
+template <typename T>
+T* CheckPtr(T* p, const char* call) {
+  if (p == nullptr) throw Error(std::string("SUNDIALS call ") + call + " returned null");
+  return p;
+}
+
+}  // namespace
+
+struct Integrator::Impl {
+  OdeSystem* system = nullptr;
+  SUNContext ctx = nullptr;
+  N_Vector y = nullptr;
+  N_Vector abstol = nullptr;
+  SUNMatrix A = nullptr;
+  SUNLinearSolver LS = nullptr;
+  void* cvode = nullptr;
+  // Why the last RHS/Jacobian call failed, reported after CVode() returns.
+  std::string callback_error;
+
+  ~Impl() {
+    if (cvode) CVodeFree(&cvode);
+    if (LS) SUNLinSolFree(LS);
+    if (A) SUNMatDestroy(A);
+    if (abstol) N_VDestroy(abstol);
+    if (y) N_VDestroy(y);
+    if (ctx) SUNContext_Free(&ctx);
+  }
+
+  // CVODE trampolines: exceptions never cross the C boundary. A recoverable state error
+  // returns +1 so CVODE retries with a smaller step; anything else stops the run.
+  static int Rhs(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
+    auto* self = static_cast<Impl*>(user_data);
+    try {
+      self->system->Derivatives(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+      const double* d = N_VGetArrayPointer(ydot);
+      const sunindextype n = N_VGetLength(ydot);
+      for (sunindextype i = 0; i < n; ++i) {
+        if (!std::isfinite(d[i])) {
+          self->callback_error = "non-finite derivative in state component " + std::to_string(i);
+          return 1;
+        }
+      }
+      return 0;
+    } catch (const RecoverableStateError& e) {
+      self->callback_error = e.what();
+      return 1;
+    } catch (const std::exception& e) {
+      self->callback_error = e.what();
+      return -1;
+    }
+  }
+
+  static int Jac(realtype t, N_Vector y, N_Vector fy, SUNMatrix J, void* user_data, N_Vector,
+                 N_Vector, N_Vector) {
+    auto* self = static_cast<Impl*>(user_data);
+    try {
+      // CVODE zeroes the whole sparse matrix (pattern included) before each call, so the
+      // fixed pattern is written back every time; KLU then only refactors numerically.
+      const SparsityPattern& p = self->system->JacobianPattern();
+      std::memcpy(SUNSparseMatrix_IndexPointers(J), p.row_start.data(),
+                  p.row_start.size() * sizeof(sunindextype));
+      std::memcpy(SUNSparseMatrix_IndexValues(J), p.column.data(),
+                  p.column.size() * sizeof(sunindextype));
+      self->system->Jacobian(t, N_VGetArrayPointer(y), N_VGetArrayPointer(fy),
+                             SUNSparseMatrix_Data(J));
+      return 0;
+    } catch (const RecoverableStateError& e) {
+      self->callback_error = e.what();
+      return 1;
+    } catch (const std::exception& e) {
+      self->callback_error = e.what();
+      return -1;
+    }
+  }
+};
+
+Integrator::Integrator(OdeSystem& system, double t0, const double* x0,
+                       const IntegratorOptions& options)
+    : impl_(std::make_unique<Impl>()), n_(system.StateSize()), t_(t0) {
+  Impl& m = *impl_;
+  m.system = &system;
+  if (static_cast<int>(options.atol.size()) != n_) {
+    throw Error("integrator: atol has " + std::to_string(options.atol.size()) +
+                " entries for a state of size " + std::to_string(n_));
+  }
+  const SparsityPattern& pattern = system.JacobianPattern();
+  if (pattern.size != n_) throw Error("integrator: Jacobian pattern size mismatch");
+
+  Check(SUNContext_Create(nullptr, &m.ctx), "SUNContext_Create");
+  m.y = CheckPtr(N_VNew_Serial(n_, m.ctx), "N_VNew_Serial");
+  std::copy(x0, x0 + n_, N_VGetArrayPointer(m.y));
+  m.abstol = CheckPtr(N_VNew_Serial(n_, m.ctx), "N_VNew_Serial");
+  std::copy(options.atol.begin(), options.atol.end(), N_VGetArrayPointer(m.abstol));
+
+  m.cvode = CheckPtr(CVodeCreate(CV_BDF, m.ctx), "CVodeCreate");
+  Check(CVodeInit(m.cvode, &Impl::Rhs, t0, m.y), "CVodeInit");
+  Check(CVodeSetUserData(m.cvode, &m), "CVodeSetUserData");
+  Check(CVodeSVtolerances(m.cvode, options.rtol, m.abstol), "CVodeSVtolerances");
+  Check(CVodeSetMaxOrd(m.cvode, options.max_order), "CVodeSetMaxOrd");
+  Check(CVodeSetStabLimDet(m.cvode, options.stability_limit_detection ? SUNTRUE : SUNFALSE),
+        "CVodeSetStabLimDet");
+  Check(CVodeSetMaxNumSteps(m.cvode, options.max_steps_per_call), "CVodeSetMaxNumSteps");
+  if (options.max_step > 0) Check(CVodeSetMaxStep(m.cvode, options.max_step), "CVodeSetMaxStep");
+  if (options.initial_step > 0) {
+    Check(CVodeSetInitStep(m.cvode, options.initial_step), "CVodeSetInitStep");
+  }
+  // CVODE's own error messages go to our exception text, not stderr.
+  Check(CVodeSetErrHandlerFn(
+            m.cvode, [](int, const char*, const char*, char*, void*) {}, nullptr),
+        "CVodeSetErrHandlerFn");
+
+  m.A = CheckPtr(SUNSparseMatrix(n_, n_, pattern.nnz(), CSR_MAT, m.ctx), "SUNSparseMatrix");
+  m.LS = CheckPtr(SUNLinSol_KLU(m.y, m.A, m.ctx), "SUNLinSol_KLU");
+  Check(CVodeSetLinearSolver(m.cvode, m.LS, m.A), "CVodeSetLinearSolver");
+  Check(CVodeSetJacFn(m.cvode, &Impl::Jac), "CVodeSetJacFn");
+}
+
+Integrator::~Integrator() = default;
+
+void Integrator::SetStopTime(double t_stop) {
+  Check(CVodeSetStopTime(impl_->cvode, t_stop), "CVodeSetStopTime");
+}
+
+void Integrator::AdvanceTo(double t_out) {
+  if (t_out <= t_) return;
+  Impl& m = *impl_;
+  m.callback_error.clear();
+  realtype t_reached = t_;
+  const int flag = CVode(m.cvode, t_out, m.y, &t_reached, CV_NORMAL);
+  if (flag < 0) {
+    realtype t_now = t_;
+    CVodeGetCurrentTime(m.cvode, &t_now);
+    std::ostringstream msg;
+    msg << "integrator failed at t = " << t_now << " s with CVODE flag " << flag << " ("
+        << CVodeGetReturnFlagName(flag) << ")";
+    if (!m.callback_error.empty()) msg << ": " << m.callback_error;
+    throw SolverError(msg.str());
+  }
+  t_ = t_reached;
+}
+
+const double* Integrator::state() const { return N_VGetArrayPointer(impl_->y); }
+
+IntegratorStats Integrator::stats() const {
+  IntegratorStats s;
+  void* cv = impl_->cvode;
+  long nsteps = 0, nfevals = 0, nlinsetups = 0, netfails = 0;
+  int qlast = 0, qcur = 0;
+  realtype hinused = 0, hlast = 0, hcur = 0, tcur = 0;
+  CVodeGetIntegratorStats(cv, &nsteps, &nfevals, &nlinsetups, &netfails, &qlast, &qcur, &hinused,
+                          &hlast, &hcur, &tcur);
+  s.steps = nsteps;
+  s.rhs_evals = nfevals;
+  s.linear_setups = nlinsetups;
+  s.error_test_failures = netfails;
+  s.last_step = hlast;
+  s.last_order = qlast;
+  CVodeGetNumJacEvals(cv, &s.jacobian_evals);
+  CVodeGetNumNonlinSolvIters(cv, &s.newton_iterations);
+  CVodeGetNumNonlinSolvConvFails(cv, &s.newton_failures);
+  CVodeGetNumStabLimOrderReds(cv, &s.stability_order_reductions);
+  return s;
+}
+
+}  // namespace moorsim

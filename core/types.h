@@ -1,0 +1,22 @@
+// Shared small types and physical constants. SI units throughout; Earth frame is NED
+// (x north, y east, z down) with the origin on the mean free surface.
+#pragma once
+
+#include <Eigen/Core>
+
+namespace moorsim {
+
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+using VecX = Eigen::VectorXd;
+
+/// Rigid-body kinematics of one attachment point in the Earth frame: position [m],
+/// velocity [m/s] and acceleration [m/s^2]. This is what the mooring takes in from
+/// whatever moves the fairlead (a prescribed motion now, the vessel later).
+struct PointKinematics {
+  Vec3 position = Vec3::Zero();
+  Vec3 velocity = Vec3::Zero();
+  Vec3 acceleration = Vec3::Zero();
+};
+
+}  // namespace moorsim

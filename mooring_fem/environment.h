@@ -1,0 +1,51 @@
+// What the water and the seabed do to a line: current velocity vs depth, and the
+// regularised seabed contact law. Both are smooth (C1) so the implicit integrator's
+// Newton iteration sees no kinks (NUMERICS.md item 3).
+#pragma once
+
+#include <vector>
+
+#include "core/types.h"
+#include "scenarios/scenario.h"
+
+namespace moorsim::mooring_fem {
+
+/// Horizontal current whose speed is piecewise linear in depth (constant beyond the ends).
+class CurrentField {
+ public:
+  CurrentField() = default;
+  explicit CurrentField(const scenarios::CurrentProfile& profile);
+
+  bool empty() const { return depth_.empty(); }
+  /// Water velocity at depth z (NED z, down positive) [m/s], Earth frame.
+  Vec3 VelocityAt(double z) const;
+  /// d(velocity)/dz at depth z [1/s].
+  Vec3 GradientAt(double z) const;
+
+ private:
+  Vec3 direction_ = Vec3::Zero();  // unit horizontal vector the water flows toward
+  std::vector<double> depth_;
+  std::vector<double> speed_;
+};
+
+/// Flat seabed at z = depth. Contact per metre of line: a penalty spring on penetration
+/// delta = z - depth with pressure `stiffness` per metre, smoothed over `regularisation`
+/// metres so the force and its slope are continuous at first contact:
+///   q(delta) = 0 (delta <= 0), delta^2 / (2 eps) (0 < delta < eps), delta - eps/2 (else)
+/// and a vertical damper blended in by the smoothstep s(delta / eps).
+struct SeabedContact {
+  double depth = 0.0;                 ///< [m]
+  double stiffness = 0.0;             ///< [N/m^3] times contact width (diameter)
+  double damping = 0.0;               ///< [N s/m^3]
+  double friction_velocity = 0.01;    ///< [m/s]
+  double regularisation = 2.0e-3;     ///< eps [m]
+
+  /// Smoothed penetration q(delta) [m] and dq/ddelta.
+  void Penetration(double delta, double* q, double* dq) const;
+  /// Smoothstep weight of the damper in [0, 1] and its derivative [1/m].
+  void DamperWeight(double delta, double* s, double* ds) const;
+  /// Energy stored per unit spring constant: integral of q from 0 to delta [m^2].
+  double PenetrationEnergy(double delta) const;
+};
+
+}  // namespace moorsim::mooring_fem

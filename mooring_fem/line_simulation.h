@@ -1,0 +1,106 @@
+// Time-domain simulation of the mooring lines alone, with the turret (and so every
+// fairlead) following a prescribed rigid-body motion. This is the verification and
+// benchmark harness of the FEM; the coupled vessel simulation wires the same
+// MooringSystem to the 6-DOF plant instead of to a prescribed motion.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "core/integrator.h"
+#include "core/ode_system.h"
+#include "mooring_fem/mooring_system.h"
+#include "scenarios/scenario.h"
+
+namespace moorsim::mooring_fem {
+
+/// Horizontal pose of the vessel's reference point: x, y [m] (NED) and heading psi [rad].
+struct PlanarPose {
+  double x = 0.0;
+  double y = 0.0;
+  double psi = 0.0;
+};
+
+/// Earth-frame fairlead position for a body-frame fairlead at a planar pose.
+Vec3 FairleadPosition(const PlanarPose& pose, const Vec3& fairlead_body);
+
+/// A translation of the turret along a fixed horizontal direction, the sum of harmonics
+/// A_i sin(2 pi t / T_i), on top of a mean planar pose. Heading stays constant.
+struct HarmonicMotion {
+  struct Component {
+    double amplitude = 0.0;  ///< [m]
+    double period = 0.0;     ///< [s]
+  };
+  PlanarPose mean;
+  Vec3 direction = Vec3::UnitX();  ///< unit, horizontal
+  std::vector<Component> components;
+
+  /// Offset of the reference point from the mean pose, with its velocity and acceleration.
+  PointKinematics At(double t) const;
+};
+
+/// The lines as an OdeSystem driven by a HarmonicMotion.
+class PrescribedMotionSystem : public OdeSystem {
+ public:
+  PrescribedMotionSystem(MooringSystem& mooring, HarmonicMotion motion);
+
+  int StateSize() const override { return mooring_.StateSize(); }
+  void Derivatives(double t, const double* x, double* xdot) override;
+  const SparsityPattern& JacobianPattern() const override { return mooring_.JacobianPattern(); }
+  void Jacobian(double t, const double* x, const double* xdot, double* values) override;
+
+  /// Fairlead kinematics of every line at time t.
+  std::span<const PointKinematics> Fairleads(double t);
+
+ private:
+  MooringSystem& mooring_;
+  HarmonicMotion motion_;
+  std::vector<PointKinematics> fairleads_;
+};
+
+/// Builds the integrator options (per-component absolute tolerances) from the scenario.
+IntegratorOptions MakeIntegratorOptions(const scenarios::SolverSpec& solver,
+                                        const MooringSystem& mooring);
+
+/// Drives a PrescribedMotionSystem with CVODE from the FEM's static equilibrium at the
+/// motion's mean pose (analytic catenary, then Newton on the FEM), with scheduled failures.
+class LineSimulation {
+ public:
+  LineSimulation(const scenarios::Scenario& scenario, HarmonicMotion motion);
+
+  /// A failure at time t [s]; the integrator stops exactly there, changes the topology and
+  /// restarts with the state carried over.
+  void ScheduleFailure(double t, const LineFailure& failure);
+  void AdvanceTo(double t);
+
+  double time() const { return t_; }
+  const std::vector<double>& state() const { return x_; }
+  MooringSystem& mooring() { return mooring_; }
+  std::span<const PointKinematics> Fairleads() { return system_.Fairleads(t_); }
+  /// Force of each line on the body at its fairlead, Earth frame [N].
+  std::vector<Vec3> FairleadForces();
+  double MechanicalEnergy();
+  /// Largest residual node force of the static start [N].
+  double static_residual() const { return static_residual_; }
+  IntegratorStats stats() const;
+
+ private:
+  void StartIntegrator();
+
+  scenarios::SolverSpec solver_;
+  MooringSystem mooring_;
+  PrescribedMotionSystem system_;
+  std::vector<double> x_;
+  double t_ = 0.0;
+  double static_residual_ = 0.0;
+  std::unique_ptr<Integrator> integrator_;
+  IntegratorStats finished_;  // counters of integrators replaced after a topology change
+  struct Event {
+    double time;
+    LineFailure failure;
+  };
+  std::vector<Event> events_;  // sorted by time
+};
+
+}  // namespace moorsim::mooring_fem

@@ -1,0 +1,680 @@
+#include "mooring_fem/mooring_system.h"
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "core/error.h"
+#include "mooring_fem/catenary.h"
+
+namespace moorsim::mooring_fem {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+const Vec3 kDown(0.0, 0.0, 1.0);  // NED: gravity along +z
+
+// Index in NodeJacobian arrays: neighbour below, the node itself, neighbour above.
+constexpr int kBelow = 0;
+constexpr int kSelf = 1;
+constexpr int kAbove = 2;
+
+// Morison drag of half a segment (stretched length L) on relative velocity u, and its
+// derivatives w.r.t. u and the segment vector l. Normal part -c_n (L/2)|u_n| u_n,
+// tangential part -c_t (L/2) |s| s t with s = u . t (seed 002 eq. 7, drag on the
+// stretched length).
+struct HalfSegmentDrag {
+  Vec3 force;
+  Mat3 d_du;
+  Mat3 d_dl;
+};
+
+HalfSegmentDrag Drag(const Vec3& u, const Vec3& t, double L, double c_n, double c_t,
+                     bool with_jacobian) {
+  HalfSegmentDrag d;
+  const double s = u.dot(t);
+  const Vec3 u_n = u - s * t;
+  const double un = u_n.norm();
+  const double h = 0.5 * L;
+  d.force = -c_n * h * un * u_n - c_t * h * std::abs(s) * s * t;
+  if (!with_jacobian) return d;
+  const Mat3 I = Mat3::Identity();
+  const Mat3 Pn = I - t * t.transpose();
+  // d(|u_n| u_n)/du_n = |u_n| I + u_n u_n^T / |u_n| (-> 0 as u_n -> 0).
+  Mat3 dn = un * I;
+  if (un > 1e-300) dn += u_n * u_n.transpose() / un;
+  d.d_du = -c_n * h * dn * Pn - c_t * h * 2.0 * std::abs(s) * (t * t.transpose());
+  // du_n/dl = -(t u^T + s I) Pn / L ; ds/dl = u^T Pn / L ; dt/dl = Pn / L ; dL/dl = t^T.
+  const Mat3 dun_dl = -(t * u.transpose() + s * I) * Pn / L;
+  d.d_dl = -c_n * (0.5 * un * u_n * t.transpose() + h * dn * dun_dl) -
+           c_t * (0.5 * std::abs(s) * s * t * t.transpose() +
+                  h * (2.0 * std::abs(s) * t * (u.transpose() * Pn) / L + std::abs(s) * s * Pn / L));
+  return d;
+}
+
+}  // namespace
+
+LineProperties MakeLineProperties(const scenarios::MooringSpec& spec,
+                                  const scenarios::LineSpec& line) {
+  const auto type = std::find_if(spec.line_types.begin(), spec.line_types.end(),
+                                 [&](const scenarios::LineType& t) { return t.name == line.type; });
+  if (type == spec.line_types.end()) {
+    throw InputError("mooring.lines[" + std::to_string(line.id) + "].type: unknown line type '" +
+                     line.type + "'");
+  }
+  const double rho = spec.water.density;
+  const double area = kPi * type->diameter * type->diameter / 4.0;
+  LineProperties p;
+  p.id = line.id;
+  p.segments = line.segments;
+  p.length = line.length;
+  p.segment_length = line.length / line.segments;
+  p.diameter = type->diameter;
+  p.mass_per_length = type->mass_per_length;
+  p.weight_per_length = (type->mass_per_length - rho * area) * spec.water.gravity;
+  p.axial_stiffness = type->axial_stiffness;
+  if (type->axial_damping) {
+    p.axial_damping = *type->axial_damping;
+  } else {
+    // Damping ratio of the highest axial mode of the discretised line (neighbouring nodes
+    // moving in opposition, w_max = 2 (n / L) sqrt(EA / m)): c = zeta l0 sqrt(EA m).
+    const double zeta = type->axial_damping_ratio.value_or(0.0);
+    p.axial_damping =
+        zeta * p.segment_length * std::sqrt(type->axial_stiffness * type->mass_per_length);
+  }
+  p.added_mass_per_length = type->added_mass_normal * rho * area;
+  p.drag_normal = 0.5 * rho * type->drag_normal * type->diameter;
+  p.drag_tangential = 0.5 * rho * type->drag_tangential * type->diameter;
+  p.friction_axial = type->friction_axial;
+  p.friction_lateral = type->friction_lateral;
+  p.anchor = line.anchor;
+  p.fairlead_body = line.fairlead_body;
+  return p;
+}
+
+MooringSystem::MooringSystem(const scenarios::MooringSpec& spec) : current_(spec.current) {
+  seabed_.depth = spec.water.depth;
+  seabed_.stiffness = spec.seabed.stiffness;
+  seabed_.damping = spec.seabed.damping;
+  seabed_.friction_velocity = spec.seabed.friction_velocity;
+  int max_segments = 0;
+  for (const auto& line : spec.lines) {
+    lines_.push_back(MakeLineProperties(spec, line));
+    Chain c;
+    c.line = static_cast<int>(lines_.size()) - 1;
+    c.segments = line.segments;
+    c.anchor = line.anchor;
+    chains_.push_back(c);
+    max_segments = std::max(max_segments, line.segments);
+  }
+  pos_.resize(max_segments + 1);
+  vel_.resize(max_segments + 1);
+  seg_.resize(max_segments);
+  Layout();
+}
+
+void MooringSystem::Layout() {
+  int offset = 0;
+  for (auto& c : chains_) {
+    c.state_offset = offset;
+    offset += 6 * c.num_state_nodes();
+  }
+  state_size_ = offset;
+  BuildPattern();
+}
+
+bool MooringSystem::attached(int index) const {
+  return std::any_of(chains_.begin(), chains_.end(), [&](const Chain& c) {
+    return c.line == index && c.upper == EndCondition::kFairlead;
+  });
+}
+
+std::vector<char> MooringSystem::StateKinds() const {
+  std::vector<char> kinds(state_size_);
+  for (int i = 0; i < state_size_; ++i) kinds[i] = (i % 6) < 3 ? 'p' : 'v';
+  return kinds;
+}
+
+void MooringSystem::BuildPattern() {
+  SparsityPattern& p = pattern_;
+  p.size = state_size_;
+  p.row_start.assign(1, 0);
+  p.column.clear();
+  for (const Chain& c : chains_) {
+    const int S = c.num_state_nodes();
+    for (int i = 0; i < S; ++i) {
+      const int base = c.state_offset + 6 * i;
+      for (int comp = 0; comp < 3; ++comp) {  // r' = v rows: the diagonal and v_comp
+        p.column.push_back(base + comp);
+        p.column.push_back(base + 3 + comp);
+        p.row_start.push_back(static_cast<int64_t>(p.column.size()));
+      }
+      for (int comp = 0; comp < 3; ++comp) {  // v' rows: nodes i-1, i, i+1
+        for (int j = std::max(0, i - 1); j <= std::min(S - 1, i + 1); ++j) {
+          for (int col = 0; col < 6; ++col) p.column.push_back(c.state_offset + 6 * j + col);
+        }
+        p.row_start.push_back(static_cast<int64_t>(p.column.size()));
+      }
+    }
+  }
+}
+
+void MooringSystem::GatherChain(const Chain& c, const double* x,
+                                std::span<const PointKinematics> fairleads) {
+  const int first = c.first_state_node();
+  const int last = c.last_state_node();
+  for (int k = first; k <= last; ++k) {
+    const double* node = x + c.state_offset + 6 * (k - first);
+    pos_[k] = Vec3(node[0], node[1], node[2]);
+    vel_[k] = Vec3(node[3], node[4], node[5]);
+  }
+  if (c.lower == EndCondition::kAnchored) {
+    pos_[0] = c.anchor;
+    vel_[0].setZero();
+  }
+  if (c.upper == EndCondition::kFairlead) {
+    pos_[c.segments] = fairleads[c.line].position;
+    vel_[c.segments] = fairleads[c.line].velocity;
+  }
+}
+
+void MooringSystem::ComputeSegments(const Chain& c) {
+  const LineProperties& lp = lines_[c.line];
+  const double l0 = lp.segment_length;
+  for (int s = 0; s < c.segments; ++s) {
+    const Vec3 l = pos_[s + 1] - pos_[s];
+    const double L = l.norm();
+    if (!(L > 1e-9 * l0)) {
+      std::ostringstream msg;
+      msg << "line " << lp.id << " segment " << c.first_node + s + 1 << " has length " << L << " m";
+      throw RecoverableStateError(msg.str());
+    }
+    SegmentState& g = seg_[s];
+    g.t = l / L;
+    g.L = L;
+    g.rate = g.t.dot(vel_[s + 1] - vel_[s]) / l0;
+    const double strain = L / l0 - 1.0;
+    g.T = strain > 0.0 ? lp.axial_stiffness * strain + lp.axial_damping * g.rate : 0.0;
+  }
+}
+
+void MooringSystem::NodeForce(const Chain& c, int k, Vec3* F_out, Mat3* M_out) const {
+  const LineProperties& lp = lines_[c.line];
+  const double l0 = lp.segment_length;
+  const bool has_below = k > 0;
+  const bool has_above = k < c.segments;
+  const double share = 0.5 * l0 * ((has_below ? 1 : 0) + (has_above ? 1 : 0));
+  const Vec3& r = pos_[k];
+  const Vec3& v = vel_[k];
+  const Vec3 u = v - current_.VelocityAt(r.z());
+
+  Mat3 M = (lp.mass_per_length * share) * Mat3::Identity();
+  Vec3 F = (lp.weight_per_length * share) * kDown;
+  auto add_segment = [&](const SegmentState& g, double sign) {
+    F += sign * g.T * g.t;
+    M += (0.5 * lp.added_mass_per_length * g.L) * (Mat3::Identity() - g.t * g.t.transpose());
+    F += Drag(u, g.t, g.L, lp.drag_normal, lp.drag_tangential, false).force;
+  };
+  if (has_above) add_segment(seg_[k], +1.0);
+  if (has_below) add_segment(seg_[k - 1], -1.0);
+
+  const double delta = r.z() - seabed_.depth;
+  if (delta > 0.0) {
+    double q, dq, s, ds;
+    seabed_.Penetration(delta, &q, &dq);
+    seabed_.DamperWeight(delta, &s, &ds);
+    const double contact = lp.diameter * share;
+    const double normal = seabed_.stiffness * contact * q;
+    F.z() -= normal + seabed_.damping * contact * v.z() * s;
+    if (normal > 0.0 && (lp.friction_axial > 0.0 || lp.friction_lateral > 0.0)) {
+      const Vec3 q_vec = pos_[has_above ? k + 1 : k] - pos_[has_below ? k - 1 : k];
+      const Vec3 q_h(q_vec.x(), q_vec.y(), 0.0);
+      const double qn = q_h.norm();
+      const Vec3 v_h(v.x(), v.y(), 0.0);
+      const double rho = std::sqrt(v_h.squaredNorm() +
+                                   seabed_.friction_velocity * seabed_.friction_velocity);
+      Vec3 resist = lp.friction_lateral * v_h;
+      if (qn > 1e-12) {
+        const Vec3 th = q_h / qn;
+        resist += (lp.friction_axial - lp.friction_lateral) * th.dot(v_h) * th;
+      }
+      F -= (normal / rho) * resist;
+    }
+  }
+  *F_out = F;
+  *M_out = M;
+}
+
+void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a,
+                                      NodeJacobian* J) const {
+  const LineProperties& lp = lines_[c.line];
+  const double l0 = lp.segment_length;
+  const double EA = lp.axial_stiffness;
+  const double cd = lp.axial_damping;
+  const Mat3 I = Mat3::Identity();
+  for (int j = 0; j < 3; ++j) {
+    J->dF_dr[j].setZero();
+    J->dF_dv[j].setZero();
+    J->dMa_dr[j].setZero();
+  }
+  const bool has_below = k > 0;
+  const bool has_above = k < c.segments;
+  const double share = 0.5 * l0 * ((has_below ? 1 : 0) + (has_above ? 1 : 0));
+  const Vec3& r = pos_[k];
+  const Vec3& v = vel_[k];
+  const Vec3 u = v - current_.VelocityAt(r.z());
+  // du/dr = -dvc/dz e_z^T: only the z column.
+  Mat3 du_dr = Mat3::Zero();
+  du_dr.col(2) = -current_.GradientAt(r.z());
+
+  // sigma = dl/dr_k for the segment (l = r_upper - r_lower): -1 above, +1 below.
+  auto add_segment = [&](int s, int other, double sigma) {
+    const SegmentState& g = seg_[s];
+    const Vec3& t = g.t;
+    const Mat3 Pn = I - t * t.transpose();
+    // Elastic + structural damping: force on the lower node is T t, on the upper -T t.
+    // d(T t)/dl = t (dT/dl)^T + T Pn / L, dT/dl = EA/l0 t + c/l0 Pn dv / L.
+    if (g.L / l0 - 1.0 > 0.0) {
+      const Vec3 dv = vel_[s + 1] - vel_[s];
+      const Vec3 dT_dl = EA / l0 * t + cd / l0 * (Pn * dv) / g.L;
+      const Mat3 K = t * dT_dl.transpose() + g.T * Pn / g.L;
+      const Mat3 D = cd / l0 * t * t.transpose();
+      J->dF_dr[kSelf] -= K;
+      J->dF_dr[other] += K;
+      J->dF_dv[kSelf] -= D;
+      J->dF_dv[other] += D;
+    }
+    const HalfSegmentDrag d = Drag(u, t, g.L, lp.drag_normal, lp.drag_tangential, true);
+    J->dF_dv[kSelf] += d.d_du;
+    J->dF_dr[kSelf] += d.d_du * du_dr + sigma * d.d_dl;
+    J->dF_dr[other] -= sigma * d.d_dl;
+    // Added mass h = C1/2 L Pn a: dh/dl = C1/2 [a t^T - t a^T - (t.a) Pn].
+    const Mat3 H = 0.5 * lp.added_mass_per_length *
+                   (a * t.transpose() - t * a.transpose() - t.dot(a) * Pn);
+    J->dMa_dr[kSelf] += sigma * H;
+    J->dMa_dr[other] -= sigma * H;
+  };
+  if (has_above) add_segment(k, kAbove, -1.0);
+  if (has_below) add_segment(k - 1, kBelow, +1.0);
+
+  const double delta = r.z() - seabed_.depth;
+  if (delta > 0.0) {
+    double q, dq, s, ds;
+    seabed_.Penetration(delta, &q, &dq);
+    seabed_.DamperWeight(delta, &s, &ds);
+    const double contact = lp.diameter * share;
+    const double k_n = seabed_.stiffness * contact;
+    const double c_n = seabed_.damping * contact;
+    const double normal = k_n * q;
+    J->dF_dr[kSelf](2, 2) -= k_n * dq + c_n * v.z() * ds;
+    J->dF_dv[kSelf](2, 2) -= c_n * s;
+    if (normal > 0.0 && (lp.friction_axial > 0.0 || lp.friction_lateral > 0.0)) {
+      const int next = has_above ? kAbove : kSelf;
+      const int prev = has_below ? kBelow : kSelf;
+      const Vec3 q_vec = pos_[has_above ? k + 1 : k] - pos_[has_below ? k - 1 : k];
+      const Vec3 q_h(q_vec.x(), q_vec.y(), 0.0);
+      const double qn = q_h.norm();
+      const Vec3 v_h(v.x(), v.y(), 0.0);
+      const double rho = std::sqrt(v_h.squaredNorm() +
+                                   seabed_.friction_velocity * seabed_.friction_velocity);
+      Mat3 Ph = Mat3::Zero();
+      Ph(0, 0) = Ph(1, 1) = 1.0;
+      // f = -(N / rho) A v_h with A = mu_l Ph + (mu_a - mu_l) th th^T.
+      Mat3 A = lp.friction_lateral * Ph;
+      Vec3 th = Vec3::Zero();
+      if (qn > 1e-12) {
+        th = q_h / qn;
+        A += (lp.friction_axial - lp.friction_lateral) * th * th.transpose();
+      }
+      const Vec3 Av = A * v_h;
+      J->dF_dv[kSelf] += -(normal / rho) * A * Ph +
+                         (normal / (rho * rho * rho)) * Av * v_h.transpose();
+      J->dF_dr[kSelf].col(2) += -(k_n * dq / rho) * Av;
+      if (qn > 1e-12) {
+        const Mat3 dF_dq = -(normal / rho) * (lp.friction_axial - lp.friction_lateral) *
+                           (th * v_h.transpose() + th.dot(v_h) * I) *
+                           (Ph - th * th.transpose()) / qn;
+        J->dF_dr[next] += dF_dq;
+        J->dF_dr[prev] -= dF_dq;
+      }
+    }
+  }
+}
+
+void MooringSystem::Derivatives(const double* x, std::span<const PointKinematics> fairleads,
+                                double* xdot) {
+  for (const Chain& c : chains_) {
+    GatherChain(c, x, fairleads);
+    ComputeSegments(c);
+    const int first = c.first_state_node();
+    for (int k = first; k <= c.last_state_node(); ++k) {
+      Vec3 F;
+      Mat3 M;
+      NodeForce(c, k, &F, &M);
+      const Vec3 a = M.inverse() * F;
+      double* out = xdot + c.state_offset + 6 * (k - first);
+      out[0] = vel_[k].x();
+      out[1] = vel_[k].y();
+      out[2] = vel_[k].z();
+      out[3] = a.x();
+      out[4] = a.y();
+      out[5] = a.z();
+    }
+  }
+}
+
+void MooringSystem::Jacobian(const double* x, std::span<const PointKinematics> fairleads,
+                             double* values) {
+  NodeJacobian J;
+  for (const Chain& c : chains_) {
+    GatherChain(c, x, fairleads);
+    ComputeSegments(c);
+    const int first = c.first_state_node();
+    const int S = c.num_state_nodes();
+    for (int i = 0; i < S; ++i) {
+      const int k = first + i;
+      const int row = c.state_offset + 6 * i;
+      for (int comp = 0; comp < 3; ++comp) {  // r' = v
+        double* v = values + pattern_.row_start[row + comp];
+        v[0] = 0.0;
+        v[1] = 1.0;
+      }
+      Vec3 F;
+      Mat3 M;
+      NodeForce(c, k, &F, &M);
+      const Mat3 Minv = M.inverse();
+      const Vec3 a = Minv * F;
+      NodeForceJacobian(c, k, a, &J);
+      for (int comp = 0; comp < 3; ++comp) {
+        double* v = values + pattern_.row_start[row + 3 + comp];
+        for (int j = std::max(0, i - 1); j <= std::min(S - 1, i + 1); ++j) {
+          const int slot = j - i + 1;  // kBelow, kSelf, kAbove
+          const Eigen::RowVector3d dr = Minv.row(comp) * (J.dF_dr[slot] - J.dMa_dr[slot]);
+          const Eigen::RowVector3d dv = Minv.row(comp) * J.dF_dv[slot];
+          for (int m = 0; m < 3; ++m) *v++ = dr(m);
+          for (int m = 0; m < 3; ++m) *v++ = dv(m);
+        }
+      }
+    }
+  }
+}
+
+void MooringSystem::FairleadForces(const double* x, std::span<const PointKinematics> fairleads,
+                                   std::span<Vec3> forces) {
+  for (auto& f : forces) f.setZero();
+  for (const Chain& c : chains_) {
+    if (c.upper != EndCondition::kFairlead) continue;
+    GatherChain(c, x, fairleads);
+    ComputeSegments(c);
+    Vec3 F;
+    Mat3 M;
+    NodeForce(c, c.segments, &F, &M);
+    // The node's equation M a = F + F_body gives the line's force on the body F - M a.
+    forces[c.line] = F - M * fairleads[c.line].acceleration;
+  }
+}
+
+std::vector<LineLoad> MooringSystem::LineLoads(const double* x,
+                                               std::span<const PointKinematics> fairleads) {
+  std::vector<LineLoad> loads(lines_.size());
+  std::vector<Vec3> forces(lines_.size());
+  FairleadForces(x, fairleads, forces);
+  for (size_t i = 0; i < lines_.size(); ++i) {
+    loads[i].fairlead_force = forces[i];
+    loads[i].attached = attached(static_cast<int>(i));
+  }
+  // Grounded length: the seabed's share of the line's weight divided by the weight per
+  // metre, which converges to the catenary's unstretched grounded length as n grows. A held
+  // anchor on the seabed carries its half segment itself; it counts as grounded in the
+  // proportion its neighbour is.
+  for (const Chain& c : chains_) {
+    GatherChain(c, x, fairleads);
+    const LineProperties& lp = lines_[c.line];
+    double grounded_fraction_of_node_1 = 0.0;
+    for (int k = 0; k <= c.segments; ++k) {
+      const double delta = pos_[k].z() - seabed_.depth;
+      if (delta <= 0.0) continue;
+      double q, dq;
+      seabed_.Penetration(delta, &q, &dq);
+      const int n_seg = (k > 0 ? 1 : 0) + (k < c.segments ? 1 : 0);
+      const double share = 0.5 * lp.segment_length * n_seg;
+      const double normal = seabed_.stiffness * lp.diameter * share * q;
+      loads[c.line].grounded_length += normal / lp.weight_per_length;
+      if (k == 1) grounded_fraction_of_node_1 = std::min(1.0, normal / (lp.weight_per_length * share));
+    }
+    if (c.lower == EndCondition::kAnchored && c.anchor.z() >= seabed_.depth - 1e-6) {
+      loads[c.line].grounded_length += 0.5 * lp.segment_length * grounded_fraction_of_node_1;
+    }
+  }
+  return loads;
+}
+
+double MooringSystem::MechanicalEnergy(const double* x,
+                                       std::span<const PointKinematics> fairleads) {
+  double energy = 0.0;
+  for (const Chain& c : chains_) {
+    const LineProperties& lp = lines_[c.line];
+    GatherChain(c, x, fairleads);
+    ComputeSegments(c);
+    for (int s = 0; s < c.segments; ++s) {
+      const double strain = seg_[s].L / lp.segment_length - 1.0;
+      if (strain > 0.0) energy += 0.5 * lp.axial_stiffness * strain * strain * lp.segment_length;
+    }
+    for (int k = c.first_state_node(); k <= c.last_state_node(); ++k) {
+      Vec3 F;
+      Mat3 M;
+      NodeForce(c, k, &F, &M);
+      const int n_seg = (k > 0 ? 1 : 0) + (k < c.segments ? 1 : 0);
+      const double share = 0.5 * lp.segment_length * n_seg;
+      energy += 0.5 * vel_[k].dot(M * vel_[k]);
+      energy -= lp.weight_per_length * share * pos_[k].z();
+      energy += seabed_.stiffness * lp.diameter * share *
+                seabed_.PenetrationEnergy(pos_[k].z() - seabed_.depth);
+    }
+  }
+  return energy;
+}
+
+Vec3 MooringSystem::NodePosition(const double* x, int line, int node,
+                                 std::span<const PointKinematics> fairleads) const {
+  for (const Chain& c : chains_) {
+    if (c.line != line || node < c.first_node || node > c.first_node + c.segments) continue;
+    const int k = node - c.first_node;
+    if (k == 0 && c.lower == EndCondition::kAnchored) return c.anchor;
+    if (k == c.segments && c.upper == EndCondition::kFairlead) return fairleads[line].position;
+    const double* p = x + c.state_offset + 6 * (k - c.first_state_node());
+    return Vec3(p[0], p[1], p[2]);
+  }
+  throw Error("no node " + std::to_string(node) + " on line " + std::to_string(line + 1));
+}
+
+void MooringSystem::CatenaryState(std::span<const Vec3> fairleads, double* x) const {
+  for (const Chain& c : chains_) {
+    if (c.lower != EndCondition::kAnchored || c.upper != EndCondition::kFairlead) {
+      throw Error("catenary initial state needs intact lines");
+    }
+    const LineProperties& lp = lines_[c.line];
+    const CatenaryLineProperties props{lp.length, lp.weight_per_length, lp.axial_stiffness};
+    const LineCatenary cat = SolveLineCatenary(props, lp.anchor, fairleads[c.line]);
+    const Eigen::Matrix3Xd nodes = cat.NodePositions(c.segments);
+    for (int k = 1; k < c.segments; ++k) {
+      double* p = x + c.state_offset + 6 * (k - 1);
+      for (int m = 0; m < 3; ++m) {
+        p[m] = nodes(m, k);
+        p[3 + m] = 0.0;
+      }
+    }
+  }
+}
+
+double MooringSystem::SettleStatic(std::span<const Vec3> fairlead_positions, double* x) {
+  std::vector<PointKinematics> fairleads(lines_.size());
+  for (size_t i = 0; i < lines_.size(); ++i) fairleads[i].position = fairlead_positions[i];
+  double worst = 0.0;
+  NodeJacobian J;
+  for (const Chain& c : chains_) {
+    if (c.lower == EndCondition::kFree || c.upper == EndCondition::kFree) {
+      throw Error("static equilibrium needs both ends of every chain held");
+    }
+    const LineProperties& lp = lines_[c.line];
+    const int S = c.num_state_nodes();
+    const int first = c.first_state_node();
+    double* xc = x + c.state_offset;
+    for (int i = 0; i < S; ++i) std::fill(xc + 6 * i + 3, xc + 6 * i + 6, 0.0);
+    // Round-off floor of the node force balance is ~1e-15 EA; ask for far less than any
+    // physical effect (1e-11 EA = 2 mN for the seed chain) but well above that floor.
+    const double tolerance = 1e-11 * lp.axial_stiffness;
+    Eigen::VectorXd residual(3 * S);
+    auto evaluate = [&]() {
+      GatherChain(c, x, fairleads);
+      ComputeSegments(c);
+      for (int i = 0; i < S; ++i) {
+        Vec3 F;
+        Mat3 M;
+        NodeForce(c, first + i, &F, &M);
+        residual.segment<3>(3 * i) = F;
+      }
+      return residual.lpNorm<Eigen::Infinity>();
+    };
+    double norm = evaluate();
+    int iteration = 0;
+    Eigen::SparseLU<Eigen::SparseMatrix<double>> solver;
+    std::vector<Eigen::Triplet<double>> triplets;
+    while (norm > tolerance) {
+      if (++iteration > 100) {
+        std::ostringstream msg;
+        msg << "static equilibrium of line " << lp.id << " did not converge (residual " << norm
+            << " N after 100 Newton iterations)";
+        throw Error(msg.str());
+      }
+      triplets.clear();
+      for (int i = 0; i < S; ++i) {
+        NodeForceJacobian(c, first + i, Vec3::Zero(), &J);
+        for (int j = std::max(0, i - 1); j <= std::min(S - 1, i + 1); ++j) {
+          const Mat3& B = J.dF_dr[j - i + 1];
+          for (int a = 0; a < 3; ++a) {
+            for (int b = 0; b < 3; ++b) triplets.emplace_back(3 * i + a, 3 * j + b, B(a, b));
+          }
+        }
+      }
+      Eigen::SparseMatrix<double> K(3 * S, 3 * S);
+      K.setFromTriplets(triplets.begin(), triplets.end());
+      solver.compute(K);
+      if (solver.info() != Eigen::Success) {
+        throw Error("static equilibrium of line " + std::to_string(lp.id) +
+                    ": singular stiffness matrix");
+      }
+      const Eigen::VectorXd step = solver.solve(-residual);
+      // Backtracking on the residual norm keeps the iteration from overshooting the
+      // seabed contact or going slack.
+      std::vector<double> saved(xc, xc + 6 * S);
+      double lambda = 1.0;
+      double trial = 0.0;
+      for (int tries = 0; tries < 30; ++tries) {
+        for (int i = 0; i < S; ++i) {
+          for (int m = 0; m < 3; ++m) xc[6 * i + m] = saved[6 * i + m] + lambda * step(3 * i + m);
+        }
+        trial = evaluate();
+        if (trial < norm || trial <= tolerance) break;
+        lambda *= 0.5;
+      }
+      norm = trial;
+    }
+    worst = std::max(worst, norm);
+  }
+  return worst;
+}
+
+std::vector<double> MooringSystem::ApplyFailure(const LineFailure& failure, const double* x,
+                                                std::span<const PointKinematics> fairleads) {
+  if (failure.line < 0 || failure.line >= num_lines()) {
+    throw InputError("failure: no line " + std::to_string(failure.line + 1));
+  }
+  std::vector<Chain> next;
+  std::vector<int> source;  // old chain each new chain takes its nodes from
+  bool applied = false;
+  for (size_t ci = 0; ci < chains_.size(); ++ci) {
+    const Chain& c = chains_[ci];
+    if (c.line != failure.line || applied) {
+      next.push_back(c);
+      source.push_back(static_cast<int>(ci));
+      continue;
+    }
+    Chain a = c;
+    switch (failure.mode) {
+      case FailureMode::kFairlead:
+        if (c.upper == EndCondition::kFairlead) {
+          a.upper = EndCondition::kFree;
+          applied = true;
+        }
+        next.push_back(a);
+        source.push_back(static_cast<int>(ci));
+        break;
+      case FailureMode::kAnchor:
+        if (c.lower == EndCondition::kAnchored) {
+          a.lower = EndCondition::kFree;
+          applied = true;
+        }
+        next.push_back(a);
+        source.push_back(static_cast<int>(ci));
+        break;
+      case FailureMode::kNode: {
+        const int k = failure.node - c.first_node;
+        if (k <= 0 || k >= c.segments) {
+          next.push_back(a);
+          source.push_back(static_cast<int>(ci));
+          break;
+        }
+        Chain b = c;
+        a.segments = k;
+        a.upper = EndCondition::kFree;
+        b.first_node = failure.node;
+        b.segments = c.segments - k;
+        b.lower = EndCondition::kFree;
+        next.push_back(a);
+        next.push_back(b);
+        source.push_back(static_cast<int>(ci));
+        source.push_back(static_cast<int>(ci));
+        applied = true;
+        break;
+      }
+    }
+  }
+  if (!applied) {
+    std::ostringstream msg;
+    msg << "failure of line " << failure.line + 1 << ": ";
+    if (failure.mode == FailureMode::kNode) {
+      msg << "node " << failure.node << " is not an intact internal node (1.."
+          << lines_[failure.line].segments - 1 << ")";
+    } else {
+      msg << (failure.mode == FailureMode::kFairlead ? "fairlead" : "anchor")
+          << " is already detached";
+    }
+    throw InputError(msg.str());
+  }
+
+  const std::vector<Chain> old = chains_;
+  chains_ = next;
+  Layout();
+  std::vector<double> x_new(state_size_);
+  for (size_t ci = 0; ci < chains_.size(); ++ci) {
+    const Chain& oc = old[source[ci]];
+    GatherChain(oc, x, fairleads);  // pos_/vel_ now hold the old chain's nodes
+    const Chain& c = chains_[ci];
+    for (int k = c.first_state_node(); k <= c.last_state_node(); ++k) {
+      const int old_k = c.first_node + k - oc.first_node;
+      double* p = x_new.data() + c.state_offset + 6 * (k - c.first_state_node());
+      for (int m = 0; m < 3; ++m) {
+        p[m] = pos_[old_k](m);
+        p[3 + m] = vel_[old_k](m);
+      }
+    }
+  }
+  return x_new;
+}
+
+}  // namespace moorsim::mooring_fem

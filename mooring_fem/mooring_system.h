@@ -1,0 +1,177 @@
+// The lumped-mass Galerkin FEM of all mooring lines (Aamo & Fossen; seed 002 eq. 7).
+//
+// Each line of unstretched length L is split into n equal segments, nodes 0..n from the
+// anchor to the fairlead. A node carries half of each adjacent segment: its dry mass, its
+// submerged weight, the normal added mass C1 |l_s| / 2 (I - t_s t_s^T) with
+// C1 = C_MN rho_w pi d^2 / 4, and Morison drag on the velocity relative to the current at
+// the node's depth (normal: 0.5 rho C_DN d, tangential: 0.5 rho C_DT d, on the stretched
+// half-segment length). Segments carry tension only: T = EA e + c de/dt when the strain
+// e = |l| / l0 - 1 is positive, else 0. Nodes touching the seabed get a smooth penalty
+// contact and regularised Coulomb friction with separate axial and lateral coefficients.
+//
+// State: every node that is not held (anchor, fairlead) has [r (3), v (3)] in the Earth
+// frame, stored contiguously per node and per chain. The node equation is
+//   r' = v,   M_k(r) v' = F_k(r, v)
+// solved for v' with the 3x3 node mass matrix. The Jacobian is analytic and includes the
+// configuration dependence of the added mass (d(M a)/dr); its pattern is block
+// tridiagonal per chain and fixed until the topology changes.
+//
+// Failure events split a line into chains with free ends: a chain is a run of nodes whose
+// two ends are each anchored, attached to a fairlead, or free.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "core/ode_system.h"
+#include "core/types.h"
+#include "mooring_fem/environment.h"
+#include "scenarios/scenario.h"
+
+namespace moorsim::mooring_fem {
+
+/// Constants of one line, derived from its type, the water and the number of segments.
+struct LineProperties {
+  int id = 0;  ///< 1-based
+  int segments = 0;
+  double length = 0.0;                 ///< unstretched [m]
+  double segment_length = 0.0;         ///< l0 = L / n [m]
+  double diameter = 0.0;               ///< [m]
+  double mass_per_length = 0.0;        ///< dry [kg/m]
+  double weight_per_length = 0.0;      ///< submerged [N/m]
+  double axial_stiffness = 0.0;        ///< EA [N]
+  double axial_damping = 0.0;          ///< c [N s], internal force c de/dt
+  double added_mass_per_length = 0.0;  ///< C1 = C_MN rho pi d^2/4 [kg/m]
+  double drag_normal = 0.0;            ///< 0.5 rho C_DN d [kg/m^2]
+  double drag_tangential = 0.0;        ///< 0.5 rho C_DT d [kg/m^2]
+  double friction_axial = 0.0;         ///< [-]
+  double friction_lateral = 0.0;       ///< [-]
+  Vec3 anchor = Vec3::Zero();          ///< Earth frame [m]
+  Vec3 fairlead_body = Vec3::Zero();   ///< body frame [m]
+};
+
+LineProperties MakeLineProperties(const scenarios::MooringSpec& spec, const scenarios::LineSpec& line);
+
+enum class EndCondition { kAnchored, kFairlead, kFree };
+
+/// A connected run of a line's nodes first_node..first_node+segments.
+struct Chain {
+  int line = 0;  ///< 0-based index into the lines
+  int first_node = 0;
+  int segments = 0;
+  EndCondition lower = EndCondition::kAnchored;
+  EndCondition upper = EndCondition::kFairlead;
+  Vec3 anchor = Vec3::Zero();  ///< held position of the lower end when kAnchored
+  int state_offset = 0;        ///< index of the first state component of the chain
+
+  int first_state_node() const { return lower == EndCondition::kFree ? 0 : 1; }
+  int last_state_node() const { return upper == EndCondition::kFree ? segments : segments - 1; }
+  int num_state_nodes() const { return last_state_node() - first_state_node() + 1; }
+};
+
+enum class FailureMode { kFairlead, kNode, kAnchor };
+
+/// A line parts at its fairlead, at an internal node (1..n-1, counted from the anchor), or
+/// its anchor lets go.
+struct LineFailure {
+  int line = 0;  ///< 0-based line index
+  FailureMode mode = FailureMode::kFairlead;
+  int node = 0;  ///< for kNode
+};
+
+/// Per-line static/quasi-static summary.
+struct LineLoad {
+  Vec3 fairlead_force = Vec3::Zero();  ///< force of the line on the body, Earth frame [N]
+  double grounded_length = 0.0;        ///< unstretched length carried by the seabed [m]
+  bool attached = true;
+};
+
+class MooringSystem {
+ public:
+  explicit MooringSystem(const scenarios::MooringSpec& spec);
+
+  int num_lines() const { return static_cast<int>(lines_.size()); }
+  const LineProperties& line(int index) const { return lines_[index]; }
+  const std::vector<Chain>& chains() const { return chains_; }
+  const SeabedContact& seabed() const { return seabed_; }
+  const CurrentField& current() const { return current_; }
+  int StateSize() const { return state_size_; }
+  /// Whether line `index` is still attached to its fairlead.
+  bool attached(int index) const;
+
+  /// Per state component: position components 'p', velocity components 'v'.
+  std::vector<char> StateKinds() const;
+
+  /// Places every node on the analytic elastic catenary between its anchor and the given
+  /// fairlead position (Earth frame), at rest. Intact topology only.
+  void CatenaryState(std::span<const Vec3> fairleads, double* x) const;
+
+  /// Moves the positions in x to the FEM's own static equilibrium (v = 0) for the given
+  /// fairlead positions by Newton's method on the sparse stiffness, starting from x.
+  /// Returns the largest residual node force [N]. Throws moorsim::Error if it fails.
+  double SettleStatic(std::span<const Vec3> fairleads, double* x);
+
+  /// x' = f(x) for the given fairlead kinematics (one per line, Earth frame).
+  void Derivatives(const double* x, std::span<const PointKinematics> fairleads, double* xdot);
+
+  /// CSR pattern of df/dx for the current topology.
+  const SparsityPattern& JacobianPattern() const { return pattern_; }
+  /// df/dx values in pattern order.
+  void Jacobian(const double* x, std::span<const PointKinematics> fairleads, double* values);
+
+  /// Force each line exerts on the body at its fairlead (what a load cell reads), Earth
+  /// frame: the top segment's tension plus the fairlead node's share of weight, drag,
+  /// seabed contact and inertia. Zero for detached lines.
+  void FairleadForces(const double* x, std::span<const PointKinematics> fairleads,
+                      std::span<Vec3> forces);
+
+  /// Fairlead forces plus the grounded length of each line.
+  std::vector<LineLoad> LineLoads(const double* x, std::span<const PointKinematics> fairleads);
+
+  /// Mechanical energy of the lines [J]: kinetic (with added mass), gravitational
+  /// (submerged weight), elastic and seabed-spring energy.
+  double MechanicalEnergy(const double* x, std::span<const PointKinematics> fairleads);
+
+  /// Position of node `node` (0..n) of line `line` (0-based); for a node split by a
+  /// failure, the copy in the chain nearer the anchor.
+  Vec3 NodePosition(const double* x, int line, int node,
+                    std::span<const PointKinematics> fairleads) const;
+
+  /// Changes the topology and returns the new state, carrying every node's position and
+  /// velocity over (nodes that were held take the holder's position and velocity).
+  std::vector<double> ApplyFailure(const LineFailure& failure, const double* x,
+                                   std::span<const PointKinematics> fairleads);
+
+ private:
+  struct SegmentState {
+    Vec3 t;       // unit tangent toward the upper node
+    double L;     // stretched length
+    double T;     // tension
+    double rate;  // strain rate
+  };
+  struct NodeJacobian {
+    Mat3 dF_dr[3], dF_dv[3], dMa_dr[3];  // w.r.t. node k-1, k, k+1
+  };
+
+  void Layout();
+  void BuildPattern();
+  void GatherChain(const Chain& chain, const double* x, std::span<const PointKinematics> fairleads);
+  void ComputeSegments(const Chain& chain);
+  /// Net force F and mass matrix M of chain node k from the gathered state.
+  void NodeForce(const Chain& chain, int k, Vec3* F, Mat3* M) const;
+  /// Adds the node's force derivatives; needs the node's acceleration for d(M a)/dr.
+  void NodeForceJacobian(const Chain& chain, int k, const Vec3& accel, NodeJacobian* J) const;
+
+  std::vector<LineProperties> lines_;
+  std::vector<Chain> chains_;
+  SeabedContact seabed_;
+  CurrentField current_;
+  int state_size_ = 0;
+  SparsityPattern pattern_;
+
+  // Scratch for one chain (sized for the longest), reused by every call.
+  std::vector<Vec3> pos_, vel_;
+  std::vector<SegmentState> seg_;
+};
+
+}  // namespace moorsim::mooring_fem

@@ -1,0 +1,88 @@
+// Loading a scenario from YAML: strict parsing into the structs of scenario.h, then a
+// semantic Validate(). Every problem is a moorsim::InputError with a one-line message
+//
+//   <file>:<line>:<col>: <key.path>: <value> <what is wrong>
+//
+// e.g. "seed.yaml:14:13: mooring.lines[3].length: 1800 m is shorter than the
+// anchor-fairlead distance 1930.1 m". Line and column are 1-based. List indices in key
+// paths are 1-based too (mooring.lines[3] is the third entry), the way the project numbers
+// mooring lines everywhere a user sees them. A missing key is reported at its parent's
+// position; a message has no line:col when the value has no place in the text (a default,
+// or a Scenario built in code).
+//
+// Schema (every number SI; angles only under keys ending in `_deg`, converted to radians):
+//
+//   name: seed_tapm                  # optional; default: the file name without extension
+//   mooring:                         # required
+//     water: {density: 1025, gravity: 9.81, depth: 1000}   # depth required; density
+//                                    # [kg/m^3] and gravity [m/s^2] default to these values
+//     seabed: {stiffness: 3.0e6, damping: 3.0e5, friction_velocity: 0.01}
+//                                    # optional block and keys; these are the defaults
+//                                    # [N/m^3, N s/m^3, m/s]
+//     current:                       # optional; omitted = no current
+//       direction_deg: 315           # required: direction the water flows TOWARD, from
+//                                    # north, clockwise (east = 90)
+//       profile:                     # required, >= 1 point; speed [m/s] piecewise linear
+//         - {depth: 0, speed: 0.1}   # in depth [m], constant beyond the end points
+//         - {depth: 1000, speed: 0.1}
+//     line_types:                    # required
+//       - name: chain_seed           # required, unique
+//         diameter: 0.08             # required [m]
+//         mass_per_length: 275       # required, dry [kg/m]
+//         axial_stiffness: 2.28785e8 # required, EA [N]
+//         axial_damping_ratio: 0.5   # optional, fraction of a segment's critical damping,
+//                                    # or axial_damping: <c [N s]>; not both. Neither
+//                                    # given = axial_damping_ratio 0.5
+//         drag_normal: 0.3           # required, C_DN
+//         drag_tangential: 1.0       # required, C_DT
+//         added_mass_normal: 1.5     # required, C_MN
+//         friction_axial: 0.5        # optional, default 0: seabed Coulomb coefficients
+//         friction_lateral: 1.0      # optional, default 0
+//     defaults: {segments: 50}       # optional; segments default 50
+//     lines:                         # required, >= 1 entry
+//       - id: 1                      # optional; default = position in the list (1-based);
+//                                    # the ids must be 1..N in any order
+//         type: chain_seed           # required, a line_types name
+//         anchor: [1950, 0, 1000]    # required, Earth frame NED [m] (z down: on a 1000 m
+//                                    # seabed z = +1000)
+//         fairlead: [20, 0, 12]      # required, body frame [m]
+//         length: 2250               # required, unstretched [m]
+//         segments: 50               # optional; default mooring.defaults.segments
+//   solver:                          # optional block, every key optional (SolverSpec)
+//     rtol: 1.0e-4
+//     atol_position: 1.0e-3          # [m]
+//     atol_velocity: 1.0e-3          # [m/s]
+//     max_order: 5                   # BDF order, 1..5
+//     stability_limit_detection: true
+//     max_step: 0                    # [s], 0 = no limit
+//
+// Strictness: unknown keys, duplicate keys, a value of the wrong kind (a quoted "0.08"
+// where a number belongs, 2.5 where an integer belongs, .inf or .nan) and missing
+// required keys are all errors. Later sections (vessel, environment, controller, sensors,
+// failure, simulation, detectors) are added as rows of the top-level section table in
+// load.cc; until then they are unknown keys.
+#pragma once
+
+#include <string>
+
+#include "scenarios/scenario.h"
+
+namespace moorsim::scenarios {
+
+/// Reads the scenario file at `path` (as given, which is also how messages name it), keeps
+/// its full text in Scenario::text and the path in Scenario::source_path, parses and
+/// validates it. Throws moorsim::InputError.
+Scenario LoadScenario(const std::string& path);
+
+/// Parses and validates scenario YAML text. `source_name` names the text in messages, is
+/// stored as Scenario::source_path, and gives the default name (its stem). After loading,
+/// mooring.lines is ordered by id. Throws moorsim::InputError.
+Scenario ParseScenario(const std::string& yaml_text, const std::string& source_name);
+
+/// The semantic checks: physically impossible or inconsistent values (non-positive
+/// diameter, a line lighter than the water it displaces, a line shorter than its
+/// anchor-fairlead distance, ids that are not 1..N, ...). Positions come from
+/// Scenario::marks. Throws moorsim::InputError at the first violation.
+void Validate(const Scenario& scenario);
+
+}  // namespace moorsim::scenarios

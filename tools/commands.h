@@ -1,0 +1,21 @@
+// The moorsim subcommands. Each registers its options on a CLI11 subcommand and returns a
+// callable that runs it; main() maps exceptions to exit codes (DESIGN.md section 2).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace moorsim::cli {
+
+using Command = std::function<int()>;
+
+Command AddStaticCommand(CLI::App& app);
+Command AddSimulateLinesCommand(CLI::App& app);
+Command AddValidateCommand(CLI::App& app);
+
+/// Splits "a,b,c" into numbers; throws InputError naming the flag on anything else.
+std::vector<double> ParseNumberList(const std::string& flag, const std::string& text);
+
+}  // namespace moorsim::cli

@@ -1,0 +1,47 @@
+// moorsim command-line entry point: wires the subcommands and turns errors into one line
+// on stderr with exit code 2 (bad input) or 1 (a run that failed).
+#include <iostream>
+#include <map>
+
+#include "core/error.h"
+#include "tools/commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"moorsim " MOORSIM_VERSION
+               " - turret-moored FPSO mooring simulator (lumped-mass FEM lines on CVODE/KLU)"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", MOORSIM_VERSION);
+  std::map<const CLI::App*, moorsim::cli::Command> commands;
+  auto add = [&](moorsim::cli::Command (*factory)(CLI::App&)) {
+    const std::size_t before = app.get_subcommands({}).size();
+    moorsim::cli::Command command = factory(app);
+    commands[app.get_subcommands({})[before]] = std::move(command);
+  };
+  add(&moorsim::cli::AddStaticCommand);
+  add(&moorsim::cli::AddSimulateLinesCommand);
+  add(&moorsim::cli::AddValidateCommand);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "moorsim: " << e.what() << "\n";
+    return 2;
+  }
+  try {
+    for (const auto& [sub, command] : commands) {
+      if (sub->parsed()) return command();
+    }
+    return 2;
+  } catch (const moorsim::InputError& e) {
+    std::cerr << "moorsim: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "moorsim: " << e.what() << "\n";
+    return 1;
+  }
+}

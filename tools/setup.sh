@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Installs moorsim's build and test dependencies from Debian 12 packages.
+# Idempotent and non-interactive: only packages that are missing are installed.
+# Run as root (or with sudo available). Nothing is downloaded from outside Debian.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config git
+  libeigen3-dev
+  libsundials-dev          # CVODE 6.x with SUNLinSol_KLU
+  libsuitesparse-dev       # KLU, AMD, COLAMD
+  libyaml-cpp-dev
+  nlohmann-json3-dev
+  libcli11-dev
+  libgtest-dev libgmock-dev googletest
+  libbenchmark-dev
+  clang-format
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if ((${#missing[@]} == 0)); then
+  echo "setup: all ${#packages[@]} packages already installed"
+  exit 0
+fi
+
+echo "setup: installing ${missing[*]}"
+SUDO=""
+if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

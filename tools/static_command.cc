@@ -1,0 +1,197 @@
+// `moorsim static`: the mooring's static loads on the vessel at a given pose, from the FEM
+// lines settled to rest.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+#include "core/error.h"
+#include "mooring_fem/catenary.h"
+#include "mooring_fem/line_simulation.h"
+#include "mooring_fem/mooring_system.h"
+#include "scenarios/load.h"
+#include "tools/commands.h"
+
+namespace moorsim::cli {
+
+std::vector<double> ParseNumberList(const std::string& flag, const std::string& text) {
+  std::vector<double> values;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    std::size_t used = 0;
+    double value = 0.0;
+    try {
+      value = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != item.size() || !std::isfinite(value)) {
+      throw InputError(flag + ": '" + item + "' in '" + text + "' is not a finite number");
+    }
+    values.push_back(value);
+  }
+  if (values.empty()) throw InputError(flag + ": no numbers in '" + text + "'");
+  return values;
+}
+
+namespace {
+
+struct StaticOptions {
+  std::string scenario;
+  std::string offset = "0,0,0";
+  std::string broken;
+  bool json = false;
+};
+
+struct StaticLineResult {
+  int id = 0;
+  bool broken = false;
+  Vec3 force = Vec3::Zero();
+  double grounded_length = 0.0;
+  double catenary_tension = 0.0;
+};
+
+int RunStatic(const StaticOptions& o) {
+  const scenarios::Scenario scenario = scenarios::LoadScenario(o.scenario);
+  const std::vector<double> offset = ParseNumberList("--offset", o.offset);
+  if (offset.size() != 3) {
+    throw InputError("--offset: '" + o.offset + "' must be X,Y,PSI_DEG (three numbers)");
+  }
+  const mooring_fem::PlanarPose pose{offset[0], offset[1], offset[2] * std::numbers::pi / 180.0};
+  const int num_lines = static_cast<int>(scenario.mooring.lines.size());
+  std::set<int> broken;
+  if (!o.broken.empty()) {
+    for (double k : ParseNumberList("--broken", o.broken)) {
+      if (k != std::floor(k) || k < 1 || k > num_lines) {
+        std::ostringstream msg;
+        msg << "--broken: line " << k << " does not exist (lines are 1.." << num_lines << ")";
+        throw InputError(msg.str());
+      }
+      broken.insert(static_cast<int>(k));
+    }
+  }
+
+  // A line parted at its fairlead puts no load on the vessel: leave it out of the FEM.
+  scenarios::MooringSpec spec = scenario.mooring;
+  std::erase_if(spec.lines, [&](const scenarios::LineSpec& l) { return broken.count(l.id) > 0; });
+  std::vector<StaticLineResult> results(num_lines);
+  for (int i = 0; i < num_lines; ++i) {
+    results[i].id = scenario.mooring.lines[i].id;
+    results[i].broken = broken.count(results[i].id) > 0;
+    if (results[i].broken) results[i].grounded_length = scenario.mooring.lines[i].length;
+  }
+  double residual = 0.0;
+  if (!spec.lines.empty()) {
+    mooring_fem::MooringSystem mooring(spec);
+    std::vector<Vec3> positions;
+    std::vector<PointKinematics> fairleads(mooring.num_lines());
+    for (int i = 0; i < mooring.num_lines(); ++i) {
+      positions.push_back(mooring_fem::FairleadPosition(pose, mooring.line(i).fairlead_body));
+      fairleads[i].position = positions.back();
+    }
+    std::vector<double> x(mooring.StateSize());
+    mooring.CatenaryState(positions, x.data());
+    residual = mooring.SettleStatic(positions, x.data());
+    const std::vector<mooring_fem::LineLoad> loads = mooring.LineLoads(x.data(), fairleads);
+    for (int i = 0; i < mooring.num_lines(); ++i) {
+      const mooring_fem::LineProperties& lp = mooring.line(i);
+      StaticLineResult& r = results[lp.id - 1];
+      r.force = loads[i].fairlead_force;
+      r.grounded_length = loads[i].grounded_length;
+      const mooring_fem::CatenaryLineProperties props{lp.length, lp.weight_per_length,
+                                                      lp.axial_stiffness};
+      r.catenary_tension =
+          mooring_fem::SolveLineCatenary(props, lp.anchor, positions[i]).solution.fairlead_tension;
+    }
+  }
+
+  Vec3 net = Vec3::Zero();  // Fx, Fy, Mz about the vessel's reference point
+  for (const auto& line : scenario.mooring.lines) {
+    const StaticLineResult& r = results[line.id - 1];
+    const Vec3 arm = mooring_fem::FairleadPosition(pose, line.fairlead_body) - Vec3(pose.x, pose.y, 0);
+    net += Vec3(r.force.x(), r.force.y(), arm.x() * r.force.y() - arm.y() * r.force.x());
+  }
+
+  if (o.json) {
+    nlohmann::json out;
+    out["scenario"] = scenario.source_path;
+    out["version"] = MOORSIM_VERSION;
+    out["method"] = "fem_static";
+    out["offset"] = {pose.x, pose.y, offset[2]};
+    out["broken"] = std::vector<int>(broken.begin(), broken.end());
+    out["max_residual_force"] = residual;
+    nlohmann::json lines = nlohmann::json::array();
+    for (const StaticLineResult& r : results) {
+      lines.push_back({{"id", r.id},
+                       {"broken", r.broken},
+                       {"fairlead_tension", r.force.norm()},
+                       {"horizontal_tension", std::hypot(r.force.x(), r.force.y())},
+                       {"vertical_tension", r.force.z()},
+                       {"grounded_length", r.grounded_length},
+                       {"catenary_fairlead_tension", r.catenary_tension}});
+    }
+    out["lines"] = lines;
+    out["net_force"] = {net.x(), net.y(), net.z()};
+    std::cout << out.dump(2) << "\n";
+    return 0;
+  }
+  std::printf("moorsim %s static: %s, vessel at x %.3f m, y %.3f m, heading %.3f deg\n",
+              MOORSIM_VERSION, scenario.source_path.c_str(), pose.x, pose.y, offset[2]);
+  std::printf("FEM lines settled to rest (largest residual node force %.2e N)\n\n", residual);
+  std::printf("%4s %14s %14s %14s %10s %16s\n", "line", "tension [kN]", "horiz. [kN]",
+              "vert. [kN]", "ground [m]", "catenary T [kN]");
+  for (const StaticLineResult& r : results) {
+    if (r.broken) {
+      std::printf("%4d %14s\n", r.id, "broken");
+      continue;
+    }
+    std::printf("%4d %14.2f %14.2f %14.2f %10.1f %16.2f\n", r.id, r.force.norm() / 1e3,
+                std::hypot(r.force.x(), r.force.y()) / 1e3, r.force.z() / 1e3, r.grounded_length,
+                r.catenary_tension / 1e3);
+  }
+  std::printf("\nnet force on the vessel (Earth frame): Fx %.2f kN, Fy %.2f kN, Mz %.2f kN m\n",
+              net.x() / 1e3, net.y() / 1e3, net.z() / 1e3);
+  return 0;
+}
+
+}  // namespace
+
+Command AddStaticCommand(CLI::App& app) {
+  auto o = std::make_shared<StaticOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "static",
+      "Static mooring loads on the vessel at a pose.\n"
+      "How it is computed: every line is first placed on the analytic elastic catenary\n"
+      "(frictionless seabed) between its anchor and its fairlead, then Newton's method on the\n"
+      "sparse FEM stiffness drives every node's net force to zero, so the numbers are the\n"
+      "FEM lines settled to rest (same segments, seabed contact and weights as in a run),\n"
+      "not the catenary formula. Fairlead tension is the magnitude of the force the line\n"
+      "exerts on the vessel at the fairlead (what a load cell there reads); vertical_tension\n"
+      "is its downward component; grounded_length is the seabed's share of the line's weight\n"
+      "divided by the weight per metre. The analytic catenary tension is printed alongside.\n"
+      "Units: N, m, N m; Earth frame NED (x north, y east, z down).");
+  sub->add_option("scenario", o->scenario, "scenario YAML file")->required();
+  sub->add_option("--offset", o->offset,
+                  "vessel pose X,Y,PSI_DEG: north and east offset [m] of the reference point "
+                  "and heading [deg] (default 0,0,0)");
+  sub->add_option("--broken", o->broken, "lines K[,K...] parted at the fairlead (1-based)");
+  sub->add_flag("--json", o->json, "print one JSON object (DESIGN.md section 7)");
+  return [o] { return RunStatic(*o); };
+}
+
+Command AddValidateCommand(CLI::App& app) {
+  auto path = std::make_shared<std::string>();
+  CLI::App* sub = app.add_subcommand("validate", "Load and check a scenario, then exit");
+  sub->add_option("scenario", *path, "scenario YAML file")->required();
+  return [path] {
+    const scenarios::Scenario s = scenarios::LoadScenario(*path);
+    std::printf("%s: ok (%s, %zu lines)\n", path->c_str(), s.name.c_str(), s.mooring.lines.size());
+    return 0;
+  };
+}
+
+}  // namespace moorsim::cli
