@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <cstdlib>
 #include <sstream>
 
 #include "core/error.h"
@@ -152,6 +153,10 @@ Integrator::Integrator(OdeSystem& system, double t0, const double* x0,
             m.cvode, [](int, const char*, const char*, char*, void*) {}, nullptr),
         "CVodeSetErrHandlerFn");
 
+  if (const char* e = std::getenv("MAXNLI")) CVodeSetMaxNonlinIters(m.cvode, std::atoi(e));
+  if (const char* e = std::getenv("NLCOEF")) CVodeSetNonlinConvCoef(m.cvode, std::atof(e));
+  if (const char* e = std::getenv("LSETUP")) CVodeSetLSetupFrequency(m.cvode, std::atol(e));
+  if (const char* e = std::getenv("JACF")) CVodeSetJacEvalFrequency(m.cvode, std::atol(e));
   m.A = CheckPtr(SUNSparseMatrix(n_, n_, pattern.nnz(), CSR_MAT, m.ctx), "SUNSparseMatrix");
   m.LS = CheckPtr(SUNLinSol_KLU(m.y, m.A, m.ctx), "SUNLinSol_KLU");
   Check(CVodeSetLinearSolver(m.cvode, m.LS, m.A), "CVodeSetLinearSolver");
@@ -183,6 +188,20 @@ void Integrator::AdvanceTo(double t_out) {
 }
 
 const double* Integrator::state() const { return N_VGetArrayPointer(impl_->y); }
+
+std::vector<double> Integrator::WeightedLocalErrors() const {
+  N_Vector ele = N_VClone(impl_->y);
+  N_Vector ewt = N_VClone(impl_->y);
+  CVodeGetEstLocalErrors(impl_->cvode, ele);
+  CVodeGetErrWeights(impl_->cvode, ewt);
+  std::vector<double> out(n_);
+  for (int i = 0; i < n_; ++i) {
+    out[i] = std::abs(N_VGetArrayPointer(ele)[i]) * N_VGetArrayPointer(ewt)[i];
+  }
+  N_VDestroy(ele);
+  N_VDestroy(ewt);
+  return out;
+}
 
 IntegratorStats Integrator::stats() const {
   IntegratorStats s;

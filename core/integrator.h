@@ -55,6 +55,9 @@ class Integrator {
   const double* state() const;
   int size() const { return n_; }
   IntegratorStats stats() const;
+  /// |estimated local error| x error weight of each component for the last step: the
+  /// components that limit the step size have the largest values (a diagnostic).
+  std::vector<double> WeightedLocalErrors() const;
 
  private:
   struct Impl;

@@ -49,8 +49,8 @@ std::string Describe(const CatenaryLineProperties& line, double span, double hei
   std::ostringstream out;
   out.precision(10);
   out << "catenary (L = " << line.length << " m, w = " << line.weight_per_length
-      << " N/m, EA = " << line.axial_stiffness << " N, span = " << span
-      << " m, height = " << height << " m)";
+      << " N/m, EA = " << line.axial_stiffness << " N, span = " << span << " m, height = " << height
+      << " m)";
   return out.str();
 }
 
@@ -61,8 +61,7 @@ void CheckLine(const CatenaryLineProperties& line) {
   if (!ok) {
     std::ostringstream out;
     out << "catenary: line properties must be finite and positive (L = " << line.length
-        << " m, w = " << line.weight_per_length << " N/m, EA = " << line.axial_stiffness
-        << " N)";
+        << " m, w = " << line.weight_per_length << " N/m, EA = " << line.axial_stiffness << " N)";
     throw Error(out.str());
   }
 }
@@ -89,8 +88,8 @@ Eigen::Vector2d HangingOffset(double h, double va, double sigma, double w, doubl
 
 /// Fairlead position and flexibility for trial fairlead tensions (h > 0, v > 0).
 struct EndpointState {
-  Eigen::Vector2d position;    // (span, height) the trial tensions produce [m]
-  Eigen::Matrix2d jacobian;    // d(span, height)/d(H, V) [m/N], symmetric positive definite
+  Eigen::Vector2d position;  // (span, height) the trial tensions produce [m]
+  Eigen::Matrix2d jacobian;  // d(span, height)/d(H, V) [m/N], symmetric positive definite
 };
 
 EndpointState EvaluateEndpoint(const CatenaryLineProperties& line, double h, double v) {
@@ -236,13 +235,13 @@ Eigen::Vector2d BisectionGuess(const CatenaryLineProperties& line, double span, 
   return {h, v_for(h)};
 }
 
-/// Damped Newton iteration on the unified endpoint equations. Returns true and sets
-/// `tensions` on convergence.
+/// Damped Newton iteration on the unified endpoint equations from the guess in `tensions`
+/// (H, V). Returns true and sets `tensions` on convergence; `residual_out` is the last
+/// max-norm residual [m].
 bool NewtonSolve(const CatenaryLineProperties& line, double span, double height,
                  Eigen::Vector2d& tensions, double& residual_out) {
   const Eigen::Vector2d target(span, height);
-  const double tolerance =
-      kRelativeTolerance * std::max({span, height, line.length});
+  const double tolerance = kRelativeTolerance * std::max({span, height, line.length});
   Eigen::Vector2d x = tensions;
   EndpointState state = EvaluateEndpoint(line, x(0), x(1));
   Eigen::Vector2d residual = state.position - target;
@@ -266,7 +265,7 @@ bool NewtonSolve(const CatenaryLineProperties& line, double span, double height,
     }
     // Backtracking line search on the residual norm (the Newton step is a descent
     // direction for it). Once near the root, rounding may stall the decrease: accept a
-    // full step whose residual is within a few ulps of the current one.
+    // full step whose residual grows by no more than a few convergence tolerances.
     const double norm = residual.norm();
     bool accepted = false;
     for (int k = 0; k < 60; ++k, alpha *= 0.5) {

@@ -84,6 +84,7 @@ class LineSimulation {
   /// Largest residual node force of the static start [N].
   double static_residual() const { return static_residual_; }
   IntegratorStats stats() const;
+  const Integrator& integrator() const { return *integrator_; }
 
  private:
   void StartIntegrator();
