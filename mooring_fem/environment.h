@@ -3,7 +3,6 @@
 // Newton iteration sees no kinks (NUMERICS.md item 3).
 #pragma once
 
-#include <cstdlib>
 #include <vector>
 
 #include "core/types.h"
@@ -39,7 +38,7 @@ struct SeabedContact {
   double stiffness = 0.0;             ///< [N/m^3] times contact width (diameter)
   double damping = 0.0;               ///< [N s/m^3]
   double friction_velocity = 0.01;    ///< [m/s]
-  double regularisation = std::getenv("REG") ? std::atof(std::getenv("REG")) : 2.0e-3;
+  double regularisation = 0.5;        ///< eps [m]
 
   /// Smoothed penetration q(delta) [m] and dq/ddelta.
   void Penetration(double delta, double* q, double* dq) const;

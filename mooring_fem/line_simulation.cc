@@ -75,8 +75,12 @@ LineSimulation::LineSimulation(const scenarios::Scenario& scenario, HarmonicMoti
 
 void LineSimulation::StartIntegrator() {
   if (integrator_) finished_ += integrator_->stats();
-  integrator_ = std::make_unique<Integrator>(system_, t_, x_.data(),
-                                             MakeIntegratorOptions(solver_, mooring_));
+  IntegratorOptions options = MakeIntegratorOptions(solver_, mooring_);
+  // Tolerances relative to each node's displacement from where this integrator starts.
+  const std::vector<char> kinds = mooring_.StateKinds();
+  options.reference.resize(x_.size());
+  for (std::size_t i = 0; i < x_.size(); ++i) options.reference[i] = kinds[i] == 'p' ? x_[i] : 0.0;
+  integrator_ = std::make_unique<Integrator>(system_, t_, x_.data(), options);
   if (!events_.empty()) integrator_->SetStopTime(events_.front().time);
 }
 

@@ -101,6 +101,7 @@ MooringSystem::MooringSystem(const scenarios::MooringSpec& spec) : current_(spec
   seabed_.stiffness = spec.seabed.stiffness;
   seabed_.damping = spec.seabed.damping;
   seabed_.friction_velocity = spec.seabed.friction_velocity;
+  seabed_.regularisation = spec.seabed.contact_smoothing;
   int max_segments = 0;
   for (const auto& line : spec.lines) {
     lines_.push_back(MakeLineProperties(spec, line));

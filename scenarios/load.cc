@@ -262,9 +262,10 @@ void ParseWater(const Reader& r, Water& water) {
 }
 
 void ParseSeabed(const Reader& r, Seabed& seabed) {
-  r.CheckKeys({"damping", "friction_velocity", "stiffness"});
+  r.CheckKeys({"contact_smoothing", "damping", "friction_velocity", "stiffness"});
   r.Optional("stiffness", seabed.stiffness);
   r.Optional("damping", seabed.damping);
+  r.Optional("contact_smoothing", seabed.contact_smoothing);
   r.Optional("friction_velocity", seabed.friction_velocity);
 }
 
@@ -436,6 +437,7 @@ void CheckWater(const Checker& check, const Water& water) {
 void CheckSeabed(const Checker& check, const Seabed& seabed) {
   check.Positive("mooring.seabed.stiffness", seabed.stiffness, "N/m^3");
   check.NonNegative("mooring.seabed.damping", seabed.damping, "N s/m^3");
+  check.Positive("mooring.seabed.contact_smoothing", seabed.contact_smoothing, "m");
   check.Positive("mooring.seabed.friction_velocity", seabed.friction_velocity, "m/s");
 }
 

@@ -4,7 +4,7 @@
 //   <file>:<line>:<col>: <key.path>: <value> <what is wrong>
 //
 // e.g. "seed.yaml:14:13: mooring.lines[3].length: 1800 m is shorter than the
-// anchor-fairlead distance 1930.1 m". Line and column are 1-based. List indices in key
+// anchor-fairlead distance 2168.2 m". Line and column are 1-based. List indices in key
 // paths are 1-based too (mooring.lines[3] is the third entry), the way the project numbers
 // mooring lines everywhere a user sees them. A missing key is reported at its parent's
 // position; a message has no line:col when the value has no place in the text (a default,
@@ -16,9 +16,10 @@
 //   mooring:                         # required
 //     water: {density: 1025, gravity: 9.81, depth: 1000}   # depth required; density
 //                                    # [kg/m^3] and gravity [m/s^2] default to these values
-//     seabed: {stiffness: 3.0e6, damping: 3.0e5, friction_velocity: 0.01}
+//     seabed: {stiffness: 3.0e6, damping: 3.0e5, contact_smoothing: 0.5,
+//              friction_velocity: 0.1}
 //                                    # optional block and keys; these are the defaults
-//                                    # [N/m^3, N s/m^3, m/s]
+//                                    # [N/m^3, N s/m^3, m, m/s]
 //     current:                       # optional; omitted = no current
 //       direction_deg: 315           # required: direction the water flows TOWARD, from
 //                                    # north, clockwise (east = 90)
@@ -52,8 +53,8 @@
 //     rtol: 1.0e-4
 //     atol_position: 1.0e-3          # [m]
 //     atol_velocity: 1.0e-3          # [m/s]
-//     max_order: 5                   # BDF order, 1..5
-//     stability_limit_detection: true
+//     max_order: 2                   # BDF order, 1..5
+//     stability_limit_detection: false
 //     max_step: 0                    # [s], 0 = no limit
 //
 // Strictness: unknown keys, duplicate keys, a value of the wrong kind (a quoted "0.08"

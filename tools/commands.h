@@ -17,5 +17,11 @@ Command AddValidateCommand(CLI::App& app);
 
 /// Splits "a,b,c" into numbers; throws InputError naming the flag on anything else.
 std::vector<double> ParseNumberList(const std::string& flag, const std::string& text);
+/// One number (no list); throws InputError naming the flag otherwise.
+double ParseNumber(const std::string& flag, const std::string& text);
+/// One whole number in [min, max]; throws InputError naming the flag and the range.
+int ParseInteger(const std::string& flag, const std::string& text, int min, int max);
+/// "12.5" -> "12.5", 1e10 -> "1e+10": the shortest form that reads back the same.
+std::string FormatNumber(double value);
 
 }  // namespace moorsim::cli

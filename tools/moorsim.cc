@@ -1,7 +1,8 @@
 // moorsim command-line entry point: wires the subcommands and turns errors into one line
 // on stderr with exit code 2 (bad input) or 1 (a run that failed).
 #include <iostream>
-#include <map>
+#include <utility>
+#include <vector>
 
 #include "core/error.h"
 #include "tools/commands.h"
@@ -11,15 +12,30 @@ int main(int argc, char** argv) {
                " - turret-moored FPSO mooring simulator (lumped-mass FEM lines on CVODE/KLU)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", MOORSIM_VERSION);
-  std::map<const CLI::App*, moorsim::cli::Command> commands;
+  // In registration order, which is also the order of the help listing.
+  std::vector<std::pair<const CLI::App*, moorsim::cli::Command>> commands;
   auto add = [&](moorsim::cli::Command (*factory)(CLI::App&)) {
     const std::size_t before = app.get_subcommands({}).size();
     moorsim::cli::Command command = factory(app);
-    commands[app.get_subcommands({})[before]] = std::move(command);
+    commands.emplace_back(app.get_subcommands({})[before], std::move(command));
   };
   add(&moorsim::cli::AddStaticCommand);
   add(&moorsim::cli::AddSimulateLinesCommand);
   add(&moorsim::cli::AddValidateCommand);
+  // CLI11 would only say "A subcommand is required" for a misspelt command.
+  if (argc > 1 && argv[1][0] != '-') {
+    const std::string name = argv[1];
+    bool known = false;
+    std::string names;
+    for (const auto& [sub, command] : commands) {
+      known |= sub->get_name() == name;
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (!known) {
+      std::cerr << "moorsim: unknown command '" << name << "' (known: " << names << ")\n";
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

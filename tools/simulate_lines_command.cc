@@ -58,28 +58,27 @@ struct ScheduledPart {
   mooring_fem::LineFailure failure;
 };
 
-// LINE:TIME[:fairlead|anchor|node=K]
-ScheduledPart ParsePart(const std::string& text, int num_lines) {
+// LINE:TIME[:fairlead|anchor|node=K], checked against the scenario's lines.
+ScheduledPart ParsePart(const std::string& text, const scenarios::Scenario& scenario) {
   const std::string usage = "--part: '" + text + "' must be LINE:TIME[:fairlead|anchor|node=K]";
   std::vector<std::string> fields;
   std::stringstream in(text);
   for (std::string f; std::getline(in, f, ':');) fields.push_back(f);
   if (fields.size() < 2 || fields.size() > 3) throw InputError(usage);
-  const double line = ParseNumberList("--part", fields[0]).at(0);
-  const double time = ParseNumberList("--part", fields[1]).at(0);
-  if (line != std::floor(line) || line < 1 || line > num_lines) {
-    throw InputError("--part: line " + fields[0] + " does not exist (lines are 1.." +
-                     std::to_string(num_lines) + ")");
-  }
-  if (time < 0) throw InputError("--part: time " + fields[1] + " s must be >= 0");
-  ScheduledPart p{time, {static_cast<int>(line) - 1, mooring_fem::FailureMode::kFairlead, 0}};
+  const int num_lines = static_cast<int>(scenario.mooring.lines.size());
+  const int line = ParseInteger("--part " + text + ": line", fields[0], 1, num_lines);
+  const double time = ParseNumber("--part " + text + ": time", fields[1]);
+  if (time < 0) throw InputError("--part " + text + ": time " + fields[1] + " s must be >= 0");
+  ScheduledPart p{time, {line - 1, mooring_fem::FailureMode::kFairlead, 0}};
   if (fields.size() == 3) {
     const std::string& mode = fields[2];
     if (mode == "anchor") {
       p.failure.mode = mooring_fem::FailureMode::kAnchor;
     } else if (mode.rfind("node=", 0) == 0) {
+      // Internal nodes only: node 0 is the anchor, node n the fairlead.
+      const int segments = scenario.mooring.lines[line - 1].segments;
       p.failure.mode = mooring_fem::FailureMode::kNode;
-      p.failure.node = static_cast<int>(ParseNumberList("--part", mode.substr(5)).at(0));
+      p.failure.node = ParseInteger("--part " + text + ": node", mode.substr(5), 1, segments - 1);
     } else if (mode != "fairlead") {
       throw InputError("--part: unknown mode '" + mode + "' (known: anchor, fairlead, node=K)");
     }
@@ -89,20 +88,27 @@ ScheduledPart ParsePart(const std::string& text, int num_lines) {
 
 int RunSimulateLines(const SimulateLinesOptions& o) {
   scenarios::Scenario scenario = scenarios::LoadScenario(o.scenario);
-  if (o.duration <= 0.0) throw InputError("--duration: " + std::to_string(o.duration) + " s must be > 0");
-  if (o.output_interval <= 0.0) throw InputError("--output-interval must be > 0");
-  if (o.tolerance_scale <= 0.0) throw InputError("--tolerance-scale must be > 0");
+  if (!(o.duration > 0.0)) {
+    throw InputError("--duration: " + FormatNumber(o.duration) + " s must be > 0");
+  }
+  if (!(o.output_interval > 0.0)) {
+    throw InputError("--output-interval: " + FormatNumber(o.output_interval) + " s must be > 0");
+  }
+  if (!(o.tolerance_scale > 0.0)) {
+    throw InputError("--tolerance-scale: " + FormatNumber(o.tolerance_scale) + " must be > 0");
+  }
   if (o.segments != 0) {
-    if (o.segments < 2) throw InputError("--segments: " + std::to_string(o.segments) + " must be >= 2");
+    if (o.segments < 2 || o.segments > 10000) {
+      throw InputError("--segments: " + std::to_string(o.segments) + " must be in 2..10000");
+    }
     for (auto& line : scenario.mooring.lines) line.segments = o.segments;
   }
   scenario.solver.rtol *= o.tolerance_scale;
   scenario.solver.atol_position *= o.tolerance_scale;
   scenario.solver.atol_velocity *= o.tolerance_scale;
   const mooring_fem::HarmonicMotion motion = ParseMotion(o.motion);
-  const int num_lines = static_cast<int>(scenario.mooring.lines.size());
   std::vector<ScheduledPart> parts;
-  for (const std::string& p : o.parts) parts.push_back(ParsePart(p, num_lines));
+  for (const std::string& p : o.parts) parts.push_back(ParsePart(p, scenario));
 
   std::unique_ptr<std::ofstream> csv;
   if (!o.out.empty()) {

@@ -38,12 +38,41 @@ std::vector<double> ParseNumberList(const std::string& flag, const std::string& 
   return values;
 }
 
+double ParseNumber(const std::string& flag, const std::string& text) {
+  const std::vector<double> values = ParseNumberList(flag, text);
+  if (values.size() != 1) throw InputError(flag + ": '" + text + "' must be a single number");
+  return values.front();
+}
+
+int ParseInteger(const std::string& flag, const std::string& text, int min, int max) {
+  const double value = ParseNumber(flag, text);
+  if (value != std::floor(value) || value < min || value > max) {
+    throw InputError(flag + ": '" + text + "' must be a whole number in " + std::to_string(min) +
+                     ".." + std::to_string(max));
+  }
+  return static_cast<int>(value);
+}
+
+std::string FormatNumber(double value) {
+  std::ostringstream out;
+  out.precision(17);
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::ostringstream trial;
+    trial.precision(digits);
+    trial << value;
+    if (std::stod(trial.str()) == value) return trial.str();
+  }
+  out << value;
+  return out.str();
+}
+
 namespace {
 
 struct StaticOptions {
   std::string scenario;
   std::string offset = "0,0,0";
   std::string broken;
+  bool broken_given = false;
   bool json = false;
 };
 
@@ -64,12 +93,11 @@ int RunStatic(const StaticOptions& o) {
   const mooring_fem::PlanarPose pose{offset[0], offset[1], offset[2] * std::numbers::pi / 180.0};
   const int num_lines = static_cast<int>(scenario.mooring.lines.size());
   std::set<int> broken;
-  if (!o.broken.empty()) {
+  if (o.broken_given) {
     for (double k : ParseNumberList("--broken", o.broken)) {
       if (k != std::floor(k) || k < 1 || k > num_lines) {
-        std::ostringstream msg;
-        msg << "--broken: line " << k << " does not exist (lines are 1.." << num_lines << ")";
-        throw InputError(msg.str());
+        throw InputError("--broken: line " + FormatNumber(k) + " does not exist (lines are 1.." +
+                         std::to_string(num_lines) + ")");
       }
       broken.insert(static_cast<int>(k));
     }
@@ -178,9 +206,13 @@ Command AddStaticCommand(CLI::App& app) {
   sub->add_option("--offset", o->offset,
                   "vessel pose X,Y,PSI_DEG: north and east offset [m] of the reference point "
                   "and heading [deg] (default 0,0,0)");
-  sub->add_option("--broken", o->broken, "lines K[,K...] parted at the fairlead (1-based)");
+  CLI::Option* broken =
+      sub->add_option("--broken", o->broken, "lines K[,K...] parted at the fairlead (1-based)");
   sub->add_flag("--json", o->json, "print one JSON object (DESIGN.md section 7)");
-  return [o] { return RunStatic(*o); };
+  return [o, broken] {
+    o->broken_given = broken->count() > 0;
+    return RunStatic(*o);
+  };
 }
 
 Command AddValidateCommand(CLI::App& app) {

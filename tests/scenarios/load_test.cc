@@ -245,7 +245,8 @@ TEST(ParseScenario, DefaultsApplyToEverythingOptional) {
   EXPECT_EQ(s.mooring.water.gravity, 9.81);
   EXPECT_EQ(s.mooring.seabed.stiffness, 3.0e6);
   EXPECT_EQ(s.mooring.seabed.damping, 3.0e5);
-  EXPECT_EQ(s.mooring.seabed.friction_velocity, 0.01);
+  EXPECT_EQ(s.mooring.seabed.contact_smoothing, 0.5);
+  EXPECT_EQ(s.mooring.seabed.friction_velocity, 0.1);
   EXPECT_TRUE(s.mooring.current.depth.empty());
   EXPECT_TRUE(s.mooring.current.speed.empty());
   const LineType& type = s.mooring.line_types[0];
@@ -260,8 +261,8 @@ TEST(ParseScenario, DefaultsApplyToEverythingOptional) {
   EXPECT_EQ(s.solver.rtol, 1e-4);
   EXPECT_EQ(s.solver.atol_position, 1e-3);
   EXPECT_EQ(s.solver.atol_velocity, 1e-3);
-  EXPECT_EQ(s.solver.max_order, 5);
-  EXPECT_TRUE(s.solver.stability_limit_detection);
+  EXPECT_EQ(s.solver.max_order, 2);
+  EXPECT_FALSE(s.solver.stability_limit_detection);
   EXPECT_EQ(s.solver.max_step, 0.0);
 }
 
@@ -434,6 +435,9 @@ const BadInput kValidationErrors[] = {
      "mooring.seabed.stiffness: 0 N/m^3 must be > 0"},
     {"SeabedDampingNegative", "", "damping: 3.0e5", "damping: -1", "damping: ^-1",
      "mooring.seabed.damping: -1 N s/m^3 must be >= 0"},
+    {"ContactSmoothingNotPositive", "", "friction_velocity: 0.01",
+     "contact_smoothing: -0.5, friction_velocity: 0.01", "contact_smoothing: ^-0.5",
+     "mooring.seabed.contact_smoothing: -0.5 m must be > 0"},
     {"FrictionVelocityNotPositive", "", "friction_velocity: 0.01", "friction_velocity: 0",
      "friction_velocity: ^0", "mooring.seabed.friction_velocity: 0 m/s must be > 0"},
     {"CurrentDepthsNotIncreasing", "", "{depth: 500, speed: 0.1}", "{depth: 0, speed: 0.1}",

@@ -1,0 +1,182 @@
+// Micro benchmarks of the lumped-mass FEM (mooring_fem/mooring_system.h): right-hand side,
+// analytic Jacobian, static settling and the analytic catenary, on the seed mooring
+// (scenarios/library/seed_tapm.yaml) with every line's segment count overridden.
+//
+// Arguments: {lines, segments}. `lines` keeps the first 1 or 8 lines of the seed case.
+// The RHS and Jacobian are evaluated at the FEM's static equilibrium for fairleads at the
+// vessel origin, plus small random node velocities so the drag, structural damping and
+// seabed friction paths are all active. All setup (loading, settling) is outside the timed
+// loop and cached per argument pair, since Google Benchmark calls each function repeatedly.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <random>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "core/ode_system.h"
+#include "core/types.h"
+#include "mooring_fem/catenary.h"
+#include "mooring_fem/line_simulation.h"
+#include "mooring_fem/mooring_system.h"
+#include "scenarios/load.h"
+#include "scenarios/scenario.h"
+
+namespace {
+
+using moorsim::PointKinematics;
+using moorsim::Vec3;
+using moorsim::mooring_fem::MooringSystem;
+
+const moorsim::scenarios::Scenario& SeedScenario() {
+  static const moorsim::scenarios::Scenario scenario =
+      moorsim::scenarios::LoadScenario(MOORSIM_SOURCE_DIR "/scenarios/library/seed_tapm.yaml");
+  return scenario;
+}
+
+/// The seed mooring with its first `lines` lines, each split into `segments` segments.
+moorsim::scenarios::MooringSpec SeedSpec(int lines, int segments) {
+  moorsim::scenarios::MooringSpec spec = SeedScenario().mooring;
+  if (static_cast<int>(spec.lines.size()) > lines) spec.lines.resize(lines);
+  spec.defaults.segments = segments;
+  for (auto& line : spec.lines) line.segments = segments;
+  return spec;
+}
+
+/// Earth-frame fairlead positions for the vessel at the origin.
+std::vector<Vec3> FairleadPositions(const MooringSystem& mooring) {
+  std::vector<Vec3> positions;
+  for (int i = 0; i < mooring.num_lines(); ++i) {
+    positions.push_back(moorsim::mooring_fem::FairleadPosition(moorsim::mooring_fem::PlanarPose{},
+                                                               mooring.line(i).fairlead_body));
+  }
+  return positions;
+}
+
+/// A settled mooring with small random node velocities.
+struct Fixture {
+  Fixture(int lines, int segments) : mooring(SeedSpec(lines, segments)) {
+    positions = FairleadPositions(mooring);
+    fairleads.resize(positions.size());
+    for (std::size_t i = 0; i < positions.size(); ++i) fairleads[i].position = positions[i];
+    x.resize(mooring.StateSize());
+    mooring.CatenaryState(positions, x.data());
+    mooring.SettleStatic(positions, x.data());
+    // Small node velocities: well above the friction regularisation speed (0.01 m/s), so
+    // grounded nodes slide, and small enough to stay a plausible state.
+    std::mt19937 rng(12345);
+    std::normal_distribution<double> dist(0.0, 0.05);
+    const std::vector<char> kinds = mooring.StateKinds();
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      if (kinds[i] == 'v') x[i] = dist(rng);
+    }
+    xdot.resize(x.size());
+    jacobian.resize(static_cast<std::size_t>(mooring.JacobianPattern().nnz()));
+  }
+
+  int num_nodes() const { return mooring.StateSize() / 6; }
+
+  MooringSystem mooring;
+  std::vector<Vec3> positions;
+  std::vector<PointKinematics> fairleads;
+  std::vector<double> x;
+  std::vector<double> xdot;
+  std::vector<double> jacobian;
+};
+
+Fixture& GetFixture(int lines, int segments) {
+  static std::map<std::pair<int, int>, std::unique_ptr<Fixture>> cache;
+  auto& slot = cache[{lines, segments}];
+  if (!slot) slot = std::make_unique<Fixture>(lines, segments);
+  return *slot;
+}
+
+void BM_Rhs(benchmark::State& state) {
+  Fixture& f = GetFixture(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  const std::span<const PointKinematics> fairleads(f.fairleads);
+  for (auto _ : state) {
+    f.mooring.Derivatives(f.x.data(), fairleads, f.xdot.data());
+    benchmark::DoNotOptimize(f.xdot.data());
+    benchmark::ClobberMemory();
+  }
+  const double iterations = static_cast<double>(state.iterations());
+  state.counters["state"] = f.mooring.StateSize();
+  state.counters["nodes/s"] =
+      benchmark::Counter(iterations * f.num_nodes(), benchmark::Counter::kIsRate);
+  state.counters["rhs/s"] = benchmark::Counter(iterations, benchmark::Counter::kIsRate);
+}
+
+void BM_Jacobian(benchmark::State& state) {
+  Fixture& f = GetFixture(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  const std::span<const PointKinematics> fairleads(f.fairleads);
+  for (auto _ : state) {
+    f.mooring.Jacobian(f.x.data(), fairleads, f.jacobian.data());
+    benchmark::DoNotOptimize(f.jacobian.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["state"] = f.mooring.StateSize();
+  state.counters["nnz"] = static_cast<double>(f.mooring.JacobianPattern().nnz());
+  state.counters["jac/s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+// The cost of `moorsim static`: analytic catenary placement, then Newton on the FEM.
+void BM_StaticSettle(benchmark::State& state) {
+  MooringSystem mooring(
+      SeedSpec(static_cast<int>(state.range(0)), static_cast<int>(state.range(1))));
+  const std::vector<Vec3> positions = FairleadPositions(mooring);
+  std::vector<double> x(mooring.StateSize());
+  double residual = 0.0;
+  for (auto _ : state) {
+    mooring.CatenaryState(positions, x.data());
+    residual = mooring.SettleStatic(positions, x.data());
+    benchmark::DoNotOptimize(residual);
+    benchmark::DoNotOptimize(x.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["state"] = mooring.StateSize();
+  state.counters["residual_N"] = residual;
+  state.counters["settle/s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+// One seed line (line 1), fairlead at the vessel origin.
+void BM_Catenary(benchmark::State& state) {
+  const MooringSystem mooring(SeedSpec(1, 50));
+  const moorsim::mooring_fem::LineProperties& lp = mooring.line(0);
+  const moorsim::mooring_fem::CatenaryLineProperties props{lp.length, lp.weight_per_length,
+                                                           lp.axial_stiffness};
+  const Vec3 anchor = lp.anchor;
+  const Vec3 fairlead = FairleadPositions(mooring)[0];
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(props);
+    benchmark::DoNotOptimize(anchor);
+    benchmark::DoNotOptimize(fairlead);
+    moorsim::mooring_fem::LineCatenary cat =
+        moorsim::mooring_fem::SolveLineCatenary(props, anchor, fairlead);
+    benchmark::DoNotOptimize(cat);
+    benchmark::ClobberMemory();
+  }
+  state.counters["solves/s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+BENCHMARK(BM_Rhs)
+    ->ArgsProduct({{1, 8}, {20, 50, 100}})
+    ->ArgNames({"lines", "segments"})
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Jacobian)
+    ->ArgsProduct({{1, 8}, {20, 50, 100}})
+    ->ArgNames({"lines", "segments"})
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StaticSettle)
+    ->ArgsProduct({{8}, {20, 50, 100}})
+    ->ArgNames({"lines", "segments"})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Catenary)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
