@@ -1,0 +1,177 @@
+// The FEM lines settled to rest against the analytic elastic catenary (an independent
+// continuum solution) for the seed mooring.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "mooring_fem/catenary.h"
+#include "test_support.h"
+
+namespace moorsim::mooring_fem {
+namespace {
+
+using testing::CatenaryProperties;
+using testing::FairleadsAt;
+using testing::SeedScenario;
+using testing::StaticState;
+
+struct TensionError {
+  double total;       // |T_fem / T_cat - 1|
+  double horizontal;  // |H_fem / H_cat - 1|
+};
+
+TensionError LineOneError(int segments) {
+  const scenarios::Scenario s = SeedScenario(segments);
+  MooringSystem mooring(s.mooring);
+  const std::vector<double> x = StaticState(mooring, {});
+  const auto fairleads = FairleadsAt(mooring, {});
+  const std::vector<LineLoad> loads = mooring.LineLoads(x.data(), fairleads);
+  const LineProperties& lp = mooring.line(0);
+  const CatenarySolution cat =
+      SolveLineCatenary(CatenaryProperties(lp), lp.anchor, fairleads[0].position).solution;
+  const Vec3& f = loads[0].fairlead_force;
+  return {std::abs(f.norm() / cat.fairlead_tension - 1.0),
+          std::abs(f.head<2>().norm() / cat.horizontal_tension - 1.0)};
+}
+
+TEST(StaticFem, FairleadTensionMatchesCatenaryAndConvergesWithSegments) {
+  const TensionError e20 = LineOneError(20);
+  const TensionError e50 = LineOneError(50);
+  const TensionError e100 = LineOneError(100);
+  // The bar: within 0.5 % from 50 segments on (measured: ~0.03 %).
+  EXPECT_LT(e50.total, 5e-3);
+  EXPECT_LT(e50.horizontal, 5e-3);
+  EXPECT_LT(e100.total, 5e-3);
+  EXPECT_LT(e100.horizontal, 5e-3);
+  // Discretisation error falls as segments shrink.
+  EXPECT_LT(e50.total, e20.total);
+  EXPECT_LT(e100.total, e50.total);
+  EXPECT_LT(e50.horizontal, e20.horizontal);
+  EXPECT_LT(e100.horizontal, e50.horizontal);
+  RecordProperty("error_20", std::to_string(e20.total));
+  RecordProperty("error_50", std::to_string(e50.total));
+  RecordProperty("error_100", std::to_string(e100.total));
+}
+
+TEST(StaticFem, SeedTensionMatchesTheReferenceSheet) {
+  // Reference sheet: 3.497 MN horizontal, 4.948 MN vertical, 6.059 MN total per line.
+  const scenarios::Scenario s = SeedScenario(50);
+  MooringSystem mooring(s.mooring);
+  const std::vector<double> x = StaticState(mooring, {});
+  const std::vector<LineLoad> loads = mooring.LineLoads(x.data(), FairleadsAt(mooring, {}));
+  for (int i = 0; i < 4; ++i) {  // lines 1-4: anchors exactly 1950 m out
+    const Vec3& f = loads[i].fairlead_force;
+    EXPECT_NEAR(f.norm(), 6.059e6, 0.002 * 6.059e6) << "line " << i + 1;
+    EXPECT_NEAR(f.head<2>().norm(), 3.497e6, 0.002 * 3.497e6) << "line " << i + 1;
+    EXPECT_NEAR(f.z(), 4.948e6, 0.002 * 4.948e6) << "line " << i + 1;
+    // Grounded length: 380.8 m on a rigid seabed; the compliant contact lets the chain
+    // sink up to ~0.1 m, which moves touchdown ~15 m (sqrt(2 H / w * 0.1 m)); allow 25 m.
+    EXPECT_NEAR(loads[i].grounded_length, 380.8, 25.0) << "line " << i + 1;
+  }
+}
+
+// Net horizontal force and yaw moment on the vessel from every line, Earth frame.
+Vec3 NetForce(const std::vector<Vec3>& forces, const std::vector<PointKinematics>& fairleads,
+              const PlanarPose& pose) {
+  Vec3 net = Vec3::Zero();
+  for (std::size_t i = 0; i < forces.size(); ++i) {
+    const Vec3 arm = fairleads[i].position - Vec3(pose.x, pose.y, 0.0);
+    net += Vec3(forces[i].x(), forces[i].y(), arm.x() * forces[i].y() - arm.y() * forces[i].x());
+  }
+  return net;
+}
+
+TEST(StaticFem, RestoringForceMatchesCatenarySumFromZeroToEightyMetres) {
+  const scenarios::Scenario s = SeedScenario(50);
+  MooringSystem mooring(s.mooring);
+  const double line5 = std::atan2(1378.9, 1378.9);  // toward line 5's anchor
+  for (double direction : {0.0, line5}) {
+    double previous = 0.0;
+    for (double offset : {0.0, 5.0, 10.0, 20.0, 40.0, 60.0, 80.0}) {
+      const PlanarPose pose{offset * std::cos(direction), offset * std::sin(direction), 0.0};
+      const auto fairleads = FairleadsAt(mooring, pose);
+      const std::vector<double> x = StaticState(mooring, pose);
+      std::vector<Vec3> fem(mooring.num_lines()), cat(mooring.num_lines());
+      mooring.FairleadForces(x.data(), fairleads, fem);
+      for (int i = 0; i < mooring.num_lines(); ++i) {
+        const LineProperties& lp = mooring.line(i);
+        cat[i] = SolveLineCatenary(CatenaryProperties(lp), lp.anchor, fairleads[i].position)
+                     .fairlead_force;
+      }
+      const Vec3 f_fem = NetForce(fem, fairleads, pose);
+      const Vec3 f_cat = NetForce(cat, fairleads, pose);
+      if (offset == 0.0) {
+        // Opposite lines cancel: only round-off of 8 x 3.5 MN remains.
+        EXPECT_LT(f_fem.head<2>().norm(), 1.0);
+        EXPECT_LT(std::abs(f_fem.z()), 20.0);
+        continue;
+      }
+      // 0.5 % of the restoring force (measured < 0.03 % at 50 segments), plus 2 kN for the
+      // compliant seabed's slight shift of touchdown at small offsets.
+      EXPECT_NEAR(f_fem.x(), f_cat.x(), 5e-3 * f_cat.head<2>().norm() + 2e3)
+          << "offset " << offset << " direction " << direction;
+      EXPECT_NEAR(f_fem.y(), f_cat.y(), 5e-3 * f_cat.head<2>().norm() + 2e3)
+          << "offset " << offset << " direction " << direction;
+      // Restoring: points back toward the origin, grows with the offset.
+      const Vec3 outward(std::cos(direction), std::sin(direction), 0.0);
+      const double restoring = -f_fem.head<2>().dot(outward.head<2>());
+      EXPECT_GT(restoring, previous);
+      previous = restoring;
+    }
+  }
+}
+
+TEST(StaticFem, SurgeStiffnessNearTheOriginMatchesTheReferenceSheet) {
+  // Reference sheet: about 81 kN/m near the origin. Central difference over +-1 m.
+  const scenarios::Scenario s = SeedScenario(50);
+  MooringSystem mooring(s.mooring);
+  auto fx = [&](double x0) {
+    const PlanarPose pose{x0, 0.0, 0.0};
+    const auto fairleads = FairleadsAt(mooring, pose);
+    const std::vector<double> x = StaticState(mooring, pose);
+    std::vector<Vec3> f(mooring.num_lines());
+    mooring.FairleadForces(x.data(), fairleads, f);
+    return NetForce(f, fairleads, pose).x();
+  };
+  const double stiffness = -(fx(1.0) - fx(-1.0)) / 2.0;
+  EXPECT_NEAR(stiffness, 81e3, 0.05 * 81e3);
+}
+
+TEST(StaticFem, CatenaryPlacementIsCloseToFemEquilibrium) {
+  // The static start is the catenary placement refined by Newton; the refinement moves
+  // nodes by the chord-vs-arc discretisation and the seabed compliance only.
+  const scenarios::Scenario s = SeedScenario(50);
+  MooringSystem mooring(s.mooring);
+  const std::vector<Vec3> p = testing::Positions(FairleadsAt(mooring, {}));
+  std::vector<double> catenary(mooring.StateSize());
+  mooring.CatenaryState(p, catenary.data());
+  std::vector<double> settled = catenary;
+  const double residual = mooring.SettleStatic(p, settled.data());
+  EXPECT_LT(residual, 1e-11 * mooring.line(0).axial_stiffness);
+  double largest = 0.0;
+  for (std::size_t i = 0; i < settled.size(); ++i) {
+    largest = std::max(largest, std::abs(settled[i] - catenary[i]));
+  }
+  EXPECT_LT(largest, 0.5);  // metres, out of a 2250 m line (measured 0.24 m)
+}
+
+TEST(StaticFem, BrokenLineSixLeavesThreePointFiveMeganewtonsAwayFromIt) {
+  // Reference sheet: with line 6 gone the net force at the origin is 3.50 MN toward
+  // (+x, -y), away from line 6's anchor at (-1378.9, 1378.9).
+  scenarios::Scenario s = SeedScenario(50);
+  std::erase_if(s.mooring.lines, [](const scenarios::LineSpec& l) { return l.id == 6; });
+  MooringSystem mooring(s.mooring);
+  const auto fairleads = FairleadsAt(mooring, {});
+  const std::vector<double> x = StaticState(mooring, {});
+  std::vector<Vec3> f(mooring.num_lines());
+  mooring.FairleadForces(x.data(), fairleads, f);
+  const Vec3 net = NetForce(f, fairleads, {});
+  EXPECT_NEAR(net.head<2>().norm(), 3.50e6, 0.01 * 3.50e6);
+  EXPECT_GT(net.x(), 0.0);
+  EXPECT_LT(net.y(), 0.0);
+  EXPECT_NEAR(net.x(), -net.y(), 1e-3 * net.head<2>().norm());
+}
+
+}  // namespace
+}  // namespace moorsim::mooring_fem
