@@ -57,9 +57,9 @@ RunResult Simulate(const Options& o, int segments, double tolerance_scale) {
   const std::string csv = "/tmp/moorsim_macro_" + std::to_string(segments) + "_" +
                           std::to_string(tolerance_scale) + ".csv";
   std::ostringstream cmd;
-  cmd << o.moorsim << " simulate-lines " << o.scenario << " --motion " << o.motion
-      << " --duration " << o.duration << " --segments " << segments << " --tolerance-scale "
-      << tolerance_scale << " --output-interval 0.1 --quiet --out " << csv;
+  cmd << o.moorsim << " simulate-lines " << o.scenario << " --motion " << o.motion << " --duration "
+      << o.duration << " --segments " << segments << " --tolerance-scale " << tolerance_scale
+      << " --output-interval 0.1 --quiet --out " << csv;
   RunResult r;
   r.summary = Run(cmd.str());
   double simulated = 0.0;
@@ -173,8 +173,9 @@ int main(int argc, char** argv) {
     rows.push_back(row.str());
     std::printf("\n");
   }
-  std::printf("segments | wall [s] | RTF [x] | RMS dT / RMS T | RMS dT / RMS(T - mean) | "
-              "max |dT| [kN] | reference wall [s]\n");
+  std::printf(
+      "segments | wall [s] | RTF [x] | RMS dT / RMS T | RMS dT / RMS(T - mean) | "
+      "max |dT| [kN] | reference wall [s]\n");
   for (const std::string& r : rows) std::printf("%s\n", r.c_str());
   return 0;
 }

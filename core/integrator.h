@@ -19,7 +19,7 @@ struct IntegratorOptions {
   /// weights, rtol 1e-4 on a node 2 km away allows 0.2 m of error, which is 1 MN of
   /// tension error in a 45 m chain segment).
   std::vector<double> reference;
-  int max_order = 5;         ///< BDF order cap, 1..5
+  int max_order = 5;  ///< BDF order cap, 1..5
   bool stability_limit_detection = true;
   double max_step = 0.0;      ///< [s], 0 = unlimited
   double initial_step = 0.0;  ///< [s], 0 = CVODE's estimate

@@ -34,11 +34,11 @@ class CurrentField {
 ///   q(delta) = 0 (delta <= 0), delta^2 / (2 eps) (0 < delta < eps), delta - eps/2 (else)
 /// and a vertical damper blended in by the smoothstep s(delta / eps).
 struct SeabedContact {
-  double depth = 0.0;                 ///< [m]
-  double stiffness = 0.0;             ///< [N/m^3] times contact width (diameter)
-  double damping = 0.0;               ///< [N s/m^3]
-  double friction_velocity = 0.01;    ///< [m/s]
-  double regularisation = 0.5;        ///< eps [m]
+  double depth = 0.0;               ///< [m]
+  double stiffness = 0.0;           ///< [N/m^3] times contact width (diameter)
+  double damping = 0.0;             ///< [N s/m^3]
+  double friction_velocity = 0.01;  ///< [m/s]
+  double regularisation = 0.5;      ///< eps [m]
 
   /// Smoothed penetration q(delta) [m] and dq/ddelta.
   void Penetration(double delta, double* q, double* dq) const;

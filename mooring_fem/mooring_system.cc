@@ -50,9 +50,10 @@ HalfSegmentDrag Drag(const Vec3& u, const Vec3& t, double L, double c_n, double 
   d.d_du = -c_n * h * dn * Pn - c_t * h * 2.0 * std::abs(s) * (t * t.transpose());
   // du_n/dl = -(t u^T + s I) Pn / L ; ds/dl = u^T Pn / L ; dt/dl = Pn / L ; dL/dl = t^T.
   const Mat3 dun_dl = -(t * u.transpose() + s * I) * Pn / L;
-  d.d_dl = -c_n * (0.5 * un * u_n * t.transpose() + h * dn * dun_dl) -
-           c_t * (0.5 * std::abs(s) * s * t * t.transpose() +
-                  h * (2.0 * std::abs(s) * t * (u.transpose() * Pn) / L + std::abs(s) * s * Pn / L));
+  d.d_dl =
+      -c_n * (0.5 * un * u_n * t.transpose() + h * dn * dun_dl) -
+      c_t * (0.5 * std::abs(s) * s * t * t.transpose() +
+             h * (2.0 * std::abs(s) * t * (u.transpose() * Pn) / L + std::abs(s) * s * Pn / L));
   return d;
 }
 
@@ -236,8 +237,8 @@ void MooringSystem::NodeForce(const Chain& c, int k, Vec3* F_out, Mat3* M_out) c
       const Vec3 q_h(q_vec.x(), q_vec.y(), 0.0);
       const double qn = q_h.norm();
       const Vec3 v_h(v.x(), v.y(), 0.0);
-      const double rho = std::sqrt(v_h.squaredNorm() +
-                                   seabed_.friction_velocity * seabed_.friction_velocity);
+      const double rho =
+          std::sqrt(v_h.squaredNorm() + seabed_.friction_velocity * seabed_.friction_velocity);
       Vec3 resist = lp.friction_lateral * v_h;
       if (qn > 1e-12) {
         const Vec3 th = q_h / qn;
@@ -250,8 +251,7 @@ void MooringSystem::NodeForce(const Chain& c, int k, Vec3* F_out, Mat3* M_out) c
   *M_out = M;
 }
 
-void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a,
-                                      NodeJacobian* J) const {
+void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, NodeJacobian* J) const {
   const LineProperties& lp = lines_[c.line];
   const double l0 = lp.segment_length;
   const double EA = lp.axial_stiffness;
@@ -294,8 +294,8 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a,
     J->dF_dr[kSelf] += d.d_du * du_dr + sigma * d.d_dl;
     J->dF_dr[other] -= sigma * d.d_dl;
     // Added mass h = C1/2 L Pn a: dh/dl = C1/2 [a t^T - t a^T - (t.a) Pn].
-    const Mat3 H = 0.5 * lp.added_mass_per_length *
-                   (a * t.transpose() - t * a.transpose() - t.dot(a) * Pn);
+    const Mat3 H =
+        0.5 * lp.added_mass_per_length * (a * t.transpose() - t * a.transpose() - t.dot(a) * Pn);
     J->dMa_dr[kSelf] += sigma * H;
     J->dMa_dr[other] -= sigma * H;
   };
@@ -320,8 +320,8 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a,
       const Vec3 q_h(q_vec.x(), q_vec.y(), 0.0);
       const double qn = q_h.norm();
       const Vec3 v_h(v.x(), v.y(), 0.0);
-      const double rho = std::sqrt(v_h.squaredNorm() +
-                                   seabed_.friction_velocity * seabed_.friction_velocity);
+      const double rho =
+          std::sqrt(v_h.squaredNorm() + seabed_.friction_velocity * seabed_.friction_velocity);
       Mat3 Ph = Mat3::Zero();
       Ph(0, 0) = Ph(1, 1) = 1.0;
       // f = -(N / rho) A v_h with A = mu_l Ph + (mu_a - mu_l) th th^T.
@@ -332,13 +332,13 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a,
         A += (lp.friction_axial - lp.friction_lateral) * th * th.transpose();
       }
       const Vec3 Av = A * v_h;
-      J->dF_dv[kSelf] += -(normal / rho) * A * Ph +
-                         (normal / (rho * rho * rho)) * Av * v_h.transpose();
+      J->dF_dv[kSelf] +=
+          -(normal / rho) * A * Ph + (normal / (rho * rho * rho)) * Av * v_h.transpose();
       J->dF_dr[kSelf].col(2) += -(k_n * dq / rho) * Av;
       if (qn > 1e-12) {
         const Mat3 dF_dq = -(normal / rho) * (lp.friction_axial - lp.friction_lateral) *
-                           (th * v_h.transpose() + th.dot(v_h) * I) *
-                           (Ph - th * th.transpose()) / qn;
+                           (th * v_h.transpose() + th.dot(v_h) * I) * (Ph - th * th.transpose()) /
+                           qn;
         J->dF_dr[next] += dF_dq;
         J->dF_dr[prev] -= dF_dq;
       }
@@ -445,7 +445,8 @@ std::vector<LineLoad> MooringSystem::LineLoads(const double* x,
       const double share = 0.5 * lp.segment_length * n_seg;
       const double normal = seabed_.stiffness * lp.diameter * share * q;
       loads[c.line].grounded_length += normal / lp.weight_per_length;
-      if (k == 1) grounded_fraction_of_node_1 = std::min(1.0, normal / (lp.weight_per_length * share));
+      if (k == 1)
+        grounded_fraction_of_node_1 = std::min(1.0, normal / (lp.weight_per_length * share));
     }
     if (c.lower == EndCondition::kAnchored && c.anchor.z() >= seabed_.depth - 1e-6) {
       loads[c.line].grounded_length += 0.5 * lp.segment_length * grounded_fraction_of_node_1;

@@ -50,7 +50,8 @@ struct LineProperties {
   Vec3 fairlead_body = Vec3::Zero();   ///< body frame [m]
 };
 
-LineProperties MakeLineProperties(const scenarios::MooringSpec& spec, const scenarios::LineSpec& line);
+LineProperties MakeLineProperties(const scenarios::MooringSpec& spec,
+                                  const scenarios::LineSpec& line);
 
 enum class EndCondition { kAnchored, kFairlead, kFree };
 

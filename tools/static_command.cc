@@ -140,7 +140,8 @@ int RunStatic(const StaticOptions& o) {
   Vec3 net = Vec3::Zero();  // Fx, Fy, Mz about the vessel's reference point
   for (const auto& line : scenario.mooring.lines) {
     const StaticLineResult& r = results[line.id - 1];
-    const Vec3 arm = mooring_fem::FairleadPosition(pose, line.fairlead_body) - Vec3(pose.x, pose.y, 0);
+    const Vec3 arm =
+        mooring_fem::FairleadPosition(pose, line.fairlead_body) - Vec3(pose.x, pose.y, 0);
     net += Vec3(r.force.x(), r.force.y(), arm.x() * r.force.y() - arm.y() * r.force.x());
   }
 
@@ -170,8 +171,8 @@ int RunStatic(const StaticOptions& o) {
   std::printf("moorsim %s static: %s, vessel at x %.3f m, y %.3f m, heading %.3f deg\n",
               MOORSIM_VERSION, scenario.source_path.c_str(), pose.x, pose.y, offset[2]);
   std::printf("FEM lines settled to rest (largest residual node force %.2e N)\n\n", residual);
-  std::printf("%4s %14s %14s %14s %10s %16s\n", "line", "tension [kN]", "horiz. [kN]",
-              "vert. [kN]", "ground [m]", "catenary T [kN]");
+  std::printf("%4s %14s %14s %14s %10s %16s\n", "line", "tension [kN]", "horiz. [kN]", "vert. [kN]",
+              "ground [m]", "catenary T [kN]");
   for (const StaticLineResult& r : results) {
     if (r.broken) {
       std::printf("%4d %14s\n", r.id, "broken");

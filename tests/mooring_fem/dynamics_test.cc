@@ -41,9 +41,9 @@ TEST(LineDynamics, StaticStateStaysAtRestFor200Seconds) {
 
 // Positions and speeds of every node of line `line` (0-based), over all its chains.
 struct LineNodes {
-  double lowest_z = 1e300;   // smallest NED z (highest point) [m]
+  double lowest_z = 1e300;    // smallest NED z (highest point) [m]
   double deepest_z = -1e300;  // [m]
-  double fastest = 0.0;      // largest speed [m/s]
+  double fastest = 0.0;       // largest speed [m/s]
 };
 
 LineNodes NodesOfLine(const LineSimulation& sim, MooringSystem& mooring, int line) {
@@ -139,8 +139,8 @@ TEST(LineDynamics, ReleasedAnchorDragsAndTheLineHangsFromTheFairlead) {
   }
   const Vec3 f = sim.FairleadForces()[0];
   const double w_hang = HangingWeight(sim.mooring().line(0));
-  EXPECT_GT(f.z(), 0.94 * w_hang);  // half a 112.5 m segment of 988 m: 5.7 %
-  EXPECT_LT(f.z(), 1.3 * w_hang);  // seabed friction still holds part of the dragged chain
+  EXPECT_GT(f.z(), 0.94 * w_hang);       // half a 112.5 m segment of 988 m: 5.7 %
+  EXPECT_LT(f.z(), 1.3 * w_hang);        // seabed friction still holds part of the dragged chain
   EXPECT_LT(f.head<2>().norm(), 3.5e6);  // far below the 3.5 MN it carried when anchored
 }
 

@@ -58,7 +58,8 @@ void ExpectJacobianMatchesFiniteDifferences(MooringSystem& mooring, std::vector<
   mooring.Jacobian(x.data(), fairleads, values.data());
   Eigen::MatrixXd analytic = Eigen::MatrixXd::Zero(n, n);
   for (int r = 0; r < n; ++r) {
-    for (int64_t e = p.row_start[r]; e < p.row_start[r + 1]; ++e) analytic(r, p.column[e]) = values[e];
+    for (int64_t e = p.row_start[r]; e < p.row_start[r + 1]; ++e)
+      analytic(r, p.column[e]) = values[e];
   }
   Eigen::MatrixXd fd(n, n);
   std::vector<double> fp(n), fm(n);
@@ -79,10 +80,10 @@ void ExpectJacobianMatchesFiniteDifferences(MooringSystem& mooring, std::vector<
       const Eigen::Matrix3d F = fd.block<3, 3>(3 * br, 3 * bc);
       // Scale: the larger of the block itself and a tiny fraction of its row block, so
       // blocks that are exactly zero in both are not divided by zero.
-      const double scale =
-          std::max(F.norm(), 1e-9 * fd.block(3 * br, 0, 3, n).norm()) + 1e-300;
-      ASSERT_LT((A - F).norm() / scale, 1e-5)
-          << "block (" << br << ", " << bc << ")\nanalytic\n" << A << "\nfinite difference\n" << F;
+      const double scale = std::max(F.norm(), 1e-9 * fd.block(3 * br, 0, 3, n).norm()) + 1e-300;
+      ASSERT_LT((A - F).norm() / scale, 1e-5) << "block (" << br << ", " << bc << ")\nanalytic\n"
+                                              << A << "\nfinite difference\n"
+                                              << F;
       ++checked;
     }
   }
@@ -137,8 +138,8 @@ TEST(MooringJacobian, GroundedNodesAreExercised) {
 
 TEST(MooringJacobian, FreeEndsAfterFailuresMatchFiniteDifferences) {
   Fixture f(12);
-  std::vector<double> x = f.mooring.ApplyFailure({0, FailureMode::kFairlead, 0}, f.x.data(),
-                                                 f.fairleads);
+  std::vector<double> x =
+      f.mooring.ApplyFailure({0, FailureMode::kFairlead, 0}, f.x.data(), f.fairleads);
   x = f.mooring.ApplyFailure({1, FailureMode::kNode, 6}, x.data(), f.fairleads);
   x = f.mooring.ApplyFailure({1, FailureMode::kAnchor, 0}, x.data(), f.fairleads);
   ASSERT_EQ(f.mooring.chains().size(), 3u);

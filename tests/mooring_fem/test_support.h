@@ -13,8 +13,8 @@
 namespace moorsim::mooring_fem::testing {
 
 inline scenarios::Scenario SeedScenario(int segments) {
-  scenarios::Scenario s =
-      scenarios::LoadScenario(std::string(MOORSIM_SOURCE_DIR) + "/scenarios/library/seed_tapm.yaml");
+  scenarios::Scenario s = scenarios::LoadScenario(std::string(MOORSIM_SOURCE_DIR) +
+                                                  "/scenarios/library/seed_tapm.yaml");
   for (auto& line : s.mooring.lines) line.segments = segments;
   return s;
 }

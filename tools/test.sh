@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Quick start, tests: installs the dependencies (Debian packages), builds moorsim and runs
+# the whole test suite twice: optimised (release preset) and under AddressSanitizer +
+# UndefinedBehaviorSanitizer (asan preset). Also checks clang-format. CI runs exactly this.
+#   tools/test.sh           everything
+#   tools/test.sh --fast    release build and tests only
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+./tools/setup.sh
+
+echo "== clang-format check"
+git ls-files '*.cc' '*.h' | xargs clang-format --dry-run -Werror
+
+echo "== release build and tests"
+cmake --preset release >/dev/null
+cmake --build --preset release
+ctest --preset release
+
+if [[ "${1:-}" != "--fast" ]]; then
+  echo "== ASan + UBSan build and tests"
+  cmake --preset asan >/dev/null
+  cmake --build --preset asan
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    ctest --preset asan
+fi
+echo "== all tests passed"
