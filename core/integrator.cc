@@ -94,9 +94,22 @@ struct Integrator::Impl {
 
   // CVODE trampolines: exceptions never cross the C boundary. A recoverable state error
   // returns +1 so CVODE retries with a smaller step; anything else stops the run.
+  template <typename Body>
+  static int Guarded(Impl* self, Body&& body) {
+    try {
+      return body();
+    } catch (const RecoverableStateError& e) {
+      self->callback_error = e.what();
+      return 1;
+    } catch (const std::exception& e) {
+      self->callback_error = e.what();
+      return -1;
+    }
+  }
+
   static int Rhs(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
     auto* self = static_cast<Impl*>(user_data);
-    try {
+    return Guarded(self, [&] {
       self->system->Derivatives(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
       const double* d = N_VGetArrayPointer(ydot);
       const sunindextype n = N_VGetLength(ydot);
@@ -107,13 +120,7 @@ struct Integrator::Impl {
         }
       }
       return 0;
-    } catch (const RecoverableStateError& e) {
-      self->callback_error = e.what();
-      return 1;
-    } catch (const std::exception& e) {
-      self->callback_error = e.what();
-      return -1;
-    }
+    });
   }
 
   // Error weights relative to a reference state (IntegratorOptions::reference).
@@ -134,7 +141,7 @@ struct Integrator::Impl {
   static int Jac(realtype t, N_Vector y, N_Vector fy, SUNMatrix J, void* user_data, N_Vector,
                  N_Vector, N_Vector) {
     auto* self = static_cast<Impl*>(user_data);
-    try {
+    return Guarded(self, [&] {
       // CVODE zeroes the whole sparse matrix (pattern included) before each call, so the
       // fixed pattern is written back every time; KLU then only refactors numerically.
       const SparsityPattern& p = self->system->JacobianPattern();
@@ -145,13 +152,7 @@ struct Integrator::Impl {
       self->system->Jacobian(t, N_VGetArrayPointer(y), N_VGetArrayPointer(fy),
                              SUNSparseMatrix_Data(J));
       return 0;
-    } catch (const RecoverableStateError& e) {
-      self->callback_error = e.what();
-      return 1;
-    } catch (const std::exception& e) {
-      self->callback_error = e.what();
-      return -1;
-    }
+    });
   }
 };
 

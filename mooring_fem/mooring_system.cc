@@ -598,53 +598,45 @@ std::vector<double> MooringSystem::ApplyFailure(const LineFailure& failure, cons
   }
   std::vector<Chain> next;
   std::vector<int> source;  // old chain each new chain takes its nodes from
+  auto keep = [&](const Chain& c, std::size_t ci) {
+    next.push_back(c);
+    source.push_back(static_cast<int>(ci));
+  };
   bool applied = false;
-  for (size_t ci = 0; ci < chains_.size(); ++ci) {
+  for (std::size_t ci = 0; ci < chains_.size(); ++ci) {
     const Chain& c = chains_[ci];
     if (c.line != failure.line || applied) {
-      next.push_back(c);
-      source.push_back(static_cast<int>(ci));
+      keep(c, ci);
       continue;
     }
-    Chain a = c;
-    switch (failure.mode) {
-      case FailureMode::kFairlead:
-        if (c.upper == EndCondition::kFairlead) {
-          a.upper = EndCondition::kFree;
-          applied = true;
-        }
-        next.push_back(a);
-        source.push_back(static_cast<int>(ci));
-        break;
-      case FailureMode::kAnchor:
-        if (c.lower == EndCondition::kAnchored) {
-          a.lower = EndCondition::kFree;
-          applied = true;
-        }
-        next.push_back(a);
-        source.push_back(static_cast<int>(ci));
-        break;
-      case FailureMode::kNode: {
-        const int k = failure.node - c.first_node;
-        if (k <= 0 || k >= c.segments) {
-          next.push_back(a);
-          source.push_back(static_cast<int>(ci));
-          break;
-        }
-        Chain b = c;
-        a.segments = k;
-        a.upper = EndCondition::kFree;
-        b.first_node = failure.node;
-        b.segments = c.segments - k;
-        b.lower = EndCondition::kFree;
-        next.push_back(a);
-        next.push_back(b);
-        source.push_back(static_cast<int>(ci));
-        source.push_back(static_cast<int>(ci));
-        applied = true;
-        break;
+    if (failure.mode == FailureMode::kNode) {
+      const int k = failure.node - c.first_node;
+      if (k <= 0 || k >= c.segments) {
+        keep(c, ci);
+        continue;
       }
+      // Split at node k: both pieces get a free copy of it.
+      Chain lower = c;
+      lower.segments = k;
+      lower.upper = EndCondition::kFree;
+      Chain upper = c;
+      upper.first_node = failure.node;
+      upper.segments = c.segments - k;
+      upper.lower = EndCondition::kFree;
+      keep(lower, ci);
+      keep(upper, ci);
+      applied = true;
+      continue;
     }
+    // The fairlead or the anchor lets go: that held end becomes free.
+    Chain freed = c;
+    const bool at_fairlead = failure.mode == FailureMode::kFairlead;
+    EndCondition& end = at_fairlead ? freed.upper : freed.lower;
+    if (end == (at_fairlead ? EndCondition::kFairlead : EndCondition::kAnchored)) {
+      end = EndCondition::kFree;
+      applied = true;
+    }
+    keep(freed, ci);
   }
   if (!applied) {
     std::ostringstream msg;
