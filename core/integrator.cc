@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <sstream>
 
@@ -222,8 +223,11 @@ void Integrator::AdvanceTo(double t_out) {
     realtype t_now = t_;
     CVodeGetCurrentTime(m.cvode, &t_now);
     std::ostringstream msg;
+    // CVodeGetReturnFlagName returns a malloc'd string that the caller frees.
+    char* flag_name = CVodeGetReturnFlagName(flag);
     msg << "integrator failed at t = " << t_now << " s with CVODE flag " << flag << " ("
-        << CVodeGetReturnFlagName(flag) << ")";
+        << (flag_name ? flag_name : "?") << ")";
+    std::free(flag_name);
     if (!m.callback_error.empty()) msg << ": " << m.callback_error;
     throw SolverError(msg.str());
   }

@@ -419,6 +419,41 @@ void MooringSystem::FairleadForces(const double* x, std::span<const PointKinemat
   }
 }
 
+FairleadCoupling MooringSystem::FairleadJacobian(const double* x,
+                                                 std::span<const PointKinematics> fairleads,
+                                                 int index) {
+  const auto chain = std::find_if(chains_.begin(), chains_.end(), [&](const Chain& c) {
+    return c.line == index && c.upper == EndCondition::kFairlead;
+  });
+  if (chain == chains_.end()) {
+    throw Error("line " + std::to_string(index + 1) + " is not attached to its fairlead");
+  }
+  const Chain& c = *chain;
+  const int n = c.segments;
+  GatherChain(c, x, fairleads);
+  ComputeSegments(c);
+  FairleadCoupling out;
+  NodeJacobian J;
+  // Fairlead force F_n - M_n a_f: node n's force derivatives with its acceleration held.
+  const Vec3& a_fairlead = fairleads[c.line].acceleration;
+  NodeForceJacobian(c, n, a_fairlead, &J);
+  out.J_force_node_pos = J.dF_dr[kBelow] - J.dMa_dr[kBelow];
+  out.J_force_node_vel = J.dF_dv[kBelow];
+  out.J_force_fairlead_pos = J.dF_dr[kSelf] - J.dMa_dr[kSelf];
+  out.J_force_fairlead_vel = J.dF_dv[kSelf];
+  if (n - 1 >= c.first_state_node()) {  // a one-segment chain has no free node
+    Vec3 F;
+    Mat3 M;
+    NodeForce(c, n - 1, &F, &M);
+    const Mat3 Minv = M.inverse();
+    NodeForceJacobian(c, n - 1, Minv * F, &J);
+    out.node_state = c.state_offset + 6 * (n - 1 - c.first_state_node());
+    out.J_accel_fairlead_pos = Minv * (J.dF_dr[kAbove] - J.dMa_dr[kAbove]);
+    out.J_accel_fairlead_vel = Minv * J.dF_dv[kAbove];
+  }
+  return out;
+}
+
 std::vector<LineLoad> MooringSystem::LineLoads(const double* x,
                                                std::span<const PointKinematics> fairleads) {
   std::vector<LineLoad> loads(lines_.size());

@@ -80,6 +80,19 @@ struct LineFailure {
   int node = 0;  ///< for kNode
 };
 
+/// The derivatives that couple a line to the body moving its fairlead, for an implicit
+/// (monolithic) vessel coupling: the last free node n-1 feels the fairlead's position and
+/// velocity, and the fairlead force depends on node n-1 and on the fairlead itself.
+struct FairleadCoupling {
+  int node_state = -1;  ///< index of node n-1's first state component (r, then v)
+  Mat3 J_accel_fairlead_pos = Mat3::Zero();  ///< d a_{n-1} / d r_n
+  Mat3 J_accel_fairlead_vel = Mat3::Zero();  ///< d a_{n-1} / d v_n
+  Mat3 J_force_node_pos = Mat3::Zero();      ///< d F_fairlead / d r_{n-1}
+  Mat3 J_force_node_vel = Mat3::Zero();      ///< d F_fairlead / d v_{n-1}
+  Mat3 J_force_fairlead_pos = Mat3::Zero();  ///< d F_fairlead / d r_n
+  Mat3 J_force_fairlead_vel = Mat3::Zero();  ///< d F_fairlead / d v_n (acceleration held)
+};
+
 /// Per-line static/quasi-static summary.
 struct LineLoad {
   Vec3 fairlead_force = Vec3::Zero();  ///< force of the line on the body, Earth frame [N]
@@ -125,6 +138,10 @@ class MooringSystem {
   /// seabed contact and inertia. Zero for detached lines.
   void FairleadForces(const double* x, std::span<const PointKinematics> fairleads,
                       std::span<Vec3> forces);
+
+  /// Coupling blocks of line `index` (0-based), which must be attached to its fairlead.
+  FairleadCoupling FairleadJacobian(const double* x, std::span<const PointKinematics> fairleads,
+                                    int index);
 
   /// Fairlead forces plus the grounded length of each line.
   std::vector<LineLoad> LineLoads(const double* x, std::span<const PointKinematics> fairleads);

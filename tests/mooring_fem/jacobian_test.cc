@@ -170,3 +170,58 @@ TEST(MooringJacobian, PatternHasDiagonalAndBlockTridiagonalShape) {
 
 }  // namespace
 }  // namespace moorsim::mooring_fem
+
+namespace moorsim::mooring_fem {
+namespace {
+
+// The blocks a vessel needs to couple implicitly to a line, against central differences
+// of the fairlead force and of node n-1's acceleration.
+TEST(MooringJacobian, FairleadCouplingBlocksMatchFiniteDifferences) {
+  Fixture f(12);
+  const int line = 1;
+  const FairleadCoupling J = f.mooring.FairleadJacobian(f.x.data(), f.fairleads, line);
+  ASSERT_GE(J.node_state, 0);
+  std::vector<Vec3> forces(f.mooring.num_lines());
+  std::vector<double> xdot(f.mooring.StateSize());
+  auto force = [&](const std::vector<double>& x, const std::vector<PointKinematics>& k) {
+    f.mooring.FairleadForces(x.data(), k, forces);
+    return forces[line];
+  };
+  auto accel = [&](const std::vector<double>& x, const std::vector<PointKinematics>& k) {
+    f.mooring.Derivatives(x.data(), k, xdot.data());
+    return Vec3(xdot[J.node_state + 3], xdot[J.node_state + 4], xdot[J.node_state + 5]);
+  };
+  Mat3 fd_force_node_pos, fd_force_node_vel, fd_force_pos, fd_force_vel, fd_accel_pos, fd_accel_vel;
+  for (int m = 0; m < 3; ++m) {
+    for (int kind = 0; kind < 2; ++kind) {  // 0: position, 1: velocity
+      const double h = kind == 0 ? 1e-4 : 1e-5;
+      std::vector<double> xp = f.x, xm = f.x;
+      xp[J.node_state + 3 * kind + m] += h;
+      xm[J.node_state + 3 * kind + m] -= h;
+      const Vec3 d_node = (force(xp, f.fairleads) - force(xm, f.fairleads)) / (2 * h);
+      std::vector<PointKinematics> kp = f.fairleads, km = f.fairleads;
+      (kind == 0 ? kp[line].position : kp[line].velocity)(m) += h;
+      (kind == 0 ? km[line].position : km[line].velocity)(m) -= h;
+      const Vec3 d_fair_force = (force(f.x, kp) - force(f.x, km)) / (2 * h);
+      const Vec3 d_fair_accel = (accel(f.x, kp) - accel(f.x, km)) / (2 * h);
+      (kind == 0 ? fd_force_node_pos : fd_force_node_vel).col(m) = d_node;
+      (kind == 0 ? fd_force_pos : fd_force_vel).col(m) = d_fair_force;
+      (kind == 0 ? fd_accel_pos : fd_accel_vel).col(m) = d_fair_accel;
+    }
+  }
+  auto expect_close = [](const Mat3& analytic, const Mat3& fd, const char* name) {
+    EXPECT_LT((analytic - fd).norm(), 1e-5 * fd.norm() + 1e-9)
+        << name << "\nanalytic\n"
+        << analytic << "\nfinite difference\n"
+        << fd;
+  };
+  expect_close(J.J_force_node_pos, fd_force_node_pos, "dF/dr_{n-1}");
+  expect_close(J.J_force_node_vel, fd_force_node_vel, "dF/dv_{n-1}");
+  expect_close(J.J_force_fairlead_pos, fd_force_pos, "dF/dr_n");
+  expect_close(J.J_force_fairlead_vel, fd_force_vel, "dF/dv_n");
+  expect_close(J.J_accel_fairlead_pos, fd_accel_pos, "da_{n-1}/dr_n");
+  expect_close(J.J_accel_fairlead_vel, fd_accel_vel, "da_{n-1}/dv_n");
+}
+
+}  // namespace
+}  // namespace moorsim::mooring_fem
