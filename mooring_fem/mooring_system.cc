@@ -536,7 +536,12 @@ void MooringSystem::CatenaryState(std::span<const Vec3> fairleads, double* x) co
     }
     const LineProperties& lp = lines_[c.line];
     const CatenaryLineProperties props{lp.length, lp.weight_per_length, lp.axial_stiffness};
-    const LineCatenary cat = SolveLineCatenary(props, lp.anchor, fairleads[c.line]);
+    LineCatenary cat;
+    try {
+      cat = SolveLineCatenary(props, lp.anchor, fairleads[c.line]);
+    } catch (const Error& e) {
+      throw Error("line " + std::to_string(lp.id) + ": " + e.what());
+    }
     const Eigen::Matrix3Xd nodes = cat.NodePositions(c.segments);
     for (int k = 1; k < c.segments; ++k) {
       double* p = x + c.state_offset + 6 * (k - 1);

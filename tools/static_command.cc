@@ -122,7 +122,11 @@ int RunStatic(const StaticOptions& o) {
       fairleads[i].position = positions.back();
     }
     std::vector<double> x(mooring.StateSize());
-    mooring.CatenaryState(positions, x.data());
+    try {
+      mooring.CatenaryState(positions, x.data());
+    } catch (const Error& e) {  // the pose asked for is not one the mooring can reach
+      throw InputError("--offset " + o.offset + ": " + e.what());
+    }
     residual = mooring.SettleStatic(positions, x.data());
     const std::vector<mooring_fem::LineLoad> loads = mooring.LineLoads(x.data(), fairleads);
     for (int i = 0; i < mooring.num_lines(); ++i) {

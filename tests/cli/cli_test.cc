@@ -240,6 +240,12 @@ std::vector<FlagCase> FlagCases() {
       {"StaticBrokenLine9", {"static", "SEED", "--broken", "9"}, "--broken", {"9"}},
       {"StaticBrokenLine0", {"static", "SEED", "--broken", "0"}, "--broken", {"0"}},
       {"StaticBrokenFraction", {"static", "SEED", "--broken", "1.5"}, "--broken", {"1.5"}},
+      {"StaticBrokenEmpty", {"static", "SEED", "--broken", ""}, "--broken", {"''"}},
+      // 400 m north: line 3 would have to stretch 12 % to reach its fairlead.
+      {"StaticOffsetUnreachable",
+       {"static", "SEED", "--offset", "400,0,0"},
+       "--offset",
+       {"400,0,0", "line 3", "cannot reach"}},
       {"StaticUnknownFlag", {"static", "SEED", "--bogus"}, "--bogus", {"--bogus"}},
       {"StaticMissingScenario", {"static"}, "scenario", {"required"}},
       {"UnknownSubcommand", {"bogus", "SEED"}, "bogus", {"bogus"}},
