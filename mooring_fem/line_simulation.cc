@@ -48,6 +48,12 @@ void PrescribedMotionSystem::Jacobian(double t, const double* x, const double*, 
   mooring_.Jacobian(x, Fairleads(t), values);
 }
 
+void ScaleTolerances(scenarios::SolverSpec& solver, double factor) {
+  solver.rtol *= factor;
+  solver.atol_position *= factor;
+  solver.atol_velocity *= factor;
+}
+
 IntegratorOptions MakeIntegratorOptions(const scenarios::SolverSpec& solver,
                                         const MooringSystem& mooring) {
   IntegratorOptions o;

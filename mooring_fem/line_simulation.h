@@ -59,6 +59,9 @@ class PrescribedMotionSystem : public OdeSystem {
   std::vector<PointKinematics> fairleads_;
 };
 
+/// Multiplies rtol and every atol by `factor` (reference runs use 0.01).
+void ScaleTolerances(scenarios::SolverSpec& solver, double factor);
+
 /// Builds the integrator options (per-component absolute tolerances) from the scenario.
 IntegratorOptions MakeIntegratorOptions(const scenarios::SolverSpec& solver,
                                         const MooringSystem& mooring);

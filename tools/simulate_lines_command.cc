@@ -103,9 +103,7 @@ int RunSimulateLines(const SimulateLinesOptions& o) {
     }
     for (auto& line : scenario.mooring.lines) line.segments = o.segments;
   }
-  scenario.solver.rtol *= o.tolerance_scale;
-  scenario.solver.atol_position *= o.tolerance_scale;
-  scenario.solver.atol_velocity *= o.tolerance_scale;
+  mooring_fem::ScaleTolerances(scenario.solver, o.tolerance_scale);
   const mooring_fem::HarmonicMotion motion = ParseMotion(o.motion);
   std::vector<ScheduledPart> parts;
   for (const std::string& p : o.parts) parts.push_back(ParsePart(p, scenario));

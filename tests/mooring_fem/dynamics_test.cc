@@ -155,12 +155,8 @@ TEST(LineDynamics, FailureOfADetachedEndIsRejected) {
 // Fairlead tensions of line 1 every 0.5 s under the issue's turret motion.
 std::vector<double> SurgeTensions(double tolerance_scale, double duration) {
   scenarios::Scenario s = SeedScenario(20);
-  s.solver.rtol *= tolerance_scale;
-  s.solver.atol_position *= tolerance_scale;
-  s.solver.atol_velocity *= tolerance_scale;
-  HarmonicMotion motion;
-  motion.components = {{5.0, 100.0}, {2.0, 10.0}};
-  LineSimulation sim(s, motion);
+  ScaleTolerances(s.solver, tolerance_scale);
+  LineSimulation sim(s, testing::IssueSurge());
   std::vector<double> t1;
   for (int i = 1; i <= static_cast<int>(duration / 0.5); ++i) {
     sim.AdvanceTo(0.5 * i);
@@ -197,14 +193,10 @@ namespace {
 // axial mode 16 rad/s, NUMERICS.md item 2) and its error is far below CVODE's.
 double LargestDifferenceFromRungeKutta(double tolerance_scale) {
   scenarios::Scenario s = SeedScenario(20);
-  s.solver.rtol *= tolerance_scale;
-  s.solver.atol_position *= tolerance_scale;
-  s.solver.atol_velocity *= tolerance_scale;
-  HarmonicMotion motion;
-  motion.components = {{5.0, 100.0}, {2.0, 10.0}};
-  LineSimulation sim(s, motion);
+  ScaleTolerances(s.solver, tolerance_scale);
+  LineSimulation sim(s, testing::IssueSurge());
   MooringSystem& mooring = sim.mooring();
-  PrescribedMotionSystem rk_system(mooring, motion);
+  PrescribedMotionSystem rk_system(mooring, testing::IssueSurge());
   const int n = mooring.StateSize();
   std::vector<double> x = sim.state(), k1(n), k2(n), k3(n), k4(n), tmp(n);
   const double dt = 0.005;

@@ -19,6 +19,13 @@ inline scenarios::Scenario SeedScenario(int segments) {
   return s;
 }
 
+/// The issue's turret motion: surge 5 m / 100 s plus 2 m / 10 s.
+inline HarmonicMotion IssueSurge() {
+  HarmonicMotion motion;
+  motion.components = {{5.0, 100.0}, {2.0, 10.0}};
+  return motion;
+}
+
 /// Fairlead kinematics of every line for the vessel at rest at `pose`.
 inline std::vector<PointKinematics> FairleadsAt(const MooringSystem& mooring,
                                                 const PlanarPose& pose) {
