@@ -6,7 +6,6 @@
 #include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
-#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -14,6 +13,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/fast_kernels.h"
 
 namespace moorsim {
 
@@ -49,23 +49,11 @@ T* CheckPtr(T* p, const char* call) {
   return p;
 }
 
-// Weighted RMS norm with independent partial sums (Eigen vectorises the reduction). The
-// serial N_Vector's own loop is one dependent chain of additions and was the largest
-// single cost of a step in profiles of the seed mooring (about 19 % of run time).
-realtype WrmsNorm(N_Vector x, N_Vector w) {
-  const sunindextype n = N_VGetLength_Serial(x);
-  const Eigen::Map<const Eigen::ArrayXd> a(N_VGetArrayPointer(x), n);
-  const Eigen::Map<const Eigen::ArrayXd> b(N_VGetArrayPointer(w), n);
-  return std::sqrt((a * b).square().sum() / static_cast<double>(n));
-}
-
-// y = a x + b y etc. with fused operations enabled, and the faster norm installed in the
-// vector's operation table (clones made by CVODE inherit both).
+// A state vector with the fast element-wise kernels installed (clones inherit them).
 N_Vector MakeStateVector(int n, SUNContext ctx) {
   N_Vector v = N_VNew_Serial(n, ctx);
   if (v == nullptr) throw Error("SUNDIALS call N_VNew_Serial returned null");
-  N_VEnableFusedOps_Serial(v, SUNTRUE);
-  v->ops->nvwrmsnorm = &WrmsNorm;
+  internal::InstallFastSerialOps(v);
   return v;
 }
 
@@ -202,6 +190,7 @@ Integrator::Integrator(OdeSystem& system, double t0, const double* x0,
         "CVodeSetErrHandlerFn");
 
   m.A = CheckPtr(SUNSparseMatrix(n_, n_, pattern.nnz(), CSR_MAT, m.ctx), "SUNSparseMatrix");
+  internal::InstallFastSparseOps(m.A);
   m.LS = CheckPtr(SUNLinSol_KLU(m.y, m.A, m.ctx), "SUNLinSol_KLU");
   Check(CVodeSetLinearSolver(m.cvode, m.LS, m.A), "CVodeSetLinearSolver");
   Check(CVodeSetJacFn(m.cvode, &Impl::Jac), "CVodeSetJacFn");
