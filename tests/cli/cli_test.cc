@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "tests/cli/run_cli.h"
+#include "tests/scenarios/bad_input_cases.h"
 
 namespace moorsim::testing {
 namespace {
@@ -195,6 +196,40 @@ INSTANTIATE_TEST_SUITE_P(Loader, CliBadScenario,
                          [](const ::testing::TestParamInfo<CliBadScenario::ParamType>& info) {
                            return std::get<0>(info.param).name + "_" + std::get<1>(info.param);
                          });
+
+// Every input rule of the loader (the cases of tests/scenarios/bad_input_cases.h, each a
+// one-spot edit of a valid scenario) through the real binary: exit code 2 and exactly the
+// loader's one line, prefixed by the program name.
+class CliEveryLoaderRule
+    : public ::testing::TestWithParam<::moorsim::scenarios::test_cases::BadInput> {
+ protected:
+  TempDirectory dir_{::testing::TempDir()};
+};
+
+TEST_P(CliEveryLoaderRule, ValidateExitsWithCode2AndTheLoadersMessage) {
+  using namespace scenarios::test_cases;
+  const BadInput& c = GetParam();
+  const std::string text = Edit(kBase, c.after, c.old_text, c.new_text);
+  const std::string path = (dir_.path() / "test.yaml").string();
+  WriteWholeFile(path, text);
+  const CliResult r = RunCli({"validate", path}, dir_.path());
+  EXPECT_EQ(r.exit_code, 2) << r.Describe();
+  EXPECT_EQ(r.err,
+            "moorsim: " + path + ":" + PositionOf(text, c.after, c.at) + ": " + c.message + "\n");
+  EXPECT_TRUE(r.out.empty()) << r.Describe();
+}
+
+std::string RuleName(
+    const ::testing::TestParamInfo<::moorsim::scenarios::test_cases::BadInput>& info) {
+  return info.param.name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Parse, CliEveryLoaderRule,
+                         ::testing::ValuesIn(::moorsim::scenarios::test_cases::kParseErrors),
+                         RuleName);
+INSTANTIATE_TEST_SUITE_P(Validate, CliEveryLoaderRule,
+                         ::testing::ValuesIn(::moorsim::scenarios::test_cases::kValidationErrors),
+                         RuleName);
 
 TEST_F(CliTest, MissingScenarioFileIsExit2WithOneLine) {
   const std::string path = Scratch("no_such_scenario.yaml").string();

@@ -1,0 +1,258 @@
+// Bad-input cases shared by the loader's tests (message text) and the CLI's tests (the
+// same files through `moorsim validate` and `moorsim static`: exit code 2, one line).
+// One case per rule; each edits kBase once, and the expected message is
+// "<file>:<position of `at`>: <message>".
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <ostream>
+#include <stdexcept>
+#include <string>
+
+namespace moorsim::scenarios::test_cases {
+
+// A valid scenario that uses every key; each error case edits one spot of it.
+inline const std::string kBase = R"(name: base
+mooring:
+  water: {density: 1025, gravity: 9.81, depth: 1000}
+  seabed: {stiffness: 3.0e6, damping: 3.0e5, friction_velocity: 0.01}
+  current:
+    direction_deg: 90
+    profile:
+      - {depth: 0, speed: 0.2}
+      - {depth: 500, speed: 0.1}
+  line_types:
+    - name: chain
+      diameter: 0.08
+      mass_per_length: 275
+      axial_stiffness: 2.28785e8
+      axial_damping_ratio: 0.5
+      drag_normal: 0.3
+      drag_tangential: 1.0
+      added_mass_normal: 1.5
+      friction_axial: 0.5
+      friction_lateral: 1.0
+    - name: wire
+      diameter: 0.1
+      mass_per_length: 40
+      axial_stiffness: 8.0e8
+      axial_damping: 1.0e5
+      drag_normal: 1.2
+      drag_tangential: 0.008
+      added_mass_normal: 1.0
+  defaults: {segments: 40}
+  lines:
+    - id: 1
+      type: chain
+      anchor: [1950, 0, 1000]
+      fairlead: [20, 0, 12]
+      length: 2250
+      segments: 30
+    - id: 2
+      type: wire
+      anchor: [0, 1950, 1000]
+      fairlead: [0, 20, 12]
+      length: 2250
+    - id: 3
+      type: chain
+      anchor: [-1950, 0, 1000]
+      fairlead: [-20, 0, 12]
+      length: 2250
+solver:
+  rtol: 1.0e-4
+  atol_position: 1.0e-3
+  atol_velocity: 2.0e-3
+  max_order: 4
+  stability_limit_detection: false
+  max_step: 0.5
+)";
+
+// Replaces the first `old_text` at or after the first `after` ("" = the start).
+inline std::string Edit(const std::string& text, const std::string& after,
+                        const std::string& old_text, const std::string& new_text) {
+  const std::size_t from = text.find(after);
+  const std::size_t at = from == std::string::npos ? from : text.find(old_text, from);
+  if (at == std::string::npos) {
+    ADD_FAILURE() << "'" << old_text << "' not found after '" << after << "'";
+    return text;
+  }
+  std::string edited = text;
+  edited.replace(at, old_text.size(), new_text);
+  return edited;
+}
+
+// "line:column" (1-based) of the first `at` found at or after the first `after`; a '^' in
+// `at` marks the spot inside it (default: its first character).
+inline std::string PositionOf(const std::string& text, const std::string& after, std::string at) {
+  std::size_t spot = at.find('^');
+  if (spot == std::string::npos) {
+    spot = 0;
+  } else {
+    at.erase(spot, 1);
+  }
+  const std::size_t from = text.find(after);
+  const std::size_t found = from == std::string::npos ? from : text.find(at, from);
+  if (found == std::string::npos) {
+    ADD_FAILURE() << "'" << at << "' not found after '" << after << "'";
+    return "?:?";
+  }
+  const std::size_t position = found + spot;
+  const std::size_t line_start = position == 0 ? std::string::npos : text.rfind('\n', position - 1);
+  const std::size_t column = line_start == std::string::npos ? position + 1 : position - line_start;
+  const auto line = 1 + std::count(text.begin(), text.begin() + position, '\n');
+  return std::to_string(line) + ":" + std::to_string(column);
+}
+
+// Input errors: one case per rule. Each edits kBase once; the expected message is
+// "test.yaml:<position of `at`>: <message>".
+
+struct BadInput {
+  std::string name;
+  std::string after;     // where to start looking for old_text and at ("" = the start)
+  std::string old_text;  // replaced by new_text
+  std::string new_text;
+  std::string at;  // text the message points at; '^' marks the spot (default: its start)
+  std::string message;
+};
+
+inline void PrintTo(const BadInput& input, std::ostream* out) { *out << input.name; }
+inline const BadInput kParseErrors[] = {
+    {"UnknownKeyInLine", "- id: 2", "length: 2250", "lenght: 2250", "lenght",
+     "mooring.lines[2]: unknown key 'lenght' (known: anchor, fairlead, id, length, segments, "
+     "type)"},
+    {"UnknownTopLevelSection", "", "solver:\n", "vessel: {}\nsolver:\n", "vessel",
+     "unknown key 'vessel' (known: mooring, name, solver)"},
+    {"UnknownKeyInFlowMap", "", "gravity: 9.81", "gravity: 9.81, salinity: 35", "salinity",
+     "mooring.water: unknown key 'salinity' (known: density, depth, gravity)"},
+    {"DuplicateKey", "- name: chain", "diameter: 0.08\n", "diameter: 0.08\n      diameter: 0.09\n",
+     "diameter: 0.09", "mooring.line_types[1]: duplicate key 'diameter'"},
+    {"MissingKeyInFlowMap", "", ", depth: 1000}", "}", "{density",
+     "mooring.water: required key 'depth' is missing"},
+    {"MissingKeyInListEntry", "- name: wire", "      axial_stiffness: 8.0e8\n", "", "name: wire",
+     "mooring.line_types[2]: required key 'axial_stiffness' is missing"},
+    {"NumberIsText", "- name: chain", "diameter: 0.08", "diameter: thick", "thick",
+     "mooring.line_types[1].diameter: thick must be a number"},
+    {"NumberIsQuoted", "- name: chain", "diameter: 0.08", "diameter: \"0.08\"", "\"0.08\"",
+     "mooring.line_types[1].diameter: \"0.08\" must be a number"},
+    {"NumberIsEmpty", "- name: chain", "diameter: 0.08", "diameter:", "diameter",
+     "mooring.line_types[1].diameter: an empty value must be a number"},
+    {"NumberIsNotFinite", "", "depth: 1000}", "depth: .inf}", ".inf",
+     "mooring.water.depth: .inf must be a finite number"},
+    {"IntegerHasFraction", "- id: 1", "segments: 30", "segments: 30.5", "30.5",
+     "mooring.lines[1].segments: 30.5 must be an integer"},
+    {"BooleanIsText", "", "stability_limit_detection: false", "stability_limit_detection: maybe",
+     "maybe", "solver.stability_limit_detection: maybe must be true or false"},
+    {"VectorHasTwoNumbers", "- id: 2", "[0, 20, 12]", "[0, 20]", "[0, 20]",
+     "mooring.lines[2].fairlead: [0, 20] must be a list of 3 numbers [x, y, z]"},
+    {"VectorElementIsText", "- id: 2", "[0, 20, 12]", "[0, 20, deep]", "deep",
+     "mooring.lines[2].fairlead[3]: deep must be a number"},
+    {"MapIsNumber", "", "water: {density: 1025, gravity: 9.81, depth: 1000}", "water: 1000",
+     "water: ^1000", "mooring.water: 1000 must be a map"},
+    {"ListIsMap", "profile:", "\n      - {depth: 0, speed: 0.2}\n      - {depth: 500, speed: 0.1}",
+     " {depth: 0, speed: 0.2}", "{depth", "mooring.current.profile: a map must be a list"},
+    {"StringIsList", "- id: 2", "type: wire", "type: [wire]", "[wire]",
+     "mooring.lines[2].type: [wire] must be a string"},
+    {"CurrentProfileIsEmpty",
+     "profile:", "\n      - {depth: 0, speed: 0.2}\n      - {depth: 500, speed: 0.1}", " []", "[]",
+     "mooring.current.profile: [] must hold at least one {depth, speed} point"},
+    {"CurrentDirectionInRadians", "", "direction_deg: 90", "direction: 1.57",
+     "direction:", "mooring.current: unknown key 'direction' (known: direction_deg, profile)"},
+    {"SecondDocument", "", "max_step: 0.5\n", "max_step: 0.5\n---\nname: other\n", "name: other",
+     "a scenario file holds one YAML document; this is a second one"},
+};
+inline const BadInput kValidationErrors[] = {
+    {"DiameterNotPositive", "- name: chain", "diameter: 0.08", "diameter: -0.08", "-0.08",
+     "mooring.line_types[1].diameter: -0.08 m must be > 0"},
+    // Displaced water: 1025 kg/m^3 x pi x 0.08^2 / 4 = 5.152 kg/m.
+    {"LineWouldFloat", "- name: chain", "mass_per_length: 275", "mass_per_length: 5",
+     "mass_per_length: ^5",
+     "mooring.line_types[1].mass_per_length: 5 kg/m must exceed the displaced water mass "
+     "5.152 kg/m (the line would float)"},
+    {"AxialStiffnessNotPositive", "- name: chain", "axial_stiffness: 2.28785e8",
+     "axial_stiffness: 0", "axial_stiffness: ^0",
+     "mooring.line_types[1].axial_stiffness: 0 N must be > 0"},
+    {"DragNormalNegative", "- name: chain", "drag_normal: 0.3", "drag_normal: -0.3", "-0.3",
+     "mooring.line_types[1].drag_normal: -0.3 must be >= 0"},
+    {"DragTangentialNegative", "- name: wire", "drag_tangential: 0.008", "drag_tangential: -0.008",
+     "-0.008", "mooring.line_types[2].drag_tangential: -0.008 must be >= 0"},
+    {"AddedMassNegative", "- name: chain", "added_mass_normal: 1.5", "added_mass_normal: -1.5",
+     "-1.5", "mooring.line_types[1].added_mass_normal: -1.5 must be >= 0"},
+    {"FrictionAxialNegative", "- name: chain", "friction_axial: 0.5", "friction_axial: -0.5",
+     "-0.5", "mooring.line_types[1].friction_axial: -0.5 must be >= 0"},
+    {"FrictionLateralNegative", "- name: chain", "friction_lateral: 1.0", "friction_lateral: -1",
+     "-1", "mooring.line_types[1].friction_lateral: -1 must be >= 0"},
+    {"AxialDampingNegative", "- name: wire", "axial_damping: 1.0e5", "axial_damping: -1", "-1",
+     "mooring.line_types[2].axial_damping: -1 N s must be >= 0"},
+    {"AxialDampingRatioNegative", "- name: chain", "axial_damping_ratio: 0.5",
+     "axial_damping_ratio: -0.1", "-0.1",
+     "mooring.line_types[1].axial_damping_ratio: -0.1 must be in [0, 10]"},
+    {"AxialDampingRatioAboveTen", "- name: chain", "axial_damping_ratio: 0.5",
+     "axial_damping_ratio: 12", "12",
+     "mooring.line_types[1].axial_damping_ratio: 12 must be in [0, 10]"},
+    {"BothAxialDampingsGiven", "- name: chain", "axial_damping_ratio: 0.5\n",
+     "axial_damping_ratio: 0.5\n      axial_damping: 2.0e4\n", "axial_damping_ratio: ^0.5",
+     "mooring.line_types[1].axial_damping_ratio: 0.5 cannot be combined with axial_damping "
+     "20000 N s; give one of them"},
+    {"SegmentsBelowTwo", "- id: 1", "segments: 30", "segments: 1", "segments: ^1",
+     "mooring.lines[1].segments: 1 must be in 2..10000"},
+    {"SegmentsAboveTenThousand", "- id: 1", "segments: 30", "segments: 10001", "10001",
+     "mooring.lines[1].segments: 10001 must be in 2..10000"},
+    {"DefaultSegmentsBelowTwo", "", "defaults: {segments: 40}", "defaults: {segments: 0}",
+     "segments: ^0", "mooring.defaults.segments: 0 must be in 2..10000"},
+    {"LengthNotPositive", "- id: 2", "length: 2250", "length: 0", "length: ^0",
+     "mooring.lines[2].length: 0 m must be > 0"},
+    // |(0, 1950, 1000) - (0, 20, 12)| = sqrt(1930^2 + 988^2) = 2168.189 m.
+    {"LengthShorterThanAnchorFairleadDistance", "- id: 2", "length: 2250", "length: 1800", "1800",
+     "mooring.lines[2].length: 1800 m is shorter than the anchor-fairlead distance 2168.2 m"},
+    {"AnchorBelowSeabed", "- id: 3", "[-1950, 0, 1000]", "[-1950, 0, 1000.5]", "[-1950",
+     "mooring.lines[3].anchor: z = 1000.5 m is below the seabed at depth 1000 m"},
+    {"AnchorAboveFairlead", "- id: 3", "[-1950, 0, 1000]", "[-1950, 0, 5]", "[-1950",
+     "mooring.lines[3].anchor: z = 5 m is above the fairlead at z = 12 m (z points down)"},
+    {"WaterDepthNotPositive", "", "depth: 1000}", "depth: 0}", "depth: ^0}",
+     "mooring.water.depth: 0 m must be > 0"},
+    {"WaterDensityNotPositive", "", "density: 1025", "density: 0", "density: ^0",
+     "mooring.water.density: 0 kg/m^3 must be > 0"},
+    {"GravityNotPositive", "", "gravity: 9.81", "gravity: -9.81", "-9.81",
+     "mooring.water.gravity: -9.81 m/s^2 must be > 0"},
+    {"SeabedStiffnessNotPositive", "", "stiffness: 3.0e6", "stiffness: 0", "stiffness: ^0",
+     "mooring.seabed.stiffness: 0 N/m^3 must be > 0"},
+    {"SeabedDampingNegative", "", "damping: 3.0e5", "damping: -1", "damping: ^-1",
+     "mooring.seabed.damping: -1 N s/m^3 must be >= 0"},
+    {"ContactSmoothingNotPositive", "", "friction_velocity: 0.01",
+     "contact_smoothing: -0.5, friction_velocity: 0.01", "contact_smoothing: ^-0.5",
+     "mooring.seabed.contact_smoothing: -0.5 m must be > 0"},
+    {"FrictionVelocityNotPositive", "", "friction_velocity: 0.01", "friction_velocity: 0",
+     "friction_velocity: ^0", "mooring.seabed.friction_velocity: 0 m/s must be > 0"},
+    {"CurrentDepthsNotIncreasing", "", "{depth: 500, speed: 0.1}", "{depth: 0, speed: 0.1}",
+     "speed: 0.2}\n      - {depth: ^0",
+     "mooring.current.profile[2].depth: 0 m must be greater than the previous point's depth "
+     "0 m"},
+    {"CurrentDepthNegative", "", "{depth: 0, speed: 0.2}", "{depth: -10, speed: 0.2}", "-10",
+     "mooring.current.profile[1].depth: -10 m must be >= 0"},
+    {"CurrentSpeedNegative", "", "speed: 0.1}", "speed: -0.1}", "-0.1",
+     "mooring.current.profile[2].speed: -0.1 m/s must be >= 0"},
+    {"DuplicateLineTypeName", "friction_lateral", "name: wire", "name: chain", "name: ^chain",
+     "mooring.line_types[2].name: 'chain' is already the name of mooring.line_types[1]"},
+    {"UnknownLineType", "- id: 2", "type: wire", "type: wier", "wier",
+     "mooring.lines[2].type: unknown line type 'wier' (known: chain, wire)"},
+    {"DuplicateLineId", "type: chain", "- id: 2", "- id: 1", "- id: ^1",
+     "mooring.lines[2].id: 1 is already the id of mooring.lines[1]"},
+    {"LineIdsNotOneToN", "type: wire", "- id: 3", "- id: 4", "- id: ^4",
+     "mooring.lines[3].id: 4 must be in 1..3 (ids number the 3 lines from 1)"},
+    {"RelativeToleranceNotPositive", "", "rtol: 1.0e-4", "rtol: 0", "rtol: ^0",
+     "solver.rtol: 0 must be in (0, 1)"},
+    {"RelativeToleranceNotBelowOne", "", "rtol: 1.0e-4", "rtol: 1", "rtol: ^1",
+     "solver.rtol: 1 must be in (0, 1)"},
+    {"PositionToleranceNotPositive", "", "atol_position: 1.0e-3", "atol_position: 0",
+     "atol_position: ^0", "solver.atol_position: 0 m must be > 0"},
+    {"VelocityToleranceNotPositive", "", "atol_velocity: 2.0e-3", "atol_velocity: -0.5", "-0.5",
+     "solver.atol_velocity: -0.5 m/s must be > 0"},
+    {"MaxOrderZero", "", "max_order: 4", "max_order: 0", "max_order: ^0",
+     "solver.max_order: 0 must be in 1..5"},
+    {"MaxOrderAboveFive", "", "max_order: 4", "max_order: 6", "max_order: ^6",
+     "solver.max_order: 6 must be in 1..5"},
+    {"MaxStepNegative", "", "max_step: 0.5", "max_step: -1", "max_step: ^-1",
+     "solver.max_step: -1 s must be >= 0 (0 = no limit)"},
+};
+}  // namespace moorsim::scenarios::test_cases
