@@ -175,3 +175,37 @@ TEST(StaticFem, BrokenLineSixLeavesThreePointFiveMeganewtonsAwayFromIt) {
 
 }  // namespace
 }  // namespace moorsim::mooring_fem
+
+namespace moorsim::mooring_fem {
+namespace {
+
+TEST(StaticFem, CurrentDragsTheMooringDownstreamAndTheStateIsAtRest) {
+  // A sheared current toward the north-west (315 deg: 1 m/s at the surface, 0.2 m/s at the
+  // seabed). The static state includes the drag on the lines at rest, so (a) the net force
+  // on the vessel points downstream, (b) line 8, whose anchor lies downstream, pulls
+  // harder and line 6 upstream less, and (c) a dynamic run from that state stays put.
+  scenarios::Scenario s = testing::SeedScenario(50);
+  s.mooring.current.direction = 315.0 * std::numbers::pi / 180.0;
+  s.mooring.current.depth = {0.0, 1000.0};
+  s.mooring.current.speed = {1.0, 0.2};
+  LineSimulation sim(s, HarmonicMotion{});
+  const std::vector<Vec3> f = sim.FairleadForces();
+  Vec3 net = Vec3::Zero();
+  for (const Vec3& line : f) net += line;
+  const Eigen::Vector2d downstream(std::cos(s.mooring.current.direction),
+                                   std::sin(s.mooring.current.direction));
+  EXPECT_GT(net.head<2>().dot(downstream), 10e3);  // measured 45.6 kN
+  EXPECT_LT(std::abs(net.head<2>().dot(Eigen::Vector2d(-downstream.y(), downstream.x()))),
+            1.0);                             // symmetric about the current's axis
+  EXPECT_GT(f[7].norm(), f[5].norm() + 5e3);  // line 8 vs line 6, measured 14 kN apart
+  const std::vector<double> start = sim.state();
+  sim.AdvanceTo(300.0);
+  double largest = 0.0;
+  for (std::size_t i = 0; i < start.size(); ++i) {
+    if (i % 6 < 3) largest = std::max(largest, std::abs(sim.state()[i] - start[i]));
+  }
+  EXPECT_LT(largest, 0.01);
+}
+
+}  // namespace
+}  // namespace moorsim::mooring_fem
