@@ -9,6 +9,9 @@ namespace moorsim {
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 using VecX = Eigen::VectorXd;
+using MatX = Eigen::MatrixXd;
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat6 = Eigen::Matrix<double, 6, 6>;
 
 /// Rigid-body kinematics of one attachment point in the Earth frame: position [m],
 /// velocity [m/s] and acceleration [m/s^2]. This is what the mooring takes in from

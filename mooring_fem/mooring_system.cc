@@ -347,10 +347,17 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, Node
 }
 
 void MooringSystem::Derivatives(const double* x, std::span<const PointKinematics> fairleads,
-                                double* xdot) {
+                                double* xdot, std::span<Vec3> forces) {
+  for (auto& f : forces) f.setZero();
   for (const Chain& c : chains_) {
     GatherChain(c, x, fairleads);
     ComputeSegments(c);
+    if (!forces.empty() && c.upper == EndCondition::kFairlead) {
+      Vec3 F;
+      Mat3 M;
+      NodeForce(c, c.segments, &F, &M);
+      forces[c.line] = F - M * fairleads[c.line].acceleration;
+    }
     const int first = c.first_state_node();
     for (int k = first; k <= c.last_state_node(); ++k) {
       Vec3 F;
@@ -417,6 +424,16 @@ void MooringSystem::FairleadForces(const double* x, std::span<const PointKinemat
     // The node's equation M a = F + F_body gives the line's force on the body F - M a.
     forces[c.line] = F - M * fairleads[c.line].acceleration;
   }
+}
+
+int MooringSystem::CouplingNode(int index) const {
+  for (const Chain& c : chains_) {
+    if (c.line != index || c.upper != EndCondition::kFairlead) continue;
+    const int n = c.segments;
+    if (n - 1 < c.first_state_node()) return -1;
+    return c.state_offset + 6 * (n - 1 - c.first_state_node());
+  }
+  return -1;
 }
 
 FairleadCoupling MooringSystem::FairleadJacobian(const double* x,

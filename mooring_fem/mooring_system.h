@@ -23,6 +23,7 @@
 #include <span>
 #include <vector>
 
+#include "core/coupled_system.h"
 #include "core/ode_system.h"
 #include "core/types.h"
 #include "mooring_fem/environment.h"
@@ -80,18 +81,8 @@ struct LineFailure {
   int node = 0;  ///< for kNode
 };
 
-/// The derivatives that couple a line to the body moving its fairlead, for an implicit
-/// (monolithic) vessel coupling: the last free node n-1 feels the fairlead's position and
-/// velocity, and the fairlead force depends on node n-1 and on the fairlead itself.
-struct FairleadCoupling {
-  int node_state = -1;  ///< index of node n-1's first state component (r, then v)
-  Mat3 J_accel_fairlead_pos = Mat3::Zero();  ///< d a_{n-1} / d r_n
-  Mat3 J_accel_fairlead_vel = Mat3::Zero();  ///< d a_{n-1} / d v_n
-  Mat3 J_force_node_pos = Mat3::Zero();      ///< d F_fairlead / d r_{n-1}
-  Mat3 J_force_node_vel = Mat3::Zero();      ///< d F_fairlead / d v_{n-1}
-  Mat3 J_force_fairlead_pos = Mat3::Zero();  ///< d F_fairlead / d r_n
-  Mat3 J_force_fairlead_vel = Mat3::Zero();  ///< d F_fairlead / d v_n (acceleration held)
-};
+// FairleadCoupling (core/coupled_system.h): the blocks that couple a line's last free node
+// and its fairlead force to the body moving the fairlead.
 
 /// Per-line static/quasi-static summary.
 struct LineLoad {
@@ -125,8 +116,10 @@ class MooringSystem {
   /// Returns the largest residual node force [N]. Throws moorsim::Error if it fails.
   double SettleStatic(std::span<const Vec3> fairleads, double* x);
 
-  /// x' = f(x) for the given fairlead kinematics (one per line, Earth frame).
-  void Derivatives(const double* x, std::span<const PointKinematics> fairleads, double* xdot);
+  /// x' = f(x) for the given fairlead kinematics (one per line, Earth frame). If `forces`
+  /// is not empty (one per line), it receives what FairleadForces() would, at little cost.
+  void Derivatives(const double* x, std::span<const PointKinematics> fairleads, double* xdot,
+                   std::span<Vec3> forces = {});
 
   /// CSR pattern of df/dx for the current topology.
   const SparsityPattern& JacobianPattern() const { return pattern_; }
@@ -139,6 +132,9 @@ class MooringSystem {
   void FairleadForces(const double* x, std::span<const PointKinematics> fairleads,
                       std::span<Vec3> forces);
 
+  /// State index of node n-1 of line `index` if it is attached to its fairlead and has a
+  /// free node below it, else -1.
+  int CouplingNode(int index) const;
   /// Coupling blocks of line `index` (0-based), which must be attached to its fairlead.
   FairleadCoupling FairleadJacobian(const double* x, std::span<const PointKinematics> fairleads,
                                     int index);

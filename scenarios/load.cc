@@ -239,6 +239,15 @@ std::string Reader::As<std::string>() const {
 }
 
 template <>
+std::uint64_t Reader::As<std::uint64_t>() const {
+  if (!node_.IsScalar() || node_.Tag() == "!" || node_.Scalar().empty() ||
+      node_.Scalar()[0] == '-') {
+    Fail(Describe(node_) + " must be a non-negative integer");
+  }
+  return Decode<std::uint64_t>("a non-negative integer");
+}
+
+template <>
 Vec3 Reader::As<Vec3>() const {
   if (!node_.IsSequence() || node_.size() != 3) {
     Fail(Describe(node_) + " must be a list of 3 numbers [x, y, z]");
@@ -328,7 +337,12 @@ void ParseMooring(const Reader& r, Scenario& scenario) {
   MooringSpec& mooring = scenario.mooring;
   ParseWater(r.Child("water"), mooring.water);
   if (std::optional<Reader> seabed = r.Find("seabed")) ParseSeabed(*seabed, mooring.seabed);
-  if (std::optional<Reader> current = r.Find("current")) ParseCurrent(*current, mooring.current);
+  if (std::optional<Reader> current = r.Find("current")) {
+    if (mooring.current.key == "environment.current") {
+      current->Fail("the current is given twice; keep it under environment.current only");
+    }
+    ParseCurrent(*current, mooring.current);
+  }
   for (const Reader& type : r.Child("line_types").Items()) {
     mooring.line_types.push_back(ParseLineType(type));
   }
@@ -357,6 +371,160 @@ void ParseSolver(const Reader& r, Scenario& scenario) {
   r.Optional("max_step", solver.max_step);
 }
 
+// Angles under *_deg keys.
+double Degrees(const Reader& r, std::string_view key, double fallback_rad) {
+  if (std::optional<double> deg = r.Maybe<double>(key)) return Radians(*deg);
+  return fallback_rad;
+}
+
+void ParseVessel(const Reader& r, Scenario& scenario) {
+  r.CheckKeys({"centre_of_gravity", "damping", "hydrodynamics", "initial_pose", "length_scale",
+               "mass", "radii_of_gyration", "thrusters"});
+  VesselSpec v;
+  v.hydrodynamics = r.Required<std::string>("hydrodynamics");
+  r.Optional("length_scale", v.length_scale);
+  r.Optional("mass", v.mass);
+  r.Optional("centre_of_gravity", v.centre_of_gravity);
+  r.Optional("radii_of_gyration", v.radii_of_gyration);
+  if (std::optional<Reader> d = r.Find("damping")) {
+    d->CheckKeys(
+        {"heave_ratio", "pitch_ratio", "roll_ratio", "surge_time", "sway_time", "yaw_time"});
+    d->Optional("surge_time", v.damping.surge_time);
+    d->Optional("sway_time", v.damping.sway_time);
+    d->Optional("yaw_time", v.damping.yaw_time);
+    d->Optional("heave_ratio", v.damping.heave_ratio);
+    d->Optional("roll_ratio", v.damping.roll_ratio);
+    d->Optional("pitch_ratio", v.damping.pitch_ratio);
+  }
+  if (std::optional<Reader> p = r.Find("initial_pose")) {
+    p->CheckKeys({"heading_deg", "x", "y"});
+    p->Optional("x", v.initial_pose.x());
+    p->Optional("y", v.initial_pose.y());
+    v.initial_pose.z() = Degrees(*p, "heading_deg", 0.0);
+  }
+  if (std::optional<Reader> list = r.Find("thrusters")) {
+    const std::vector<Reader> items = list->Items();
+    if (items.empty())
+      list->Fail("[] must hold at least one thruster (omit it for the seed layout)");
+    for (const Reader& t : items) {
+      t.CheckKeys({"angle_deg", "azimuth", "max_thrust", "min_thrust", "name", "rate_limit",
+                   "time_constant", "weight", "x", "y"});
+      ThrusterEntry e;
+      e.name = t.Required<std::string>("name");
+      e.x = t.Required<double>("x");
+      e.y = t.Required<double>("y");
+      e.angle = Degrees(t, "angle_deg", 0.0);
+      t.Optional("azimuth", e.azimuth);
+      e.max_thrust = t.Required<double>("max_thrust");
+      t.Optional("min_thrust", e.min_thrust);
+      t.Optional("weight", e.weight);
+      t.Optional("time_constant", e.time_constant);
+      t.Optional("rate_limit", e.rate_limit);
+      v.thrusters.push_back(e);
+    }
+  }
+  scenario.vessel = v;
+}
+
+void ParseEnvironment(const Reader& r, Scenario& scenario) {
+  r.CheckKeys({"current", "current_on_hull", "waves", "wind"});
+  EnvironmentSpec& e = scenario.environment;
+  if (std::optional<Reader> w = r.Find("waves")) {
+    w->CheckKeys({"components", "direction_toward_deg", "gamma", "hs", "spreading", "tp"});
+    e.waves.enabled = true;
+    e.waves.significant_height = w->Required<double>("hs");
+    e.waves.peak_period = w->Required<double>("tp");
+    w->Optional("gamma", e.waves.gamma);
+    e.waves.direction_toward = Radians(w->Required<double>("direction_toward_deg"));
+    e.waves.spreading = w->Maybe<double>("spreading");
+    w->Optional("components", e.waves.components);
+  }
+  if (std::optional<Reader> w = r.Find("wind")) {
+    w->CheckKeys({"components", "direction_from_deg", "gust", "speed"});
+    e.wind.enabled = true;
+    e.wind.speed = w->Required<double>("speed");
+    e.wind.direction_from = Radians(w->Required<double>("direction_from_deg"));
+    w->Optional("gust", e.wind.gust);
+    w->Optional("components", e.wind.components);
+  }
+  if (std::optional<Reader> c = r.Find("current")) {
+    scenario.mooring.current.key = "environment.current";
+    ParseCurrent(*c, scenario.mooring.current);
+  }
+  r.Optional("current_on_hull", e.current_on_hull);
+}
+
+void ParseController(const Reader& r, Scenario& scenario) {
+  r.CheckKeys({"damping_ratio", "kd", "ki", "kp", "natural_period", "rate_hz", "setpoint", "type"});
+  ControllerSpec& c = scenario.controller;
+  c.type = r.Required<std::string>("type");
+  r.Optional("rate_hz", c.rate);
+  if (std::optional<Reader> p = r.Find("setpoint")) {
+    p->CheckKeys({"heading_deg", "x", "y"});
+    c.setpoint = Vec3(p->Required<double>("x"), p->Required<double>("y"),
+                      Radians(p->Required<double>("heading_deg")));
+  }
+  r.Optional("kp", c.kp);
+  r.Optional("ki", c.ki);
+  r.Optional("kd", c.kd);
+  r.Optional("natural_period", c.natural_period);
+  r.Optional("damping_ratio", c.damping_ratio);
+}
+
+void ParseNoise(const Reader& r, ChannelNoiseSpec& n) {
+  r.CheckKeys({"bias_time_constant", "bias_walk", "initial_bias", "outlier_probability",
+               "outlier_std_dev", "std_dev"});
+  r.Optional("std_dev", n.std_dev);
+  r.Optional("bias_walk", n.bias_walk);
+  r.Optional("bias_time_constant", n.bias_time_constant);
+  r.Optional("initial_bias", n.initial_bias);
+  r.Optional("outlier_probability", n.outlier_probability);
+  r.Optional("outlier_std_dev", n.outlier_std_dev);
+}
+
+void ParseSensors(const Reader& r, Scenario& scenario) {
+  r.CheckKeys({"gnss", "gyro", "tension_cells"});
+  SensorsSpec& s = scenario.sensors;
+  if (std::optional<Reader> g = r.Find("gnss")) {
+    g->CheckKeys({"dropout_mean_duration", "dropout_probability", "east", "north", "rate_hz"});
+    g->Optional("rate_hz", s.gnss_rate);
+    if (std::optional<Reader> n = g->Find("north")) ParseNoise(*n, s.north);
+    if (std::optional<Reader> n = g->Find("east")) ParseNoise(*n, s.east);
+    g->Optional("dropout_probability", s.gnss_dropout_probability);
+    g->Optional("dropout_mean_duration", s.gnss_dropout_mean_duration);
+  }
+  if (std::optional<Reader> g = r.Find("gyro")) {
+    g->CheckKeys({"dropout_probability", "heading", "rate_hz"});
+    g->Optional("rate_hz", s.gyro_rate);
+    if (std::optional<Reader> n = g->Find("heading")) ParseNoise(*n, s.heading);
+    g->Optional("dropout_probability", s.gyro_dropout_probability);
+  }
+  if (std::optional<Reader> t = r.Find("tension_cells")) {
+    t->CheckKeys({"noise", "rate_hz"});
+    s.tension_cells = true;
+    t->Optional("rate_hz", s.tension_rate);
+    if (std::optional<Reader> n = t->Find("noise")) ParseNoise(*n, s.tension_noise);
+  }
+}
+
+void ParseFailure(const Reader& r, Scenario& scenario) {
+  r.CheckKeys({"arc_length", "line", "mode", "node", "time"});
+  FailureSpec& f = scenario.failure;
+  f.line = r.Required<int>("line");
+  f.time = r.Required<double>("time");
+  r.Optional("mode", f.mode);
+  r.Optional("node", f.node);
+  f.arc_length = r.Maybe<double>("arc_length");
+}
+
+void ParseSimulation(const Reader& r, Scenario& scenario) {
+  r.CheckKeys({"duration", "output_rate_hz", "seed"});
+  SimulationSpec& s = scenario.simulation;
+  r.Optional("duration", s.duration);
+  r.Optional("output_rate_hz", s.output_rate);
+  r.Optional("seed", s.seed);
+}
+
 // The top level, sorted by key. Later sections (vessel, environment, controller, sensors,
 // failure, simulation, detectors) each add one row; the table also gives the "known:" list.
 struct Section {
@@ -366,9 +534,15 @@ struct Section {
 };
 
 constexpr Section kSections[] = {
+    {"controller", false, ParseController},
+    {"environment", false, ParseEnvironment},
+    {"failure", false, ParseFailure},
     {"mooring", true, ParseMooring},
     {"name", false, ParseName},
+    {"sensors", false, ParseSensors},
+    {"simulation", false, ParseSimulation},
     {"solver", false, ParseSolver},
+    {"vessel", false, ParseVessel},
 };
 
 void ParseDocument(const Reader& root, Scenario& scenario) {
@@ -442,7 +616,7 @@ void CheckSeabed(const Checker& check, const Seabed& seabed) {
 }
 
 void CheckCurrent(const Checker& check, const CurrentProfile& current) {
-  const std::string profile = "mooring.current.profile";
+  const std::string profile = current.key + ".profile";
   if (current.depth.size() != current.speed.size()) {
     check.Fail(profile, std::to_string(current.depth.size()) + " depths and " +
                             std::to_string(current.speed.size()) +
@@ -574,6 +748,157 @@ void CheckSolver(const Checker& check, const SolverSpec& solver) {
   }
 }
 
+void Probability(const Checker& check, const std::string& path, double value) {
+  if (!(value >= 0.0 && value < 1.0)) check.Fail(path, Number(value) + " must be in [0, 1)");
+}
+
+void CheckVessel(const Checker& check, const VesselSpec& v) {
+  const std::filesystem::path stem(v.hydrodynamics);
+  for (const char* ext : {".1", ".hst"}) {
+    std::error_code ignored;
+    if (!std::filesystem::is_regular_file(v.hydrodynamics + ext, ignored)) {
+      check.Fail("vessel.hydrodynamics",
+                 "'" + v.hydrodynamics + "': no WAMIT file '" + v.hydrodynamics + ext + "'");
+    }
+  }
+  check.Positive("vessel.length_scale", v.length_scale, "m");
+  check.Positive("vessel.mass", v.mass, "kg");
+  for (int i = 0; i < 3; ++i) {
+    check.Positive("vessel.radii_of_gyration", v.radii_of_gyration(i), "m");
+  }
+  check.Positive("vessel.damping.surge_time", v.damping.surge_time, "s");
+  check.Positive("vessel.damping.sway_time", v.damping.sway_time, "s");
+  check.Positive("vessel.damping.yaw_time", v.damping.yaw_time, "s");
+  for (const auto& [key, ratio] : {std::pair{"heave_ratio", v.damping.heave_ratio},
+                                   {"roll_ratio", v.damping.roll_ratio},
+                                   {"pitch_ratio", v.damping.pitch_ratio}}) {
+    const std::string path = std::string("vessel.damping.") + key;
+    if (!(ratio >= 0.0 && ratio < 1.0)) check.Fail(path, Number(ratio) + " must be in [0, 1)");
+  }
+  for (std::size_t i = 0; i < v.thrusters.size(); ++i) {
+    const ThrusterEntry& t = v.thrusters[i];
+    const std::string path = ItemPath("vessel.thrusters", i);
+    check.Positive(path + ".max_thrust", t.max_thrust, "N");
+    if (!(t.min_thrust <= 0.0))
+      check.Fail(path + ".min_thrust", WithUnit(t.min_thrust, "N") + " must be <= 0");
+    check.Positive(path + ".weight", t.weight, "");
+    check.Positive(path + ".time_constant", t.time_constant, "s");
+    check.NonNegative(path + ".rate_limit", t.rate_limit, "N/s");
+    for (std::size_t j = 0; j < i; ++j) {
+      if (v.thrusters[j].name == t.name) {
+        check.Fail(path + ".name",
+                   "'" + t.name + "' is used by thruster " + std::to_string(j + 1) + " too");
+      }
+    }
+  }
+}
+
+void CheckEnvironment(const Checker& check, const Scenario& scenario) {
+  const EnvironmentSpec& e = scenario.environment;
+  if (e.waves.enabled) {
+    if (!scenario.vessel)
+      check.Fail("environment.waves", "waves need a vessel section (its RAOs and drift)");
+    check.Positive("environment.waves.hs", e.waves.significant_height, "m");
+    check.Positive("environment.waves.tp", e.waves.peak_period, "s");
+    if (!(e.waves.gamma >= 1.0 && e.waves.gamma <= 10.0)) {
+      check.Fail("environment.waves.gamma", Number(e.waves.gamma) + " must be in [1, 10]");
+    }
+    if (e.waves.spreading) check.NonNegative("environment.waves.spreading", *e.waves.spreading, "");
+    check.InRange("environment.waves.components", e.waves.components, 1, 100000);
+  }
+  if (e.wind.enabled) {
+    check.NonNegative("environment.wind.speed", e.wind.speed, "m/s");
+    check.InRange("environment.wind.components", e.wind.components, 1, 100000);
+  }
+}
+
+// The controller types the simulation knows (vessel/controller.h's registry; a test checks
+// that every name here builds there).
+constexpr std::string_view kControllerTypes[] = {"none", "observer_pid", "pi"};
+
+void CheckController(const Checker& check, const ControllerSpec& c) {
+  if (std::find(std::begin(kControllerTypes), std::end(kControllerTypes), c.type) ==
+      std::end(kControllerTypes)) {
+    check.Fail("controller.type",
+               "unknown controller '" + c.type + "' (known: " +
+                   JoinSorted({std::begin(kControllerTypes), std::end(kControllerTypes)}) + ")");
+  }
+  check.Positive("controller.rate_hz", c.rate, "Hz");
+  for (int i = 0; i < 3; ++i) {
+    check.NonNegative("controller.kp", c.kp(i), "");
+    check.NonNegative("controller.ki", c.ki(i), "");
+    check.NonNegative("controller.kd", c.kd(i), "");
+  }
+  check.NonNegative("controller.natural_period", c.natural_period, "s");
+  check.NonNegative("controller.damping_ratio", c.damping_ratio, "");
+}
+
+void CheckNoise(const Checker& check, const std::string& path, const ChannelNoiseSpec& n) {
+  check.NonNegative(path + ".std_dev", n.std_dev, "");
+  check.NonNegative(path + ".bias_walk", n.bias_walk, "");
+  check.NonNegative(path + ".bias_time_constant", n.bias_time_constant, "s");
+  Probability(check, path + ".outlier_probability", n.outlier_probability);
+  check.NonNegative(path + ".outlier_std_dev", n.outlier_std_dev, "");
+}
+
+void CheckSensors(const Checker& check, const SensorsSpec& s) {
+  check.Positive("sensors.gnss.rate_hz", s.gnss_rate, "Hz");
+  check.Positive("sensors.gyro.rate_hz", s.gyro_rate, "Hz");
+  CheckNoise(check, "sensors.gnss.north", s.north);
+  CheckNoise(check, "sensors.gnss.east", s.east);
+  CheckNoise(check, "sensors.gyro.heading", s.heading);
+  Probability(check, "sensors.gnss.dropout_probability", s.gnss_dropout_probability);
+  check.NonNegative("sensors.gnss.dropout_mean_duration", s.gnss_dropout_mean_duration, "s");
+  Probability(check, "sensors.gyro.dropout_probability", s.gyro_dropout_probability);
+  check.Positive("sensors.tension_cells.rate_hz", s.tension_rate, "Hz");
+  CheckNoise(check, "sensors.tension_cells.noise", s.tension_noise);
+}
+
+constexpr std::string_view kFailureModes[] = {"anchor", "fairlead", "node"};
+
+void CheckFailure(const Checker& check, const Scenario& scenario) {
+  const FailureSpec& f = scenario.failure;
+  if (f.line == 0 && !scenario.marks.contains("failure")) return;
+  const int lines = static_cast<int>(scenario.mooring.lines.size());
+  check.InRange("failure.line", f.line, 1, lines);
+  check.NonNegative("failure.time", f.time, "s");
+  if (!(f.time < scenario.simulation.duration)) {
+    check.Fail("failure.time", WithUnit(f.time, "s") +
+                                   " is not before the end of the run (simulation.duration " +
+                                   WithUnit(scenario.simulation.duration, "s") + ")");
+  }
+  if (std::find(std::begin(kFailureModes), std::end(kFailureModes), f.mode) ==
+      std::end(kFailureModes)) {
+    check.Fail("failure.mode",
+               "unknown failure mode '" + f.mode + "' (known: anchor, fairlead, node)");
+  }
+  const bool node_given = scenario.marks.contains("failure.node");
+  if (f.mode != "node" && (node_given || f.arc_length)) {
+    check.Fail(node_given ? "failure.node" : "failure.arc_length",
+               "only applies to mode 'node' (the mode is '" + f.mode + "')");
+  }
+  if (f.mode == "node") {
+    if (node_given == f.arc_length.has_value()) {
+      check.Fail("failure.mode", "mode 'node' needs exactly one of node or arc_length");
+    }
+    const LineSpec* line = nullptr;
+    for (const LineSpec& l : scenario.mooring.lines) {
+      if (l.id == f.line) line = &l;
+    }
+    if (line != nullptr && node_given) check.InRange("failure.node", f.node, 1, line->segments - 1);
+    if (line != nullptr && f.arc_length && !(*f.arc_length > 0.0 && *f.arc_length < line->length)) {
+      check.Fail("failure.arc_length", WithUnit(*f.arc_length, "m") +
+                                           " must be inside the line (0, " +
+                                           WithUnit(line->length, "m") + ")");
+    }
+  }
+}
+
+void CheckSimulation(const Checker& check, const SimulationSpec& s) {
+  check.Positive("simulation.duration", s.duration, "s");
+  check.Positive("simulation.output_rate_hz", s.output_rate, "Hz");
+}
+
 }  // namespace
 
 void Validate(const Scenario& scenario) {
@@ -586,6 +911,21 @@ void Validate(const Scenario& scenario) {
   check.InRange("mooring.defaults.segments", mooring.defaults.segments, kMinSegments, kMaxSegments);
   CheckLines(check, mooring);
   CheckSolver(check, scenario.solver);
+  if (scenario.vessel) CheckVessel(check, *scenario.vessel);
+  CheckEnvironment(check, scenario);
+  CheckController(check, scenario.controller);
+  CheckSensors(check, scenario.sensors);
+  CheckSimulation(check, scenario.simulation);
+  CheckFailure(check, scenario);
+  const bool vessel_needed = scenario.marks.contains("controller") ||
+                             scenario.marks.contains("sensors") ||
+                             scenario.marks.contains("failure");
+  if (vessel_needed && !scenario.vessel) {
+    const char* what = scenario.marks.contains("controller") ? "controller"
+                       : scenario.marks.contains("sensors")  ? "sensors"
+                                                             : "failure";
+    check.Fail(what, "needs a vessel section");
+  }
 }
 
 Scenario ParseScenario(const std::string& yaml_text, const std::string& source_name) {
@@ -605,6 +945,13 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source_n
     }
     const Reader root(context, documents[0], "", ToSourceMark(documents[0].Mark()));
     ParseDocument(root, scenario);
+    // A relative WAMIT stem is relative to the scenario file's directory.
+    if (scenario.vessel && std::filesystem::path(scenario.vessel->hydrodynamics).is_relative()) {
+      scenario.vessel->hydrodynamics =
+          (std::filesystem::path(source_name).parent_path() / scenario.vessel->hydrodynamics)
+              .lexically_normal()
+              .string();
+    }
   } catch (const YAML::ParserException& error) {
     ThrowAt(source_name, ToSourceMark(error.mark), "", "YAML syntax error: " + error.msg);
   } catch (const YAML::Exception& error) {

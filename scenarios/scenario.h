@@ -3,6 +3,7 @@
 // gives them in degrees under keys ending in `_deg`). Line numbers are 1-based.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -79,6 +80,10 @@ struct CurrentProfile {
   double direction = 0.0;
   std::vector<double> depth;  ///< strictly increasing depths [m], >= 0
   std::vector<double> speed;  ///< speeds at those depths [m/s], >= 0
+  /// Where it was written ("mooring.current" or "environment.current"), for messages.
+  std::string key = "mooring.current";
+  /// Speed at the surface [m/s] (0 without a profile).
+  double SurfaceSpeed() const { return speed.empty() ? 0.0 : speed.front(); }
 };
 
 /// Values that apply to every line unless the line says otherwise.
@@ -107,12 +112,131 @@ struct SolverSpec {
   double max_step = 0.0;  ///< [s]; 0 = no limit
 };
 
+/// The vessel (DESIGN.md section 5). Defaults are the seed FPSO (reference sheet).
+struct LowFrequencyDampingSpec {
+  double surge_time = 50.0;  ///< B_11 = (M + A)_11 / T [s]
+  double sway_time = 100.0;  ///< [s]
+  double yaw_time = 20.0;    ///< [s]
+  double heave_ratio = 0.1;  ///< fraction of critical [-]
+  double roll_ratio = 0.07;
+  double pitch_ratio = 0.1;
+};
+
+struct ThrusterEntry {
+  std::string name;
+  double x = 0.0, y = 0.0;  ///< body frame [m]
+  double angle = 0.0;       ///< thrust direction from the bow toward starboard [rad]
+  bool azimuth = false;
+  double max_thrust = 0.0;     ///< [N]
+  double min_thrust = 0.0;     ///< [N], <= 0
+  double weight = 1.0;         ///< allocation weight [-]
+  double time_constant = 5.0;  ///< [s]
+  double rate_limit = 0.0;     ///< [N/s], 0 = none
+};
+
+struct VesselSpec {
+  /// WAMIT output stem (files stem.1, .hst, .3, .4, .9), relative paths resolved against
+  /// the scenario file's directory at load time.
+  std::string hydrodynamics;
+  double length_scale = 1.0;                        ///< WAMIT ULEN [m]
+  double mass = 1.0041e8;                           ///< [kg]
+  Vec3 centre_of_gravity = Vec3(0.0, 0.0, 1.0);     ///< body frame [m]
+  Vec3 radii_of_gyration = Vec3(16.3, 54.0, 54.0);  ///< roll, pitch, yaw [m]
+  LowFrequencyDampingSpec damping;
+  /// Initial low-frequency pose: x, y [m], heading [rad]; heave, roll and pitch start at
+  /// the moored static equilibrium.
+  Vec3 initial_pose = Vec3::Zero();
+  std::vector<ThrusterEntry> thrusters;  ///< empty = the seed layout (vessel/thrusters.h)
+};
+
+struct WavesSpec {
+  bool enabled = false;
+  double significant_height = 0.0;  ///< Hs [m]
+  double peak_period = 0.0;         ///< Tp [s]
+  double gamma = 3.3;               ///< JONSWAP peak enhancement [-]
+  double direction_toward = 0.0;    ///< mean direction the waves travel TOWARD [rad]
+  std::optional<double> spreading;  ///< cos-2s exponent s; unset = long-crested
+  int components = 200;
+};
+
+struct WindSpec {
+  bool enabled = false;
+  double speed = 0.0;           ///< 1-hour mean at 10 m [m/s]
+  double direction_from = 0.0;  ///< direction the wind comes FROM [rad] (meteorological)
+  bool gust = true;             ///< NPD (ISO 19901-1) gust spectrum on top of the mean
+  int components = 100;
+};
+
+struct EnvironmentSpec {
+  WavesSpec waves;
+  WindSpec wind;
+  /// Viscous current load on the hull (the lines always see the current).
+  bool current_on_hull = true;
+};
+
+struct ControllerSpec {
+  std::string type = "none";  ///< none, pi, observer_pid
+  double rate = 1.0;          ///< sample rate [Hz]
+  /// Setpoint x, y [m], heading [rad]; unset = the initial pose.
+  std::optional<Vec3> setpoint;
+  Vec3 kp = Vec3(1e5, 1e6, 1e3);  ///< pi: [N/m, N/m, N m/rad]
+  Vec3 ki = Vec3(1e3, 1e3, 1e2);  ///< pi: [N/(m s), N/(m s), N m/(rad s)]
+  Vec3 kd = Vec3::Zero();         ///< pi: [N s/m, N s/m, N m s/rad]
+  double natural_period = 0.0;    ///< observer_pid: 2 pi / omega_n [s]; 0 = its default
+  double damping_ratio = 0.0;     ///< observer_pid: zeta [-]; 0 = its default
+};
+
+struct ChannelNoiseSpec {
+  double std_dev = 0.0;             ///< white noise [m or rad]
+  double bias_walk = 0.0;           ///< [m/sqrt(s) or rad/sqrt(s)]
+  double bias_time_constant = 0.0;  ///< [s]; 0 = random walk
+  double initial_bias = 0.0;
+  double outlier_probability = 0.0;
+  double outlier_std_dev = 0.0;
+};
+
+struct SensorsSpec {
+  double gnss_rate = 1.0;  ///< [Hz]
+  double gyro_rate = 1.0;  ///< [Hz]
+  /// Reference sheet: measurement variance 0.005 m^2 / rad^2 per DOF.
+  ChannelNoiseSpec north{.std_dev = 0.070710678118654752};
+  ChannelNoiseSpec east{.std_dev = 0.070710678118654752};
+  ChannelNoiseSpec heading{.std_dev = 0.070710678118654752};
+  double gnss_dropout_probability = 0.0;
+  double gnss_dropout_mean_duration = 0.0;  ///< [s]
+  double gyro_dropout_probability = 0.0;
+  bool tension_cells = false;
+  ChannelNoiseSpec tension_noise;  ///< [N]
+  double tension_rate = 1.0;       ///< [Hz]
+};
+
+struct FailureSpec {
+  int line = 0;                      ///< 1-based; 0 = no failure
+  double time = 0.0;                 ///< [s]
+  std::string mode = "fairlead";     ///< fairlead, node, anchor
+  int node = 0;                      ///< for mode node: node index from the anchor (1..n-1)
+  std::optional<double> arc_length;  ///< for mode node: unstretched length from the anchor [m]
+};
+
+struct SimulationSpec {
+  double duration = 1000.0;  ///< [s]
+  double output_rate = 1.0;  ///< [Hz]
+  std::uint64_t seed = 1;
+};
+
 struct Scenario {
   std::string name;
   std::string source_path;  ///< file it was read from
   std::string text;         ///< the full YAML text, recorded in outputs
   MooringSpec mooring;
   SolverSpec solver;
+  /// The coupled-simulation sections; `vessel` unset means a lines-only scenario.
+  std::optional<VesselSpec> vessel;
+  EnvironmentSpec environment;
+  ControllerSpec controller;
+  SensorsSpec sensors;
+  FailureSpec failure;
+  SimulationSpec simulation;
   /// Where each value was written, by key path ("mooring.lines[3].length", list indices
   /// 1-based), so checks after parsing can point at the offending text.
   std::map<std::string, SourceMark> marks;

@@ -17,6 +17,22 @@ Mat3 RotationBodyToNed(double phi, double theta, double psi) {
   return R;
 }
 
+void RotationDerivatives(double phi, double theta, double psi, Mat3 dR[3]) {
+  const double cf = std::cos(phi), sf = std::sin(phi);
+  const double ct = std::cos(theta), st = std::sin(theta);
+  const double cp = std::cos(psi), sp = std::sin(psi);
+  Mat3 Rx, Ry, Rz, dRx, dRy, dRz;
+  Rx << 1, 0, 0, 0, cf, -sf, 0, sf, cf;
+  Ry << ct, 0, st, 0, 1, 0, -st, 0, ct;
+  Rz << cp, -sp, 0, sp, cp, 0, 0, 0, 1;
+  dRx << 0, 0, 0, 0, -sf, -cf, 0, cf, -sf;
+  dRy << -st, 0, ct, 0, 0, 0, -ct, 0, -st;
+  dRz << -sp, -cp, 0, cp, -sp, 0, 0, 0, 0;
+  dR[0] = Rz * Ry * dRx;
+  dR[1] = Rz * dRy * Rx;
+  dR[2] = dRz * Ry * Rx;
+}
+
 Mat3 EulerRateTransform(double phi, double theta) {
   const double ct = std::cos(theta);
   if (std::abs(ct) < 1e-6) {

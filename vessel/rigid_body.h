@@ -16,6 +16,9 @@ using Mat6 = Eigen::Matrix<double, 6, 6>;
 /// R(Theta) = Rz(psi) Ry(theta) Rx(phi): body-to-NED rotation (Fossen 2011 eq. 2.18).
 Mat3 RotationBodyToNed(double phi, double theta, double psi);
 
+/// dR/dphi, dR/dtheta and dR/dpsi of RotationBodyToNed, in that order.
+void RotationDerivatives(double phi, double theta, double psi, Mat3 dR[3]);
+
 /// T(Theta): body angular rates [p q r] to Euler angle rates (Fossen 2011 eq. 2.28).
 /// Singular at theta = +-90 deg; throws moorsim::Error within 1e-6 rad of it.
 Mat3 EulerRateTransform(double phi, double theta);

@@ -37,6 +37,7 @@ class VesselModel {
   Jacobian Jacobians(const Vec6& eta, const Vec6& nu) const;
   const Mat6& inverse_mass() const { return M_inv_; }
   const Mat6& mass() const { return M_; }
+  const VesselParameters& parameters() const { return p_; }
 
   /// Kinetic plus hydrostatic potential energy [J] (conserved without damping or loads).
   double Energy(const Vec6& eta, const Vec6& nu) const;

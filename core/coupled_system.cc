@@ -1,0 +1,158 @@
+#include "core/coupled_system.h"
+
+#include <algorithm>
+
+namespace moorsim {
+
+CoupledSystem::CoupledSystem(BodyPlant& body, AttachedSubsystem& attached)
+    : body_(body), attached_(attached) {
+  Rebuild();
+}
+
+void CoupledSystem::Rebuild() {
+  body_size_ = body_.StateSize();
+  const SparsityPattern& sub = attached_.JacobianPattern();
+  const int nb = body_size_;
+  size_ = nb + sub.size;
+  const int attachments = attached_.NumAttachments();
+
+  coupled_.clear();
+  r_body_.resize(attachments);
+  for (int i = 0; i < attachments; ++i) {
+    r_body_[i] = attached_.AttachmentPoint(i);
+    const int node = attached_.CouplingNode(i);
+    if (node >= 0) coupled_.push_back({i, node});
+  }
+  std::sort(coupled_.begin(), coupled_.end(),
+            [](const Coupled& a, const Coupled& b) { return a.node_state < b.node_state; });
+
+  // The rows of the coupled nodes' accelerations also depend on eta and nu.
+  std::vector<char> velocity_row_coupled(sub.size, 0);
+  for (const Coupled& c : coupled_) {
+    for (int k = 3; k < 6; ++k) velocity_row_coupled[c.node_state + k] = 1;
+  }
+
+  pattern_.size = size_;
+  pattern_.row_start.assign(1, 0);
+  pattern_.column.clear();
+  for (int r = 0; r < nb; ++r) {
+    for (int col = 0; col < nb; ++col) pattern_.column.push_back(col);
+    for (const Coupled& c : coupled_) {
+      for (int k = 0; k < 6; ++k) pattern_.column.push_back(nb + c.node_state + k);
+    }
+    pattern_.row_start.push_back(static_cast<int64_t>(pattern_.column.size()));
+  }
+  sub_row_destination_.resize(sub.size);
+  for (int r = 0; r < sub.size; ++r) {
+    if (velocity_row_coupled[r]) {
+      for (int col = 0; col < 12; ++col) pattern_.column.push_back(col);
+    }
+    sub_row_destination_[r] = static_cast<int64_t>(pattern_.column.size());
+    for (int64_t j = sub.row_start[r]; j < sub.row_start[r + 1]; ++j) {
+      pattern_.column.push_back(nb + static_cast<int>(sub.column[j]));
+    }
+    pattern_.row_start.push_back(static_cast<int64_t>(pattern_.column.size()));
+  }
+
+  points_.assign(attachments, PointKinematics{});
+  point_jacobians_.assign(attachments, PointMotionJacobian{});
+  forces_.assign(attachments, Vec3::Zero());
+  loads_.assign(attachments, Vec6::Zero());
+  sub_values_.assign(std::max<int64_t>(sub.nnz(), sub.size), 0.0);
+  body_jacobian_.setZero(nb, nb);
+  dtau_dnode_.assign(coupled_.size(), Mat6::Zero());
+  daccel_dbody_.assign(coupled_.size(), Eigen::Matrix<double, 3, 12>::Zero());
+  load_sensitivity_.setZero(nb, 6);
+}
+
+void CoupledSystem::ComputePoints(double t, const double* x, bool with_jacobian) {
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    points_[i] =
+        body_.PointMotion(t, x, r_body_[i], with_jacobian ? &point_jacobians_[i] : nullptr);
+  }
+}
+
+void CoupledSystem::Derivatives(double t, const double* x, double* xdot) {
+  const int nb = body_size_;
+  ComputePoints(t, x, false);
+  attached_.Derivatives(x + nb, points_, xdot + nb, forces_);
+  tau_attached_.setZero();
+  for (std::size_t i = 0; i < forces_.size(); ++i) {
+    loads_[i] = body_.PointLoad(x, r_body_[i], forces_[i], nullptr);
+    tau_attached_ += loads_[i];
+  }
+  body_.Derivatives(t, x, tau_attached_, xdot);
+}
+
+void CoupledSystem::Jacobian(double t, const double* x, const double* /*xdot*/, double* values) {
+  const int nb = body_size_;
+  const double* x_sub = x + nb;
+  ComputePoints(t, x, true);
+  // The forces at this state (the scratch derivative buffer is not needed afterwards).
+  attached_.Derivatives(x_sub, points_, sub_values_.data(), forces_);
+
+  Mat6 dtau_deta = Mat6::Zero();
+  Mat6 dtau_dnu = Mat6::Zero();
+  tau_attached_.setZero();
+  // Per coupled attachment: d tau / d(node r, v) and d a_node / d(eta, nu).
+  std::vector<Mat6>& dtau_dnode = dtau_dnode_;
+  std::vector<Eigen::Matrix<double, 3, 12>>& daccel_dbody = daccel_dbody_;
+  const std::size_t coupled = coupled_.size();
+  for (std::size_t ci = 0; ci < coupled; ++ci) {
+    const int i = coupled_[ci].attachment;
+    const PointMotionJacobian& P = point_jacobians_[i];
+    PointLoadJacobian L;
+    tau_attached_ += body_.PointLoad(x, r_body_[i], forces_[i], &L);
+    const FairleadCoupling C = attached_.Coupling(x_sub, points_, i);
+    const Eigen::Matrix<double, 3, 6> dF_deta =
+        C.J_force_fairlead_pos * P.J_pos_eta + C.J_force_fairlead_vel * P.J_vel_eta;
+    const Eigen::Matrix<double, 3, 6> dF_dnu = C.J_force_fairlead_vel * P.J_vel_nu;
+    dtau_deta += L.J_load_eta + L.J_load_force * dF_deta;
+    dtau_dnu += L.J_load_force * dF_dnu;
+    dtau_dnode[ci].leftCols<3>() = L.J_load_force * C.J_force_node_pos;
+    dtau_dnode[ci].rightCols<3>() = L.J_load_force * C.J_force_node_vel;
+    daccel_dbody[ci].leftCols<6>() =
+        C.J_accel_fairlead_pos * P.J_pos_eta + C.J_accel_fairlead_vel * P.J_vel_eta;
+    daccel_dbody[ci].rightCols<6>() = C.J_accel_fairlead_vel * P.J_vel_nu;
+  }
+  // Attachments without a free node (a one-segment chain) still load the body.
+  for (std::size_t i = 0; i < forces_.size(); ++i) {
+    if (!attached_.Attached(static_cast<int>(i))) continue;
+    if (std::any_of(coupled_.begin(), coupled_.end(),
+                    [&](const Coupled& c) { return c.attachment == static_cast<int>(i); })) {
+      continue;
+    }
+    PointLoadJacobian L;
+    tau_attached_ += body_.PointLoad(x, r_body_[i], forces_[i], &L);
+    dtau_deta += L.J_load_eta;
+  }
+
+  body_.Jacobian(t, x, tau_attached_, &body_jacobian_);
+  body_.LoadSensitivity(x, &load_sensitivity_);
+  body_jacobian_.leftCols<6>() += load_sensitivity_ * dtau_deta;
+  body_jacobian_.middleCols<6>(6) += load_sensitivity_ * dtau_dnu;
+
+  double* v = values;
+  for (int r = 0; r < nb; ++r) {
+    for (int col = 0; col < nb; ++col) *v++ = body_jacobian_(r, col);
+    for (std::size_t ci = 0; ci < coupled; ++ci) {
+      const Eigen::Matrix<double, 1, 6> row = load_sensitivity_.row(r) * dtau_dnode[ci];
+      for (int k = 0; k < 6; ++k) *v++ = row(k);
+    }
+  }
+
+  const SparsityPattern& sub = attached_.JacobianPattern();
+  attached_.Jacobian(x_sub, points_, sub_values_.data());
+  for (int r = 0; r < sub.size; ++r) {
+    const int64_t count = sub.row_start[r + 1] - sub.row_start[r];
+    std::copy_n(sub_values_.data() + sub.row_start[r], count, values + sub_row_destination_[r]);
+  }
+  for (std::size_t ci = 0; ci < coupled; ++ci) {
+    for (int k = 0; k < 3; ++k) {
+      double* row = values + sub_row_destination_[coupled_[ci].node_state + 3 + k] - 12;
+      for (int col = 0; col < 12; ++col) row[col] = daccel_dbody[ci](k, col);
+    }
+  }
+}
+
+}  // namespace moorsim

@@ -1,0 +1,36 @@
+// The mooring lines as the attached subsystem of the coupled simulation
+// (core/coupled_system.h): one attachment per line, at its body-frame fairlead.
+#pragma once
+
+#include "core/coupled_system.h"
+#include "mooring_fem/mooring_system.h"
+
+namespace moorsim::mooring_fem {
+
+class MooringAttachment final : public AttachedSubsystem {
+ public:
+  explicit MooringAttachment(MooringSystem& mooring) : mooring_(mooring) {}
+
+  int StateSize() const override { return mooring_.StateSize(); }
+  const SparsityPattern& JacobianPattern() const override { return mooring_.JacobianPattern(); }
+  int NumAttachments() const override { return mooring_.num_lines(); }
+  Vec3 AttachmentPoint(int i) const override { return mooring_.line(i).fairlead_body; }
+  bool Attached(int i) const override { return mooring_.attached(i); }
+  int CouplingNode(int i) const override { return mooring_.CouplingNode(i); }
+  void Derivatives(const double* x, std::span<const PointKinematics> points, double* xdot,
+                   std::span<Vec3> forces) override {
+    mooring_.Derivatives(x, points, xdot, forces);
+  }
+  void Jacobian(const double* x, std::span<const PointKinematics> points, double* values) override {
+    mooring_.Jacobian(x, points, values);
+  }
+  FairleadCoupling Coupling(const double* x, std::span<const PointKinematics> points,
+                            int i) override {
+    return mooring_.FairleadJacobian(x, points, i);
+  }
+
+ private:
+  MooringSystem& mooring_;
+};
+
+}  // namespace moorsim::mooring_fem

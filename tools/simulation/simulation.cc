@@ -1,0 +1,278 @@
+#include "tools/simulation/simulation.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Dense>
+
+#include "core/error.h"
+#include "core/random.h"
+#include "mooring_fem/line_simulation.h"
+#include "vessel/fpso_model.h"
+#include "vessel/rigid_body.h"
+#include "vessel/thrusters.h"
+
+namespace moorsim::simulation {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// A constant Earth-frame horizontal force and yaw moment, rotated into body axes.
+class ExternalLoad final : public vessel::EnvironmentLoad {
+ public:
+  std::string_view name() const override { return "external"; }
+  Vec6 Load(double /*t*/, const Vec6& eta, const Vec6& /*nu*/) const override {
+    const double c = std::cos(eta(5)), s = std::sin(eta(5));
+    Vec6 tau = Vec6::Zero();
+    tau(0) = c * load_.x() + s * load_.y();
+    tau(1) = -s * load_.x() + c * load_.y();
+    tau(5) = load_.z();
+    return tau;
+  }
+  void Jacobian(double /*t*/, const Vec6& eta, const Vec6& /*nu*/, Mat6* J_eta,
+                Mat6* J_nu) const override {
+    const double c = std::cos(eta(5)), s = std::sin(eta(5));
+    J_eta->setZero();
+    J_nu->setZero();
+    (*J_eta)(0, 5) = -s * load_.x() + c * load_.y();
+    (*J_eta)(1, 5) = -c * load_.x() - s * load_.y();
+  }
+  Vec3 load_ = Vec3::Zero();
+};
+
+std::vector<vessel::ThrusterSpec> Thrusters(const scenarios::VesselSpec& v) {
+  if (v.thrusters.empty()) return vessel::SeedThrusters();
+  std::vector<vessel::ThrusterSpec> out;
+  for (const scenarios::ThrusterEntry& e : v.thrusters) {
+    out.push_back({.name = e.name,
+                   .x = e.x,
+                   .y = e.y,
+                   .angle = e.angle,
+                   .azimuth = e.azimuth,
+                   .max_thrust = e.max_thrust,
+                   .min_thrust = e.min_thrust,
+                   .weight = e.weight,
+                   .time_constant = e.time_constant,
+                   .rate_limit = e.rate_limit});
+  }
+  return out;
+}
+
+vessel::VesselParameters VesselParameters(const scenarios::VesselSpec& v,
+                                          const vessel::HydroData& hydro) {
+  vessel::MassProperties mass;
+  mass.mass = v.mass;
+  mass.r_g = v.centre_of_gravity;
+  mass.radii_of_gyration = v.radii_of_gyration;
+  vessel::LowFrequencyDamping damping;
+  damping.surge_time = v.damping.surge_time;
+  damping.sway_time = v.damping.sway_time;
+  damping.yaw_time = v.damping.yaw_time;
+  damping.heave_ratio = v.damping.heave_ratio;
+  damping.roll_ratio = v.damping.roll_ratio;
+  damping.pitch_ratio = v.damping.pitch_ratio;
+  return vessel::LowFrequencyVessel(hydro, mass, damping);
+}
+
+const scenarios::VesselSpec& RequireVessel(const scenarios::Scenario& scenario) {
+  if (!scenario.vessel) {
+    throw InputError(scenario.source_path +
+                     ": vessel: the section is missing; a coupled run "
+                     "needs the vessel (simulate-lines runs lines only)");
+  }
+  return *scenario.vessel;
+}
+
+}  // namespace
+
+mooring_fem::LineFailure ToLineFailure(const scenarios::Scenario& scenario) {
+  const scenarios::FailureSpec& f = scenario.failure;
+  mooring_fem::LineFailure failure;
+  failure.line = f.line - 1;
+  if (f.mode == "fairlead") {
+    failure.mode = mooring_fem::FailureMode::kFairlead;
+  } else if (f.mode == "anchor") {
+    failure.mode = mooring_fem::FailureMode::kAnchor;
+  } else {
+    failure.mode = mooring_fem::FailureMode::kNode;
+    const scenarios::LineSpec& line = scenario.mooring.lines[failure.line];
+    failure.node = f.arc_length
+                       ? static_cast<int>(std::lround(*f.arc_length / line.length * line.segments))
+                       : f.node;
+    failure.node = std::clamp(failure.node, 1, line.segments - 1);
+  }
+  return failure;
+}
+
+struct Simulation::Parts {
+  ExternalLoad external;
+};
+
+Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed)
+    : scenario_(scenario),
+      seed_(seed),
+      hydro_(vessel::ReadWamit(RequireVessel(scenario).hydrodynamics,
+                               {.water_density = scenario.mooring.water.density,
+                                .gravity = scenario.mooring.water.gravity,
+                                .length_scale = scenario.vessel->length_scale})),
+      mooring_(scenario.mooring),
+      attachment_(mooring_),
+      parts_(std::make_unique<Parts>()) {
+  const scenarios::VesselSpec& v = *scenario_.vessel;
+  plant_ = std::make_unique<vessel::VesselPlant>(VesselParameters(v, hydro_), Thrusters(v));
+  plant_->AddLoad(&parts_->external);
+  failure_pending_ = scenario_.failure.line > 0;
+
+  system_ = std::make_unique<CoupledSystem>(*plant_, attachment_);
+  x_.assign(system_->StateSize(), 0.0);
+  SettleMooredEquilibrium();
+  StartIntegrator();
+}
+
+Simulation::~Simulation() = default;
+
+std::vector<PointKinematics> Simulation::Points() {
+  std::vector<PointKinematics> points(mooring_.num_lines());
+  for (int i = 0; i < mooring_.num_lines(); ++i) {
+    points[i] = plant_->PointMotion(t_, x_.data(), mooring_.line(i).fairlead_body, nullptr);
+  }
+  return points;
+}
+
+void Simulation::SettleMooredEquilibrium() {
+  // Heave, roll and pitch balance the lines' weight: G (z, phi, theta) = tau_mooring. The
+  // mooring's vertical stiffness is small next to the hydrostatic one (8 lines x ~5 MN over
+  // C33 = 8.4e7 N/m: 0.47 m), so the fixed-point iteration converges in a few steps.
+  const Vec3 pose = scenario_.vessel->initial_pose;
+  x_.assign(system_->StateSize(), 0.0);
+  x_[0] = pose.x();
+  x_[1] = pose.y();
+  x_[5] = pose.z();
+  const int nb = plant_->StateSize();
+  double* lines = x_.data() + nb;
+  const Eigen::Matrix3d G = plant_->model().parameters().restoring.block<3, 3>(2, 2);
+  std::vector<Vec3> fairleads(mooring_.num_lines());
+  std::vector<Vec3> forces(mooring_.num_lines());
+  bool first = true;
+  for (int iteration = 0; iteration < 30; ++iteration) {
+    const std::vector<PointKinematics> points = Points();
+    for (int i = 0; i < mooring_.num_lines(); ++i) fairleads[i] = points[i].position;
+    if (first) mooring_.CatenaryState(fairleads, lines);
+    first = false;
+    mooring_.SettleStatic(fairleads, lines);
+    mooring_.FairleadForces(lines, points, forces);
+    Vec6 tau = Vec6::Zero();
+    for (int i = 0; i < mooring_.num_lines(); ++i) {
+      tau += plant_->PointLoad(x_.data(), mooring_.line(i).fairlead_body, forces[i], nullptr);
+    }
+    const Eigen::Vector3d updated = G.lu().solve(tau.segment<3>(2));
+    const double change = (updated - Eigen::Vector3d(x_[2], x_[3], x_[4])).norm();
+    x_[2] = updated(0);
+    x_[3] = updated(1);
+    x_[4] = updated(2);
+    if (change < 1e-9) break;
+  }
+  initial_pose_ = Eigen::Map<const Vec6>(x_.data());
+}
+
+void Simulation::StartIntegrator() {
+  if (integrator_) finished_ += integrator_->stats();
+  system_->Rebuild();
+  const scenarios::SolverSpec& solver = scenario_.solver;
+  IntegratorOptions options = mooring_fem::MakeIntegratorOptions(solver, mooring_);
+  const int nb = plant_->StateSize();
+  // Body tolerances: positions like the nodes; angles so that 20 m from the turret centre
+  // the fairlead moves by atol_position; thrust to 10 N (out of ~1e5-1e6).
+  const double angle = solver.atol_position / 20.0;
+  const double rate = solver.atol_velocity / 20.0;
+  std::vector<double> body_atol = {
+      solver.atol_position, solver.atol_position, solver.atol_position, angle, angle, angle,
+      solver.atol_velocity, solver.atol_velocity, solver.atol_velocity, rate,  rate,  rate};
+  body_atol.resize(nb, 10.0);
+  options.atol.insert(options.atol.begin(), body_atol.begin(), body_atol.end());
+  // Error weights relative to each position's displacement since this start.
+  const std::vector<char> kinds = mooring_.StateKinds();
+  options.reference.assign(x_.size(), 0.0);
+  for (int i = 0; i < 6; ++i) options.reference[i] = x_[i];
+  for (std::size_t i = 0; i < kinds.size(); ++i) {
+    if (kinds[i] == 'p') options.reference[nb + i] = x_[nb + i];
+  }
+  integrator_ = std::make_unique<Integrator>(*system_, t_, x_.data(), options);
+}
+
+double Simulation::NextEventTime() const {
+  double next = std::numeric_limits<double>::infinity();
+  if (failure_pending_) next = std::min(next, scenario_.failure.time);
+  return next;
+}
+
+void Simulation::DiscreteEvents() {
+  if (failure_pending_ && t_ >= scenario_.failure.time) {
+    failure_pending_ = false;
+    const int nb = plant_->StateSize();
+    const std::vector<PointKinematics> points = Points();
+    std::vector<double> lines =
+        mooring_.ApplyFailure(ToLineFailure(scenario_), x_.data() + nb, points);
+    x_.resize(nb);
+    x_.insert(x_.end(), lines.begin(), lines.end());
+    StartIntegrator();
+  }
+}
+
+void Simulation::AdvanceTo(double t) {
+  const auto start = std::chrono::steady_clock::now();
+  DiscreteEvents();
+  while (t_ < t) {
+    const double target = std::min(t, NextEventTime());
+    integrator_->SetStopTime(target);
+    integrator_->AdvanceTo(target);
+    t_ = integrator_->time();
+    std::copy(integrator_->state(), integrator_->state() + x_.size(), x_.begin());
+    DiscreteEvents();
+  }
+  integrator_seconds_ +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void Simulation::SetExternalLoad(const Vec3& load) { parts_->external.load_ = load; }
+
+Sample Simulation::Record() {
+  Sample s;
+  s.time = t_;
+  const Eigen::Map<const Vec6> eta(x_.data()), nu(x_.data() + 6);
+  s.pose_low_frequency = eta;
+  s.velocity = nu;
+  s.pose_true = plant_->TotalPose(t_, x_.data());
+  s.pose_measured = last_measurement_;
+  const int nb = plant_->StateSize();
+  std::vector<double> xdot(x_.size());
+  system_->Derivatives(t_, x_.data(), xdot.data());
+  s.fairlead_tension.resize(mooring_.num_lines());
+  for (int i = 0; i < mooring_.num_lines(); ++i)
+    s.fairlead_tension[i] = system_->forces()[i].norm();
+  s.load_mooring = system_->attachment_load();
+  s.load_thrust = plant_->ThrustLoad(x_.data());
+  s.thrust_delivered = Vec3(s.load_thrust(0), s.load_thrust(1), s.load_thrust(5));
+  s.thrust_commanded = tau_command_;
+  Vec6 xi, xi_dot;
+  plant_->Sea(t_, x_.data(), &xi, &xi_dot, &s.load_wave_drift);
+  (void)nb;
+  return s;
+}
+
+double Simulation::MechanicalEnergy() {
+  const Eigen::Map<const Vec6> eta(x_.data()), nu(x_.data() + 6);
+  const int nb = plant_->StateSize();
+  const std::vector<PointKinematics> points = Points();
+  return plant_->model().Energy(eta, nu) + mooring_.MechanicalEnergy(x_.data() + nb, points);
+}
+
+IntegratorStats Simulation::stats() const {
+  IntegratorStats s = finished_;
+  if (integrator_) s += integrator_->stats();
+  return s;
+}
+
+}  // namespace moorsim::simulation

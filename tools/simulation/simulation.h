@@ -1,0 +1,126 @@
+// The coupled simulation of a scenario: the seed FPSO (or any vessel with WAMIT data) on its
+// FEM mooring lines in one CVODE system (core/coupled_system.h), with the realised sea,
+// current and wind, thrusters, a discrete position-mooring controller, sensors and a
+// scheduled line failure. Everything random comes from named streams of the run seed, so a
+// scenario and a seed determine the run bit for bit.
+//
+// Timeline: the integrator stops at every controller sample, sensor sample and failure, the
+// discrete parts act there (sensors sample the true total pose, the controller computes a
+// command from the measurement, the allocator distributes it, the rate limits move the held
+// thrust commands), and integration resumes; thrust itself follows through first-order
+// dynamics, so the right-hand side stays continuous. A failure restarts CVODE with the
+// states carried over.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/coupled_system.h"
+#include "core/integrator.h"
+#include "mooring_fem/mooring_attachment.h"
+#include "mooring_fem/mooring_system.h"
+#include "scenarios/scenario.h"
+#include "vessel/hydro_data.h"
+#include "vessel/vessel_plant.h"
+
+namespace moorsim::vessel {
+class PositionController;
+class PoseSensors;
+class ThrustAllocator;
+class ThrusterDynamics;
+}  // namespace moorsim::vessel
+
+namespace moorsim::simulation {
+
+/// Everything recorded at one output instant (DESIGN.md section 7), SI units.
+struct Sample {
+  double time = 0.0;
+  Vec6 pose_true = Vec6::Zero();           ///< low-frequency + wave-frequency eta (NED)
+  Vec6 pose_low_frequency = Vec6::Zero();  ///< eta of the integrated low-frequency model
+  Vec6 velocity = Vec6::Zero();            ///< nu (body), low-frequency
+  Vec3 pose_measured = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  std::vector<double> fairlead_tension;  ///< per line [N]
+  Vec3 thrust_commanded = Vec3::Zero();  ///< controller output X, Y, N (body)
+  Vec3 thrust_delivered = Vec3::Zero();  ///< from the delivered thrust states
+  Vec6 load_mooring = Vec6::Zero();      ///< body-frame loads
+  Vec6 load_wave_drift = Vec6::Zero();
+  Vec6 load_current = Vec6::Zero();
+  Vec6 load_wind = Vec6::Zero();
+  Vec6 load_thrust = Vec6::Zero();
+};
+
+/// A line failure in the FEM's terms, from the scenario's failure section (1-based line,
+/// node or arc length from the anchor).
+mooring_fem::LineFailure ToLineFailure(const scenarios::Scenario& scenario);
+
+class Simulation {
+ public:
+  /// Builds every part from the scenario (which must have a vessel section) and puts the
+  /// vessel at its moored static equilibrium (heave, roll, pitch) at the initial pose with
+  /// the lines on their static FEM shape. Throws moorsim::InputError for a scenario that
+  /// cannot be simulated, moorsim::Error if the static start fails.
+  Simulation(const scenarios::Scenario& scenario, std::uint64_t seed);
+  ~Simulation();
+
+  /// Integrates to t, acting on every discrete event on the way. Throws SolverError (with t
+  /// and the CVODE flag) if the integrator fails.
+  void AdvanceTo(double t);
+
+  /// A constant load on the hull in Earth axes (X north, Y east [N], moment about z [N m]),
+  /// for verification runs (static offset, decay tests). Replaces the previous one.
+  void SetExternalLoad(const Vec3& force_ned_xy_moment_z);
+
+  double time() const { return t_; }
+  const std::vector<double>& state() const { return x_; }
+  Sample Record();
+  /// Vessel energy (kinetic + hydrostatic) plus line energy (kinetic, gravitational,
+  /// elastic, seabed) [J], relative to nothing in particular: differences matter.
+  double MechanicalEnergy();
+  IntegratorStats stats() const;
+
+  mooring_fem::MooringSystem& mooring() { return mooring_; }
+  vessel::VesselPlant& plant() { return *plant_; }
+  CoupledSystem& system() { return *system_; }
+  const vessel::HydroData& hydro() const { return hydro_; }
+  int num_lines() const { return mooring_.num_lines(); }
+  /// Mooring load (body frame) of the static start and the pose found there.
+  const Vec6& initial_pose() const { return initial_pose_; }
+  std::uint64_t seed() const { return seed_; }
+  /// Seconds of wall time spent in the integrator so far.
+  double integrator_seconds() const { return integrator_seconds_; }
+
+ private:
+  struct Parts;
+  void SettleMooredEquilibrium();
+  void StartIntegrator();
+  void DiscreteEvents();
+  double NextEventTime() const;
+  std::vector<PointKinematics> Points();
+
+  scenarios::Scenario scenario_;
+  std::uint64_t seed_;
+  vessel::HydroData hydro_;
+  mooring_fem::MooringSystem mooring_;
+  mooring_fem::MooringAttachment attachment_;
+  std::unique_ptr<vessel::VesselPlant> plant_;
+  std::unique_ptr<Parts> parts_;
+  std::unique_ptr<CoupledSystem> system_;
+  std::unique_ptr<Integrator> integrator_;
+  IntegratorStats finished_;
+  std::vector<double> x_;
+  double t_ = 0.0;
+  Vec6 initial_pose_ = Vec6::Zero();
+  double integrator_seconds_ = 0.0;
+
+  // Discrete schedule (sample counters, so instants are k / rate exactly).
+  long control_index_ = 0;
+  long sensor_index_ = 0;
+  bool failure_pending_ = false;
+  Vec3 last_measurement_ = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  Vec3 tau_command_ = Vec3::Zero();
+};
+
+}  // namespace moorsim::simulation

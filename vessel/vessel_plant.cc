@@ -1,0 +1,171 @@
+#include "vessel/vessel_plant.h"
+
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Geometry>
+
+#include "core/error.h"
+
+namespace moorsim::vessel {
+
+namespace {
+
+Vec6 Eta(const double* x) { return Eigen::Map<const Vec6>(x); }
+Vec6 Nu(const double* x) { return Eigen::Map<const Vec6>(x + 6); }
+
+}  // namespace
+
+VesselPlant::VesselPlant(const VesselParameters& parameters, std::vector<ThrusterSpec> thrusters)
+    : model_(parameters), thrusters_(std::move(thrusters)) {
+  const int n = num_thrusters();
+  thrust_columns_.setZero(6, n);
+  command_.setZero(n);
+  Eigen::VectorXd direction(n);
+  for (int k = 0; k < n; ++k) direction(k) = thrusters_[k].angle;
+  SetThrustCommand(command_, direction);
+}
+
+void VesselPlant::SetThrustCommand(const Eigen::VectorXd& command,
+                                   const Eigen::VectorXd& direction) {
+  const int n = num_thrusters();
+  if (command.size() != n || direction.size() != n) {
+    throw Error("VesselPlant::SetThrustCommand: expected " + std::to_string(n) + " thrusters");
+  }
+  command_ = command;
+  for (int k = 0; k < n; ++k) {
+    const double c = std::cos(direction(k)), s = std::sin(direction(k));
+    const ThrusterSpec& t = thrusters_[k];
+    thrust_columns_.col(k) << c, s, 0.0, 0.0, 0.0, t.x * s - t.y * c;
+  }
+}
+
+Vec6 VesselPlant::ThrustLoad(const double* x) const {
+  const int n = num_thrusters();
+  return thrust_columns_ * Eigen::Map<const Eigen::VectorXd>(x + 12, n);
+}
+
+void VesselPlant::UpdateSea(double t, const double* x) {
+  if (sea_ == nullptr) return;
+  const Vec3 pose(x[0], x[1], x[5]);
+  if (t == sea_t_ && pose == sea_pose_) return;
+  sea_->Evaluate(t, pose.x(), pose.y(), pose.z(), &xi_, &xi_dot_, &drift_);
+  sea_t_ = t;
+  sea_pose_ = pose;
+}
+
+void VesselPlant::Sea(double t, const double* x, Vec6* xi, Vec6* xi_dot, Vec6* drift) {
+  UpdateSea(t, x);
+  *xi = xi_;
+  *xi_dot = xi_dot_;
+  *drift = drift_;
+}
+
+Vec6 VesselPlant::TotalPose(double t, const double* x) {
+  UpdateSea(t, x);
+  Vec6 eta = Eta(x);
+  const Mat3 R = RotationBodyToNed(eta(3), eta(4), eta(5));
+  eta.head<3>() += R * xi_.head<3>();
+  eta.tail<3>() += xi_.tail<3>();
+  return eta;
+}
+
+void VesselPlant::Derivatives(double t, const double* x, const Vec6& tau_attached, double* xdot) {
+  UpdateSea(t, x);
+  const Vec6 eta = Eta(x);
+  const Vec6 nu = Nu(x);
+  Vec6 tau = tau_attached + ThrustLoad(x) + drift_;
+  for (const EnvironmentLoad* load : loads_) tau += load->Load(t, eta, nu);
+  Vec6 eta_dot, nu_dot;
+  model_.Derivatives(eta, nu, tau, &eta_dot, &nu_dot);
+  Eigen::Map<Vec6> out_eta(xdot), out_nu(xdot + 6);
+  out_eta = eta_dot;
+  out_nu = nu_dot;
+  for (int k = 0; k < num_thrusters(); ++k) {
+    xdot[12 + k] = (command_(k) - x[12 + k]) / thrusters_[k].time_constant;
+  }
+}
+
+void VesselPlant::Jacobian(double t, const double* x, const Vec6& /*tau_attached*/, MatX* J) {
+  const Vec6 eta = Eta(x);
+  const Vec6 nu = Nu(x);
+  const VesselModel::Jacobian B = model_.Jacobians(eta, nu);
+  const Mat6& Minv = model_.inverse_mass();
+  Mat6 dtau_deta = Mat6::Zero(), dtau_dnu = Mat6::Zero();
+  for (const EnvironmentLoad* load : loads_) {
+    Mat6 Je, Jn;
+    load->Jacobian(t, eta, nu, &Je, &Jn);
+    dtau_deta += Je;
+    dtau_dnu += Jn;
+  }
+  J->setZero(StateSize(), StateSize());
+  J->block<6, 6>(0, 0) = B.J_etadot_eta;
+  J->block<6, 6>(0, 6) = B.J_etadot_nu;
+  J->block<6, 6>(6, 0) = B.J_nudot_eta + Minv * dtau_deta;
+  J->block<6, 6>(6, 6) = B.J_nudot_nu + Minv * dtau_dnu;
+  const int n = num_thrusters();
+  J->block(6, 12, 6, n) = Minv * thrust_columns_;
+  for (int k = 0; k < n; ++k) (*J)(12 + k, 12 + k) = -1.0 / thrusters_[k].time_constant;
+}
+
+void VesselPlant::LoadSensitivity(const double* /*x*/,
+                                  Eigen::Matrix<double, Eigen::Dynamic, 6>* S) {
+  S->setZero(StateSize(), 6);
+  S->block<6, 6>(6, 0) = model_.inverse_mass();
+}
+
+PointKinematics VesselPlant::PointMotion(double t, const double* x, const Vec3& r_body,
+                                         PointMotionJacobian* J) {
+  UpdateSea(t, x);
+  const double phi = x[3], theta = x[4], psi = x[5];
+  const Mat3 R = RotationBodyToNed(phi, theta, psi);
+  const Vec3 v_lin(x[6], x[7], x[8]);
+  const Vec3 omega(x[9], x[10], x[11]);
+  // Wave-frequency displacement and velocity of the point in body axes.
+  const Vec3 r_rel = r_body + xi_.head<3>() + xi_.tail<3>().cross(r_body);
+  const Vec3 v_body =
+      v_lin + omega.cross(r_body) + xi_dot_.head<3>() + xi_dot_.tail<3>().cross(r_body);
+  PointKinematics k;
+  k.position = Vec3(x[0], x[1], x[2]) + R * r_rel;
+  k.velocity = R * v_body;
+  if (J != nullptr) {
+    Mat3 dR[3];
+    RotationDerivatives(phi, theta, psi, dR);
+    J->J_pos_eta.setZero();
+    J->J_vel_eta.setZero();
+    J->J_pos_eta.leftCols<3>() = Mat3::Identity();
+    for (int a = 0; a < 3; ++a) {
+      J->J_pos_eta.col(3 + a) = dR[a] * r_rel;
+      J->J_vel_eta.col(3 + a) = dR[a] * v_body;
+    }
+    J->J_vel_nu.leftCols<3>() = R;
+    J->J_vel_nu.rightCols<3>() = -R * Skew(r_body);
+  }
+  return k;
+}
+
+Vec6 VesselPlant::PointLoad(const double* x, const Vec3& r_body, const Vec3& F,
+                            PointLoadJacobian* J) {
+  const double phi = x[3], theta = x[4], psi = x[5];
+  const Mat3 R = RotationBodyToNed(phi, theta, psi);
+  const Vec3 F_body = R.transpose() * F;
+  Vec6 tau;
+  tau.head<3>() = F_body;
+  tau.tail<3>() = r_body.cross(F_body);
+  if (J != nullptr) {
+    const Mat3 S = Skew(r_body);
+    J->J_load_force.topRows<3>() = R.transpose();
+    J->J_load_force.bottomRows<3>() = S * R.transpose();
+    Mat3 dR[3];
+    RotationDerivatives(phi, theta, psi, dR);
+    J->J_load_eta.setZero();
+    for (int a = 0; a < 3; ++a) {
+      const Vec3 dF = dR[a].transpose() * F;
+      J->J_load_eta.block<3, 1>(0, 3 + a) = dF;
+      J->J_load_eta.block<3, 1>(3, 3 + a) = S * dF;
+    }
+  }
+  return tau;
+}
+
+}  // namespace moorsim::vessel

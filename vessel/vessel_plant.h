@@ -1,0 +1,101 @@
+// The vessel as the body of the coupled simulation (core/coupled_system.h): the 6-DOF
+// low-frequency model of vessel_model.h, first-order thruster dynamics, environmental loads,
+// and the first-order wave-frequency motion superposed on the low-frequency pose.
+//
+// States: [eta (6), nu (6), delivered thrust of each thruster (N)]. The low-frequency
+// equations are
+//   eta' = J(eta) nu
+//   M nu' + C(nu) nu + D nu + G eta = tau_attached + tau_thrust + tau_drift + sum tau_env
+//   f_k' = (f_k,cmd - f_k) / T_k
+// where tau_attached is the moorings' load (from the coupled assembler), tau_thrust = B(alpha)
+// f, tau_drift the slowly varying wave drift and tau_env the other loads (current, wind).
+// The commands f_cmd and directions alpha are held between controller samples.
+//
+// Wave-frequency motion xi (body axes; surge, sway, heave [m], roll, pitch, yaw [rad]) is
+// superposed kinematically (the usual separation of low- and wave-frequency motion, Fossen
+// 2011 section 10.2.2): a body point r sits at p + R(Theta) (r + xi_t + xi_r x r). The
+// Jacobian treats xi as a function of time only (its dependence on the slowly varying pose
+// through the phases and relative headings is left out of the derivatives, not the values).
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "core/coupled_system.h"
+#include "vessel/rigid_body.h"
+#include "vessel/thrusters.h"
+#include "vessel/vessel_model.h"
+
+namespace moorsim::vessel {
+
+/// First-order wave-frequency motion and second-order drift of the hull in a realised sea.
+class SeaResponse {
+ public:
+  virtual ~SeaResponse() = default;
+  /// WF motion xi and its rate (body axes) and the drift load (body frame) at time t for the
+  /// low-frequency position (x, y) [m] and heading psi [rad].
+  virtual void Evaluate(double t, double x, double y, double psi, Vec6* xi, Vec6* xi_dot,
+                        Vec6* drift) const = 0;
+};
+
+/// A load on the hull that depends on time and the low-frequency state (current, wind).
+class EnvironmentLoad {
+ public:
+  virtual ~EnvironmentLoad() = default;
+  virtual std::string_view name() const = 0;
+  /// Body-frame load [N, N m].
+  virtual Vec6 Load(double t, const Vec6& eta, const Vec6& nu) const = 0;
+  /// d load / d eta and d load / d nu.
+  virtual void Jacobian(double t, const Vec6& eta, const Vec6& nu, Mat6* J_eta,
+                        Mat6* J_nu) const = 0;
+};
+
+class VesselPlant final : public BodyPlant {
+ public:
+  VesselPlant(const VesselParameters& parameters, std::vector<ThrusterSpec> thrusters);
+
+  /// Not owned; may be null (calm water).
+  void SetSea(const SeaResponse* sea) { sea_ = sea; }
+  /// Not owned.
+  void AddLoad(const EnvironmentLoad* load) { loads_.push_back(load); }
+  /// Held thrust commands [N] and directions [rad] per thruster until the next call.
+  void SetThrustCommand(const Eigen::VectorXd& command, const Eigen::VectorXd& direction);
+
+  int num_thrusters() const { return static_cast<int>(thrusters_.size()); }
+  const std::vector<ThrusterSpec>& thrusters() const { return thrusters_; }
+  const VesselModel& model() const { return model_; }
+  const std::vector<const EnvironmentLoad*>& loads() const { return loads_; }
+
+  int StateSize() const override { return 12 + num_thrusters(); }
+  void Derivatives(double t, const double* x, const Vec6& tau_attached, double* xdot) override;
+  void Jacobian(double t, const double* x, const Vec6& tau_attached, MatX* J) override;
+  void LoadSensitivity(const double* x, Eigen::Matrix<double, Eigen::Dynamic, 6>* S) override;
+  PointKinematics PointMotion(double t, const double* x, const Vec3& r_body,
+                              PointMotionJacobian* J) override;
+  Vec6 PointLoad(const double* x, const Vec3& r_body, const Vec3& F, PointLoadJacobian* J) override;
+
+  /// The body-frame thrust load of the delivered thrust in x (X, Y, 0, 0, 0, N).
+  Vec6 ThrustLoad(const double* x) const;
+  /// Wave-frequency motion, its rate and the drift load at (t, x) (zero in calm water).
+  void Sea(double t, const double* x, Vec6* xi, Vec6* xi_dot, Vec6* drift);
+  /// Total pose: low-frequency pose plus the wave-frequency motion (translation rotated
+  /// into NED, angles added).
+  Vec6 TotalPose(double t, const double* x);
+
+ private:
+  void UpdateSea(double t, const double* x);
+
+  VesselModel model_;
+  std::vector<ThrusterSpec> thrusters_;
+  Eigen::Matrix<double, 6, Eigen::Dynamic> thrust_columns_;  // per thruster, body load of 1 N
+  Eigen::VectorXd command_;
+  const SeaResponse* sea_ = nullptr;
+  std::vector<const EnvironmentLoad*> loads_;
+  // The last sea evaluation (every attachment point and the body asks at the same t).
+  double sea_t_ = std::numeric_limits<double>::quiet_NaN();
+  Vec3 sea_pose_ = Vec3::Zero();
+  Vec6 xi_ = Vec6::Zero(), xi_dot_ = Vec6::Zero(), drift_ = Vec6::Zero();
+};
+
+}  // namespace moorsim::vessel
