@@ -14,6 +14,8 @@ packages=(
   libcli11-dev
   libgtest-dev libgmock-dev googletest
   libbenchmark-dev
+  libhdf5-dev              # run.h5 writer (HDF5 C API)
+  python3-numpy python3-h5py python3-matplotlib   # tools/plot_run.py
   clang-format
 )
 

@@ -70,11 +70,19 @@ Vec6 VesselPlant::TotalPose(double t, const double* x) {
   return eta;
 }
 
+Vec6 VesselPlant::PreloadCorrection(const Vec6& eta) const {
+  const Mat3 R = RotationBodyToNed(eta(3), eta(4), eta(5));
+  const Vec3 up(0.0, 0.0, -static_vertical_load_);
+  Vec6 tau = Vec6::Zero();
+  tau.head<3>() = R.transpose() * up - up;
+  return tau;
+}
+
 void VesselPlant::Derivatives(double t, const double* x, const Vec6& tau_attached, double* xdot) {
   UpdateSea(t, x);
   const Vec6 eta = Eta(x);
   const Vec6 nu = Nu(x);
-  Vec6 tau = tau_attached + ThrustLoad(x) + drift_;
+  Vec6 tau = tau_attached + ThrustLoad(x) + drift_ + PreloadCorrection(eta);
   for (const EnvironmentLoad* load : loads_) tau += load->Load(t, eta, nu);
   Vec6 eta_dot, nu_dot;
   model_.Derivatives(eta, nu, tau, &eta_dot, &nu_dot);
@@ -97,6 +105,11 @@ void VesselPlant::Jacobian(double t, const double* x, const Vec6& /*tau_attached
     load->Jacobian(t, eta, nu, &Je, &Jn);
     dtau_deta += Je;
     dtau_dnu += Jn;
+  }
+  Mat3 dR[3];
+  RotationDerivatives(eta(3), eta(4), eta(5), dR);
+  for (int a = 0; a < 3; ++a) {
+    dtau_deta.block<3, 1>(0, 3 + a) += dR[a].transpose() * Vec3(0.0, 0.0, -static_vertical_load_);
   }
   J->setZero(StateSize(), StateSize());
   J->block<6, 6>(0, 0) = B.J_etadot_eta;

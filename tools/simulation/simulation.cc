@@ -175,6 +175,7 @@ void Simulation::SettleMooredEquilibrium() {
     if (change < 1e-9) break;
   }
   initial_pose_ = Eigen::Map<const Vec6>(x_.data());
+  plant_->SetStaticVerticalLoad((plant_->model().parameters().restoring * initial_pose_)(2));
 }
 
 void Simulation::StartIntegrator() {

@@ -1,0 +1,431 @@
+#include "vessel/controller.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/error.h"
+
+namespace moorsim::vessel {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Angle in (-pi, pi].
+double WrapToPi(double angle) {
+  double a = std::remainder(angle, 2.0 * kPi);  // [-pi, pi]
+  if (a <= -kPi) a += 2.0 * kPi;
+  return a;
+}
+
+// R(psi)^T v and R(psi) v for the horizontal-plane rotation (Fossen 2011 section 2.2,
+// the yaw-only case of R(Theta)).
+Vec3 NedToBody(const Vec3& v, double psi) {
+  const double c = std::cos(psi), s = std::sin(psi);
+  return Vec3(c * v.x() + s * v.y(), -s * v.x() + c * v.y(), v.z());
+}
+Vec3 BodyToNed(const Vec3& v, double psi) {
+  const double c = std::cos(psi), s = std::sin(psi);
+  return Vec3(c * v.x() - s * v.y(), s * v.x() + c * v.y(), v.z());
+}
+
+std::string Number(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.6g", value);
+  return buffer;
+}
+
+void Require(bool ok, const std::string& field, double value, const char* rule) {
+  if (!ok) throw InputError(field + " = " + Number(value) + ": " + rule);
+}
+
+std::string Indexed(const std::string& field, int i) {
+  return field + "[" + std::to_string(i) + "]";
+}
+
+void RequireNonNegative(const Vec3& v, const std::string& field) {
+  for (int i = 0; i < 3; ++i) {
+    Require(std::isfinite(v[i]) && v[i] >= 0.0, Indexed(field, i), v[i], "must be finite and >= 0");
+  }
+}
+
+void RequirePositive(const Vec3& v, const std::string& field) {
+  for (int i = 0; i < 3; ++i) {
+    Require(std::isfinite(v[i]) && v[i] > 0.0, Indexed(field, i), v[i], "must be finite and > 0");
+  }
+}
+
+void RequireFinite(const Mat3& m, const std::string& field) {
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) {
+      Require(std::isfinite(m(r, c)),
+              field + "(" + std::to_string(r) + "," + std::to_string(c) + ")", m(r, c),
+              "must be finite");
+    }
+  }
+}
+
+// Keeps |ki z| <= limit where a limit is set.
+void ClampIntegral(const Vec3& ki, const Vec3& limit, int i, Vec3* z) {
+  if (limit[i] > 0.0 && ki[i] > 0.0) {
+    const double z_max = limit[i] / ki[i];
+    (*z)[i] = std::clamp((*z)[i], -z_max, z_max);
+  }
+}
+
+bool Fresh(const PoseMeasurementInput& m, int i) {
+  return m.valid[static_cast<std::size_t>(i)] && std::isfinite(m.pose[i]);
+}
+
+}  // namespace
+
+ManoeuvringModel SeedManoeuvringModel() {
+  const double m = 1.0041e8;                        // [kg]
+  const double inertia_z = m * 54.0 * 54.0;         // radius of gyration 54 m
+  const Vec3 added(7.94e6, 6.44e7, 1.45e11);        // A11, A22, A66 at zero frequency
+  const Vec3 mass = Vec3(m, m, inertia_z) + added;  // M_RB + A(0), CG on the centreline
+  const Vec3 damping_time(50.0, 100.0, 20.0);       // MSS rule T_i [s]
+  ManoeuvringModel model;
+  model.mass = mass.asDiagonal();
+  model.damping = mass.cwiseQuotient(damping_time).asDiagonal();
+  model.mooring_stiffness = Vec3(8.157e4, 8.157e4, 5.657e8).asDiagonal();
+  return model;
+}
+
+// ---------------------------------------------------------------------------------------
+
+PositionController::PositionController(const Vec3& eta_d, double dt) : dt_(dt) {
+  Require(std::isfinite(dt) && dt > 0.0, "controller.sample_time", dt, "must be finite and > 0 s");
+  SetSetpoint(eta_d);
+}
+
+void PositionController::SetSetpoint(const Vec3& eta_d) {
+  for (int i = 0; i < 3; ++i) {
+    Require(std::isfinite(eta_d[i]), Indexed("controller.setpoint", i), eta_d[i], "must be finite");
+  }
+  setpoint_ = eta_d;
+  setpoint_[2] = WrapToPi(eta_d[2]);
+}
+
+// ---------------------------------------------------------------------------------------
+
+PiController::PiController(const PiControllerOptions& options, const Vec3& eta_d, double dt)
+    : PositionController(eta_d, dt), options_(options) {
+  RequireNonNegative(options.kp, "controller.pi.kp");
+  RequireNonNegative(options.ki, "controller.pi.ki");
+  RequireNonNegative(options.kd, "controller.pi.kd");
+  RequireNonNegative(options.integral_limit, "controller.pi.integral_limit");
+  Require(std::isfinite(options.derivative_filter_time) && options.derivative_filter_time >= 0.0,
+          "controller.pi.derivative_filter_time", options.derivative_filter_time,
+          "must be finite and >= 0 s");
+  filter_gain_ = options.derivative_filter_time > 0.0
+                     ? -std::expm1(-dt / options.derivative_filter_time)
+                     : 1.0;
+}
+
+Vec3 PiController::Update(const PoseMeasurementInput& measurement) {
+  std::array<bool, 3> fresh{};
+  for (int i = 0; i < 3; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    fresh[k] = Fresh(measurement, i);
+    if (fresh[k]) {
+      held_pose_[i] = i == 2 ? WrapToPi(measurement.pose[i]) : measurement.pose[i];
+      seen_[k] = true;
+    } else if (!seen_[k]) {
+      held_pose_[i] = setpoint_[i];  // nothing known yet: no action on this channel
+    }
+  }
+
+  Vec3 error = held_pose_ - setpoint_;
+  error[2] = WrapToPi(error[2]);
+  for (int i = 0; i < 3; ++i) {
+    if (!fresh[static_cast<std::size_t>(i)]) continue;  // no integration on held data
+    integral_[i] += dt_ * error[i];
+    ClampIntegral(options_.ki, options_.integral_limit, i, &integral_);
+  }
+
+  // Derivative of the low-passed measurement (exact discrete first-order lag).
+  Vec3 rate = Vec3::Zero();
+  if (!started_) {
+    filtered_pose_ = held_pose_;
+    started_ = true;
+  } else {
+    Vec3 step = held_pose_ - filtered_pose_;
+    step[2] = WrapToPi(step[2]);
+    step *= filter_gain_;
+    filtered_pose_ += step;
+    filtered_pose_[2] = WrapToPi(filtered_pose_[2]);
+    rate = step / dt_;
+  }
+
+  const Vec3 force_ned = options_.kp.cwiseProduct(error) + options_.ki.cwiseProduct(integral_) +
+                         options_.kd.cwiseProduct(rate);
+  return NedToBody(-force_ned, held_pose_[2]);
+}
+
+Vec3 PiController::EstimatedPose() const { return Vec3::Constant(std::nan("")); }
+Vec3 PiController::EstimatedVelocity() const { return Vec3::Constant(std::nan("")); }
+Vec3 PiController::EstimatedBias() const { return Vec3::Constant(std::nan("")); }
+
+// ---------------------------------------------------------------------------------------
+
+PassiveObserver::PassiveObserver(const ManoeuvringModel& model,
+                                 const PassiveObserverOptions& options, double dt)
+    : dt_(dt) {
+  const std::string prefix = "controller.observer_pid.";
+  Require(std::isfinite(dt) && dt > 0.0, "controller.sample_time", dt, "must be finite and > 0 s");
+  RequireFinite(model.mass, prefix + "model.mass");
+  RequireFinite(model.damping, prefix + "model.damping");
+  RequireFinite(model.mooring_stiffness, prefix + "model.mooring_stiffness");
+  RequirePositive(model.mass.diagonal(), prefix + "model.mass.diagonal");
+  const Mat3 mass_symmetric = 0.5 * (model.mass + model.mass.transpose());
+  if (Eigen::LLT<Mat3>(mass_symmetric).info() != Eigen::Success) {
+    throw InputError(prefix + "model.mass: must be positive definite");
+  }
+  mass_inverse_ = model.mass.inverse();
+  damping_ = model.damping;
+  stiffness_ = model.mooring_stiffness;
+
+  const std::string o = prefix + "observer.";
+  RequirePositive(options.wave_peak_frequency, o + "wave_peak_frequency");
+  Require(std::isfinite(options.notch_damping) && options.notch_damping > 0.0, o + "notch_damping",
+          options.notch_damping, "must be finite and > 0");
+  Require(std::isfinite(options.wave_damping) && options.wave_damping >= 0.0 &&
+              options.wave_damping < options.notch_damping,
+          o + "wave_damping", options.wave_damping,
+          "must be >= 0 and < notch_damping (the notch needs zeta_n > lambda)");
+  Require(std::isfinite(options.cutoff_ratio) && options.cutoff_ratio > 1.0, o + "cutoff_ratio",
+          options.cutoff_ratio, "must be > 1 (passivity: omega_c > omega_0)");
+  RequirePositive(options.k4_per_mass, o + "k4_per_mass");
+  RequirePositive(options.bias_time_constant, o + "bias_time_constant");
+  Require(std::isfinite(options.k3_ratio) && options.k3_ratio > 0.0, o + "k3_ratio",
+          options.k3_ratio, "must be finite and > 0");
+  for (int i = 0; i < 3; ++i) {
+    // Fossen & Strand (1999): 1/T_i < K3_i / K4_i < omega_0i < omega_ci.
+    Require(options.k3_ratio > 1.0 / options.bias_time_constant[i], o + "k3_ratio",
+            options.k3_ratio, "must be > 1 / bias_time_constant (passivity)");
+    Require(options.k3_ratio < options.wave_peak_frequency[i], o + "k3_ratio", options.k3_ratio,
+            "must be < wave_peak_frequency (passivity)");
+  }
+  Require(std::isfinite(options.max_substep) && options.max_substep > 0.0, o + "max_substep",
+          options.max_substep, "must be finite and > 0 s");
+
+  const double notch = options.notch_damping - options.wave_damping;
+  omega0_ = options.wave_peak_frequency;
+  wave_damping_ = options.wave_damping;
+  k2_ = options.cutoff_ratio * omega0_;
+  k1_position_ = Vec3::Constant(-2.0 * notch * options.cutoff_ratio);  // -2 (z - l) wc / w0
+  k1_velocity_ = 2.0 * notch * omega0_;
+  k4_ = model.mass.diagonal().cwiseProduct(options.k4_per_mass);
+  k3_ = options.k3_ratio * k4_;
+  bias_rate_ = options.bias_time_constant.cwiseInverse();
+  wave_filter_ = options.wave_filter;
+  substeps_ = std::max(1, static_cast<int>(std::ceil(dt / options.max_substep - 1e-9)));
+  Reset(Vec3::Zero());
+}
+
+void PassiveObserver::Reset(const Vec3& eta_initial) {
+  x_.setZero();
+  x_.segment<3>(6) = eta_initial;
+  x_(8) = WrapToPi(eta_initial[2]);
+  y_previous_ = y_current_ = x_.segment<3>(6);
+  seen_ = fresh_ = previous_fresh_ = {false, false, false};
+  started_ = false;
+}
+
+PassiveObserver::State PassiveObserver::Derivative(const State& x, const Vec3& y,
+                                                   const Vec3& tau) const {
+  const Vec3 xi_position = x.segment<3>(0);
+  const Vec3 xi_velocity = x.segment<3>(3);  // Cw xi: the wave-frequency motion
+  const Vec3 eta = x.segment<3>(6);
+  const Vec3 bias = x.segment<3>(9);
+  const Vec3 nu = x.segment<3>(12);
+
+  Vec3 y_tilde = y - eta - (wave_filter_ ? xi_velocity : Vec3::Zero());
+  y_tilde[2] = WrapToPi(y_tilde[2]);
+  for (int i = 0; i < 3; ++i) {
+    if (!fresh_[static_cast<std::size_t>(i)]) y_tilde[i] = 0.0;  // open-loop on this channel
+  }
+  // R(psi_hat), not R(y_psi): see the class comment (wave-frequency yaw rectification).
+  const double psi = eta[2];
+
+  State x_dot;
+  if (wave_filter_) {
+    x_dot.segment<3>(0) = xi_velocity + k1_position_.cwiseProduct(y_tilde);
+    x_dot.segment<3>(3) = -omega0_.cwiseAbs2().cwiseProduct(xi_position) -
+                          2.0 * wave_damping_ * omega0_.cwiseProduct(xi_velocity) +
+                          k1_velocity_.cwiseProduct(y_tilde);
+  } else {
+    x_dot.segment<3>(0).setZero();
+    x_dot.segment<3>(3).setZero();
+  }
+  x_dot.segment<3>(6) = BodyToNed(nu, psi) + k2_.cwiseProduct(y_tilde);
+  x_dot.segment<3>(9) = -bias_rate_.cwiseProduct(bias) + k3_.cwiseProduct(y_tilde);
+  Vec3 eta_from_neutral = eta;
+  eta_from_neutral[2] = WrapToPi(eta[2]);
+  const Vec3 force_ned = -stiffness_ * eta_from_neutral + bias + k4_.cwiseProduct(y_tilde);
+  x_dot.segment<3>(12) = mass_inverse_ * (-damping_ * nu + NedToBody(force_ned, psi) + tau);
+  return x_dot;
+}
+
+void PassiveObserver::Update(const PoseMeasurementInput& measurement, const Vec3& tau) {
+  Vec3 y_new = y_current_;
+  for (int i = 0; i < 3; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    fresh_[k] = Fresh(measurement, i);
+    if (fresh_[k]) y_new[i] = i == 2 ? WrapToPi(measurement.pose[i]) : measurement.pose[i];
+  }
+  if (started_) {
+    y_previous_ = y_current_;
+    y_current_ = y_new;
+    // First-order hold between the two samples where both are valid, else the new one.
+    Vec3 y_step = y_current_ - y_previous_;
+    y_step[2] = WrapToPi(y_step[2]);
+    for (int i = 0; i < 3; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      if (!(fresh_[k] && previous_fresh_[k])) y_step[i] = 0.0;
+    }
+    const Vec3 y_start = y_current_ - y_step;
+    const double h = dt_ / substeps_;
+    for (int n = 0; n < substeps_; ++n) {
+      const double s0 = static_cast<double>(n) / substeps_;
+      const double s_mid = (n + 0.5) / substeps_;
+      const double s1 = static_cast<double>(n + 1) / substeps_;
+      const Vec3 y0 = y_start + s0 * y_step;
+      const Vec3 y_mid = y_start + s_mid * y_step;
+      const Vec3 y1 = y_start + s1 * y_step;
+      const State k1 = Derivative(x_, y0, tau);
+      const State k2 = Derivative(x_ + 0.5 * h * k1, y_mid, tau);
+      const State k3 = Derivative(x_ + 0.5 * h * k2, y_mid, tau);
+      const State k4 = Derivative(x_ + h * k3, y1, tau);
+      x_ += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    }
+  } else {
+    y_previous_ = y_current_ = y_new;
+    started_ = true;
+  }
+  // A channel's first valid sample replaces the initial guess.
+  for (int i = 0; i < 3; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (fresh_[k] && !seen_[k]) {
+      x_(6 + i) = y_new[i];
+      x_(i) = x_(3 + i) = 0.0;
+      seen_[k] = true;
+    }
+  }
+  x_(8) = WrapToPi(x_(8));
+  previous_fresh_ = fresh_;
+}
+
+Vec3 PassiveObserver::eta_hat() const { return x_.segment<3>(6); }
+Vec3 PassiveObserver::nu_hat() const { return x_.segment<3>(12); }
+Vec3 PassiveObserver::bias() const { return x_.segment<3>(9); }
+Vec3 PassiveObserver::wave_motion() const {
+  return wave_filter_ ? Vec3(x_.segment<3>(3)) : Vec3::Zero();
+}
+
+// ---------------------------------------------------------------------------------------
+
+ObserverPidController::ObserverPidController(const ObserverPidOptions& options, const Vec3& eta_d,
+                                             double dt)
+    : PositionController(eta_d, dt), observer_(options.model, options.observer, dt) {
+  const std::string p = "controller.observer_pid.";
+  Require(std::isfinite(options.natural_frequency) && options.natural_frequency > 0.0,
+          p + "natural_frequency", options.natural_frequency, "must be finite and > 0 rad/s");
+  Require(std::isfinite(options.relative_damping) && options.relative_damping > 0.0,
+          p + "relative_damping", options.relative_damping, "must be finite and > 0");
+  RequireNonNegative(options.integral_limit, p + "integral_limit");
+  const Vec3 mass = options.model.mass.diagonal();
+  const double wn = options.natural_frequency;
+  kp_ = mass * (wn * wn);
+  kd_ = mass * (2.0 * options.relative_damping * wn);
+  ki_ = kp_ * (wn / 10.0);
+  integral_limit_ = options.integral_limit;
+}
+
+Vec3 ObserverPidController::Update(const PoseMeasurementInput& measurement) {
+  if (!started_) {
+    observer_.Reset(setpoint_);  // channels not yet measured start at the setpoint
+    started_ = true;
+  }
+  observer_.Update(measurement, tau_held_);
+  const Vec3 eta = observer_.eta_hat();
+  Vec3 error = eta - setpoint_;
+  error[2] = WrapToPi(error[2]);
+  for (int i = 0; i < 3; ++i) {
+    if (!observer_.fresh(i)) continue;
+    integral_[i] += dt_ * error[i];
+    ClampIntegral(ki_, integral_limit_, i, &integral_);
+  }
+  const Vec3 force_ned = kp_.cwiseProduct(error) + ki_.cwiseProduct(integral_);
+  tau_held_ = NedToBody(-force_ned, eta[2]) - kd_.cwiseProduct(observer_.nu_hat());
+  return tau_held_;
+}
+
+// ---------------------------------------------------------------------------------------
+
+Vec3 IdleController::EstimatedPose() const { return Vec3::Constant(std::nan("")); }
+Vec3 IdleController::EstimatedVelocity() const { return Vec3::Constant(std::nan("")); }
+Vec3 IdleController::EstimatedBias() const { return Vec3::Constant(std::nan("")); }
+
+// ---------------------------------------------------------------------------------------
+
+namespace {
+
+using ControllerFactory = std::unique_ptr<PositionController> (*)(const ControllerSpec&, double);
+
+struct ControllerEntry {
+  std::string_view name;
+  ControllerFactory make;
+};
+
+// The registry, sorted by name (STYLE.md: registries as tables).
+constexpr std::array<ControllerEntry, 3> kControllers = {{
+    {"none",
+     [](const ControllerSpec& spec, double dt) -> std::unique_ptr<PositionController> {
+       return std::make_unique<IdleController>(spec.setpoint, dt);
+     }},
+    {"observer_pid",
+     [](const ControllerSpec& spec, double dt) -> std::unique_ptr<PositionController> {
+       return std::make_unique<ObserverPidController>(spec.observer_pid, spec.setpoint, dt);
+     }},
+    {"pi",
+     [](const ControllerSpec& spec, double dt) -> std::unique_ptr<PositionController> {
+       return std::make_unique<PiController>(spec.pi, spec.setpoint, dt);
+     }},
+}};
+
+static_assert(std::is_sorted(kControllers.begin(), kControllers.end(),
+                             [](const ControllerEntry& a, const ControllerEntry& b) {
+                               return a.name < b.name;
+                             }),
+              "kControllers must be sorted by name");
+
+}  // namespace
+
+std::vector<std::string_view> ControllerTypes() {
+  std::vector<std::string_view> names;
+  for (const ControllerEntry& entry : kControllers) names.push_back(entry.name);
+  return names;
+}
+
+std::unique_ptr<PositionController> MakeController(const ControllerSpec& spec, double dt) {
+  const auto it = std::lower_bound(
+      kControllers.begin(), kControllers.end(), spec.type,
+      [](const ControllerEntry& entry, const std::string& name) { return entry.name < name; });
+  if (it == kControllers.end() || it->name != spec.type) {
+    std::string known;
+    for (const ControllerEntry& entry : kControllers) {
+      if (!known.empty()) known += ", ";
+      known += entry.name;
+    }
+    throw InputError("controller.type: unknown controller type '" + spec.type +
+                     "' (known: " + known + ")");
+  }
+  return it->make(spec, dt);
+}
+
+}  // namespace moorsim::vessel
