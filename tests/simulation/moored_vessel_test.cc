@@ -153,8 +153,8 @@ TEST(MooredVessel, PartedLineDriftsAwayFromItsAnchorToTheCatenaryBalance) {
   EXPECT_LT(std::hypot(sim.state()[0], sim.state()[1]), 0.01);
   sim.AdvanceTo(2500.0);
   const Vec3 pose(sim.state()[0], sim.state()[1], sim.state()[5]);
-  const Vec3 reference = CatenaryEquilibrium(scenario, Vec3::Zero(), FairleadDepth(sim), 6,
-                                             Vec3(10.0, -10.0, 0.0));
+  const Vec3 reference =
+      CatenaryEquilibrium(scenario, Vec3::Zero(), FairleadDepth(sim), 6, Vec3(10.0, -10.0, 0.0));
   const double drift = reference.head<2>().norm();
   // Direction: away from anchor 6, i.e. along (1, -1)/sqrt(2), within 2 deg.
   EXPECT_NEAR(std::atan2(pose.y(), pose.x()), -M_PI / 4, 2.0 * M_PI / 180.0);
