@@ -92,7 +92,19 @@ double Radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
 struct ParseContext {
   std::string file;
   std::map<std::string, SourceMark>* marks;  // filled with the position of every node read
+  std::vector<std::string> overridden;       // key paths set from the command line
 };
+
+// Whether `path` is an overridden key path or lies under one.
+bool Overridden(const ParseContext& context, const std::string& path) {
+  for (const std::string& o : context.overridden) {
+    if (path == o || (path.size() > o.size() && path.compare(0, o.size(), o) == 0 &&
+                      (path[o.size()] == '.' || path[o.size()] == '['))) {
+      return true;
+    }
+  }
+  return false;
+}
 
 std::string Describe(const YAML::Node& node) {
   switch (node.Type()) {
@@ -120,6 +132,8 @@ class Reader {
  public:
   Reader(const ParseContext& context, YAML::Node node, std::string path, SourceMark mark)
       : context_(&context), node_(std::move(node)), path_(std::move(path)), mark_(mark) {
+    // A value from --set has no place in the file: messages name the key path only.
+    if (Overridden(*context_, path_)) mark_ = {};
     (*context_->marks)[path_] = mark_;
   }
 
@@ -427,7 +441,7 @@ void ParseVessel(const Reader& r, Scenario& scenario) {
 }
 
 void ParseEnvironment(const Reader& r, Scenario& scenario) {
-  r.CheckKeys({"current", "current_on_hull", "waves", "wind"});
+  r.CheckKeys({"current", "hull_viscous_drag", "waves", "wind"});
   EnvironmentSpec& e = scenario.environment;
   if (std::optional<Reader> w = r.Find("waves")) {
     w->CheckKeys({"components", "direction_toward_deg", "gamma", "hs", "spreading", "tp"});
@@ -451,7 +465,7 @@ void ParseEnvironment(const Reader& r, Scenario& scenario) {
     scenario.mooring.current.key = "environment.current";
     ParseCurrent(*c, scenario.mooring.current);
   }
-  r.Optional("current_on_hull", e.current_on_hull);
+  r.Optional("hull_viscous_drag", e.hull_viscous_drag);
 }
 
 void ParseController(const Reader& r, Scenario& scenario) {
@@ -928,12 +942,107 @@ void Validate(const Scenario& scenario) {
   }
 }
 
+namespace {
+
+// Sets `key.path=value` in the document: maps by key (created if missing), lists by [i]
+// (1-based, existing entries only); the value is parsed as YAML. Returns the key path.
+std::string ApplyOverride(YAML::Node& root, const std::string& assignment) {
+  const std::size_t equals = assignment.find('=');
+  const std::string flag = "--set " + assignment;
+  if (equals == std::string::npos || equals == 0) {
+    throw InputError(flag + ": expected key.path=value (e.g. controller.type=pi)");
+  }
+  const std::string path = assignment.substr(0, equals);
+  const std::string value = assignment.substr(equals + 1);
+  YAML::Node parsed;
+  try {
+    parsed = YAML::Load(value);
+  } catch (const YAML::Exception& error) {
+    throw InputError(flag + ": the value is not YAML: " + error.msg);
+  }
+  // Split "a.b[2].c" into steps.
+  std::vector<std::pair<std::string, int>> steps;  // (key, -1) or ("", index)
+  std::size_t i = 0;
+  while (i < path.size()) {
+    if (path[i] == '.') {
+      ++i;
+      continue;
+    }
+    if (path[i] == '[') {
+      const std::size_t close = path.find(']', i);
+      int index = 0;
+      const auto [end, error] = std::from_chars(
+          path.data() + i + 1, path.data() + (close == std::string::npos ? i + 1 : close), index);
+      if (close == std::string::npos || error != std::errc() || end != path.data() + close ||
+          index < 1) {
+        throw InputError(flag + ": bad list index in '" + path + "' (lists count from 1)");
+      }
+      steps.emplace_back("", index);
+      i = close + 1;
+      continue;
+    }
+    const std::size_t stop = path.find_first_of(".[", i);
+    steps.emplace_back(path.substr(i, stop == std::string::npos ? std::string::npos : stop - i),
+                       -1);
+    i = stop == std::string::npos ? path.size() : stop;
+  }
+  if (steps.empty() || steps.front().second >= 0) {
+    throw InputError(flag + ": expected key.path=value (e.g. controller.type=pi)");
+  }
+  // Walk with node references (yaml-cpp nodes are handles).
+  std::vector<YAML::Node> chain{root};
+  for (std::size_t s = 0; s < steps.size(); ++s) {
+    YAML::Node current = chain.back();
+    const bool last = s + 1 == steps.size();
+    if (steps[s].second < 0) {
+      if (!current.IsMap() && !current.IsNull()) {
+        throw InputError(flag + ": '" + steps[s].first + "' is under something that is not a map");
+      }
+      if (last) {
+        current[steps[s].first] = parsed;
+      } else {
+        YAML::Node next = current[steps[s].first];
+        if (!next.IsDefined() || next.IsNull()) {
+          current[steps[s].first] = YAML::Node(YAML::NodeType::Map);
+          next = current[steps[s].first];
+        }
+        chain.push_back(next);
+      }
+    } else {
+      const int index = steps[s].second;
+      if (!current.IsSequence() || index > static_cast<int>(current.size())) {
+        throw InputError(flag + ": there is no list entry [" + std::to_string(index) + "]");
+      }
+      if (last) {
+        current[index - 1] = parsed;
+      } else {
+        chain.push_back(current[index - 1]);
+      }
+    }
+  }
+  // The canonical key path (as messages spell it).
+  std::string canonical;
+  for (const auto& [key, index] : steps) {
+    canonical +=
+        index < 0 ? (canonical.empty() ? key : "." + key) : "[" + std::to_string(index) + "]";
+  }
+  return canonical;
+}
+
+}  // namespace
+
 Scenario ParseScenario(const std::string& yaml_text, const std::string& source_name) {
+  return ParseScenario(yaml_text, source_name, {});
+}
+
+Scenario ParseScenario(const std::string& yaml_text, const std::string& source_name,
+                       const std::vector<std::string>& overrides) {
   Scenario scenario;
   scenario.source_path = source_name;
   scenario.text = yaml_text;
+  scenario.overrides = overrides;
   scenario.name = std::filesystem::path(source_name).stem().string();
-  const ParseContext context{source_name, &scenario.marks};
+  ParseContext context{source_name, &scenario.marks, {}};
   try {
     const std::vector<YAML::Node> documents = YAML::LoadAll(yaml_text);
     if (documents.empty() || documents[0].IsNull()) {
@@ -943,7 +1052,11 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source_n
       ThrowAt(source_name, ToSourceMark(documents[1].Mark()), "",
               "a scenario file holds one YAML document; this is a second one");
     }
-    const Reader root(context, documents[0], "", ToSourceMark(documents[0].Mark()));
+    YAML::Node document = documents[0];
+    for (const std::string& assignment : overrides) {
+      context.overridden.push_back(ApplyOverride(document, assignment));
+    }
+    const Reader root(context, document, "", ToSourceMark(document.Mark()));
     ParseDocument(root, scenario);
     // A relative WAMIT stem is relative to the scenario file's directory.
     if (scenario.vessel && std::filesystem::path(scenario.vessel->hydrodynamics).is_relative()) {
@@ -966,7 +1079,9 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source_n
   return scenario;
 }
 
-Scenario LoadScenario(const std::string& path) {
+Scenario LoadScenario(const std::string& path) { return LoadScenario(path, {}); }
+
+Scenario LoadScenario(const std::string& path, const std::vector<std::string>& overrides) {
   std::error_code ignored;
   if (std::filesystem::is_directory(path, ignored)) {
     throw InputError(path + ": is a directory, not a scenario file");
@@ -979,7 +1094,7 @@ Scenario LoadScenario(const std::string& path) {
   std::ostringstream text;
   text << file.rdbuf();
   if (file.bad()) throw InputError(path + ": cannot read the scenario file");
-  return ParseScenario(text.str(), path);
+  return ParseScenario(text.str(), path, overrides);
 }
 
 }  // namespace moorsim::scenarios

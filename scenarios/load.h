@@ -65,6 +65,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "scenarios/scenario.h"
 
@@ -74,11 +75,18 @@ namespace moorsim::scenarios {
 /// its full text in Scenario::text and the path in Scenario::source_path, parses and
 /// validates it. Throws moorsim::InputError.
 Scenario LoadScenario(const std::string& path);
+/// The same with command-line overrides "key.path=value" applied to the YAML before it is
+/// read (`moorsim run --set`): maps by key (created if missing), list entries by [i] from 1,
+/// the value parsed as YAML. Messages about an overridden value name its key path without a
+/// line:col. A malformed override is an InputError starting "--set <text>:".
+Scenario LoadScenario(const std::string& path, const std::vector<std::string>& overrides);
 
 /// Parses and validates scenario YAML text. `source_name` names the text in messages, is
 /// stored as Scenario::source_path, and gives the default name (its stem). After loading,
 /// mooring.lines is ordered by id. Throws moorsim::InputError.
 Scenario ParseScenario(const std::string& yaml_text, const std::string& source_name);
+Scenario ParseScenario(const std::string& yaml_text, const std::string& source_name,
+                       const std::vector<std::string>& overrides);
 
 /// The semantic checks: physically impossible or inconsistent values (non-positive
 /// diameter, a line lighter than the water it displaces, a line shorter than its

@@ -170,8 +170,9 @@ struct WindSpec {
 struct EnvironmentSpec {
   WavesSpec waves;
   WindSpec wind;
-  /// Viscous current load on the hull (the lines always see the current).
-  bool current_on_hull = true;
+  /// Viscous load on the hull from its velocity relative to the water (quadratic cross-flow
+  /// drag and friction, with the current if there is one); the lines see the current anyway.
+  bool hull_viscous_drag = true;
 };
 
 struct ControllerSpec {
@@ -226,8 +227,9 @@ struct SimulationSpec {
 
 struct Scenario {
   std::string name;
-  std::string source_path;  ///< file it was read from
-  std::string text;         ///< the full YAML text, recorded in outputs
+  std::string source_path;             ///< file it was read from
+  std::string text;                    ///< the full YAML text, recorded in outputs
+  std::vector<std::string> overrides;  ///< "key.path=value" applied on top of `text`
   MooringSpec mooring;
   SolverSpec solver;
   /// The coupled-simulation sections; `vessel` unset means a lines-only scenario.

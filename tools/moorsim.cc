@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
     commands.emplace_back(app.get_subcommands({})[before], std::move(command));
   };
   add(&moorsim::cli::AddStaticCommand);
+  add(&moorsim::cli::AddRunCommand);
   add(&moorsim::cli::AddSimulateLinesCommand);
   add(&moorsim::cli::AddValidateCommand);
   // CLI11 would only say "A subcommand is required" for a misspelt command.

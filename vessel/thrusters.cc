@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/error.h"
 
@@ -66,32 +67,65 @@ ThrustAllocator::ThrustAllocator(std::vector<ThrusterSpec> thrusters)
     throw InputError("thrusters: the layout cannot produce surge, sway and yaw independently");
   }
   pseudo_inverse_ = w_inv.asDiagonal() * B.transpose() * lu.inverse();
+  for (int j = 0; j < 3; ++j) {
+    capacity_positive_(j) = Capacity(Vec3::Unit(j))(j);
+    capacity_negative_(j) = -Capacity(-Vec3::Unit(j))(j);
+  }
 }
 
-Allocation ThrustAllocator::Allocate(const Vec3& tau) const {
+Allocation ThrustAllocator::Allocate(const Vec3& tau_command) const {
+  // Each DOF first within what the layout can deliver in that DOF alone, so that a command
+  // far beyond one DOF's capacity (sway, for the seed layout) does not shrink the others.
+  Vec3 tau = tau_command;
+  for (int j = 0; j < 3; ++j)
+    tau(j) = std::clamp(tau(j), -capacity_negative_(j), capacity_positive_(j));
   const Eigen::VectorXd f = pseudo_inverse_ * tau;
   const int n = static_cast<int>(thrusters_.size());
   Allocation a;
   a.thrust.resize(n);
   a.direction.resize(n);
+  // Magnitudes and directions of the unconstrained solution, then one common scale factor
+  // that brings every thruster within its rating: the delivered tau keeps the commanded
+  // direction (clipping thrusters one by one would turn a saturated sway command into a
+  // large spurious yaw moment, since sway needs the bow and aft thrusters in balance).
+  double scale = 1.0;
   for (int i = 0; i < n; ++i) {
     const ThrusterSpec& t = thrusters_[i];
     const int c = first_column_[i];
-    double magnitude, direction;
     if (t.azimuth) {
-      magnitude = std::hypot(f(c), f(c + 1));
-      direction = std::atan2(f(c + 1), f(c));
+      a.thrust(i) = std::hypot(f(c), f(c + 1));
+      a.direction(i) = std::atan2(f(c + 1), f(c));
     } else {
-      magnitude = f(c);
-      direction = t.angle;
+      a.thrust(i) = f(c);
+      a.direction(i) = t.angle;
     }
-    const double clipped = std::clamp(magnitude, t.azimuth ? 0.0 : t.min_thrust, t.max_thrust);
-    a.saturated |= clipped != magnitude;
-    a.thrust(i) = clipped;
-    a.direction(i) = direction;
+    const double low = t.azimuth ? 0.0 : t.min_thrust;
+    if (a.thrust(i) > t.max_thrust) scale = std::min(scale, t.max_thrust / a.thrust(i));
+    if (a.thrust(i) < low) scale = std::min(scale, low / a.thrust(i));
   }
+  a.saturated = scale < 1.0 || tau != tau_command;
+  a.thrust *= scale;
   a.achieved = Force(a.thrust, a.direction);
   return a;
+}
+
+Vec3 ThrustAllocator::Capacity(const Vec3& direction) const {
+  // The largest s with the unconstrained allocation of s * direction within every rating.
+  const Eigen::VectorXd f = pseudo_inverse_ * direction;
+  double s = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < thrusters_.size(); ++i) {
+    const ThrusterSpec& t = thrusters_[i];
+    const int c = first_column_[i];
+    if (t.azimuth) {
+      const double m = std::hypot(f(c), f(c + 1));
+      if (m > 0) s = std::min(s, t.max_thrust / m);
+    } else if (f(c) > 0) {
+      s = std::min(s, t.max_thrust / f(c));
+    } else if (f(c) < 0) {
+      s = std::min(s, t.min_thrust / f(c));
+    }
+  }
+  return s * direction;
 }
 
 Vec3 ThrustAllocator::Force(const Eigen::VectorXd& thrust, const Eigen::VectorXd& direction) const {

@@ -6,10 +6,12 @@
 // thruster at (x, y) pushing along alpha (from the bow toward starboard)
 // [cos alpha, sin alpha, x sin alpha - y cos alpha]. An azimuth thruster enters as two
 // orthogonal forces (the extended thrust formulation, Fossen 2011 eq. 12.253) and comes
-// back as a magnitude and a direction. Each thruster's force is then clipped to its
-// rating (a thruster cannot deliver more; the clipped part of tau is lost, and
-// `Allocation::achieved` says what remains). Rate limits and first-order thrust dynamics
-// act on the commanded force in ThrusterDynamics.
+// back as a magnitude and a direction. If any thruster would exceed its rating, every
+// thruster's force is scaled down by one common factor until none does: the delivered
+// tau keeps the commanded direction and shrinks (`Allocation::achieved` says what
+// remains). Per-thruster clipping would keep more of the total force but turn, e.g., a
+// saturated sway command into a large unintended yaw moment. Rate limits and first-order thrust
+// dynamics act on the commanded force in ThrusterDynamics.
 #pragma once
 
 #include <string>
@@ -53,15 +55,21 @@ class ThrustAllocator {
   /// produce all three of surge, sway and yaw.
   explicit ThrustAllocator(std::vector<ThrusterSpec> thrusters);
 
+  /// Each DOF of tau is first clamped to what the layout can deliver in that DOF alone
+  /// (Capacity), then allocated, then scaled down as a whole if a thruster still saturates.
   Allocation Allocate(const Vec3& tau) const;
+  /// s * direction for the largest s whose allocation stays within every rating.
+  Vec3 Capacity(const Vec3& direction) const;
   /// tau produced by thrust magnitudes and directions.
   Vec3 Force(const Eigen::VectorXd& thrust, const Eigen::VectorXd& direction) const;
   const std::vector<ThrusterSpec>& thrusters() const { return thrusters_; }
 
  private:
   std::vector<ThrusterSpec> thrusters_;
-  std::vector<int> first_column_;   // thruster i's first column in B
-  Eigen::MatrixXd pseudo_inverse_;  // W^-1 B^T (B W^-1 B^T)^-1
+  std::vector<int> first_column_;          // thruster i's first column in B
+  Eigen::MatrixXd pseudo_inverse_;         // W^-1 B^T (B W^-1 B^T)^-1
+  Vec3 capacity_positive_ = Vec3::Zero();  // per DOF alone [N, N, N m]
+  Vec3 capacity_negative_ = Vec3::Zero();
 };
 
 /// First-order thrust response with rate-limited commands: the delivered force f obeys

@@ -41,6 +41,47 @@ TEST(ThrustAllocation, SaturationClipsToTheRatings) {
   EXPECT_NEAR(astern.thrust(0), -0.6e6, 1e-6);
 }
 
+TEST(ThrustAllocation, SaturationKeepsTheDirectionOfTheCommand) {
+  // A 5 MN sway command needs far more than the bow tunnel's 0.6 MN: everything is scaled
+  // down together, so no yaw moment or surge force appears that was not asked for.
+  const ThrustAllocator allocator(SeedThrusters());
+  // Within each DOF's own capacity, but not all three together.
+  const Vec3 cap(allocator.Capacity(Vec3::UnitX()).x(), allocator.Capacity(Vec3::UnitY()).y(),
+                 allocator.Capacity(Vec3::UnitZ()).z());
+  // Surge and yaw both load the aft pair: 90 % of each together overloads one of them.
+  const Vec3 tau(0.9 * cap.x(), 0.0, 0.9 * cap.z());
+  const Allocation a = allocator.Allocate(tau);
+  EXPECT_TRUE(a.saturated);
+  EXPECT_NEAR(a.achieved.y(), 0.0, 1e-6);
+  const double s = a.achieved.x() / tau.x();
+  EXPECT_GT(s, 0.0);
+  EXPECT_LT(s, 1.0);
+  EXPECT_NEAR(a.achieved.z(), s * tau.z(), 1e-6 * std::abs(tau.z()));
+  double largest_ratio = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const auto& t = SeedThrusters()[i];
+    largest_ratio = std::max(
+        largest_ratio, a.thrust(i) > 0 ? a.thrust(i) / t.max_thrust : a.thrust(i) / t.min_thrust);
+    EXPECT_LE(a.thrust(i), t.max_thrust * (1 + 1e-12));
+    EXPECT_GE(a.thrust(i), t.min_thrust * (1 + 1e-12));
+  }
+  EXPECT_NEAR(largest_ratio, 1.0, 1e-12);  // the binding thruster is exactly at its rating
+}
+
+TEST(ThrustAllocation, AHugeSwayCommandDoesNotStarveSurge) {
+  // The seed layout's pure sway capacity is ~0.11 MN (the bow tunnel's yaw moment must be
+  // balanced by the aft pair's 16 m lever). A 50 MN sway command is clamped to it first, so
+  // the surge part still gets through.
+  const ThrustAllocator allocator(SeedThrusters());
+  const double sway = allocator.Capacity(Vec3::UnitY()).y();
+  EXPECT_GT(sway, 0.05e6);
+  EXPECT_LT(sway, 0.2e6);
+  const Allocation a = allocator.Allocate(Vec3(3e5, 5e7, 0.0));
+  EXPECT_NEAR(a.achieved.y(), sway, 1e-6 * sway);
+  EXPECT_NEAR(a.achieved.x(), 3e5, 1.0);
+  EXPECT_NEAR(a.achieved.z(), 0.0, 1.0);
+}
+
 TEST(ThrustAllocation, WeightsShiftWorkBetweenRedundantThrusters) {
   // Four azimuths: redundant, so the weights decide. The weighted pseudo-inverse minimises
   // sum w_i |f_i|^2: doubling one thruster's weight halves its share relative to its twin.

@@ -9,9 +9,14 @@
 #include "core/error.h"
 #include "core/random.h"
 #include "mooring_fem/line_simulation.h"
+#include "vessel/controller.h"
 #include "vessel/fpso_model.h"
+#include "vessel/hull_loads.h"
 #include "vessel/rigid_body.h"
+#include "vessel/sensors.h"
 #include "vessel/thrusters.h"
+#include "vessel/wave_response.h"
+#include "vessel/waves.h"
 
 namespace moorsim::simulation {
 
@@ -41,6 +46,123 @@ class ExternalLoad final : public vessel::EnvironmentLoad {
   }
   Vec3 load_ = Vec3::Zero();
 };
+
+/// Viscous hull load from the velocity relative to the (uniform, surface-speed) current.
+class HullCurrentLoad final : public vessel::EnvironmentLoad {
+ public:
+  HullCurrentLoad(const vessel::HullGeometry& hull, const Vec3& current_ned)
+      : load_(hull), current_(current_ned) {}
+  std::string_view name() const override { return "current"; }
+  Vec6 Load(double /*t*/, const Vec6& eta, const Vec6& nu) const override {
+    return load_.Load(eta, nu, current_);
+  }
+  void Jacobian(double /*t*/, const Vec6& eta, const Vec6& nu, Mat6* J_eta,
+                Mat6* J_nu) const override {
+    load_.Jacobian(eta, nu, current_, J_eta, J_nu);
+  }
+
+ private:
+  vessel::CurrentLoad load_;
+  Vec3 current_;
+};
+
+/// Wind on the superstructure: mean speed plus the NPD gust, from a fixed direction. Its
+/// Jacobian is left out (the relative-wind dependence on the vessel's velocity is ~1e-3 of
+/// the hull's viscous damping; the Jacobian only steers Newton's iteration).
+class HullWindLoad final : public vessel::EnvironmentLoad {
+ public:
+  HullWindLoad(const scenarios::WindSpec& spec, std::uint64_t seed)
+      : load_(vessel::SeedFpsoWind()), spec_(spec) {
+    if (spec.gust && spec.speed > 0.0) {
+      RandomStream stream = RandomStream::Derive(seed, "wind.gust");
+      gust_.emplace(
+          vessel::WindGustOptions{.mean_speed = spec.speed, .components = spec.components}, stream);
+    }
+  }
+  std::string_view name() const override { return "wind"; }
+  Vec6 Load(double t, const Vec6& eta, const Vec6& nu) const override {
+    const double speed = gust_ ? gust_->Speed(t) : spec_.speed;
+    return load_.Load(eta, nu, speed, spec_.direction_from);
+  }
+  void Jacobian(double, const Vec6&, const Vec6&, Mat6* J_eta, Mat6* J_nu) const override {
+    J_eta->setZero();
+    J_nu->setZero();
+  }
+
+ private:
+  vessel::WindLoad load_;
+  scenarios::WindSpec spec_;
+  std::optional<vessel::WindGust> gust_;
+};
+
+/// The realised sea of the scenario: JONSWAP, random phases and frequencies from the stream
+/// "waves" of the run seed, and the hull's response to it.
+class Sea final : public vessel::SeaResponse {
+ public:
+  Sea(const scenarios::WavesSpec& spec, const vessel::HydroData& hydro, double gravity,
+      std::uint64_t seed)
+      : spectrum_({.significant_height = spec.significant_height,
+                   .peak_period = spec.peak_period,
+                   .peak_enhancement = spec.gamma}),
+        realisation_(MakeRealisation(spectrum_, spec, gravity, seed)),
+        response_(hydro, realisation_, {.gravity = gravity}) {}
+  void Evaluate(double t, double x, double y, double psi, Vec6* xi, Vec6* xi_dot,
+                Vec6* drift) const override {
+    response_.Evaluate(t, x, y, psi, xi, xi_dot, drift);
+  }
+  const vessel::WaveRealisation& realisation() const { return realisation_; }
+
+ private:
+  static vessel::WaveRealisation MakeRealisation(const vessel::JonswapSpectrum& spectrum,
+                                                 const scenarios::WavesSpec& spec, double gravity,
+                                                 std::uint64_t seed) {
+    RandomStream stream = RandomStream::Derive(seed, "waves");
+    vessel::WaveRealisationOptions options;
+    options.mean_direction = spec.direction_toward;
+    options.spreading_exponent = spec.spreading;
+    options.components = spec.components;
+    options.gravity = gravity;
+    return vessel::WaveRealisation(spectrum, options, stream);
+  }
+
+  vessel::JonswapSpectrum spectrum_;
+  vessel::WaveRealisation realisation_;
+  vessel::WaveResponse response_;
+};
+
+vessel::ChannelNoise Noise(const scenarios::ChannelNoiseSpec& n) {
+  return {.std_dev = n.std_dev,
+          .bias_walk = n.bias_walk,
+          .bias_time_constant = n.bias_time_constant,
+          .initial_bias = n.initial_bias,
+          .outlier_probability = n.outlier_probability,
+          .outlier_std_dev = n.outlier_std_dev};
+}
+
+vessel::PoseSensorSpec PoseSensorSpec(const scenarios::SensorsSpec& s) {
+  vessel::PoseSensorSpec spec;
+  spec.gnss_rate = s.gnss_rate;
+  spec.gyro_rate = s.gyro_rate;
+  spec.north = Noise(s.north);
+  spec.east = Noise(s.east);
+  spec.heading = Noise(s.heading);
+  spec.gnss_dropout_probability = s.gnss_dropout_probability;
+  spec.gyro_dropout_probability = s.gyro_dropout_probability;
+  spec.gnss_dropout_mean_duration = s.gnss_dropout_mean_duration;
+  return spec;
+}
+
+vessel::ControllerSpec ControllerSpec(const scenarios::ControllerSpec& c, const Vec3& initial) {
+  vessel::ControllerSpec spec;
+  spec.type = c.type;
+  spec.setpoint = c.setpoint.value_or(initial);
+  spec.pi.kp = c.kp;
+  spec.pi.ki = c.ki;
+  spec.pi.kd = c.kd;
+  if (c.natural_period > 0.0) spec.observer_pid.natural_frequency = 2 * M_PI / c.natural_period;
+  if (c.damping_ratio > 0.0) spec.observer_pid.relative_damping = c.damping_ratio;
+  return spec;
+}
 
 std::vector<vessel::ThrusterSpec> Thrusters(const scenarios::VesselSpec& v) {
   if (v.thrusters.empty()) return vessel::SeedThrusters();
@@ -108,6 +230,16 @@ mooring_fem::LineFailure ToLineFailure(const scenarios::Scenario& scenario) {
 
 struct Simulation::Parts {
   ExternalLoad external;
+  std::optional<HullCurrentLoad> current;
+  std::optional<HullWindLoad> wind;
+  std::optional<Sea> sea;
+  std::optional<vessel::PoseSensors> sensors;
+  std::optional<vessel::TensionCells> tension_cells;
+  std::unique_ptr<vessel::PositionController> controller;
+  std::optional<vessel::ThrustAllocator> allocator;
+  std::optional<vessel::ThrusterDynamics> thruster_dynamics;
+  Eigen::VectorXd directions;
+  std::vector<double> measured_tensions;
 };
 
 Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed)
@@ -123,6 +255,36 @@ Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed)
   const scenarios::VesselSpec& v = *scenario_.vessel;
   plant_ = std::make_unique<vessel::VesselPlant>(VesselParameters(v, hydro_), Thrusters(v));
   plant_->AddLoad(&parts_->external);
+  const scenarios::EnvironmentSpec& env = scenario_.environment;
+  if (env.hull_viscous_drag) {
+    const scenarios::CurrentProfile& c = scenario_.mooring.current;
+    const Vec3 current = c.SurfaceSpeed() * Vec3(std::cos(c.direction), std::sin(c.direction), 0);
+    vessel::HullGeometry hull = vessel::SeedFpsoHull();
+    hull.water_density = scenario_.mooring.water.density;
+    parts_->current.emplace(hull, current);
+    plant_->AddLoad(&*parts_->current);
+  }
+  if (env.waves.enabled) {
+    parts_->sea.emplace(env.waves, hydro_, scenario_.mooring.water.gravity, seed_);
+    plant_->SetSea(&*parts_->sea);
+  }
+  if (env.wind.enabled) {
+    parts_->wind.emplace(env.wind, seed_);
+    plant_->AddLoad(&*parts_->wind);
+  }
+  parts_->sensors.emplace(PoseSensorSpec(scenario_.sensors), seed_);
+  parts_->controller = vessel::MakeController(ControllerSpec(scenario_.controller, v.initial_pose),
+                                              1.0 / scenario_.controller.rate);
+  parts_->allocator.emplace(plant_->thrusters());
+  parts_->thruster_dynamics.emplace(plant_->thrusters());
+  parts_->directions.resize(plant_->num_thrusters());
+  for (int k = 0; k < plant_->num_thrusters(); ++k) {
+    parts_->directions(k) = plant_->thrusters()[k].angle;
+  }
+  if (scenario_.sensors.tension_cells) {
+    parts_->tension_cells.emplace(mooring_.num_lines(), Noise(scenario_.sensors.tension_noise),
+                                  scenario_.sensors.tension_rate, seed_);
+  }
   failure_pending_ = scenario_.failure.line > 0;
 
   system_ = std::make_unique<CoupledSystem>(*plant_, attachment_);
@@ -206,10 +368,42 @@ void Simulation::StartIntegrator() {
 double Simulation::NextEventTime() const {
   double next = std::numeric_limits<double>::infinity();
   if (failure_pending_) next = std::min(next, scenario_.failure.time);
+  next = std::min(next, parts_->sensors->NextSampleTime(t_));
+  next = std::min(next, static_cast<double>(control_index_) / scenario_.controller.rate);
+  if (parts_->tension_cells) next = std::min(next, parts_->tension_cells->NextSampleTime(t_));
   return next;
 }
 
 void Simulation::DiscreteEvents() {
+  // Sensors first (they see the state at this instant), then the controller acts on them.
+  std::array<bool, 3> fresh = {false, false, false};
+  if (parts_->sensors->Due(t_) && t_ > last_sensor_time_) {
+    const Vec6 pose = plant_->TotalPose(t_, x_.data());
+    const vessel::PoseMeasurement m = parts_->sensors->Sample(t_, Vec3(pose(0), pose(1), pose(5)));
+    for (int i = 0; i < 3; ++i) {
+      if (m.valid[i]) last_measurement_(i) = m.value(i);
+      fresh[i] = m.valid[i];
+    }
+    last_sensor_time_ = t_;
+  }
+  if (parts_->tension_cells && parts_->tension_cells->Due(t_) && t_ > last_tension_time_) {
+    const Sample now = Record();
+    parts_->measured_tensions = parts_->tension_cells->Sample(t_, now.fairlead_tension);
+    last_tension_time_ = t_;
+  }
+  const double dt = 1.0 / scenario_.controller.rate;
+  if (t_ >= static_cast<double>(control_index_) * dt) {
+    ++control_index_;
+    vessel::PoseMeasurementInput input;
+    input.time = t_;
+    input.pose = last_measurement_;
+    input.valid = fresh;
+    tau_command_ = parts_->controller->Update(input);
+    const vessel::Allocation a = parts_->allocator->Allocate(tau_command_);
+    parts_->thruster_dynamics->Step(a.thrust, dt);
+    parts_->directions = a.direction;
+    plant_->SetThrustCommand(parts_->thruster_dynamics->command(), parts_->directions);
+  }
   if (failure_pending_ && t_ >= scenario_.failure.time) {
     failure_pending_ = false;
     const int nb = plant_->StateSize();
@@ -257,8 +451,11 @@ Sample Simulation::Record() {
   s.load_thrust = plant_->ThrustLoad(x_.data());
   s.thrust_delivered = Vec3(s.load_thrust(0), s.load_thrust(1), s.load_thrust(5));
   s.thrust_commanded = tau_command_;
+  s.tension_measured = parts_->measured_tensions;
   Vec6 xi, xi_dot;
   plant_->Sea(t_, x_.data(), &xi, &xi_dot, &s.load_wave_drift);
+  if (parts_->current) s.load_current = parts_->current->Load(t_, eta, nu);
+  if (parts_->wind) s.load_wind = parts_->wind->Load(t_, eta, nu);
   (void)nb;
   return s;
 }

@@ -12,7 +12,9 @@
 // states carried over.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -41,7 +43,10 @@ struct Sample {
   Vec6 pose_true = Vec6::Zero();           ///< low-frequency + wave-frequency eta (NED)
   Vec6 pose_low_frequency = Vec6::Zero();  ///< eta of the integrated low-frequency model
   Vec6 velocity = Vec6::Zero();            ///< nu (body), low-frequency
+  /// The latest measurement x, y, psi (NaN until a channel has delivered one).
   Vec3 pose_measured = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  /// Tension cells' latest readings [N] (empty without tension cells).
+  std::vector<double> tension_measured;
   std::vector<double> fairlead_tension;  ///< per line [N]
   Vec3 thrust_commanded = Vec3::Zero();  ///< controller output X, Y, N (body)
   Vec3 thrust_delivered = Vec3::Zero();  ///< from the delivered thrust states
@@ -117,7 +122,8 @@ class Simulation {
 
   // Discrete schedule (sample counters, so instants are k / rate exactly).
   long control_index_ = 0;
-  long sensor_index_ = 0;
+  double last_sensor_time_ = -1.0;
+  double last_tension_time_ = -1.0;
   bool failure_pending_ = false;
   Vec3 last_measurement_ = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
   Vec3 tau_command_ = Vec3::Zero();

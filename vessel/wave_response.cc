@@ -1,0 +1,369 @@
+#include "vessel/wave_response.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <sstream>
+#include <string>
+
+#include "core/error.h"
+
+namespace moorsim::vessel {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+constexpr double kDegree = kPi / 180.0;
+
+// Heading grid limits. Above 45° the grid would blur HydroData's 10° table; below 0.1° the
+// table of 200 components outgrows 80 MB and gains nothing over data tabulated every 10°.
+constexpr double kMaxHeadingStep = 45.0 * kDegree;
+constexpr double kMinHeadingStep = 0.1 * kDegree;
+
+// Drift modes kept by default: surge, sway, yaw (WaveResponseOptions::drift_all_modes).
+constexpr int kHorizontalModes[] = {0, 1, 5};
+
+std::string Format(double value) {
+  std::ostringstream out;
+  out.precision(6);
+  out << value;
+  return out.str();
+}
+
+void CheckOptions(const WaveResponseOptions& options) {
+  const double step = options.heading_step;
+  // The relative slack lets 45 * pi / 180 through whichever way it was rounded.
+  if (!std::isfinite(step) || step < kMinHeadingStep * (1.0 - 1e-12) ||
+      step > kMaxHeadingStep * (1.0 + 1e-12)) {
+    throw InputError("WaveResponseOptions.heading_step = " + Format(step) + " rad (" +
+                     Format(step / kDegree) + " deg): must be finite and in [0.1, 45] deg");
+  }
+  if (!std::isfinite(options.gravity) || !(options.gravity > 0.0)) {
+    throw InputError("WaveResponseOptions.gravity = " + Format(options.gravity) +
+                     " m/s^2: must be finite and > 0");
+  }
+}
+
+// Components are taken in blocks of this many for the vectorised phase and sincos passes
+// (three stack arrays of 512 bytes).
+constexpr int kBlock = 64;
+
+/// Where β = θ − ψ falls on the heading grid of n cells from −π: the cell and the weight
+/// of its upper node. θ + π and ψ come as fractions of a turn in [0, 1), so β + π is their
+/// difference, wrapped once. (The branch is the same for a component from call to call
+/// while ψ changes slowly, so it predicts well; a branch-free form measured 8 % slower.)
+struct HeadingCell {
+  int cell = 0;
+  double weight = 0.0;
+};
+
+inline HeadingCell LocateHeading(double direction_turns, double psi_turns, int n) {
+  double turns = direction_turns - psi_turns;  // (−1, 1)
+  if (turns < 0.0) turns += 1.0;               // [0, 1]; 1 only by rounding, at node n
+  const double position = turns * n;
+  const int cell = std::min(static_cast<int>(position), n - 1);
+  return {cell, position - cell};
+}
+
+// Bit patterns by memcpy rather than std::bit_cast: GCC 12 does not vectorise loops holding
+// the latter.
+inline std::uint64_t BitsOf(double value) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  return bits;
+}
+
+inline double DoubleOf(std::uint64_t bits) {
+  double value;
+  std::memcpy(&value, &bits, sizeof value);
+  return value;
+}
+
+/// ψ as a fraction of a turn, in [0, 1).
+inline double PsiTurns(double psi) {
+  const double turns = psi / kTwoPi;
+  const double fraction = turns - std::floor(turns);
+  return fraction < 1.0 ? fraction : 0.0;
+}
+
+}  // namespace
+
+WaveResponse::WaveResponse(const HydroData& hydro, const WaveRealisation& waves,
+                           const WaveResponseOptions& options) {
+  CheckOptions(options);
+  if (hydro.motion_rao.empty()) {
+    throw InputError("WaveResponse: no motion RAOs: '" + hydro.source + ".4' was not read");
+  }
+  if (hydro.mean_drift.empty()) {
+    throw InputError("WaveResponse: no mean drift coefficients: '" + hydro.source +
+                     ".9' was not read");
+  }
+
+  if (options.drift_all_modes) {
+    drift_modes_ = {0, 1, 2, 3, 4, 5};
+  } else {
+    drift_modes_.assign(std::begin(kHorizontalModes), std::end(kHorizontalModes));
+  }
+  // Three drift modes take four columns (the fourth zero) so that pairs of modes fill SSE2
+  // registers.
+  drift_columns_ = options.drift_all_modes ? 6 : 4;
+  row_size_ = 12 + drift_columns_;
+  // 1e-12 keeps a step that divides the turn up to rounding (2 deg) from gaining a cell.
+  heading_cells_ = static_cast<int>(std::ceil(kTwoPi / options.heading_step * (1.0 - 1e-12)));
+  const int n = heading_cells_;
+  const double step = kTwoPi / n;
+
+  const std::vector<WaveComponent>& components = waves.components();
+  const std::size_t count = components.size();
+  omega_.resize(count);
+  amplitude_.resize(count);
+  phase_.resize(count);
+  wave_number_north_.resize(count);
+  wave_number_east_.resize(count);
+  direction_turns_.resize(count);
+  table_.assign(count * static_cast<std::size_t>(n + 1) * row_size_, 0.0);
+
+  for (std::size_t i = 0; i < count; ++i) {
+    const WaveComponent& c = components[i];
+    // The same expressions as WaveRealisation, so χ_i matches its Elevation to round-off.
+    const double k = DeepWaterWaveNumber(c.omega, options.gravity);
+    omega_[i] = c.omega;
+    amplitude_[i] = c.amplitude;
+    phase_[i] = c.phase;
+    wave_number_north_[i] = k * std::cos(c.direction);
+    wave_number_east_[i] = k * std::sin(c.direction);
+    const double turns = (c.direction + kPi) / kTwoPi;
+    direction_turns_[i] = turns - std::floor(turns);
+    if (direction_turns_[i] >= 1.0) direction_turns_[i] = 0.0;
+
+    double* rows = &table_[i * static_cast<std::size_t>(n + 1) * row_size_];
+    for (int g = 0; g < n; ++g) {
+      const double beta = -kPi + g * step;
+      const ComplexVec6 rao = hydro.Rao(c.omega, beta);
+      const Vec6 drift = hydro.Drift(c.omega, beta);
+      double* row = rows + static_cast<std::size_t>(g) * row_size_;
+      for (int j = 0; j < 6; ++j) {
+        row[j] = rao[j].real();
+        row[6 + j] = rao[j].imag();
+      }
+      for (std::size_t m = 0; m < drift_modes_.size(); ++m) row[12 + m] = drift[drift_modes_[m]];
+    }
+    // Node n (β = +π) is node 0 (β = −π): the same head seas, bit for bit.
+    std::copy(rows, rows + row_size_, rows + static_cast<std::size_t>(n) * row_size_);
+  }
+}
+
+double WaveResponse::heading_step() const { return kTwoPi / heading_cells_; }
+
+template <bool kMotion, int kDriftColumns>
+void WaveResponse::Accumulate(double t, double x, double y, double psi, Vec6* xi, Vec6* xi_dot,
+                              Vec6* drift) const {
+  // Fixed-size Eigen arrays over the modes so that the blends, square roots and sums run
+  // two modes per SSE2 instruction; the drift columns are padded to an even count.
+  using Modes = Eigen::Array<double, 6, 1>;
+  using DriftModes = Eigen::Array<double, (kDriftColumns > 0 ? kDriftColumns : 2), 1>;
+  Modes xi_sum = Modes::Zero();
+  Modes xi_dot_sum = Modes::Zero();
+  // Re and Im of z₊ and z₋ per drift mode.
+  DriftModes plus_re = DriftModes::Zero();
+  DriftModes plus_im = DriftModes::Zero();
+  DriftModes minus_re = DriftModes::Zero();
+  DriftModes minus_im = DriftModes::Zero();
+
+  const int n = heading_cells_;
+  const std::size_t stride = static_cast<std::size_t>(n + 1) * row_size_;
+  const double psi_turns = PsiTurns(psi);
+  const double* table = table_.data();
+  const std::size_t count = omega_.size();
+
+  double chi[kBlock];
+  double sin_chi[kBlock];
+  double cos_chi[kBlock];
+  for (std::size_t begin = 0; begin < count; begin += kBlock) {
+    const int block = static_cast<int>(std::min<std::size_t>(kBlock, count - begin));
+    const double* omega = &omega_[begin];
+    const double* north = &wave_number_north_[begin];
+    const double* east = &wave_number_east_[begin];
+    const double* phase = &phase_[begin];
+    // χ_i exactly as WaveRealisation::Elevation writes it.
+    for (int l = 0; l < block; ++l) chi[l] = omega[l] * t - (north[l] * x + east[l] * y) + phase[l];
+    internal::SinCos(chi, sin_chi, cos_chi, block);
+
+    for (int l = 0; l < block; ++l) {
+      const std::size_t i = begin + l;
+      const HeadingCell h = LocateHeading(direction_turns_[i], psi_turns, n);
+      const double w = h.weight;
+      const double* low = table + i * stride + static_cast<std::size_t>(h.cell) * row_size_;
+      const double* high = low + row_size_;
+      const double a = amplitude_[i];
+      const double c = cos_chi[l];
+      const double s = sin_chi[l];
+
+      if constexpr (kMotion) {
+        // a Re{(R + i I) e^{iχ}} = a (R cos χ − I sin χ); d/dt multiplies by iω.
+        const Eigen::Map<const Modes> re_low(low);
+        const Eigen::Map<const Modes> im_low(low + 6);
+        const Eigen::Map<const Modes> re_high(high);
+        const Eigen::Map<const Modes> im_high(high + 6);
+        const Modes re = re_low + w * (re_high - re_low);
+        const Modes im = im_low + w * (im_high - im_low);
+        const double a_cos = a * c;
+        const double a_sin = a * s;
+        xi_sum += re * a_cos - im * a_sin;
+        xi_dot_sum -= omega[l] * (re * a_sin + im * a_cos);
+      }
+      if constexpr (kDriftColumns > 0) {
+        const Eigen::Map<const DriftModes> d_low(low + 12);
+        const Eigen::Map<const DriftModes> d_high(high + 12);
+        const DriftModes d = d_low + w * (d_high - d_low);
+        const DriftModes q = a * d.abs().sqrt();
+        // Each component joins z₊ or z₋ by the sign of its D: a select, not a branch.
+        const DriftModes q_plus = (d > 0.0).select(q, 0.0);
+        const DriftModes q_minus = q - q_plus;
+        plus_re += q_plus * c;
+        plus_im += q_plus * s;
+        minus_re += q_minus * c;
+        minus_im += q_minus * s;
+      }
+    }
+  }
+
+  if constexpr (kMotion) {
+    if (xi != nullptr) *xi = xi_sum.matrix();
+    if (xi_dot != nullptr) *xi_dot = xi_dot_sum.matrix();
+  }
+  if constexpr (kDriftColumns > 0) {
+    const DriftModes load =
+        (plus_re.square() + plus_im.square()) - (minus_re.square() + minus_im.square());
+    drift->setZero();
+    for (std::size_t m = 0; m < drift_modes_.size(); ++m) (*drift)[drift_modes_[m]] = load[m];
+  }
+}
+
+void WaveResponse::Evaluate(double t, double x, double y, double psi, Vec6* xi, Vec6* xi_dot,
+                            Vec6* drift) const {
+  if (!std::isfinite(t) || !std::isfinite(x) || !std::isfinite(y) || !std::isfinite(psi)) {
+    // No exception on the RHS path: NaN tells the ODE adapter to cut the step.
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (Vec6* out : {xi, xi_dot, drift}) {
+      if (out != nullptr) out->setConstant(nan);
+    }
+    return;
+  }
+  const bool motion = xi != nullptr || xi_dot != nullptr;
+  // The drift column count as a template argument gives fixed-size, vectorised arrays.
+  const bool six = drift_columns_ == 6;
+  if (drift == nullptr) {
+    if (motion) Accumulate<true, 0>(t, x, y, psi, xi, xi_dot, nullptr);
+  } else if (motion) {
+    if (six) {
+      Accumulate<true, 6>(t, x, y, psi, xi, xi_dot, drift);
+    } else {
+      Accumulate<true, 4>(t, x, y, psi, xi, xi_dot, drift);
+    }
+  } else {
+    if (six) {
+      Accumulate<false, 6>(t, x, y, psi, nullptr, nullptr, drift);
+    } else {
+      Accumulate<false, 4>(t, x, y, psi, nullptr, nullptr, drift);
+    }
+  }
+}
+
+void WaveResponse::Motion(double t, double x, double y, double psi, Vec6* xi, Vec6* xi_dot) const {
+  Evaluate(t, x, y, psi, xi, xi_dot, nullptr);
+}
+
+Vec6 WaveResponse::DriftLoad(double t, double x, double y, double psi) const {
+  Vec6 drift;
+  Evaluate(t, x, y, psi, nullptr, nullptr, &drift);
+  return drift;
+}
+
+Vec6 WaveResponse::MeanDrift(double psi) const {
+  // The time average of |z₊|² − |z₋|² keeps only the i = k terms: Σ_i a_i² D_ij.
+  Vec6 mean = Vec6::Zero();
+  if (!std::isfinite(psi)) {
+    mean.setConstant(std::numeric_limits<double>::quiet_NaN());
+    return mean;
+  }
+  const int n = heading_cells_;
+  const std::size_t stride = static_cast<std::size_t>(n + 1) * row_size_;
+  const double psi_turns = PsiTurns(psi);
+  for (std::size_t i = 0; i < omega_.size(); ++i) {
+    const HeadingCell h = LocateHeading(direction_turns_[i], psi_turns, n);
+    const double w = h.weight;
+    const double* low = &table_[i * stride + static_cast<std::size_t>(h.cell) * row_size_];
+    const double* high = low + row_size_;
+    const double a_squared = amplitude_[i] * amplitude_[i];
+    for (std::size_t m = 0; m < drift_modes_.size(); ++m) {
+      mean[drift_modes_[m]] += a_squared * (low[12 + m] + w * (high[12 + m] - low[12 + m]));
+    }
+  }
+  return mean;
+}
+
+namespace internal {
+
+void SinCos(const double* angle, double* sine, double* cosine, int count) {
+  // π/2 split into three parts of 33 significant bits each (fdlibm e_rem_pio2.c): q times
+  // the first is exact for |q| < 2^20, so x − q π/2 loses nothing to cancellation and the
+  // error of the reduction is q times the 8.5e-32 left of π/2 after the third part.
+  constexpr double kTwoOverPi = 6.36619772367581382433e-01;
+  constexpr double kHalfPi1 = 1.57079632673412561417e+00;
+  constexpr double kHalfPi2 = 6.07710050630396597660e-11;
+  constexpr double kHalfPi3 = 2.02226624871116645580e-21;
+  constexpr double kReductionLimit = 1.6e6;  // |q| < 2^20 = 1.05e6
+  // Adding 1.5 · 2^52 rounds to an integer and leaves it, two's complement, in the low
+  // mantissa bits (|v| < 2^51).
+  constexpr double kRoundingShift = 0x1.8p52;
+  // fdlibm k_sin.c: sin r = r + r³ (S1 + r² S2 + … + r¹⁰ S6) on [−π/4, π/4].
+  constexpr double kS1 = -1.66666666666666324348e-01;
+  constexpr double kS2 = 8.33333333332248946124e-03;
+  constexpr double kS3 = -1.98412698298579493134e-04;
+  constexpr double kS4 = 2.75573137070700676789e-06;
+  constexpr double kS5 = -2.50507602534068634195e-08;
+  constexpr double kS6 = 1.58969099521155010221e-10;
+  // fdlibm k_cos.c: cos r = 1 − r²/2 + r⁴ (C1 + r² C2 + … + r¹⁰ C6).
+  constexpr double kC1 = 4.16666666666666019037e-02;
+  constexpr double kC2 = -1.38888888888741095749e-03;
+  constexpr double kC3 = 2.48015872894767294178e-05;
+  constexpr double kC4 = -2.75573143513906633035e-07;
+  constexpr double kC5 = 2.08757232129817482790e-09;
+  constexpr double kC6 = -1.13596475577881948265e-11;
+
+  for (int l = 0; l < count; ++l) {
+    const double x = angle[l];
+    const double shifted = x * kTwoOverPi + kRoundingShift;
+    const double q = shifted - kRoundingShift;
+    const std::uint64_t quadrant = BitsOf(shifted);  // q mod 4 in the two lowest bits
+    const double r = ((x - q * kHalfPi1) - q * kHalfPi2) - q * kHalfPi3;
+    const double z = r * r;
+    const double sin_r =
+        r + r * z * (kS1 + z * (kS2 + z * (kS3 + z * (kS4 + z * (kS5 + z * kS6)))));
+    const double cos_r =
+        1.0 - 0.5 * z + z * z * (kC1 + z * (kC2 + z * (kC3 + z * (kC4 + z * (kC5 + z * kC6)))));
+    // x = q π/2 + r: quadrant 0 (sin r, cos r), 1 (cos r, −sin r), 2 (−sin r, −cos r),
+    // 3 (−cos r, sin r). Swap and signs as bit operations: no branch, no select.
+    const std::uint64_t odd = std::uint64_t{0} - (quadrant & 1u);  // all ones when odd
+    const std::uint64_t sin_bits = BitsOf(sin_r);
+    const std::uint64_t cos_bits = BitsOf(cos_r);
+    const std::uint64_t sin_sign = (quadrant & 2u) << 62;
+    const std::uint64_t cos_sign = ((quadrant + 1u) & 2u) << 62;
+    sine[l] = DoubleOf(((cos_bits & odd) | (sin_bits & ~odd)) ^ sin_sign);
+    cosine[l] = DoubleOf(((sin_bits & odd) | (cos_bits & ~odd)) ^ cos_sign);
+  }
+  // Non-finite angles already gave NaN above, as std::sin would.
+  for (int l = 0; l < count; ++l) {
+    if (std::abs(angle[l]) > kReductionLimit && std::isfinite(angle[l])) {
+      sine[l] = std::sin(angle[l]);
+      cosine[l] = std::cos(angle[l]);
+    }
+  }
+}
+
+}  // namespace internal
+
+}  // namespace moorsim::vessel
