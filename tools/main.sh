@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Quick start, main job: installs the dependencies (Debian packages), builds moorsim
 # (release preset) and runs the main job end to end: the static solution of the seed
-# mooring from the FEM lines settled to rest, then a 1000 s simulate-lines run of the seed
-# case with the turret surging 5 m / 100 s plus 2 m / 10 s, writing out/seed_surge.csv.
+# mooring, then the thesis case "line 6 parts at 400 s, with current" as a coupled run
+# (vessel, FEM lines, waves, current, PI controller, sensors) written to
+# out/thesis_line6_current/run.h5 and summary.json, and its figures drawn by plot_run.py.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -15,6 +16,6 @@ mkdir -p out
 echo
 ./build/release/tools/moorsim static scenarios/library/seed_tapm.yaml --json > out/seed_static.json
 echo "wrote out/seed_static.json"
-./build/release/tools/moorsim simulate-lines scenarios/library/seed_tapm.yaml \
-  --motion surge:5,100,2,10 --duration 1000 --out out/seed_surge.csv
-echo "wrote out/seed_surge.csv"
+./build/release/tools/moorsim run scenarios/library/thesis_line6_current.yaml \
+  --out out/thesis_line6_current
+/usr/bin/python3 tools/plot_run.py out/thesis_line6_current

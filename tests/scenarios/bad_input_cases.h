@@ -66,6 +66,45 @@ solver:
   max_order: 4
   stability_limit_detection: false
   max_step: 0.5
+vessel:
+  hydrodynamics: )" MOORSIM_SOURCE_DIR R"(/data/fpso_wamit/fpso
+  length_scale: 1
+  mass: 1.0041e8
+  centre_of_gravity: [0, 0, 1]
+  radii_of_gyration: [16.3, 54, 54]
+  damping: {surge_time: 50, sway_time: 100, yaw_time: 20, heave_ratio: 0.1, roll_ratio: 0.07, pitch_ratio: 0.1}
+  initial_pose: {x: 2, y: 2, heading_deg: 10}
+  thrusters:
+    - {name: aft_port, x: -90, y: -8, angle_deg: 0, azimuth: false, max_thrust: 1.0e6, min_thrust: -6.0e5, weight: 1, time_constant: 5, rate_limit: 2.0e5}
+    - {name: aft_starboard, x: -90, y: 8, max_thrust: 1.0e6, min_thrust: -6.0e5}
+    - {name: bow_tunnel, x: 90, y: 0, angle_deg: 90, max_thrust: 6.0e5, min_thrust: -6.0e5}
+environment:
+  waves: {hs: 2.5, tp: 7, gamma: 3.3, direction_toward_deg: 315, spreading: 10, components: 200}
+  wind: {speed: 12, direction_from_deg: 135, gust: true, components: 100}
+  hull_viscous_drag: true
+controller:
+  type: pi
+  rate_hz: 1
+  setpoint: {x: 0, y: 0, heading_deg: 0}
+  kp: [1.0e5, 1.0e6, 1.0e3]
+  ki: [1.0e3, 1.0e3, 1.0e2]
+  kd: [0, 0, 0]
+  natural_period: 120
+  damping_ratio: 0.8
+sensors:
+  gnss:
+    rate_hz: 1
+    north: {std_dev: 0.07, bias_walk: 0.001, bias_time_constant: 600, initial_bias: 0.1, outlier_probability: 0.01, outlier_std_dev: 2}
+    east: {std_dev: 0.07}
+    dropout_probability: 0.01
+    dropout_mean_duration: 5
+  gyro:
+    rate_hz: 1
+    heading: {std_dev: 0.07}
+    dropout_probability: 0.01
+  tension_cells: {rate_hz: 1, noise: {std_dev: 1.0e4}}
+failure: {line: 2, time: 300, mode: node, node: 10}
+simulation: {duration: 1000, output_rate_hz: 2, seed: 7}
 )";
 
 // Replaces the first `old_text` at or after the first `after` ("" = the start).
@@ -161,6 +200,24 @@ inline const BadInput kParseErrors[] = {
      "direction:", "mooring.current: unknown key 'direction' (known: direction_deg, profile)"},
     {"SecondDocument", "", "max_step: 0.5\n", "max_step: 0.5\n---\nname: other\n", "name: other",
      "a scenario file holds one YAML document; this is a second one"},
+    // The coupled-simulation sections (issue 3).
+    {"VesselUnknownKey", "vessel:", "mass: 1.0041e8", "mas: 1.0041e8", "mas",
+     "vessel: unknown key 'mas' (known: centre_of_gravity, damping, hydrodynamics, "
+     "initial_pose, length_scale, mass, radii_of_gyration, thrusters)"},
+    {"WavesMissingHs", "environment:", "{hs: 2.5, tp: 7", "{tp: 7", "{tp",
+     "environment.waves: required key 'hs' is missing"},
+    {"ControllerGainNotAList", "controller:", "kp: [1.0e5, 1.0e6, 1.0e3]", "kp: 1.0e5",
+     "kp: ^1.0e5", "controller.kp: 1.0e5 must be a list of 3 numbers [x, y, z]"},
+    {"SeedNegative", "simulation:", "seed: 7", "seed: -7", "seed: ^-7",
+     "simulation.seed: -7 must be a non-negative integer"},
+    {"SensorNoiseQuoted", "north:", "std_dev: 0.07, bias", "std_dev: \"0.07\", bias",
+     "std_dev: ^\"0.07\"", "sensors.gnss.north.std_dev: \"0.07\" must be a number"},
+    {"FailureMissingLine", "failure:", "{line: 2, time", "{time", "{time",
+     "failure: required key 'line' is missing"},
+    {"CurrentGivenTwice", "", "hull_viscous_drag: true",
+     "hull_viscous_drag: true\n  current: {direction_deg: 0, profile: [{depth: 0, speed: 0.1}]}",
+     "direction_deg: 90",
+     "mooring.current: the current is given twice; keep it under environment.current only"},
 };
 inline const BadInput kValidationErrors[] = {
     {"DiameterNotPositive", "- name: chain", "diameter: 0.08", "diameter: -0.08", "-0.08",
@@ -255,5 +312,37 @@ inline const BadInput kValidationErrors[] = {
      "solver.max_order: 6 must be in 1..5"},
     {"MaxStepNegative", "", "max_step: 0.5", "max_step: -1", "max_step: ^-1",
      "solver.max_step: -1 s must be >= 0 (0 = no limit)"},
+    // The coupled-simulation sections (issue 3).
+    {"HydrodynamicsMissing", "vessel:", "fpso_wamit/fpso", "fpso_wamit/nothing", "hydrodynamics: ^",
+     "vessel.hydrodynamics: '" MOORSIM_SOURCE_DIR
+     "/data/fpso_wamit/nothing': no WAMIT file '" MOORSIM_SOURCE_DIR "/data/fpso_wamit/nothing.1'"},
+    {"VesselMassZero", "vessel:", "mass: 1.0041e8", "mass: 0", "mass: ^0",
+     "vessel.mass: 0 kg must be > 0"},
+    {"ThrusterMinThrustPositive", "name: aft_port", "min_thrust: -6.0e5", "min_thrust: 5",
+     "min_thrust: ^5", "vessel.thrusters[1].min_thrust: 5 N must be <= 0"},
+    {"ThrusterNameTwice", "y: -8", "name: aft_starboard", "name: aft_port", "aft_port",
+     "vessel.thrusters[2].name: 'aft_port' is used by thruster 1 too"},
+    {"WavesGammaBelowOne", "environment:", "gamma: 3.3", "gamma: 0.5", "gamma: ^0.5",
+     "environment.waves.gamma: 0.5 must be in [1, 10]"},
+    {"WindSpeedNegative", "wind:", "speed: 12", "speed: -12", "speed: ^-12",
+     "environment.wind.speed: -12 m/s must be >= 0"},
+    {"ControllerUnknownType", "controller:", "type: pi", "type: pid", "type: ^pid",
+     "controller.type: unknown controller 'pid' (known: none, observer_pid, pi)"},
+    {"ControllerRateZero", "controller:", "rate_hz: 1", "rate_hz: 0", "rate_hz: ^0",
+     "controller.rate_hz: 0 Hz must be > 0"},
+    {"GnssRateZero", "gnss:", "rate_hz: 1", "rate_hz: 0", "rate_hz: ^0",
+     "sensors.gnss.rate_hz: 0 Hz must be > 0"},
+    {"DropoutProbabilityAboveOne", "gnss:", "dropout_probability: 0.01", "dropout_probability: 1.5",
+     "dropout_probability: ^1.5", "sensors.gnss.dropout_probability: 1.5 must be in [0, 1)"},
+    {"FailureLineOutOfRange", "failure:", "line: 2", "line: 9", "line: ^9",
+     "failure.line: 9 must be in 1..3"},
+    {"FailureAfterTheEnd", "failure:", "time: 300", "time: 1300", "time: ^1300",
+     "failure.time: 1300 s is not before the end of the run (simulation.duration 1000 s)"},
+    {"FailureUnknownMode", "failure:", "mode: node", "mode: middle", "mode: ^middle",
+     "failure.mode: unknown failure mode 'middle' (known: anchor, fairlead, node)"},
+    {"FailureNodeOutOfRange", "failure:", "node: 10", "node: 60", "node: ^60",
+     "failure.node: 60 must be in 1..39"},
+    {"SimulationDurationZero", "simulation:", "duration: 1000", "duration: 0", "duration: ^0",
+     "simulation.duration: 0 s must be > 0"},
 };
 }  // namespace moorsim::scenarios::test_cases

@@ -14,7 +14,9 @@ inline std::string SeedMooringText() {
   std::ifstream file(MOORSIM_SOURCE_DIR "/scenarios/library/seed_tapm.yaml");
   std::ostringstream text;
   text << file.rdbuf();
-  return text.str();
+  // The mooring and solver only: cut the coupled-simulation sections.
+  const std::string all = text.str();
+  return all.substr(0, all.find("# --- coupled simulation"));
 }
 
 /// The seed mooring plus the seed FPSO (no controller, calm water unless `extra` says

@@ -1,0 +1,183 @@
+// `moorsim run` end to end: the datasets and attributes DESIGN.md section 7 names, the
+// summary, bit-for-bit reproducibility per seed, --set overrides and their errors.
+#include <gtest/gtest.h>
+#include <hdf5.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "tests/cli/run_cli.h"
+
+namespace moorsim::testing {
+namespace {
+
+const std::string kSeed = MOORSIM_SOURCE_DIR "/scenarios/library/seed_tapm.yaml";
+
+/// Shape of a dataset (empty if it does not exist).
+std::vector<hsize_t> Shape(hid_t file, const char* path) {
+  if (H5Lexists(file, path, H5P_DEFAULT) <= 0) return {};
+  const hid_t d = H5Dopen2(file, path, H5P_DEFAULT);
+  const hid_t space = H5Dget_space(d);
+  std::vector<hsize_t> dims(H5Sget_simple_extent_ndims(space));
+  H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+  H5Sclose(space);
+  H5Dclose(d);
+  return dims;
+}
+
+std::vector<double> Read(hid_t file, const char* path) {
+  std::vector<hsize_t> dims = Shape(file, path);
+  hsize_t n = 1;
+  for (hsize_t d : dims) n *= d;
+  std::vector<double> values(n);
+  const hid_t d = H5Dopen2(file, path, H5P_DEFAULT);
+  H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
+  H5Dclose(d);
+  return values;
+}
+
+bool HasAttribute(hid_t file, const char* object, const char* name) {
+  return H5Aexists_by_name(file, object, name, H5P_DEFAULT) > 0;
+}
+
+TEST(RunCommand, WritesTheDesignDatasetsAndTheSummary) {
+  TempDirectory dir(::testing::TempDir());
+  const std::string out = (dir.path() / "seed").string();
+  const CliResult r =
+      RunCli({"run", kSeed, "--out", out, "--duration", "20", "--quiet"}, dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+
+  const nlohmann::json summary = nlohmann::json::parse(ReadWholeFile(out + "/summary.json"));
+  EXPECT_EQ(summary["scenario"], "seed_tapm");
+  EXPECT_EQ(summary["seed"], 1);
+  EXPECT_EQ(summary["version"], MOORSIM_VERSION);
+  EXPECT_TRUE(summary["failure"].is_null());
+  EXPECT_TRUE(summary["detectors"].is_object());
+  EXPECT_EQ(summary["status"], "ok");
+  EXPECT_DOUBLE_EQ(summary["simulated_time"].get<double>(), 20.0);
+
+  const hid_t file = H5Fopen((out + "/run.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  const hsize_t n = 21;  // 1 Hz output, t = 0 .. 20 s
+  EXPECT_EQ(Shape(file, "/time"), std::vector<hsize_t>({n}));
+  EXPECT_EQ(Shape(file, "/vessel/pose_true"), std::vector<hsize_t>({n, 6}));
+  EXPECT_EQ(Shape(file, "/vessel/velocity_true"), std::vector<hsize_t>({n, 6}));
+  EXPECT_EQ(Shape(file, "/vessel/pose_measured"), std::vector<hsize_t>({n, 3}));
+  EXPECT_EQ(Shape(file, "/mooring/fairlead_tension"), std::vector<hsize_t>({n, 8}));
+  EXPECT_EQ(Shape(file, "/thrust/commanded"), std::vector<hsize_t>({n, 3}));
+  EXPECT_EQ(Shape(file, "/thrust/delivered"), std::vector<hsize_t>({n, 3}));
+  for (const char* load : {"/environment/mooring", "/environment/waves_drift",
+                           "/environment/current", "/environment/wind", "/environment/thrust"}) {
+    EXPECT_EQ(Shape(file, load), std::vector<hsize_t>({n, 6})) << load;
+  }
+  for (const char* d : {"/time", "/vessel/pose_true", "/mooring/fairlead_tension"}) {
+    EXPECT_TRUE(HasAttribute(file, d, "units")) << d;
+  }
+  for (const char* a : {"scenario", "scenario_name", "seed", "version", "failure_line"}) {
+    EXPECT_TRUE(HasAttribute(file, "/", a)) << a;
+  }
+  // The seed case's start: tensions near the catenary's 6.06 MN, the vessel near (2, 2).
+  const std::vector<double> tension = Read(file, "/mooring/fairlead_tension");
+  EXPECT_NEAR(tension[0], 6.06e6, 0.02 * 6.06e6);
+  const std::vector<double> pose = Read(file, "/vessel/pose_low_frequency");
+  EXPECT_DOUBLE_EQ(pose[0], 2.0);
+  H5Fclose(file);
+}
+
+TEST(RunCommand, SameSeedIsBitIdenticalAndAnotherSeedDiffers) {
+  TempDirectory dir(::testing::TempDir());
+  const std::string a = (dir.path() / "a").string(), b = (dir.path() / "b").string(),
+                    c = (dir.path() / "c").string();
+  for (const auto& [out, seed] : {std::pair{a, "5"}, {b, "5"}, {c, "6"}}) {
+    const CliResult r = RunCli(
+        {"run", kSeed, "--out", out, "--duration", "30", "--seed", seed, "--quiet"}, dir.path());
+    ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  }
+  // The writer stores no timestamps, so the same run gives the same bytes.
+  EXPECT_EQ(ReadWholeFile(a + "/run.h5"), ReadWholeFile(b + "/run.h5"));
+  const hid_t fa = H5Fopen((a + "/run.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t fc = H5Fopen((c + "/run.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  // Another seed: other waves (so another true motion) and other sensor noise.
+  EXPECT_NE(Read(fa, "/vessel/pose_measured"), Read(fc, "/vessel/pose_measured"));
+  EXPECT_NE(Read(fa, "/vessel/pose_true"), Read(fc, "/vessel/pose_true"));
+  H5Fclose(fa);
+  H5Fclose(fc);
+  const nlohmann::json summary = nlohmann::json::parse(ReadWholeFile(c + "/summary.json"));
+  EXPECT_EQ(summary["seed"], 6);
+}
+
+TEST(RunCommand, SetOverridesAValueAndIsRecorded) {
+  TempDirectory dir(::testing::TempDir());
+  const std::string out = (dir.path() / "o").string();
+  const CliResult r = RunCli({"run", kSeed, "--out", out, "--duration", "5", "--quiet", "--set",
+                              "controller.type=none", "--set",
+                              "environment.wind={speed: 8, "
+                              "direction_from_deg: 90}"},
+                             dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  const nlohmann::json summary = nlohmann::json::parse(ReadWholeFile(out + "/summary.json"));
+  ASSERT_EQ(summary["overrides"].size(), 3u);  // the two --set and --duration
+  EXPECT_EQ(summary["overrides"][0], "controller.type=none");
+  const hid_t file = H5Fopen((out + "/run.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const std::vector<double> commanded = Read(file, "/thrust/commanded");
+  for (double v : commanded) EXPECT_EQ(v, 0.0);  // no controller
+  const std::vector<double> wind = Read(file, "/environment/wind");
+  EXPECT_NE(wind[1], 0.0);  // wind from the east pushes the vessel
+  H5Fclose(file);
+}
+
+TEST(RunCommand, BadOverridesAndFlagsExitWithCode2AndOneLine) {
+  TempDirectory dir(::testing::TempDir());
+  const std::string out = (dir.path() / "x").string();
+  const struct {
+    std::vector<std::string> args;
+    std::string message;
+  } cases[] = {
+      {{"--set", "controller.type=pid"},
+       "moorsim: " + kSeed +
+           ": controller.type: unknown controller 'pid' (known: none, observer_pid, pi)\n"},
+      {{"--set", "nonsense"},
+       "moorsim: --set nonsense: expected key.path=value (e.g. "
+       "controller.type=pi)\n"},
+      {{"--seed", "-3"},
+       "moorsim: " + kSeed +
+           ": simulation.seed: -3 must be a non-negative "
+           "integer\n"},
+      {{"--duration", "0"}, "moorsim: " + kSeed + ": simulation.duration: 0 s must be > 0\n"},
+      {{"--set", "mooring.lines[9].length=1"},
+       "moorsim: --set mooring.lines[9].length=1: there is no list entry [9]\n"},
+  };
+  for (const auto& c : cases) {
+    std::vector<std::string> args = {"run", kSeed, "--out", out, "--quiet"};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    const CliResult r = RunCli(args, dir.path());
+    EXPECT_EQ(r.exit_code, 2) << r.Describe();
+    EXPECT_EQ(r.err, c.message);
+  }
+}
+
+TEST(RunCommand, ThesisCaseLine6PartsAtItsTime) {
+  TempDirectory dir(::testing::TempDir());
+  const std::string out = (dir.path() / "l6").string();
+  const CliResult r = RunCli({"run", MOORSIM_SOURCE_DIR "/scenarios/library/thesis_line6.yaml",
+                              "--out", out, "--duration", "410", "--quiet"},
+                             dir.path(), std::chrono::seconds(600));
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  const nlohmann::json summary = nlohmann::json::parse(ReadWholeFile(out + "/summary.json"));
+  EXPECT_EQ(summary["failure"]["line"], 6);
+  EXPECT_EQ(summary["failure"]["time"], 400.0);
+  const hid_t file = H5Fopen((out + "/run.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const std::vector<double> tension = Read(file, "/mooring/fairlead_tension");
+  const std::vector<double> time = Read(file, "/time");
+  H5Fclose(file);
+  for (std::size_t k = 0; k < time.size(); ++k) {
+    const double t6 = tension[8 * k + 5];
+    if (time[k] < 400.0) EXPECT_GT(t6, 4e6) << "t = " << time[k];
+    if (time[k] >= 400.0) EXPECT_EQ(t6, 0.0) << "t = " << time[k];
+  }
+}
+
+}  // namespace
+}  // namespace moorsim::testing
