@@ -39,6 +39,12 @@ struct IntegratorStats {
   long stability_order_reductions = 0;
   double last_step = 0.0;
   int last_order = 0;
+  /// Wall time [s] inside the right-hand side, the Jacobian, KLU's numerical factorisation
+  /// (linear solver setup) and KLU's solves; the rest of CVODE's time is everything else.
+  double rhs_seconds = 0.0;
+  double jacobian_seconds = 0.0;
+  double linear_setup_seconds = 0.0;
+  double linear_solve_seconds = 0.0;
 
   IntegratorStats& operator+=(const IntegratorStats& other);
 };

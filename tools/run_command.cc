@@ -127,7 +127,11 @@ nlohmann::json Stats(const IntegratorStats& s) {
           {"linear_setups", s.linear_setups},
           {"newton_iterations", s.newton_iterations},
           {"newton_failures", s.newton_failures},
-          {"error_test_failures", s.error_test_failures}};
+          {"error_test_failures", s.error_test_failures},
+          {"rhs_seconds", s.rhs_seconds},
+          {"jacobian_seconds", s.jacobian_seconds},
+          {"linear_setup_seconds", s.linear_setup_seconds},
+          {"linear_solve_seconds", s.linear_solve_seconds}};
 }
 
 int Run(const RunOptions& o) {

@@ -174,8 +174,11 @@ TEST(RunCommand, ThesisCaseLine6PartsAtItsTime) {
   H5Fclose(file);
   for (std::size_t k = 0; k < time.size(); ++k) {
     const double t6 = tension[8 * k + 5];
-    if (time[k] < 400.0) EXPECT_GT(t6, 4e6) << "t = " << time[k];
-    if (time[k] >= 400.0) EXPECT_EQ(t6, 0.0) << "t = " << time[k];
+    if (time[k] < 400.0) {
+      EXPECT_GT(t6, 4e6) << "t = " << time[k];
+    } else {
+      EXPECT_EQ(t6, 0.0) << "t = " << time[k];
+    }
   }
 }
 

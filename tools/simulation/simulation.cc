@@ -420,8 +420,11 @@ void Simulation::AdvanceTo(double t) {
   const auto start = std::chrono::steady_clock::now();
   DiscreteEvents();
   while (t_ < t) {
-    const double target = std::min(t, NextEventTime());
-    integrator_->SetStopTime(target);
+    // CVODE stops exactly at discrete events (the command changes there); other output
+    // times are interpolated from its steps, which then carry on past them.
+    const double event = NextEventTime();
+    if (std::isfinite(event)) integrator_->SetStopTime(event);
+    const double target = std::min(t, event);
     integrator_->AdvanceTo(target);
     t_ = integrator_->time();
     std::copy(integrator_->state(), integrator_->state() + x_.size(), x_.begin());
