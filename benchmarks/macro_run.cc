@@ -46,8 +46,8 @@ int main(int argc, char** argv) {
   char pattern[] = "/tmp/moorsim_macro_XXXXXX";
   if (mkdtemp(pattern) == nullptr) return 1;
   const std::string out = pattern;
-  std::vector<std::string> args = {moorsim, "run", scenario, "--duration", duration,
-                                   "--out", out, "--quiet"};
+  std::vector<std::string> args = {moorsim,  "run",   scenario, "--duration",
+                                   duration, "--out", out,      "--quiet"};
   for (const std::string& s : sets) {
     args.push_back("--set");
     args.push_back(s);
@@ -82,15 +82,17 @@ int main(int argc, char** argv) {
   std::printf("scenario %s, %s s simulated, seed %s\n", s["scenario"].get<std::string>().c_str(),
               duration.c_str(), s["seed"].dump().c_str());
   std::printf("wall %.2f s, real-time factor %.0fx\n", wall, s["real_time_factor"].get<double>());
-  std::printf("steps %ld, rhs %ld, jacobians %ld, linear setups %ld, newton failures %ld, "
-              "error-test failures %ld\n",
-              integ["steps"].get<long>(), integ["rhs_evaluations"].get<long>(),
-              integ["jacobian_evaluations"].get<long>(), integ["linear_setups"].get<long>(),
-              integ["newton_failures"].get<long>(), integ["error_test_failures"].get<long>());
-  std::printf("time shares: rhs %.1f %%, jacobian %.1f %%, KLU factorisation %.1f %%, KLU "
-              "solves %.1f %%, everything else %.1f %%\n",
-              100 * rhs / wall, 100 * jac / wall, 100 * setup / wall, 100 * solve / wall,
-              100 * other / wall);
+  std::printf(
+      "steps %ld, rhs %ld, jacobians %ld, linear setups %ld, newton failures %ld, "
+      "error-test failures %ld\n",
+      integ["steps"].get<long>(), integ["rhs_evaluations"].get<long>(),
+      integ["jacobian_evaluations"].get<long>(), integ["linear_setups"].get<long>(),
+      integ["newton_failures"].get<long>(), integ["error_test_failures"].get<long>());
+  std::printf(
+      "time shares: rhs %.1f %%, jacobian %.1f %%, KLU factorisation %.1f %%, KLU "
+      "solves %.1f %%, everything else %.1f %%\n",
+      100 * rhs / wall, 100 * jac / wall, 100 * setup / wall, 100 * solve / wall,
+      100 * other / wall);
   std::printf("peak memory (max RSS of the run) %.1f MB, run.h5 %.1f MB\n",
               usage.ru_maxrss / 1024.0, h5_size / 1e6);
   return 0;
