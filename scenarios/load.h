@@ -59,9 +59,9 @@
 //
 // Strictness: unknown keys, duplicate keys, a value of the wrong kind (a quoted "0.08"
 // where a number belongs, 2.5 where an integer belongs, .inf or .nan) and missing
-// required keys are all errors. Later sections (vessel, environment, controller, sensors,
-// failure, simulation, detectors) are added as rows of the top-level section table in
-// load.cc; until then they are unknown keys.
+// required keys are all errors. The coupled-simulation sections (vessel, environment,
+// controller, sensors, failure, simulation) are documented in scenarios/README.md; each is
+// a row of the top-level section table in load.cc.
 #pragma once
 
 #include <string>
