@@ -69,8 +69,7 @@ namespace {
 /// Seconds since an arbitrary epoch, for the time shares in IntegratorStats (~20 ns a call,
 /// against ~30 us for the lightest right-hand side).
 double Now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 }  // namespace
