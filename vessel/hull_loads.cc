@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "core/error.h"
+#include "vessel/checks.h"
 
 namespace moorsim::vessel {
 namespace {
@@ -48,19 +49,8 @@ constexpr double kTankerCrossForce = 0.40;         // delta
 // Blendermann's slope of the centre of effort against the wind angle [1/rad].
 constexpr double kCentreOfEffortSlope = 0.18;
 
-std::string Format(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
-[[noreturn]] void ThrowBadValue(std::string_view field, double value, std::string_view unit,
-                                std::string_view constraint) {
-  std::string message = std::string(field) + ": " + Format(value);
-  if (!unit.empty()) message += " " + std::string(unit);
-  message += " " + std::string(constraint);
-  throw InputError(message);
-}
+using internal::ThrowBadValue;
+std::string Format(double value) { return internal::FormatValue(value); }
 
 void RequirePositive(std::string_view field, double value, std::string_view unit) {
   if (!(value > 0.0) || !std::isfinite(value)) {

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "vessel/checks.h"
 
 namespace moorsim::vessel {
 namespace {
@@ -24,14 +25,8 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInstantToleranceIntervals = 1e-9;
 constexpr double kInstantToleranceUlps = 4.0 * std::numeric_limits<double>::epsilon();
 
-std::string Format(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
 [[noreturn]] void ThrowBadValue(std::string_view key, double value, std::string_view constraint) {
-  throw InputError(std::string(key) + ": " + Format(value) + " " + std::string(constraint));
+  internal::ThrowBadValue(key, value, "", constraint);
 }
 
 std::string Key(std::string_view path, std::string_view field) {
@@ -80,7 +75,7 @@ const ChannelNoise& ValidatedTensionNoise(int lines, const ChannelNoise& noise) 
 void RequireNotSampled(std::int64_t k, std::int64_t next_index, std::string_view instrument,
                        double t) {
   if (k < next_index) {
-    throw std::logic_error(std::string(instrument) + ": instant t = " + Format(t) +
+    throw std::logic_error(std::string(instrument) + ": instant t = " + internal::FormatValue(t) +
                            " s was already sampled or lies before the last sample");
   }
 }

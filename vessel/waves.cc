@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "core/error.h"
+#include "vessel/checks.h"
 
 namespace moorsim::vessel {
 namespace {
@@ -34,19 +35,8 @@ constexpr double kSpreadingTailRatio = 1e-16;
 // one complex multiplication per component, whose rounding grows ~linearly with the count.
 constexpr int kSeriesReanchorSamples = 512;
 
-std::string Format(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
-[[noreturn]] void ThrowBadValue(std::string_view field, double value, std::string_view unit,
-                                std::string_view constraint) {
-  std::string message = std::string(field) + ": " + Format(value);
-  if (!unit.empty()) message += " " + std::string(unit);
-  message += " " + std::string(constraint);
-  throw InputError(message);
-}
+using internal::ThrowBadValue;
+std::string Format(double value) { return internal::FormatValue(value); }
 
 /// Maps an angle to (-pi, pi].
 double WrapAngle(double angle) {
