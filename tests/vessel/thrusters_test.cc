@@ -58,8 +58,9 @@ TEST(ThrustAllocation, SaturationKeepsTheDirectionOfTheCommand) {
   EXPECT_LT(s, 1.0);
   EXPECT_NEAR(a.achieved.z(), s * tau.z(), 1e-6 * std::abs(tau.z()));
   double largest_ratio = 0.0;
+  const std::vector<ThrusterSpec> thrusters = SeedThrusters();
   for (int i = 0; i < 3; ++i) {
-    const auto& t = SeedThrusters()[i];
+    const ThrusterSpec& t = thrusters[i];
     largest_ratio = std::max(
         largest_ratio, a.thrust(i) > 0 ? a.thrust(i) / t.max_thrust : a.thrust(i) / t.min_thrust);
     EXPECT_LE(a.thrust(i), t.max_thrust * (1 + 1e-12));
