@@ -1,0 +1,72 @@
+// The detector interface (DESIGN.md section 6). A detector watches the evidence the
+// hypothesis observers derive from the noisy pose stream and says, at every sample, which
+// hypothesis it believes (0 = all lines intact, k = line k failed, further indices for
+// pairs) and whether it declares a failure.
+//
+// Detectors are built by name from the scenario's `detectors:` list through the registry
+// (detectors/registry.h); several run side by side on the same evidence.
+#pragma once
+
+#include <array>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/types.h"
+
+namespace moorsim::detectors {
+
+/// One sample of what the vessel's instruments and controller give a detector.
+struct Observation {
+  double t = 0.0;                              ///< [s]
+  Vec3 pose = Vec3::Zero();                    ///< measured x, y [m] (NED), psi [rad]
+  std::array<bool, 3> valid = {true, true, true};  ///< channels delivered at this sample
+  Vec3 tau_command = Vec3::Zero();             ///< commanded thrust X, Y, N, body frame
+  std::optional<VecX> tensions;                ///< fairlead tension cells [N], if fitted
+};
+
+/// What one hypothesis's observer makes of a sample: its innovation (measurement minus
+/// prediction, x, y, psi with psi wrapped), the innovation covariance S and the Gaussian
+/// log-likelihood log N(innovation; 0, S) over the valid channels.
+struct HypothesisEvidence {
+  Vec3 innovation = Vec3::Zero();
+  Mat3 covariance = Mat3::Identity();
+  double log_likelihood = 0.0;
+  int dimension = 3;  ///< number of valid channels used
+};
+
+/// The evidence of every hypothesis at one sample; hypotheses[0] is "all intact".
+struct Evidence {
+  double t = 0.0;
+  std::vector<HypothesisEvidence> hypotheses;
+};
+
+/// A detector's state after a sample.
+struct Verdict {
+  /// Per hypothesis: probability (DHT), negative log-likelihood (MLE) or test statistic
+  /// (GLR); what it is is documented by each detector.
+  std::vector<double> score;
+  int hypothesis = 0;  ///< the detector's best hypothesis, 0 = intact
+  bool alarm = false;  ///< a failure is declared (by the detector's documented rule)
+};
+
+class Detector {
+ public:
+  virtual ~Detector() = default;
+  virtual std::string_view type() const = 0;
+  /// Starts over for `hypotheses` hypotheses (hypothesis 0 intact).
+  virtual void Reset(int hypotheses) = 0;
+  virtual Verdict Update(const Evidence& evidence) = 0;
+};
+
+/// A detector as the scenario names it: its type, a unique label (default: the type) and
+/// its numeric parameters by name. The registry checks the names and ranges.
+struct DetectorSpec {
+  std::string type;
+  std::string label;
+  std::map<std::string, double> parameters;
+};
+
+}  // namespace moorsim::detectors
