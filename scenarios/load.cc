@@ -138,6 +138,23 @@ class Reader {
   }
 
   SourceMark mark() const { return mark_; }
+  bool IsMap() const { return node_.IsMap(); }
+  std::string Text() const { return Describe(node_); }
+  /// The keys of a map, in order; duplicate keys and non-scalar keys are errors.
+  std::vector<std::string> Keys() const {
+    std::vector<std::string> keys;
+    for (const auto& entry : node_) {
+      const SourceMark key_mark = ToSourceMark(entry.first.Mark());
+      if (!entry.first.IsScalar())
+        ThrowAt(context_->file, key_mark, path_, "keys must be plain names");
+      const std::string& name = entry.first.Scalar();
+      if (std::find(keys.begin(), keys.end(), name) != keys.end()) {
+        ThrowAt(context_->file, key_mark, path_, "duplicate key '" + name + "'");
+      }
+      keys.push_back(name);
+    }
+    return keys;
+  }
 
   [[noreturn]] void Fail(const std::string& what) const {
     ThrowAt(context_->file, mark_, path_, what);
@@ -531,6 +548,32 @@ void ParseFailure(const Reader& r, Scenario& scenario) {
   f.arc_length = r.Maybe<double>("arc_length");
 }
 
+void ParseDetectors(const Reader& r, Scenario& scenario) {
+  for (const Reader& item : r.Items()) {
+    if (!item.IsMap()) item.Fail(item.Text() + " must be a map {type: ..., <parameter>: <number>}");
+    DetectorEntry entry;
+    for (const std::string& key : item.Keys()) {
+      if (key == "type") {
+        entry.type = item.Required<std::string>("type");
+      } else if (key == "label") {
+        entry.label = item.Required<std::string>("label");
+      } else {
+        entry.parameters[key] = item.Required<double>(key);
+      }
+    }
+    if (entry.type.empty()) item.Child("type");  // "required key 'type' is missing"
+    if (entry.label.empty()) entry.label = entry.type;
+    scenario.detectors.push_back(entry);
+  }
+}
+
+void ParseDetection(const Reader& r, Scenario& scenario) {
+  r.CheckKeys({"measurement_variance", "observer", "pairs"});
+  r.Optional("observer", scenario.detection.observer);
+  r.Optional("pairs", scenario.detection.pairs);
+  r.Optional("measurement_variance", scenario.detection.measurement_variance);
+}
+
 void ParseSimulation(const Reader& r, Scenario& scenario) {
   r.CheckKeys({"duration", "output_rate_hz", "seed"});
   SimulationSpec& s = scenario.simulation;
@@ -549,6 +592,8 @@ struct Section {
 
 constexpr Section kSections[] = {
     {"controller", false, ParseController},
+    {"detection", false, ParseDetection},
+    {"detectors", false, ParseDetectors},
     {"environment", false, ParseEnvironment},
     {"failure", false, ParseFailure},
     {"mooring", true, ParseMooring},
@@ -908,12 +953,35 @@ void CheckFailure(const Checker& check, const Scenario& scenario) {
   }
 }
 
+void CheckDetectors(const Checker& check, const Scenario& scenario) {
+  const std::vector<DetectorEntry>& d = scenario.detectors;
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (d[i].label == d[j].label) {
+        check.Fail(ItemPath("detectors", i), "label '" + d[i].label + "' is used by detectors[" +
+                                                 std::to_string(j + 1) +
+                                                 "] too (give one a `label`)");
+      }
+    }
+  }
+  if (scenario.detection.observer != "ekf") {
+    check.Fail("detection.observer",
+               "unknown observer '" + scenario.detection.observer + "' (known: ekf)");
+  }
+  check.Positive("detection.measurement_variance", scenario.detection.measurement_variance, "");
+  if (!d.empty() && !scenario.vessel) check.Fail("detectors", "needs a vessel section");
+}
+
 void CheckSimulation(const Checker& check, const SimulationSpec& s) {
   check.Positive("simulation.duration", s.duration, "s");
   check.Positive("simulation.output_rate_hz", s.output_rate, "Hz");
 }
 
 }  // namespace
+
+void FailAt(const Scenario& scenario, const std::string& path, const std::string& what) {
+  Checker(scenario).Fail(path, what);
+}
 
 void Validate(const Scenario& scenario) {
   const Checker check(scenario);
@@ -931,6 +999,7 @@ void Validate(const Scenario& scenario) {
   CheckSensors(check, scenario.sensors);
   CheckSimulation(check, scenario.simulation);
   CheckFailure(check, scenario);
+  CheckDetectors(check, scenario);
   const bool vessel_needed = scenario.marks.contains("controller") ||
                              scenario.marks.contains("sensors") ||
                              scenario.marks.contains("failure");

@@ -94,4 +94,10 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source_n
 /// Scenario::marks. Throws moorsim::InputError at the first violation.
 void Validate(const Scenario& scenario);
 
+/// Throws InputError "<file>:<line>:<col>: <path>: <what>", placed at `path` (key path with
+/// 1-based list indices) or, if that was not written, its nearest written parent. For checks
+/// that live outside this module (the detector registry).
+[[noreturn]] void FailAt(const Scenario& scenario, const std::string& path,
+                         const std::string& what);
+
 }  // namespace moorsim::scenarios

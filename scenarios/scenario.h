@@ -219,6 +219,21 @@ struct FailureSpec {
   std::optional<double> arc_length;  ///< for mode node: unstretched length from the anchor [m]
 };
 
+/// One entry of the `detectors:` list: a registered detector type, a unique label (default
+/// the type) and numeric parameters by name, checked by the detector registry.
+struct DetectorEntry {
+  std::string type;
+  std::string label;
+  std::map<std::string, double> parameters;
+};
+
+/// How the hypothesis bank and its observers are built (`detection:`).
+struct DetectionSpec {
+  std::string observer = "ekf";         ///< per-hypothesis observer: ekf
+  bool pairs = false;                   ///< also every pair of failed lines
+  double measurement_variance = 0.005;  ///< observers' R per DOF [m^2, rad^2]
+};
+
 struct SimulationSpec {
   double duration = 1000.0;  ///< [s]
   double output_rate = 1.0;  ///< [Hz]
@@ -239,6 +254,8 @@ struct Scenario {
   SensorsSpec sensors;
   FailureSpec failure;
   SimulationSpec simulation;
+  std::vector<DetectorEntry> detectors;
+  DetectionSpec detection;
   /// Where each value was written, by key path ("mooring.lines[3].length", list indices
   /// 1-based), so checks after parsing can point at the offending text.
   std::map<std::string, SourceMark> marks;
