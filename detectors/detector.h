@@ -20,11 +20,11 @@ namespace moorsim::detectors {
 
 /// One sample of what the vessel's instruments and controller give a detector.
 struct Observation {
-  double t = 0.0;                              ///< [s]
-  Vec3 pose = Vec3::Zero();                    ///< measured x, y [m] (NED), psi [rad]
+  double t = 0.0;                                  ///< [s]
+  Vec3 pose = Vec3::Zero();                        ///< measured x, y [m] (NED), psi [rad]
   std::array<bool, 3> valid = {true, true, true};  ///< channels delivered at this sample
-  Vec3 tau_command = Vec3::Zero();             ///< commanded thrust X, Y, N, body frame
-  std::optional<VecX> tensions;                ///< fairlead tension cells [N], if fitted
+  Vec3 tau_command = Vec3::Zero();                 ///< commanded thrust X, Y, N, body frame
+  std::optional<VecX> tensions;                    ///< fairlead tension cells [N], if fitted
 };
 
 /// What one hypothesis's observer makes of a sample: its innovation (measurement minus

@@ -1,0 +1,238 @@
+#include "detectors/registry.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+#include "core/error.h"
+#include "detectors/dht.h"
+#include "detectors/glr.h"
+#include "detectors/mle.h"
+
+namespace moorsim::detectors {
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// The ranges the detectors use.
+constexpr ParameterRange kProbability{0.0, 1.0, true, true, false};          // (0, 1)
+constexpr ParameterRange kUpToOne{0.0, 1.0, true, false, false};             // (0, 1]
+constexpr ParameterRange kNonNegative{0.0, kInfinity, false, false, false};  // >= 0
+constexpr ParameterRange kPositive{0.0, kInfinity, true, false, false};      // > 0
+constexpr ParameterRange kWindow{2.0, 10000.0, false, false, true};          // [2, 10000]
+
+std::string FormatNumber(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+// Each detector's parameters, sorted by name; the defaults are the options structs'.
+constexpr std::array<DetectorParameter, 4> kDhtParameters = {{
+    {"floor", DhtOptions{}.floor, "", kProbability, "",
+     "probability floor p_min (seed 000: 1e-9); hypotheses x floor must be < 1"},
+    {"hold", DhtOptions{}.hold, "", kNonNegative, "s",
+     "time the same failure hypothesis must stay >= threshold before the alarm"},
+    {"prior_intact", std::nullopt, "uniform 1/N", kProbability, "",
+     "prior probability of the intact hypothesis; the failures share the rest"},
+    {"threshold", DhtOptions{}.threshold, "", kProbability, "",
+     "posterior a failure hypothesis must reach for the alarm"},
+}};
+
+constexpr std::array<DetectorParameter, 3> kGlrParameters = {{
+    {"false_alarm_probability", GlrOptions{}.false_alarm_probability, "", kProbability, "",
+     "per-sample false-alarm probability (white residuals) the default threshold gives"},
+    {"threshold", std::nullopt, "chi-square(3) quantile at false_alarm_probability / window",
+     kPositive, "", "alarm threshold h on the mean-change statistic g"},
+    {"window", GlrOptions{}.window, "", kWindow, "samples",
+     "M, the change times searched (seed 003: 50)"},
+}};
+
+constexpr std::array<DetectorParameter, 3> kMleParameters = {{
+    {"forgetting_factor", MleOptions{}.forgetting_factor, "", kUpToOne, "",
+     "lambda: J <- lambda J - log-likelihood (seed 000: 0.999); memory 1/(1 - lambda) samples"},
+    {"hold", MleOptions{}.hold, "", kNonNegative, "s",
+     "time a failure hypothesis must have been the argmin before the alarm"},
+    {"margin", MleOptions{}.margin, "", kNonNegative, "nats",
+     "lead J_0 - J_k the failure hypothesis needs over the intact one for the alarm"},
+}};
+
+std::unique_ptr<Detector> MakeDht(const DetectorParameters& p) {
+  DhtOptions options;
+  options.floor = p.Get("floor");
+  options.hold = p.Get("hold");
+  options.prior_intact = p.Find("prior_intact");
+  options.threshold = p.Get("threshold");
+  return std::make_unique<Dht>(options);
+}
+
+std::unique_ptr<Detector> MakeGlr(const DetectorParameters& p) {
+  GlrOptions options;
+  options.false_alarm_probability = p.Get("false_alarm_probability");
+  options.threshold = p.Find("threshold");
+  options.window = static_cast<int>(p.Get("window"));
+  return std::make_unique<Glr>(options);
+}
+
+std::unique_ptr<Detector> MakeMle(const DetectorParameters& p) {
+  MleOptions options;
+  options.forgetting_factor = p.Get("forgetting_factor");
+  options.hold = p.Get("hold");
+  options.margin = p.Get("margin");
+  return std::make_unique<Mle>(options);
+}
+
+// The registry, sorted by name.
+constexpr std::array<DetectorType, 3> kDetectors = {{
+    {"dht", MakeDht, kDhtParameters,
+     "dynamic hypothesis testing: floored Bayesian posterior of every hypothesis (seed 001 "
+     "eq. 47/51)"},
+    {"glr", MakeGlr, kGlrParameters,
+     "windowed GLR on the intact model's whitened innovations: mean change detects, known "
+     "signatures isolate (seed 003 eq. 21/22)"},
+    {"mle", MakeMle, kMleParameters,
+     "maximum likelihood: negative log-likelihood with forgetting, argmin (seed 000 eq. "
+     "4.10)"},
+}};
+
+constexpr bool SortedByName(std::span<const DetectorParameter> parameters) {
+  for (std::size_t i = 1; i < parameters.size(); ++i) {
+    if (!(parameters[i - 1].name < parameters[i].name)) return false;
+  }
+  return true;
+}
+
+constexpr bool TableSorted() {
+  for (std::size_t i = 0; i < kDetectors.size(); ++i) {
+    if (i > 0 && !(kDetectors[i - 1].name < kDetectors[i].name)) return false;
+    if (!SortedByName(kDetectors[i].parameters)) return false;
+  }
+  return true;
+}
+
+static_assert(TableSorted(), "kDetectors and every parameter list must be sorted by name");
+
+const DetectorParameter* FindParameter(std::span<const DetectorParameter> table,
+                                       std::string_view name) {
+  const auto it = std::lower_bound(
+      table.begin(), table.end(), name,
+      [](const DetectorParameter& entry, std::string_view key) { return entry.name < key; });
+  return it != table.end() && it->name == name ? &*it : nullptr;
+}
+
+}  // namespace
+
+bool ParameterRange::Contains(double value) const {
+  if (!std::isfinite(value)) return false;
+  if (min_open ? !(value > min) : !(value >= min)) return false;
+  if (max_open ? !(value < max) : !(value <= max)) return false;
+  return !integer || std::floor(value) == value;
+}
+
+std::string ParameterRange::Describe() const {
+  std::string text = integer ? "an integer " : "";
+  if (std::isinf(max)) return text + (min_open ? "> " : ">= ") + FormatNumber(min);
+  return text + "in " + (min_open ? "(" : "[") + FormatNumber(min) + ", " + FormatNumber(max) +
+         (max_open ? ")" : "]");
+}
+
+std::optional<double> DetectorParameters::Find(std::string_view name) const {
+  const DetectorParameter* parameter = FindParameter(table_, name);
+  internal::Require(parameter != nullptr, "DetectorParameters::Find", "a parameter of the table");
+  const auto it = given_.find(std::string(name));
+  if (it != given_.end()) return it->second;
+  return parameter->default_value;
+}
+
+double DetectorParameters::Get(std::string_view name) const {
+  const std::optional<double> value = Find(name);
+  internal::Require(value.has_value(), "DetectorParameters::Get", "a parameter with a default");
+  return *value;
+}
+
+std::span<const DetectorType> DetectorTable() { return kDetectors; }
+
+std::vector<std::string_view> DetectorTypes() {
+  std::vector<std::string_view> names;
+  for (const DetectorType& type : kDetectors) names.push_back(type.name);
+  return names;
+}
+
+std::unique_ptr<Detector> MakeDetector(const DetectorSpec& spec, std::string_view key_path) {
+  const std::string path(key_path);
+  const auto it = std::lower_bound(
+      kDetectors.begin(), kDetectors.end(), spec.type,
+      [](const DetectorType& entry, const std::string& name) { return entry.name < name; });
+  if (it == kDetectors.end() || it->name != spec.type) {
+    std::string known;
+    for (const DetectorType& type : kDetectors) {
+      known += (known.empty() ? "" : ", ") + std::string(type.name);
+    }
+    throw InputError(path + ".type: unknown detector '" + spec.type + "' (known: " + known + ")");
+  }
+  for (const auto& [name, value] : spec.parameters) {
+    const DetectorParameter* parameter = FindParameter(it->parameters, name);
+    if (parameter == nullptr) {
+      std::string known;
+      for (const DetectorParameter& p : it->parameters) {
+        known += (known.empty() ? "" : ", ") + std::string(p.name);
+      }
+      throw InputError(path + ": unknown parameter '" + name + "' for " + std::string(it->name) +
+                       " (known: " + known + ")");
+    }
+    if (!parameter->range.Contains(value)) {
+      throw InputError(path + "." + name + ": " + FormatNumber(value) + " must be " +
+                       parameter->range.Describe());
+    }
+  }
+  return it->make(DetectorParameters(it->parameters, spec.parameters));
+}
+
+std::string DetectorHelp() {
+  std::ostringstream out;
+  out << "Detectors (the scenario's `detectors:` list: type, optional label, parameters):\n";
+  for (const DetectorType& type : kDetectors) {
+    out << "  " << type.name << ": " << type.description << "\n";
+    for (const DetectorParameter& p : type.parameters) {
+      const std::string default_text =
+          p.default_value ? FormatNumber(*p.default_value) : std::string(p.default_note);
+      out << "    " << std::left << std::setw(24) << p.name << " default " << default_text
+          << (p.unit.empty() || !p.default_value ? "" : " ") << (p.default_value ? p.unit : "")
+          << "; " << p.range.Describe() << "; " << p.description << "\n";
+    }
+  }
+  return out.str();
+}
+
+namespace internal {
+
+void ContractViolation(std::string_view where, std::string_view what) {
+  std::fprintf(stderr, "%.*s: contract violated: %.*s\n", static_cast<int>(where.size()),
+               where.data(), static_cast<int>(what.size()), what.data());
+  std::abort();
+}
+
+void CheckEvidence(std::string_view detector, const Evidence& evidence, int hypotheses) {
+  Require(hypotheses >= 1, detector, "Reset() before the first sample");
+  Require(static_cast<int>(evidence.hypotheses.size()) == hypotheses, detector,
+          "evidence for as many hypotheses as Reset() was given");
+  for (std::size_t k = 0; k < evidence.hypotheses.size(); ++k) {
+    const double value = evidence.hypotheses[k].log_likelihood;
+    if (!std::isfinite(value)) {
+      std::ostringstream message;
+      message << detector << ": log-likelihood of hypothesis " << k << " is " << value
+              << " at t = " << evidence.t << " s";
+      throw SolverError(message.str());
+    }
+  }
+}
+
+}  // namespace internal
+
+}  // namespace moorsim::detectors

@@ -1,0 +1,112 @@
+// The detector registry: one table, sorted by type name, of every detector the scenario's
+// `detectors:` list can name, with its factory, its numeric parameters (default, valid
+// range, unit, meaning) and a one-line description. The same table gives MakeDetector()'s
+// lookup and checks, DetectorTypes(), the "known: ..." lists of the error messages and the
+// --help text (STYLE.md: registries as tables).
+//
+// Adding a detector: its own file(s) with a Detector subclass, plus one row in the table in
+// registry.cc (name, factory, parameter list, description).
+#pragma once
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "detectors/detector.h"
+
+namespace moorsim::detectors {
+
+/// The values a parameter may take: [min, max] with either end open or infinite, and
+/// optionally whole numbers only.
+struct ParameterRange {
+  double min = 0.0;
+  double max = 0.0;  ///< +infinity: no upper bound
+  bool min_open = false;
+  bool max_open = false;
+  bool integer = false;
+
+  bool Contains(double value) const;
+  /// The rule as the error messages state it: "in (0, 1]", ">= 0", "an integer in [2, 10000]".
+  std::string Describe() const;
+};
+
+/// One numeric parameter of a detector type.
+struct DetectorParameter {
+  std::string_view name;
+  /// nullopt: no fixed default; `default_note` says what the detector does when the
+  /// parameter is not given.
+  std::optional<double> default_value;
+  std::string_view default_note;
+  ParameterRange range;
+  std::string_view unit;  ///< "" if dimensionless
+  std::string_view description;
+};
+
+/// The parameters of one DetectorSpec after the registry's checks: each is the given value
+/// or the table's default.
+class DetectorParameters {
+ public:
+  DetectorParameters(std::span<const DetectorParameter> table,
+                     const std::map<std::string, double>& given)
+      : table_(table), given_(given) {}
+  /// The given value, else the default; nullopt if neither (a parameter without default).
+  std::optional<double> Find(std::string_view name) const;
+  /// Find() for a parameter that has a default (always-on check).
+  double Get(std::string_view name) const;
+
+ private:
+  std::span<const DetectorParameter> table_;
+  const std::map<std::string, double>& given_;
+};
+
+using DetectorFactory = std::unique_ptr<Detector> (*)(const DetectorParameters&);
+
+/// One row of the registry.
+struct DetectorType {
+  std::string_view name;  ///< the `type:` the scenario gives
+  DetectorFactory make;
+  std::span<const DetectorParameter> parameters;  ///< sorted by name
+  std::string_view description;                   ///< one line
+};
+
+/// The registry, sorted by name.
+std::span<const DetectorType> DetectorTable();
+
+/// The registered type names, sorted: dht, glr, mle.
+std::vector<std::string_view> DetectorTypes();
+
+/// Builds the detector a scenario entry names. `key_path` locates the entry in the
+/// scenario for the messages ("detectors[2]"). Throws InputError:
+///   "<key_path>.type: unknown detector 'x' (known: dht, glr, mle)"
+///   "<key_path>: unknown parameter 'y' for dht (known: floor, hold, prior_intact, threshold)"
+///   "<key_path>.floor: 2 must be in (0, 1)"
+std::unique_ptr<Detector> MakeDetector(const DetectorSpec& spec, std::string_view key_path);
+
+/// The --help listing: every type with its description and its parameters (default, range,
+/// unit, meaning), one per line.
+std::string DetectorHelp();
+
+namespace internal {
+
+/// Reports a broken programmer's contract ("<where>: contract violated: <what>" on stderr)
+/// and aborts: an always-on assert.
+[[noreturn]] void ContractViolation(std::string_view where, std::string_view what);
+
+inline void Require(bool condition, std::string_view where, std::string_view what) {
+  if (!condition) [[unlikely]] {
+    ContractViolation(where, what);
+  }
+}
+
+/// The checks every detector makes on a sample: Reset() has run and the evidence has as
+/// many hypotheses as it was given (contract) and finite log-likelihoods (else SolverError
+/// "<detector>: log-likelihood of hypothesis k is nan at t = ... s").
+void CheckEvidence(std::string_view detector, const Evidence& evidence, int hypotheses);
+
+}  // namespace internal
+
+}  // namespace moorsim::detectors
