@@ -83,6 +83,26 @@ class RunWriter {
     wind_ = file_.CreateTable("/environment/wind", 6, load_units, load);
     thrust_ = file_.CreateTable("/environment/thrust", 6, load_units, load);
     file_.CreateGroup("/detectors");
+    const std::vector<std::string> hypotheses = sim.HypothesisLabels();
+    if (!hypotheses.empty()) {
+      std::string joined;
+      for (const std::string& h : hypotheses) joined += (joined.empty() ? "" : ",") + h;
+      file_.SetAttribute("/detectors", "hypotheses", joined);
+    }
+    for (const simulation::DetectorRecord& d : sim.detector_records()) {
+      const std::string group = "/detectors/" + d.label;
+      const char* score_units = d.type == "dht"   ? "probability"
+                                : d.type == "mle" ? "nats (negative log-likelihood)"
+                                                  : "chi-square statistic";
+      Tables t;
+      t.score = file_.CreateTable(group + "/score", static_cast<int>(hypotheses.size()),
+                                  score_units, hypotheses);
+      t.decision = file_.CreateTable(group + "/decision", 0, "hypothesis (0 = intact, k = line k)",
+                                     {}, output::TableType::kInt32);
+      t.alarm = file_.CreateTable(group + "/alarm", 0, "0/1", {}, output::TableType::kInt8);
+      file_.SetAttribute(group, "type", d.type);
+      detector_tables_.push_back(t);
+    }
   }
 
   void Append(const simulation::Sample& s) {
@@ -104,6 +124,12 @@ class RunWriter {
     Row(current_, s.load_current);
     Row(wind_, s.load_wind);
     Row(thrust_, s.load_thrust);
+    for (std::size_t i = 0; i < detector_tables_.size() && i < s.detectors.size(); ++i) {
+      const detectors::Verdict& v = s.detectors[i];
+      file_.Append(detector_tables_[i].score, v.score);
+      file_.Append(detector_tables_[i].decision, static_cast<std::int32_t>(v.hypothesis));
+      file_.Append(detector_tables_[i].alarm, static_cast<std::int32_t>(v.alarm ? 1 : 0));
+    }
   }
 
   void Close() { file_.Close(); }
@@ -118,6 +144,10 @@ class RunWriter {
   output::TableId time_, pose_true_, pose_lf_, velocity_, measured_, tension_, commanded_,
       delivered_, mooring_, drift_, current_, wind_, thrust_;
   std::optional<output::TableId> tension_measured_;
+  struct Tables {
+    output::TableId score, decision, alarm;
+  };
+  std::vector<Tables> detector_tables_;
 };
 
 nlohmann::json Stats(const IntegratorStats& s) {
@@ -169,7 +199,6 @@ int Run(const RunOptions& o) {
   } else {
     summary["failure"] = nullptr;
   }
-  summary["detectors"] = nlohmann::json::object();
   std::string status = "ok";
   std::string message;
   try {
@@ -191,6 +220,29 @@ int Run(const RunOptions& o) {
   writer.Close();
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  nlohmann::json detectors = nlohmann::json::object();
+  const std::vector<std::string> labels = sim.HypothesisLabels();
+  for (const simulation::DetectorRecord& d : sim.detector_records()) {
+    nlohmann::json j;
+    j["type"] = d.type;
+    j["alarm_time"] = d.alarm_time ? nlohmann::json(*d.alarm_time) : nlohmann::json(nullptr);
+    // Hypothesis k <= number of lines is "line k failed"; pairs are named by their label.
+    const int lines = sim.num_lines();
+    if (!d.alarm_time) {
+      j["isolated_line"] = nullptr;
+    } else if (d.isolated >= 1 && d.isolated <= lines) {
+      j["isolated_line"] = d.isolated;
+    } else {
+      j["isolated_line"] = nullptr;
+      j["isolated_hypothesis"] = labels.at(d.isolated);
+    }
+    j["delay"] = (d.alarm_time && scenario.failure.line > 0)
+                     ? nlohmann::json(*d.alarm_time - scenario.failure.time)
+                     : nlohmann::json(nullptr);
+    j["false_alarms"] = d.false_alarms;
+    detectors[d.label] = j;
+  }
+  summary["detectors"] = detectors;
   summary["status"] = status;
   if (!message.empty()) summary["error"] = message;
   summary["simulated_time"] = sim.time();

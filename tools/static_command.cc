@@ -14,6 +14,7 @@
 #include "mooring_fem/mooring_system.h"
 #include "scenarios/load.h"
 #include "tools/commands.h"
+#include "tools/simulation/simulation.h"
 
 namespace moorsim::cli {
 
@@ -177,6 +178,7 @@ Command AddValidateCommand(CLI::App& app) {
   sub->add_option("scenario", *path, "scenario YAML file")->required();
   return [path] {
     const scenarios::Scenario s = scenarios::LoadScenario(*path);
+    simulation::CheckDetectors(s);
     std::printf("%s: ok (%s, %zu lines)\n", path->c_str(), s.name.c_str(), s.mooring.lines.size());
     return 0;
   };

@@ -161,8 +161,8 @@ inline const BadInput kParseErrors[] = {
      "mooring.lines[2]: unknown key 'lenght' (known: anchor, fairlead, id, length, segments, "
      "type)"},
     {"UnknownTopLevelSection", "", "solver:\n", "vessels: {}\nsolver:\n", "vessels",
-     "unknown key 'vessels' (known: controller, environment, failure, mooring, name, sensors, "
-     "simulation, solver, vessel)"},
+     "unknown key 'vessels' (known: controller, detection, detectors, environment, failure, "
+     "mooring, name, sensors, simulation, solver, vessel)"},
     {"UnknownKeyInFlowMap", "", "gravity: 9.81", "gravity: 9.81, salinity: 35", "salinity",
      "mooring.water: unknown key 'salinity' (known: density, depth, gravity)"},
     {"DuplicateKey", "- name: chain", "diameter: 0.08\n", "diameter: 0.08\n      diameter: 0.09\n",

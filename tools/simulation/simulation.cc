@@ -8,7 +8,11 @@
 
 #include "core/error.h"
 #include "core/random.h"
+#include "detectors/ekf_observer.h"
+#include "detectors/hypothesis_bank.h"
+#include "detectors/registry.h"
 #include "mooring_fem/line_simulation.h"
+#include "scenarios/load.h"
 #include "vessel/controller.h"
 #include "vessel/fpso_model.h"
 #include "vessel/hull_loads.h"
@@ -209,6 +213,33 @@ const scenarios::VesselSpec& RequireVessel(const scenarios::Scenario& scenario) 
 
 }  // namespace
 
+namespace {
+
+detectors::DetectorSpec Spec(const scenarios::DetectorEntry& e) {
+  return {.type = e.type, .label = e.label, .parameters = e.parameters};
+}
+
+/// Builds detector i; an InputError from the registry ("detectors[2].floor: ...") is placed
+/// at that key in the scenario file.
+std::unique_ptr<detectors::Detector> BuildDetector(const scenarios::Scenario& scenario,
+                                                   std::size_t i) {
+  const std::string path = "detectors[" + std::to_string(i + 1) + "]";
+  try {
+    return detectors::MakeDetector(Spec(scenario.detectors[i]), path);
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    const std::size_t colon = message.find(": ");
+    if (colon == std::string::npos || message.compare(0, path.size(), path) != 0) throw;
+    scenarios::FailAt(scenario, message.substr(0, colon), message.substr(colon + 2));
+  }
+}
+
+}  // namespace
+
+void CheckDetectors(const scenarios::Scenario& scenario) {
+  for (std::size_t i = 0; i < scenario.detectors.size(); ++i) BuildDetector(scenario, i);
+}
+
 mooring_fem::LineFailure ToLineFailure(const scenarios::Scenario& scenario) {
   const scenarios::FailureSpec& f = scenario.failure;
   mooring_fem::LineFailure failure;
@@ -240,6 +271,12 @@ struct Simulation::Parts {
   std::optional<vessel::ThrusterDynamics> thruster_dynamics;
   Eigen::VectorXd directions;
   std::vector<double> measured_tensions;
+  // Detection: the hypothesis bank, one observer per hypothesis, the detectors.
+  std::optional<detectors::HypothesisBank> bank;
+  std::optional<detectors::ObserverBank> observers;
+  std::vector<std::unique_ptr<detectors::Detector>> detectors;
+  std::vector<detectors::Verdict> verdicts;
+  Vec3 thrust_issued = Vec3::Zero();  // what the allocation sent to the thrusters
 };
 
 Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed)
@@ -290,10 +327,54 @@ Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed)
   system_ = std::make_unique<CoupledSystem>(*plant_, attachment_);
   x_.assign(system_->StateSize(), 0.0);
   SettleMooredEquilibrium();
+  if (!scenario_.detectors.empty()) StartDetection();
   StartIntegrator();
 }
 
 Simulation::~Simulation() = default;
+
+void Simulation::StartDetection() {
+  Parts& p = *parts_;
+  detectors::HypothesisBankOptions options;
+  options.include_pairs = scenario_.detection.pairs;
+  options.moored_heave = initial_pose_(2);
+  const Vec3& start = scenario_.vessel->initial_pose;
+  options.reference_pose = scenario_.controller.setpoint.value_or(start);
+  p.bank.emplace(scenario_.mooring, options);
+  // The observers' horizontal-plane model: the vessel's own mass (with A(0)) and linear
+  // damping in surge, sway and yaw.
+  const vessel::VesselParameters& v = plant_->model().parameters();
+  const Mat6 M = plant_->model().mass();
+  const int dof[3] = {0, 1, 5};
+  detectors::LowFrequencyModel model;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      model.mass(i, j) = M(dof[i], dof[j]);
+      model.damping(i, j) = v.linear_damping(dof[i], dof[j]);
+    }
+  }
+  detectors::EkfOptions ekf;
+  ekf.measurement_variance = Vec3::Constant(scenario_.detection.measurement_variance);
+  p.observers.emplace(*p.bank, model, ekf);
+  for (std::size_t i = 0; i < scenario_.detectors.size(); ++i) {
+    p.detectors.push_back(BuildDetector(scenario_, i));
+    p.detectors.back()->Reset(p.bank->size());
+    DetectorRecord record;
+    record.label = scenario_.detectors[i].label;
+    record.type = scenario_.detectors[i].type;
+    detector_records_.push_back(record);
+  }
+  p.verdicts.assign(p.detectors.size(), detectors::Verdict{});
+  for (detectors::Verdict& v : p.verdicts) v.score.assign(p.bank->size(), 0.0);
+}
+
+int Simulation::num_hypotheses() const { return parts_->bank ? parts_->bank->size() : 0; }
+
+std::vector<std::string> Simulation::HypothesisLabels() const {
+  std::vector<std::string> labels;
+  for (int h = 0; h < num_hypotheses(); ++h) labels.push_back(parts_->bank->Label(h));
+  return labels;
+}
 
 std::vector<PointKinematics> Simulation::Points() {
   std::vector<PointKinematics> points(mooring_.num_lines());
@@ -385,6 +466,34 @@ void Simulation::DiscreteEvents() {
       fresh[i] = m.valid[i];
     }
     last_sensor_time_ = t_;
+    if (parts_->observers) {
+      // The detectors see what a real system has: the measured pose and the thrust the
+      // allocation sent to the thrusters (after its saturation handling).
+      detectors::Observation observation;
+      observation.t = t_;
+      observation.pose = m.value;
+      observation.valid = m.valid;
+      observation.tau_command = parts_->thrust_issued;
+      if (!parts_->measured_tensions.empty()) {
+        observation.tensions = Eigen::Map<const VecX>(parts_->measured_tensions.data(),
+                                                      parts_->measured_tensions.size());
+      }
+      const detectors::Evidence& evidence = parts_->observers->Update(observation);
+      const bool failed = scenario_.failure.line > 0;
+      for (std::size_t i = 0; i < parts_->detectors.size(); ++i) {
+        const detectors::Verdict& v = parts_->verdicts[i] = parts_->detectors[i]->Update(evidence);
+        DetectorRecord& r = detector_records_[i];
+        if (v.alarm && !r.alarm) {  // an onset
+          const bool before_failure = !failed || t_ < scenario_.failure.time;
+          if (before_failure) ++r.false_alarms;
+          if (!r.alarm_time && (!failed || !before_failure)) {
+            r.alarm_time = t_;
+            r.isolated = v.hypothesis;
+          }
+        }
+        r.alarm = v.alarm;
+      }
+    }
   }
   if (parts_->tension_cells && parts_->tension_cells->Due(t_) && t_ > last_tension_time_) {
     const Sample now = Record();
@@ -400,6 +509,7 @@ void Simulation::DiscreteEvents() {
     input.valid = fresh;
     tau_command_ = parts_->controller->Update(input);
     const vessel::Allocation a = parts_->allocator->Allocate(tau_command_);
+    parts_->thrust_issued = a.achieved;
     parts_->thruster_dynamics->Step(a.thrust, dt);
     parts_->directions = a.direction;
     plant_->SetThrustCommand(parts_->thruster_dynamics->command(), parts_->directions);
@@ -455,6 +565,7 @@ Sample Simulation::Record() {
   s.thrust_delivered = Vec3(s.load_thrust(0), s.load_thrust(1), s.load_thrust(5));
   s.thrust_commanded = tau_command_;
   s.tension_measured = parts_->measured_tensions;
+  s.detectors = parts_->verdicts;
   Vec6 xi, xi_dot;
   plant_->Sea(t_, x_.data(), &xi, &xi_dot, &s.load_wave_drift);
   if (parts_->current) s.load_current = parts_->current->Load(t_, eta, nu);

@@ -22,6 +22,7 @@
 
 #include "core/coupled_system.h"
 #include "core/integrator.h"
+#include "detectors/detector.h"
 #include "mooring_fem/mooring_attachment.h"
 #include "mooring_fem/mooring_system.h"
 #include "scenarios/scenario.h"
@@ -55,7 +56,26 @@ struct Sample {
   Vec6 load_current = Vec6::Zero();
   Vec6 load_wind = Vec6::Zero();
   Vec6 load_thrust = Vec6::Zero();
+  /// Every detector's latest verdict (scenario order), empty without detectors.
+  std::vector<detectors::Verdict> detectors;
 };
+
+/// What a detector did over a run (summary.json). Alarm onsets are the samples where its
+/// alarm turns on. `alarm_time` is the first onset at or after the true failure time (with
+/// no failure: the first onset at all), `isolated` the hypothesis it named there; onsets
+/// before the failure (all onsets without one) count as false alarms.
+struct DetectorRecord {
+  std::string label;
+  std::string type;
+  std::optional<double> alarm_time;
+  int isolated = 0;
+  int false_alarms = 0;
+  bool alarm = false;  // at the latest sample
+};
+
+/// Builds every detector of the scenario once to check its type and parameters; a bad one
+/// is an InputError placed at its entry in the file. `moorsim validate` and `run` call it.
+void CheckDetectors(const scenarios::Scenario& scenario);
 
 /// A line failure in the FEM's terms, from the scenario's failure section (1-based line,
 /// node or arc length from the anchor).
@@ -91,6 +111,10 @@ class Simulation {
   CoupledSystem& system() { return *system_; }
   const vessel::HydroData& hydro() const { return hydro_; }
   int num_lines() const { return mooring_.num_lines(); }
+  /// Number of hypotheses of the detectors' bank (0 without detectors) and their labels.
+  int num_hypotheses() const;
+  const std::vector<DetectorRecord>& detector_records() const { return detector_records_; }
+  std::vector<std::string> HypothesisLabels() const;
   /// Mooring load (body frame) of the static start and the pose found there.
   const Vec6& initial_pose() const { return initial_pose_; }
   std::uint64_t seed() const { return seed_; }
@@ -100,6 +124,7 @@ class Simulation {
  private:
   struct Parts;
   void SettleMooredEquilibrium();
+  void StartDetection();
   void StartIntegrator();
   void DiscreteEvents();
   double NextEventTime() const;
@@ -127,6 +152,7 @@ class Simulation {
   bool failure_pending_ = false;
   Vec3 last_measurement_ = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
   Vec3 tau_command_ = Vec3::Zero();
+  std::vector<DetectorRecord> detector_records_;
 };
 
 }  // namespace moorsim::simulation

@@ -1,0 +1,355 @@
+#include "detectors/hypothesis_bank.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <utility>
+
+#include "core/error.h"
+#include "mooring_fem/mooring_system.h"
+
+namespace moorsim::detectors {
+namespace internal {
+namespace {
+
+/// Step of the central difference that gives the node slopes [m]. The solver's span
+/// residual is ~1e-12 L ~ 2e-9 m, so the rounding part of the slope error is ~1e-7
+/// relative; the truncation part, H''' step^2 / 6, is smaller still.
+constexpr double kSlopeStep = 1e-2;
+
+std::string LineKey(int line_id) { return "mooring.lines[" + std::to_string(line_id) + "]"; }
+
+[[noreturn]] void ThrowOption(const std::string& key, double value, const std::string& rule) {
+  std::ostringstream out;
+  out.precision(10);
+  out << key << " = " << value << ": " << rule;
+  throw InputError(out.str());
+}
+
+bool Solvable(const mooring_fem::CatenaryLineProperties& line, double span, double height) {
+  try {
+    mooring_fem::SolveCatenary(line, span, height);
+    return true;
+  } catch (const Error&) {
+    return false;
+  }
+}
+
+}  // namespace
+}  // namespace internal
+
+// ---------------------------------------------------------------------------------------
+// LineForceTable
+
+LineForceTable::LineForceTable(int line_id, const mooring_fem::CatenaryLineProperties& line,
+                               const Vec3& anchor, const Vec3& fairlead_body, double fairlead_depth,
+                               const LineForceTableOptions& options)
+    : line_id_(line_id),
+      line_(line),
+      anchor_(anchor),
+      fairlead_body_(fairlead_body),
+      fairlead_depth_(fairlead_depth) {
+  using internal::ThrowOption;
+  const std::string key = internal::LineKey(line_id);
+  if (!(std::isfinite(options.span_margin) && options.span_margin >= 0.0)) {
+    ThrowOption("hypothesis_bank.table.span_margin", options.span_margin,
+                "must be finite and >= 0");
+  }
+  if (!(std::isfinite(options.span_step) && options.span_step > 0.0)) {
+    ThrowOption("hypothesis_bank.table.span_step", options.span_step, "must be finite and > 0");
+  }
+  if (!(std::isfinite(line.length) && line.length > 0.0)) {
+    ThrowOption(key + ".length", line.length, "must be finite and > 0");
+  }
+  if (!(std::isfinite(line.weight_per_length) && line.weight_per_length > 0.0)) {
+    ThrowOption(key + ".weight_per_length", line.weight_per_length,
+                "must be finite and > 0 (a line heavier than the water it displaces)");
+  }
+  if (!(std::isfinite(line.axial_stiffness) && line.axial_stiffness > 0.0)) {
+    ThrowOption(key + ".axial_stiffness", line.axial_stiffness, "must be finite and > 0");
+  }
+  if (!anchor.allFinite() || !fairlead_body.allFinite()) {
+    throw InputError(key + ": anchor and fairlead must be finite");
+  }
+  if (!(std::isfinite(fairlead_depth) && fairlead_depth < anchor.z())) {
+    std::ostringstream out;
+    out << key << ": fairlead depth " << fairlead_depth
+        << " m must be above the anchor (z = " << anchor.z() << " m, NED)";
+    throw InputError(out.str());
+  }
+
+  const double h = height();
+  nominal_span_ = (anchor.head<2>() - fairlead_body.head<2>()).norm();
+  const double reach = options.span_margin + fairlead_body.head<2>().norm();
+  if (!internal::Solvable(line, nominal_span_, h)) {
+    std::ostringstream out;
+    out << key << ": the catenary has no solution at the neutral pose (span " << nominal_span_
+        << " m, height " << h << " m, length " << line.length << " m)";
+    throw InputError(out.str());
+  }
+  span_min_ = std::max(nominal_span_ - reach, 2.0 * internal::kSlopeStep);
+  span_max_ = nominal_span_ + reach;
+  if (!internal::Solvable(line, span_max_ + internal::kSlopeStep, h)) {
+    // Largest reachable span by bisection, then 1 m short of it so that the slope's
+    // difference step and rounding stay inside.
+    double lo = nominal_span_;
+    double hi = span_max_ + internal::kSlopeStep;
+    while (hi - lo > 1e-3) {
+      const double mid = 0.5 * (lo + hi);
+      (internal::Solvable(line, mid, h) ? lo : hi) = mid;
+    }
+    span_max_ = std::max(nominal_span_, lo - 1.0);
+  }
+  span_min_ = std::min(span_min_, span_max_);
+
+  const int intervals =
+      std::max(1, static_cast<int>(std::ceil((span_max_ - span_min_) / options.span_step)));
+  step_ = (span_max_ - span_min_) / intervals;
+  if (!(step_ > 0.0)) step_ = 1.0;  // degenerate range: a single point, extrapolated
+  const int nodes = intervals + 1;
+  h_.resize(nodes);
+  dh_.resize(nodes);
+  v_.resize(nodes);
+  dv_.resize(nodes);
+  try {
+    for (int i = 0; i < nodes; ++i) {
+      const double s = i == intervals ? span_max_ : span_min_ + i * step_;
+      const auto mid = mooring_fem::SolveCatenary(line, s, h);
+      const auto plus = mooring_fem::SolveCatenary(line, s + internal::kSlopeStep, h);
+      const auto minus = mooring_fem::SolveCatenary(line, s - internal::kSlopeStep, h);
+      h_[i] = mid.horizontal_tension;
+      v_[i] = mid.vertical_tension;
+      dh_[i] = (plus.horizontal_tension - minus.horizontal_tension) / (2.0 * internal::kSlopeStep);
+      dv_[i] = (plus.vertical_tension - minus.vertical_tension) / (2.0 * internal::kSlopeStep);
+    }
+  } catch (const Error& error) {
+    throw InputError(key + ": tabulating the catenary failed: " + error.what());
+  }
+}
+
+double LineForceTable::Interpolate(const std::vector<double>& values,
+                                   const std::vector<double>& slopes, double span,
+                                   double* d_dspan) const {
+  const int last = static_cast<int>(values.size()) - 1;
+  double value = 0.0;
+  double slope = 0.0;
+  if (span <= span_min_) {
+    value = values[0] + slopes[0] * (span - span_min_);
+    slope = slopes[0];
+  } else if (span >= span_max_) {
+    value = values[last] + slopes[last] * (span - span_max_);
+    slope = slopes[last];
+  } else {
+    const double u = (span - span_min_) / step_;
+    const int i = std::min(static_cast<int>(u), last - 1);
+    const double t = u - i;
+    const double t2 = t * t;
+    const double t3 = t2 * t;
+    // Cubic Hermite basis on [0, 1] and its derivative.
+    const double h00 = 2.0 * t3 - 3.0 * t2 + 1.0;
+    const double h10 = t3 - 2.0 * t2 + t;
+    const double h01 = -2.0 * t3 + 3.0 * t2;
+    const double h11 = t3 - t2;
+    const double d00 = 6.0 * t2 - 6.0 * t;
+    const double d10 = 3.0 * t2 - 4.0 * t + 1.0;
+    const double d01 = -d00;
+    const double d11 = 3.0 * t2 - 2.0 * t;
+    const double y0 = values[i];
+    const double y1 = values[i + 1];
+    const double m0 = slopes[i] * step_;
+    const double m1 = slopes[i + 1] * step_;
+    value = h00 * y0 + h10 * m0 + h01 * y1 + h11 * m1;
+    slope = (d00 * y0 + d10 * m0 + d01 * y1 + d11 * m1) / step_;
+  }
+  if (value < 0.0) {  // a slack line pushes nothing
+    value = 0.0;
+    slope = 0.0;
+  }
+  if (d_dspan != nullptr) *d_dspan = slope;
+  return value;
+}
+
+double LineForceTable::HorizontalTension(double span, double* d_dspan) const {
+  return Interpolate(h_, dh_, span, d_dspan);
+}
+
+double LineForceTable::VerticalTension(double span, double* d_dspan) const {
+  return Interpolate(v_, dv_, span, d_dspan);
+}
+
+// ---------------------------------------------------------------------------------------
+// QuasiStaticMooring
+
+QuasiStaticMooring::QuasiStaticMooring(std::vector<std::shared_ptr<const LineForceTable>> lines)
+    : lines_(std::move(lines)) {
+  for (const auto& line : lines_) {
+    if (line == nullptr) throw Error("QuasiStaticMooring: null line table");
+  }
+}
+
+Vec3 QuasiStaticMooring::LineLoad(int index, const Vec3& eta, Mat3* J_load_eta) const {
+  const LineForceTable& table = *lines_[index];
+  const double c = std::cos(eta.z());
+  const double s = std::sin(eta.z());
+  const Eigen::Vector2d& rb = table.fairlead_body().head<2>();
+  const Eigen::Vector2d r(c * rb.x() - s * rb.y(), s * rb.x() + c * rb.y());  // R rb
+  const Eigen::Vector2d dr_dpsi(-r.y(), r.x());
+  const Eigen::Vector2d d = table.anchor().head<2>() - eta.head<2>() - r;  // fairlead->anchor
+  const double span = d.norm();
+  if (J_load_eta != nullptr) J_load_eta->setZero();
+  if (!(span > 0.0)) return Vec3::Zero();
+  const Eigen::Vector2d u = d / span;
+  double dh = 0.0;
+  const double h = table.HorizontalTension(span, J_load_eta != nullptr ? &dh : nullptr);
+  const Eigen::Vector2d force = h * u;
+  const double moment = r.x() * force.y() - r.y() * force.x();
+  if (J_load_eta != nullptr) {
+    // dF/dp with p the fairlead; dp/d(x, y) = I, dp/dpsi = dr_dpsi.
+    const Eigen::Matrix2d uu = u * u.transpose();
+    const Eigen::Matrix2d dF_dp = -dh * uu - (h / span) * (Eigen::Matrix2d::Identity() - uu);
+    Mat3& J = *J_load_eta;
+    J.topLeftCorner<2, 2>() = dF_dp;
+    const Eigen::Vector2d dF_dpsi = dF_dp * dr_dpsi;
+    J.block<2, 1>(0, 2) = dF_dpsi;
+    // Mz = r x F: d/d(x, y) = r x dF/d(x, y); d/dpsi = dr/dpsi x F + r x dF/dpsi.
+    for (int k = 0; k < 2; ++k) J(2, k) = r.x() * dF_dp(1, k) - r.y() * dF_dp(0, k);
+    J(2, 2) = dr_dpsi.x() * force.y() - dr_dpsi.y() * force.x() + r.x() * dF_dpsi.y() -
+              r.y() * dF_dpsi.x();
+  }
+  return Vec3(force.x(), force.y(), moment);
+}
+
+Vec3 QuasiStaticMooring::Load(const Vec3& eta, Mat3* J_load_eta) const {
+  Vec3 load = Vec3::Zero();
+  if (J_load_eta != nullptr) J_load_eta->setZero();
+  Mat3 J_line;
+  for (int i = 0; i < num_lines(); ++i) {
+    load += LineLoad(i, eta, J_load_eta != nullptr ? &J_line : nullptr);
+    if (J_load_eta != nullptr) *J_load_eta += J_line;
+  }
+  return load;
+}
+
+Vec3 QuasiStaticMooring::LoadBody(const Vec3& eta, Mat3* J_load_eta) const {
+  Mat3 J_earth;
+  const Vec3 earth = Load(eta, J_load_eta != nullptr ? &J_earth : nullptr);
+  const double c = std::cos(eta.z());
+  const double s = std::sin(eta.z());
+  // R^T F: X = c Fx + s Fy, Y = -s Fx + c Fy.
+  const Vec3 body(c * earth.x() + s * earth.y(), -s * earth.x() + c * earth.y(), earth.z());
+  if (J_load_eta != nullptr) {
+    Mat3& J = *J_load_eta;
+    J.row(0) = c * J_earth.row(0) + s * J_earth.row(1);
+    J.row(1) = -s * J_earth.row(0) + c * J_earth.row(1);
+    J.row(2) = J_earth.row(2);
+    J(0, 2) += -s * earth.x() + c * earth.y();
+    J(1, 2) += -c * earth.x() - s * earth.y();
+  }
+  return body;
+}
+
+// ---------------------------------------------------------------------------------------
+// Models
+
+LowFrequencyModel SeedLowFrequencyModel() {
+  constexpr double kMass = 1.0041e8;      // [kg]
+  constexpr double kA11 = 7.9427e6;       // [kg]
+  constexpr double kA22 = 6.4432e7;       // [kg]
+  constexpr double kA66 = 1.4513e11;      // [kg m^2]
+  constexpr double kYawRadius = 54.0;     // [m]
+  const Vec3 periods(50.0, 100.0, 20.0);  // [s]
+  LowFrequencyModel model;
+  model.mass =
+      Vec3(kMass + kA11, kMass + kA22, kMass * kYawRadius * kYawRadius + kA66).asDiagonal();
+  model.damping = model.mass.diagonal().cwiseQuotient(periods).asDiagonal();
+  return model;
+}
+
+Mat3 MooringDampingMatrix(const Mat3& stiffness, const Mat3& mass, const Vec3& ratio) {
+  for (int i = 0; i < 3; ++i) {
+    if (!(std::isfinite(ratio(i)) && ratio(i) >= 0.0)) {
+      internal::ThrowOption("mooring_damping_ratio[" + std::to_string(i + 1) + "]", ratio(i),
+                            "must be finite and >= 0");
+    }
+  }
+  Mat3 damping = Mat3::Zero();
+  for (int i = 0; i < 3; ++i) {
+    damping(i, i) =
+        2.0 * ratio(i) * std::sqrt(std::max(stiffness(i, i), 0.0) * std::max(mass(i, i), 0.0));
+  }
+  return damping;
+}
+
+// ---------------------------------------------------------------------------------------
+// HypothesisBank
+
+HypothesisBank::HypothesisBank(const scenarios::MooringSpec& spec,
+                               const HypothesisBankOptions& options) {
+  if (spec.lines.empty()) throw InputError("mooring.lines: the bank needs at least one line");
+  if (!std::isfinite(options.moored_heave)) {
+    internal::ThrowOption("hypothesis_bank.moored_heave", options.moored_heave, "must be finite");
+  }
+  if (!options.reference_pose.allFinite()) {
+    throw InputError("hypothesis_bank.reference_pose: must be finite");
+  }
+  reference_pose_ = options.reference_pose;
+  for (const scenarios::LineSpec& line_spec : spec.lines) {
+    const mooring_fem::LineProperties p = mooring_fem::MakeLineProperties(spec, line_spec);
+    const mooring_fem::CatenaryLineProperties line{p.length, p.weight_per_length,
+                                                   p.axial_stiffness};
+    tables_.push_back(std::make_shared<const LineForceTable>(
+        p.id, line, p.anchor, p.fairlead_body, p.fairlead_body.z() + options.moored_heave,
+        options.table));
+  }
+  const int n = num_lines();
+  Add({});
+  for (int k = 1; k <= n; ++k) Add({k});
+  if (options.include_pairs) {
+    for (int i = 1; i <= n; ++i) {
+      for (int j = i + 1; j <= n; ++j) Add({i, j});
+    }
+  }
+}
+
+void HypothesisBank::Add(std::vector<int> failed) {
+  std::vector<std::shared_ptr<const LineForceTable>> intact;
+  for (const auto& table : tables_) {
+    if (std::find(failed.begin(), failed.end(), table->line_id()) == failed.end()) {
+      intact.push_back(table);
+    }
+  }
+  Hypothesis hypothesis;
+  hypothesis.failed = std::move(failed);
+  hypothesis.mooring = QuasiStaticMooring(std::move(intact));
+  Mat3 J;
+  hypothesis.mooring.Load(reference_pose_, &J);
+  hypothesis.stiffness = -J;
+  hypotheses_.push_back(std::move(hypothesis));
+}
+
+std::string HypothesisBank::Label(int h) const {
+  const std::vector<int>& failed = hypotheses_.at(h).failed;
+  if (failed.empty()) return "intact";
+  std::string label = failed.size() == 1 ? "line " : "lines ";
+  for (std::size_t i = 0; i < failed.size(); ++i) {
+    if (i > 0) label += "+";
+    label += std::to_string(failed[i]);
+  }
+  return label;
+}
+
+int HypothesisBank::Find(std::span<const int> lines) const {
+  std::vector<int> wanted(lines.begin(), lines.end());
+  std::sort(wanted.begin(), wanted.end());
+  for (int h = 0; h < size(); ++h) {
+    if (hypotheses_[h].failed == wanted) return h;
+  }
+  return -1;
+}
+
+Mat3 HypothesisBank::MooringDamping(int h, const Mat3& mass, const Vec3& ratio) const {
+  return MooringDampingMatrix(stiffness(h), mass, ratio);
+}
+
+}  // namespace moorsim::detectors
