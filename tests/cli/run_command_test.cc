@@ -182,5 +182,42 @@ TEST(RunCommand, ThesisCaseLine6PartsAtItsTime) {
   }
 }
 
+TEST(RunCommand, DetectorsWriteScoresDecisionsAlarmsAndASummary) {
+  // Wiring only (the detection performance is judged by the detector tests): three detectors
+  // on 20 s of the seed case give their datasets with one column per hypothesis (9) and
+  // their summary entries; a bad parameter is placed at its entry in the file.
+  TempDirectory dir(::testing::TempDir());
+  const std::string out = (dir.path() / "d").string();
+  const CliResult r =
+      RunCli({"run", kSeed, "--out", out, "--duration", "20", "--quiet", "--set",
+              "detectors=[{type: dht}, {type: mle, label: mle_slow, forgetting_factor: 0.9999}, "
+              "{type: glr}]"},
+             dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  const hid_t file = H5Fopen((out + "/run.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  for (const char* d : {"dht", "mle_slow", "glr"}) {
+    const std::string group = std::string("/detectors/") + d;
+    EXPECT_EQ(Shape(file, (group + "/score").c_str()), std::vector<hsize_t>({21, 9})) << d;
+    EXPECT_EQ(Shape(file, (group + "/decision").c_str()), std::vector<hsize_t>({21})) << d;
+    EXPECT_EQ(Shape(file, (group + "/alarm").c_str()), std::vector<hsize_t>({21})) << d;
+  }
+  EXPECT_TRUE(HasAttribute(file, "/detectors", "hypotheses"));
+  H5Fclose(file);
+  const nlohmann::json summary = nlohmann::json::parse(ReadWholeFile(out + "/summary.json"));
+  for (const char* d : {"dht", "mle_slow", "glr"}) {
+    ASSERT_TRUE(summary["detectors"].contains(d)) << d;
+    const nlohmann::json& j = summary["detectors"][d];
+    for (const char* key : {"alarm_time", "isolated_line", "delay", "false_alarms"}) {
+      EXPECT_TRUE(j.contains(key)) << d << " " << key;
+    }
+  }
+
+  const CliResult bad =
+      RunCli({"run", kSeed, "--out", out, "--quiet", "--set", "detectors=[{type: dht, floor: 2}]"},
+             dir.path());
+  EXPECT_EQ(bad.exit_code, 2) << bad.Describe();
+  EXPECT_EQ(bad.err, "moorsim: " + kSeed + ": detectors[1].floor: 2 must be in (0, 1)\n");
+}
+
 }  // namespace
 }  // namespace moorsim::testing
