@@ -9,6 +9,8 @@ Figures (in --out, default RUN_DIR):
   tensions.png    fairlead tension of every line
   thrust.png      commanded and delivered thrust X, Y, N
   detectors.png   decision of each detector against time (only if the run has detectors)
+  detector_scores.png  each detector's per-hypothesis scores: DHT probabilities, MLE
+                  negative log-likelihoods, GLR statistics
 
 The layout of run.h5 is DESIGN.md section 7 (SI units, NED Earth frame: x north, y east,
 heading psi from north towards east). A missing file or required dataset ends the script
@@ -46,6 +48,9 @@ class RunFileError(Exception):
 class Detector:
     decision: np.ndarray  # (N,) 0 = intact, k = line k
     alarm: np.ndarray | None  # (N,) 0/1
+    score: np.ndarray | None = None  # (N, hypotheses): probability, NLL or statistic
+    kind: str = ""  # detector type (dht, mle, glr)
+    hypotheses: list[str] = field(default_factory=list)
 
 
 @dataclass
@@ -103,7 +108,14 @@ def read_detectors(h5: h5py.File, rows: int) -> dict[str, Detector]:
             continue
         base = f"/detectors/{name}"
         alarm = read_table(h5, f"{base}/alarm", None, rows) if "alarm" in group[name] else None
-        detectors[name] = Detector(read_table(h5, f"{base}/decision", None, rows), alarm)
+        score = None
+        if "score" in group[name] and group[name]["score"].ndim == 2:
+            score = read_table(h5, f"{base}/score", group[name]["score"].shape[1], rows)
+        kind = attribute_text(group[name].attrs.get("type", ""))
+        labels = attribute_text(group.attrs.get("hypotheses", ""))
+        hypotheses = labels.split(",") if labels else []
+        detectors[name] = Detector(read_table(h5, f"{base}/decision", None, rows), alarm, score,
+                                   kind, hypotheses)
     return detectors
 
 
@@ -311,6 +323,40 @@ def plot_detectors(plt, run: Run, out_dir: Path) -> Path:
     return save(figure, out_dir, "detectors.png")
 
 
+SCORE_LABELS = {
+    "dht": ("hypothesis probability", "log"),
+    "mle": ("NLL - intact NLL [nats]", "linear"),
+    "glr": ("GLR statistic", "linear"),
+}
+
+
+def plot_scores(plt, run: Run, out_dir: Path) -> Path:
+    """Per detector, every hypothesis's score against time (seed 000 figures 5.4-5.6)."""
+    names = [n for n in sorted(run.detectors) if run.detectors[n].score is not None]
+    figure, axes = new_figure(plt, run, "Detector scores", rows=len(names),
+                              height=1.2 + 2.6 * len(names))
+    for ax, name in zip(axes, names):
+        detector = run.detectors[name]
+        label, scale = SCORE_LABELS.get(detector.kind, ("score", "linear"))
+        score = detector.score
+        if detector.kind == "mle":  # the absolute NLLs drift together; their gaps decide
+            score = score - score[:, :1]
+        for h in range(score.shape[1]):
+            text = detector.hypotheses[h] if h < len(detector.hypotheses) else f"hypothesis {h}"
+            failed = run.has_failure and text == f"line {run.failure_line}"
+            ax.plot(run.time, score[:, h], linewidth=1.6 if failed or h == 0 else 0.7,
+                    color="black" if h == 0 else (FAILURE_COLOUR if failed else None),
+                    label=text)
+        ax.set_yscale(scale)
+        ax.set_title(f"{name} ({detector.kind})", loc="left", fontsize="medium")
+        ax.set_ylabel(label)
+        ax.grid(True, linewidth=0.3)
+        ax.legend(loc="upper left", fontsize="x-small", ncol=3)
+    mark_failure(run, axes)
+    axes[-1].set_xlabel("time [s]")
+    return save(figure, out_dir, "detector_scores.png")
+
+
 # ---------------------------------------------------------------------------- main
 
 
@@ -339,6 +385,8 @@ def main(argv: list[str]) -> int:
     figures = [plot_trajectory, plot_pose, plot_tensions, plot_thrust]
     if run.detectors:
         figures.append(plot_detectors)
+        if any(d.score is not None for d in run.detectors.values()):
+            figures.append(plot_scores)
     for plot in figures:
         plot(plt, run, out_dir)
         if not args.show:
