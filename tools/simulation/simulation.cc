@@ -9,6 +9,8 @@
 #include "core/error.h"
 #include "core/random.h"
 #include "detectors/ekf_observer.h"
+#include "detectors/glr.h"
+#include "detectors/glr_signatures.h"
 #include "detectors/hypothesis_bank.h"
 #include "detectors/registry.h"
 #include "mooring_fem/line_simulation.h"
@@ -363,6 +365,14 @@ void Simulation::StartDetection() {
     record.label = scenario_.detectors[i].label;
     record.type = scenario_.detectors[i].type;
     detector_records_.push_back(record);
+  }
+  // GLR detectors isolate by the failure signatures computed from the same models.
+  for (const std::unique_ptr<detectors::Detector>& d : p.detectors) {
+    if (auto* glr = dynamic_cast<detectors::Glr*>(d.get())) {
+      glr->SetSignatures(detectors::GlrSignatures(*p.bank, model, ekf, options.reference_pose,
+                                                  1.0 / scenario_.sensors.gnss_rate,
+                                                  glr->options().window));
+    }
   }
   p.verdicts.assign(p.detectors.size(), detectors::Verdict{});
   for (detectors::Verdict& v : p.verdicts) v.score.assign(p.bank->size(), 0.0);
