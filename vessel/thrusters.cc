@@ -28,12 +28,13 @@ void Check(bool ok, const ThrusterSpec& t, const std::string& field, double valu
   }
 }
 
-// Column of B for a unit force along alpha at (x, y).
-Vec3 Column(double x, double y, double alpha) {
-  return Vec3(std::cos(alpha), std::sin(alpha), x * std::sin(alpha) - y * std::cos(alpha));
-}
+Vec3 Column(double x, double y, double alpha) { return ThrustColumn(x, y, alpha); }
 
 }  // namespace
+
+Vec3 ThrustColumn(double x, double y, double alpha) {
+  return Vec3(std::cos(alpha), std::sin(alpha), x * std::sin(alpha) - y * std::cos(alpha));
+}
 
 ThrustAllocator::ThrustAllocator(std::vector<ThrusterSpec> thrusters)
     : thrusters_(std::move(thrusters)) {

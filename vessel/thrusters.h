@@ -42,6 +42,10 @@ struct ThrusterSpec {
 /// 0.6 MN either way; time constant 5 s; rate limit 0.2 MN/s.
 std::vector<ThrusterSpec> SeedThrusters();
 
+/// [X, Y, N] (body frame) of a unit force along alpha [rad, from the bow toward starboard]
+/// at (x, y) [m]: a column of the allocation's B.
+Vec3 ThrustColumn(double x, double y, double alpha);
+
 struct Allocation {
   Eigen::VectorXd thrust;        ///< per thruster [N] (magnitude for azimuths)
   Eigen::VectorXd direction;     ///< per thruster [rad] (azimuths: chosen; fixed: their angle)

@@ -34,15 +34,22 @@ void VesselPlant::SetThrustCommand(const Eigen::VectorXd& command,
   }
   command_ = command;
   for (int k = 0; k < n; ++k) {
-    const double c = std::cos(direction(k)), s = std::sin(direction(k));
-    const ThrusterSpec& t = thrusters_[k];
-    thrust_columns_.col(k) << c, s, 0.0, 0.0, 0.0, t.x * s - t.y * c;
+    const Vec3 column = ThrustColumn(thrusters_[k].x, thrusters_[k].y, direction(k));
+    thrust_columns_.col(k) << column(0), column(1), 0.0, 0.0, 0.0, column(2);
   }
 }
 
 Vec6 VesselPlant::ThrustLoad(const double* x) const {
   const int n = num_thrusters();
   return thrust_columns_ * Eigen::Map<const Eigen::VectorXd>(x + 12, n);
+}
+
+void VesselPlant::UpdateRotation(const double* x) {
+  const Vec3 angles(x[3], x[4], x[5]);
+  if (angles == rotation_angles_) return;
+  rotation_ = RotationBodyToNed(angles(0), angles(1), angles(2));
+  RotationDerivatives(angles(0), angles(1), angles(2), rotation_derivatives_);
+  rotation_angles_ = angles;
 }
 
 void VesselPlant::UpdateSea(double t, const double* x) {
@@ -63,18 +70,18 @@ void VesselPlant::Sea(double t, const double* x, Vec6* xi, Vec6* xi_dot, Vec6* d
 
 Vec6 VesselPlant::TotalPose(double t, const double* x) {
   UpdateSea(t, x);
+  UpdateRotation(x);
   Vec6 eta = Eta(x);
-  const Mat3 R = RotationBodyToNed(eta(3), eta(4), eta(5));
-  eta.head<3>() += R * xi_.head<3>();
+  eta.head<3>() += rotation_ * xi_.head<3>();
   eta.tail<3>() += xi_.tail<3>();
   return eta;
 }
 
-Vec6 VesselPlant::PreloadCorrection(const Vec6& eta) const {
-  const Mat3 R = RotationBodyToNed(eta(3), eta(4), eta(5));
+Vec6 VesselPlant::PreloadCorrection(const double* x) {
+  UpdateRotation(x);
   const Vec3 up(0.0, 0.0, -static_vertical_load_);
   Vec6 tau = Vec6::Zero();
-  tau.head<3>() = R.transpose() * up - up;
+  tau.head<3>() = rotation_.transpose() * up - up;
   return tau;
 }
 
@@ -82,7 +89,7 @@ void VesselPlant::Derivatives(double t, const double* x, const Vec6& tau_attache
   UpdateSea(t, x);
   const Vec6 eta = Eta(x);
   const Vec6 nu = Nu(x);
-  Vec6 tau = tau_attached + ThrustLoad(x) + drift_ + PreloadCorrection(eta);
+  Vec6 tau = tau_attached + ThrustLoad(x) + drift_ + PreloadCorrection(x);
   for (const EnvironmentLoad* load : loads_) tau += load->Load(t, eta, nu);
   Vec6 eta_dot, nu_dot;
   model_.Derivatives(eta, nu, tau, &eta_dot, &nu_dot);
@@ -106,10 +113,10 @@ void VesselPlant::Jacobian(double t, const double* x, const Vec6& /*tau_attached
     dtau_deta += Je;
     dtau_dnu += Jn;
   }
-  Mat3 dR[3];
-  RotationDerivatives(eta(3), eta(4), eta(5), dR);
+  UpdateRotation(x);
   for (int a = 0; a < 3; ++a) {
-    dtau_deta.block<3, 1>(0, 3 + a) += dR[a].transpose() * Vec3(0.0, 0.0, -static_vertical_load_);
+    dtau_deta.block<3, 1>(0, 3 + a) +=
+        rotation_derivatives_[a].transpose() * Vec3(0.0, 0.0, -static_vertical_load_);
   }
   J->setZero(StateSize(), StateSize());
   J->block<6, 6>(0, 0) = B.J_etadot_eta;
@@ -130,8 +137,8 @@ void VesselPlant::LoadSensitivity(const double* /*x*/,
 PointKinematics VesselPlant::PointMotion(double t, const double* x, const Vec3& r_body,
                                          PointMotionJacobian* J) {
   UpdateSea(t, x);
-  const double phi = x[3], theta = x[4], psi = x[5];
-  const Mat3 R = RotationBodyToNed(phi, theta, psi);
+  UpdateRotation(x);
+  const Mat3& R = rotation_;
   const Vec3 v_lin(x[6], x[7], x[8]);
   const Vec3 omega(x[9], x[10], x[11]);
   // Wave-frequency displacement and velocity of the point in body axes.
@@ -142,8 +149,7 @@ PointKinematics VesselPlant::PointMotion(double t, const double* x, const Vec3& 
   k.position = Vec3(x[0], x[1], x[2]) + R * r_rel;
   k.velocity = R * v_body;
   if (J != nullptr) {
-    Mat3 dR[3];
-    RotationDerivatives(phi, theta, psi, dR);
+    const Mat3* dR = rotation_derivatives_;
     J->J_pos_eta.setZero();
     J->J_vel_eta.setZero();
     J->J_pos_eta.leftCols<3>() = Mat3::Identity();
@@ -159,8 +165,8 @@ PointKinematics VesselPlant::PointMotion(double t, const double* x, const Vec3& 
 
 Vec6 VesselPlant::PointLoad(const double* x, const Vec3& r_body, const Vec3& F,
                             PointLoadJacobian* J) {
-  const double phi = x[3], theta = x[4], psi = x[5];
-  const Mat3 R = RotationBodyToNed(phi, theta, psi);
+  UpdateRotation(x);
+  const Mat3& R = rotation_;
   const Vec3 F_body = R.transpose() * F;
   Vec6 tau;
   tau.head<3>() = F_body;
@@ -169,8 +175,7 @@ Vec6 VesselPlant::PointLoad(const double* x, const Vec3& r_body, const Vec3& F,
     const Mat3 S = Skew(r_body);
     J->J_load_force.topRows<3>() = R.transpose();
     J->J_load_force.bottomRows<3>() = S * R.transpose();
-    Mat3 dR[3];
-    RotationDerivatives(phi, theta, psi, dR);
+    const Mat3* dR = rotation_derivatives_;
     J->J_load_eta.setZero();
     for (int a = 0; a < 3; ++a) {
       const Vec3 dF = dR[a].transpose() * F;

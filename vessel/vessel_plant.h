@@ -93,7 +93,8 @@ class VesselPlant final : public BodyPlant {
 
  private:
   void UpdateSea(double t, const double* x);
-  Vec6 PreloadCorrection(const Vec6& eta) const;
+  void UpdateRotation(const double* x);
+  Vec6 PreloadCorrection(const double* x);
 
   VesselModel model_;
   std::vector<ThrusterSpec> thrusters_;
@@ -105,6 +106,11 @@ class VesselPlant final : public BodyPlant {
   double sea_t_ = std::numeric_limits<double>::quiet_NaN();
   Vec3 sea_pose_ = Vec3::Zero();
   double static_vertical_load_ = 0.0;
+  // R(Theta) and its derivatives at the last angles asked for: every attachment point asks
+  // twice per right-hand side (motion, load) at the same angles.
+  Vec3 rotation_angles_ = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  Mat3 rotation_ = Mat3::Identity();
+  Mat3 rotation_derivatives_[3];
   Vec6 xi_ = Vec6::Zero(), xi_dot_ = Vec6::Zero(), drift_ = Vec6::Zero();
 };
 
