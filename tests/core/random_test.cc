@@ -7,6 +7,8 @@
 // bound says the pass is not luck of a tuned seed.
 #include "core/random.h"
 
+#include "tests/support/sample_statistics.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,6 +20,10 @@
 
 namespace moorsim {
 namespace {
+
+using testing::Correlation;
+using testing::Mean;
+using testing::Variance;
 
 constexpr int kSamples = 100'000;
 constexpr double kSigmas = 4.5;
@@ -31,43 +37,6 @@ std::vector<double> NormalSamples(RandomStream& stream, int n) {
 std::vector<double> NormalSamples(std::uint64_t seed, std::string_view name, int n) {
   RandomStream stream = RandomStream::Derive(seed, name);
   return NormalSamples(stream, n);
-}
-
-double Mean(const std::vector<double>& x) {
-  double sum = 0.0;
-  for (const double v : x) sum += v;
-  return sum / static_cast<double>(x.size());
-}
-
-double Variance(const std::vector<double>& x) {
-  const double mean = Mean(x);
-  double sum = 0.0;
-  for (const double v : x) sum += (v - mean) * (v - mean);
-  return sum / static_cast<double>(x.size() - 1);
-}
-
-/// Pearson correlation of x[i] and y[i + lag].
-double Correlation(const std::vector<double>& x, const std::vector<double>& y, int lag = 0) {
-  const int n = static_cast<int>(x.size()) - lag;
-  double mx = 0.0;
-  double my = 0.0;
-  for (int i = 0; i < n; ++i) {
-    mx += x[i];
-    my += y[i + lag];
-  }
-  mx /= n;
-  my /= n;
-  double sxy = 0.0;
-  double sxx = 0.0;
-  double syy = 0.0;
-  for (int i = 0; i < n; ++i) {
-    const double dx = x[i] - mx;
-    const double dy = y[i + lag] - my;
-    sxy += dx * dy;
-    sxx += dx * dx;
-    syy += dy * dy;
-  }
-  return sxy / std::sqrt(sxx * syy);
 }
 
 TEST(RandomStreamTest, MixersMatchPublishedTestVectors) {

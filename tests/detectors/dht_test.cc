@@ -10,9 +10,12 @@
 #include <vector>
 
 #include "core/error.h"
+#include "tests/detectors/evidence_support.h"
 
 namespace moorsim::detectors {
 namespace {
+
+using testing::WithLogLikelihoods;
 
 DhtOptions Options(double floor, double threshold, double hold) {
   DhtOptions options;
@@ -20,16 +23,6 @@ DhtOptions Options(double floor, double threshold, double hold) {
   options.threshold = threshold;
   options.hold = hold;
   return options;
-}
-
-Evidence WithLogLikelihoods(double t, const std::vector<double>& log_likelihood) {
-  Evidence evidence;
-  evidence.t = t;
-  evidence.hypotheses.resize(log_likelihood.size());
-  for (std::size_t k = 0; k < log_likelihood.size(); ++k) {
-    evidence.hypotheses[k].log_likelihood = log_likelihood[k];
-  }
-  return evidence;
 }
 
 double Sum(const std::vector<double>& x) {

@@ -9,19 +9,12 @@
 #include <vector>
 
 #include "core/error.h"
+#include "tests/detectors/evidence_support.h"
 
 namespace moorsim::detectors {
 namespace {
 
-Evidence WithLogLikelihoods(double t, const std::vector<double>& log_likelihood) {
-  Evidence evidence;
-  evidence.t = t;
-  evidence.hypotheses.resize(log_likelihood.size());
-  for (std::size_t k = 0; k < log_likelihood.size(); ++k) {
-    evidence.hypotheses[k].log_likelihood = log_likelihood[k];
-  }
-  return evidence;
-}
+using testing::WithLogLikelihoods;
 
 TEST(MleTest, ForgettingGivesAGeometricSumWithMemoryOneOverOneMinusLambda) {
   // A constant log-likelihood l gives J_n = -l (1 - lambda^n) / (1 - lambda) -> -l / (1 -

@@ -27,9 +27,14 @@
 
 #include "core/error.h"
 #include "core/random.h"
+#include "tests/support/sample_statistics.h"
 
 namespace moorsim::vessel {
 namespace {
+
+using moorsim::testing::Correlation;
+using moorsim::testing::Mean;
+using moorsim::testing::Variance;
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kSigmas = 4.5;
@@ -99,33 +104,6 @@ std::array<Channel, 3> Record(const PoseSensorSpec& spec, std::uint64_t seed, in
                               const Vec3& pose = Vec3::Zero()) {
   PoseSensors sensors(spec, seed);
   return Record(sensors, samples, pose);
-}
-
-double Mean(const std::vector<double>& x) {
-  double sum = 0.0;
-  for (const double v : x) sum += v;
-  return sum / static_cast<double>(x.size());
-}
-
-double Variance(const std::vector<double>& x) {
-  const double mean = Mean(x);
-  double sum = 0.0;
-  for (const double v : x) sum += (v - mean) * (v - mean);
-  return sum / static_cast<double>(x.size() - 1);
-}
-
-double Correlation(const std::vector<double>& x, const std::vector<double>& y) {
-  const double mx = Mean(x);
-  const double my = Mean(y);
-  double sxy = 0.0;
-  double sxx = 0.0;
-  double syy = 0.0;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    sxy += (x[i] - mx) * (y[i] - my);
-    sxx += (x[i] - mx) * (x[i] - mx);
-    syy += (y[i] - my) * (y[i] - my);
-  }
-  return sxy / std::sqrt(sxx * syy);
 }
 
 /// 4.5 SE of a sample variance ratio s^2 / sigma^2 from n normal samples.
