@@ -506,8 +506,7 @@ void Simulation::DiscreteEvents() {
     }
   }
   if (parts_->tension_cells && parts_->tension_cells->Due(t_) && t_ > last_tension_time_) {
-    const Sample now = Record();
-    parts_->measured_tensions = parts_->tension_cells->Sample(t_, now.fairlead_tension);
+    parts_->measured_tensions = parts_->tension_cells->Sample(t_, FairleadTensions());
     last_tension_time_ = t_;
   }
   const double dt = 1.0 / scenario_.controller.rate;
@@ -564,12 +563,7 @@ Sample Simulation::Record() {
   s.velocity = nu;
   s.pose_true = plant_->TotalPose(t_, x_.data());
   s.pose_measured = last_measurement_;
-  const int nb = plant_->StateSize();
-  std::vector<double> xdot(x_.size());
-  system_->Derivatives(t_, x_.data(), xdot.data());
-  s.fairlead_tension.resize(mooring_.num_lines());
-  for (int i = 0; i < mooring_.num_lines(); ++i)
-    s.fairlead_tension[i] = system_->forces()[i].norm();
+  s.fairlead_tension = FairleadTensions();  // also leaves the mooring load in system_
   s.load_mooring = system_->attachment_load();
   s.load_thrust = plant_->ThrustLoad(x_.data());
   s.thrust_delivered = Vec3(s.load_thrust(0), s.load_thrust(1), s.load_thrust(5));
@@ -580,8 +574,15 @@ Sample Simulation::Record() {
   plant_->Sea(t_, x_.data(), &xi, &xi_dot, &s.load_wave_drift);
   if (parts_->current) s.load_current = parts_->current->Load(t_, eta, nu);
   if (parts_->wind) s.load_wind = parts_->wind->Load(t_, eta, nu);
-  (void)nb;
   return s;
+}
+
+std::vector<double> Simulation::FairleadTensions() {
+  std::vector<double> xdot(x_.size());
+  system_->Derivatives(t_, x_.data(), xdot.data());
+  std::vector<double> tensions(mooring_.num_lines());
+  for (int i = 0; i < mooring_.num_lines(); ++i) tensions[i] = system_->forces()[i].norm();
+  return tensions;
 }
 
 double Simulation::MechanicalEnergy() {

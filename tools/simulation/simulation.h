@@ -101,6 +101,8 @@ class Simulation {
   double time() const { return t_; }
   const std::vector<double>& state() const { return x_; }
   Sample Record();
+  /// Each line's fairlead tension [N] at the current state.
+  std::vector<double> FairleadTensions();
   /// Vessel energy (kinetic + hydrostatic) plus line energy (kinetic, gravitational,
   /// elastic, seabed) [J], relative to nothing in particular: differences matter.
   double MechanicalEnergy();
