@@ -18,10 +18,15 @@ void CoupledSystem::Rebuild() {
 
   coupled_.clear();
   r_body_.resize(attachments);
+  uncoupled_.clear();
   for (int i = 0; i < attachments; ++i) {
     r_body_[i] = attached_.AttachmentPoint(i);
     const int node = attached_.CouplingNode(i);
-    if (node >= 0) coupled_.push_back({i, node});
+    if (node >= 0) {
+      coupled_.push_back({i, node});
+    } else if (attached_.Attached(i)) {
+      uncoupled_.push_back(i);
+    }
   }
   std::sort(coupled_.begin(), coupled_.end(),
             [](const Coupled& a, const Coupled& b) { return a.node_state < b.node_state; });
@@ -116,12 +121,7 @@ void CoupledSystem::Jacobian(double t, const double* x, const double* /*xdot*/, 
     daccel_dbody[ci].rightCols<6>() = C.J_accel_fairlead_vel * P.J_vel_nu;
   }
   // Attachments without a free node (a one-segment chain) still load the body.
-  for (std::size_t i = 0; i < forces_.size(); ++i) {
-    if (!attached_.Attached(static_cast<int>(i))) continue;
-    if (std::any_of(coupled_.begin(), coupled_.end(),
-                    [&](const Coupled& c) { return c.attachment == static_cast<int>(i); })) {
-      continue;
-    }
+  for (const int i : uncoupled_) {
     PointLoadJacobian L;
     tau_attached_ += body_.PointLoad(x, r_body_[i], forces_[i], &L);
     dtau_deta += L.J_load_eta;

@@ -139,6 +139,8 @@ class CoupledSystem : public OdeSystem {
     int node_state;  // in the subsystem's numbering
   };
   std::vector<Coupled> coupled_;
+  // Attached, but with no free node to couple (a one-segment chain): load only.
+  std::vector<int> uncoupled_;
 
   // Scratch.
   std::vector<Vec3> r_body_;
