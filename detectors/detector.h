@@ -41,6 +41,10 @@ struct HypothesisEvidence {
 struct Evidence {
   double t = 0.0;
   std::vector<HypothesisEvidence> hypotheses;
+  /// The intact model's evidence from a filter that nothing but the observations touches
+  /// (an IMM bank mixes hypotheses[0] with the others; see ObserverBank). Detectors that
+  /// test the nominal model's residuals (GLR) use it when present, else hypotheses[0].
+  std::optional<HypothesisEvidence> nominal;
 };
 
 /// A detector's state after a sample.

@@ -1,6 +1,8 @@
 #include "detectors/ekf_observer.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -116,6 +118,15 @@ HypothesisEkf::HypothesisEkf(QuasiStaticMooring mooring, const LowFrequencyModel
   lf_noise_.block<3, 3>(6, 6) =
       mass_inverse_ * options.force_noise.cwiseAbs2().asDiagonal() * mass_inverse_.transpose();
   Reset();
+}
+
+void HypothesisEkf::SetEstimate(const State& x, const Covariance& P) {
+  if (!initialised_) {
+    throw InputError("ekf: SetEstimate on a filter that has not been initialised");
+  }
+  x_ = x;
+  x_(kPose + 2) = WrapAngle(x_(kPose + 2));
+  P_ = 0.5 * (P + P.transpose());
 }
 
 void HypothesisEkf::Reset() {
@@ -385,9 +396,20 @@ HypothesisEvidence HypothesisEkf::Update(const Observation& observation) {
 // ---------------------------------------------------------------------------------------
 // ObserverBank
 
+void Validate(const ObserverBankOptions& options) {
+  if (!(std::isfinite(options.switch_rate) && options.switch_rate >= 0.0)) {
+    std::ostringstream out;
+    out.precision(10);
+    out << "detection.switch_rate = " << options.switch_rate << ": must be finite and >= 0";
+    throw InputError(out.str());
+  }
+}
+
 ObserverBank::ObserverBank(const HypothesisBank& bank, const LowFrequencyModel& model,
-                           const EkfOptions& options) {
+                           const EkfOptions& options, const ObserverBankOptions& bank_options)
+    : options_(bank_options) {
   Validate(options);
+  Validate(bank_options);
   const bool damped = (options.mooring_damping_ratio.array() > 0.0).any();
   filters_.reserve(bank.size());
   for (int h = 0; h < bank.size(); ++h) {
@@ -395,18 +417,107 @@ ObserverBank::ObserverBank(const HypothesisBank& bank, const LowFrequencyModel& 
         damped ? bank.MooringDamping(h, model.mass, options.mooring_damping_ratio) : Mat3::Zero();
     filters_.emplace_back(bank.mooring(h), model, mooring_damping, options);
   }
-  evidence_.hypotheses.resize(bank.size());
+  if (bank_options.switch_rate > 0.0 && bank.size() > 0) {
+    const Mat3 mooring_damping =
+        damped ? bank.MooringDamping(0, model.mass, options.mooring_damping_ratio) : Mat3::Zero();
+    nominal_.emplace(bank.mooring(0), model, mooring_damping, options);
+  }
+  const std::size_t n = filters_.size();
+  evidence_.hypotheses.resize(n);
+  log_probability_.resize(n);
+  probability_.resize(n);
+  predicted_.resize(n);
+  mixed_state_.resize(n);
+  mixed_covariance_.resize(n);
+  weight_.resize(n);
+  Reset();
 }
 
 void ObserverBank::Reset() {
   for (HypothesisEkf& filter : filters_) filter.Reset();
+  if (nominal_) nominal_->Reset();
   evidence_.t = 0.0;
   for (HypothesisEvidence& e : evidence_.hypotheses) e = HypothesisEvidence();
+  evidence_.nominal.reset();
+  const double uniform = 1.0 / static_cast<double>(filters_.size());
+  std::fill(probability_.begin(), probability_.end(), uniform);
+  std::fill(log_probability_.begin(), log_probability_.end(), std::log(uniform));
+  std::fill(predicted_.begin(), predicted_.end(), uniform);
+}
+
+void ObserverBank::Mix(double dt) {
+  const int n = size();
+  const double stay = std::exp(-options_.switch_rate * dt);
+  const double move = n > 1 ? (1.0 - stay) / (n - 1) : 0.0;
+  constexpr double kSmallestWeight = 1e-12;
+  for (int j = 0; j < n; ++j) {
+    predicted_[j] = stay * probability_[j] + move * (1.0 - probability_[j]);
+    const HypothesisEkf::State& own = filters_[j].state();
+    HypothesisEkf::State& x0 = mixed_state_[j];
+    x0.setZero();
+    double total = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const double w = (i == j ? stay : move) * probability_[i] / predicted_[j];
+      weight_[i] = w >= kSmallestWeight ? w : 0.0;
+      total += weight_[i];
+    }
+    // Headings as wrapped differences from filter j's own, so +-pi does not average to 0.
+    for (int i = 0; i < n; ++i) {
+      if (weight_[i] == 0.0) continue;
+      weight_[i] /= total;
+      HypothesisEkf::State d = filters_[i].state() - own;
+      d(HypothesisEkf::kPose + 2) = WrapAngle(d(HypothesisEkf::kPose + 2));
+      x0 += weight_[i] * d;
+    }
+    HypothesisEkf::Covariance& P0 = mixed_covariance_[j];
+    P0.setZero();
+    for (int i = 0; i < n; ++i) {
+      if (weight_[i] == 0.0) continue;
+      HypothesisEkf::State d = filters_[i].state() - own;
+      d(HypothesisEkf::kPose + 2) = WrapAngle(d(HypothesisEkf::kPose + 2));
+      d -= x0;
+      P0.noalias() += weight_[i] * (filters_[i].covariance() + d * d.transpose());
+    }
+    x0 += own;
+  }
+  for (int j = 0; j < n; ++j) filters_[j].SetEstimate(mixed_state_[j], mixed_covariance_[j]);
 }
 
 const Evidence& ObserverBank::Update(const Observation& observation) {
   evidence_.t = observation.t;
-  for (int h = 0; h < size(); ++h) evidence_.hypotheses[h] = filters_[h].Update(observation);
+  const int n = size();
+  bool initialised = true;
+  for (const HypothesisEkf& filter : filters_) initialised = initialised && filter.initialised();
+  // Mix only on a valid step; a bad time is left to the filters to report.
+  const double dt = initialised ? observation.t - filters_[0].time() : 0.0;
+  const bool mixing =
+      options_.switch_rate > 0.0 && initialised && dt > 0.0 && std::isfinite(observation.t);
+  if (mixing) {
+    Mix(dt);
+  } else {
+    std::copy(probability_.begin(), probability_.end(), predicted_.begin());
+  }
+  if (nominal_) evidence_.nominal = nominal_->Update(observation);
+  double best = -std::numeric_limits<double>::infinity();
+  bool informative = false;
+  for (int h = 0; h < n; ++h) {
+    const HypothesisEvidence& e = evidence_.hypotheses[h] = filters_[h].Update(observation);
+    informative = informative || e.dimension > 0;
+    log_probability_[h] = std::log(predicted_[h]) + e.log_likelihood;
+    best = std::max(best, log_probability_[h]);
+  }
+  if (!informative) {
+    std::copy(predicted_.begin(), predicted_.end(), probability_.begin());
+    for (int h = 0; h < n; ++h) log_probability_[h] = std::log(probability_[h]);
+    return evidence_;
+  }
+  double sum = 0.0;
+  for (int h = 0; h < n; ++h) sum += std::exp(log_probability_[h] - best);
+  const double log_sum = best + std::log(sum);
+  for (int h = 0; h < n; ++h) {
+    log_probability_[h] -= log_sum;
+    probability_[h] = std::exp(log_probability_[h]);
+  }
   return evidence_;
 }
 

@@ -102,6 +102,7 @@ std::optional<Vec3> WhitenInnovation(const Mat3& covariance, const Vec3& v,
 
 Glr::Glr(const GlrOptions& options) : options_(options) {
   internal::Require(options.window >= 2, "glr", "window >= 2");
+  internal::Require(options.hold >= 0.0, "glr", "hold >= 0");
   internal::Require(options.false_alarm_probability > 0.0 && options.false_alarm_probability < 1.0,
                     "glr", "false_alarm_probability in (0, 1)");
   internal::Require(!options.threshold || *options.threshold > 0.0, "glr", "threshold > 0");
@@ -131,6 +132,8 @@ void Glr::Reset(int hypotheses) {
   verdict_.score.assign(static_cast<std::size_t>(hypotheses), 0.0);
   verdict_.hypothesis = 0;
   verdict_.alarm = false;
+  exceeding_ = false;
+  exceeding_since_ = 0.0;
 }
 
 int Glr::Slot(int back) const {
@@ -158,7 +161,7 @@ Verdict Glr::Update(const Evidence& evidence) { return Step(evidence); }
 
 const Verdict& Glr::Step(const Evidence& evidence) {
   internal::CheckEvidence("glr", evidence, hypotheses_);
-  const HypothesisEvidence& intact = evidence.hypotheses[0];
+  const HypothesisEvidence& intact = evidence.nominal ? *evidence.nominal : evidence.hypotheses[0];
   if (!intact.innovation.allFinite()) ThrowBadSample(evidence.t, "non-finite intact innovation");
   if (!intact.covariance.allFinite()) ThrowBadSample(evidence.t, "non-finite intact covariance");
 
@@ -223,9 +226,16 @@ const Verdict& Glr::Step(const Evidence& evidence) {
     }
   }
 
-  verdict_.alarm = g > threshold_;
+  const bool exceeded = g > threshold_;
+  if (!exceeded) {
+    exceeding_ = false;
+  } else if (!exceeding_) {
+    exceeding_ = true;
+    exceeding_since_ = evidence.t;
+  }
+  verdict_.alarm = exceeded && evidence.t - exceeding_since_ >= options_.hold;
   verdict_.hypothesis = 0;
-  if (verdict_.alarm && hypotheses_ > 1) {
+  if (exceeded && hypotheses_ > 1) {
     verdict_.hypothesis =
         static_cast<int>(std::max_element(score.begin() + 1, score.end()) - score.begin());
   }

@@ -39,9 +39,11 @@
 // hypotheses: T_k = 2 (sum over the window of log_likelihood_k - log_likelihood_0), the
 // hypothesis that explained the last M samples best.
 //
-// Verdict: score[0] = g, score[k] = T_k (k >= 1); alarm = g > h (a level, recomputed at
-// every sample); hypothesis = the isolated line argmax_{k>=1} T_k (ties: lowest index)
-// while the alarm is on, else 0.
+// Verdict: score[0] = g, score[k] = T_k (k >= 1); hypothesis = the isolated line
+// argmax_{k>=1} T_k (ties: lowest index) while g > h, else 0; alarm = g has stayed above h
+// for at least `hold` seconds of evidence time (a level: it drops as soon as g <= h and
+// re-arms after another `hold`). The residuals are Evidence::nominal's when the observer
+// bank provides it (an unmixed intact filter), else hypotheses[0]'s.
 //
 // Bad state: a non-finite innovation or covariance, or a covariance whose carried block is
 // not positive definite, throws SolverError with t. Cost O(M (N + 3)) per sample; Step()
@@ -70,6 +72,8 @@ struct GlrOptions {
   /// h: the alarm threshold on g, > 0. Unset: GlrDefaultThreshold(false_alarm_probability,
   /// window).
   std::optional<double> threshold;
+  /// [s] How long g must stay above h before the alarm, >= 0 (0: at once, the seed's rule).
+  double hold = 0.0;
 };
 
 class Glr final : public Detector {
@@ -109,6 +113,8 @@ class Glr final : public Detector {
   Eigen::Matrix<double, 3, Eigen::Dynamic> whitened_;  // 3 x M ring of w
   Eigen::Matrix<double, 3, Eigen::Dynamic> carried_;   // 3 x M ring, 1 where carried
   Eigen::MatrixXd log_likelihood_;                     // N x M ring (fallback isolation)
+  bool exceeding_ = false;                             // g > h at the last sample
+  double exceeding_since_ = 0.0;
   int newest_ = -1;
   int filled_ = 0;
   int change_samples_ = 0;

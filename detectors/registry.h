@@ -57,6 +57,8 @@ class DetectorParameters {
   std::optional<double> Find(std::string_view name) const;
   /// Find() for a parameter that has a default (always-on check).
   double Get(std::string_view name) const;
+  /// Whether the scenario gave the parameter (not its default).
+  bool Given(std::string_view name) const { return given_.contains(std::string(name)); }
 
  private:
   std::span<const DetectorParameter> table_;

@@ -568,10 +568,21 @@ void ParseDetectors(const Reader& r, Scenario& scenario) {
 }
 
 void ParseDetection(const Reader& r, Scenario& scenario) {
-  r.CheckKeys({"measurement_variance", "observer", "pairs"});
-  r.Optional("observer", scenario.detection.observer);
-  r.Optional("pairs", scenario.detection.pairs);
-  r.Optional("measurement_variance", scenario.detection.measurement_variance);
+  r.CheckKeys({"measurement_variance", "model", "observer", "pairs", "switch_rate"});
+  DetectionSpec& d = scenario.detection;
+  r.Optional("observer", d.observer);
+  r.Optional("pairs", d.pairs);
+  r.Optional("measurement_variance", d.measurement_variance);
+  d.switch_rate = r.Maybe<double>("switch_rate");
+  if (const auto m = r.Find("model")) {
+    m->CheckKeys({"bias_std", "bias_time_constant", "force_noise", "mooring_damping_ratio",
+                  "wave_motion_std"});
+    d.model.wave_motion_std = m->Maybe<Vec3>("wave_motion_std");
+    d.model.bias_std = m->Maybe<Vec3>("bias_std");
+    d.model.bias_time_constant = m->Maybe<Vec3>("bias_time_constant");
+    d.model.force_noise = m->Maybe<Vec3>("force_noise");
+    d.model.mooring_damping_ratio = m->Maybe<Vec3>("mooring_damping_ratio");
+  }
 }
 
 void ParseSimulation(const Reader& r, Scenario& scenario) {
@@ -968,7 +979,25 @@ void CheckDetectors(const Checker& check, const Scenario& scenario) {
     check.Fail("detection.observer",
                "unknown observer '" + scenario.detection.observer + "' (known: ekf)");
   }
-  check.Positive("detection.measurement_variance", scenario.detection.measurement_variance, "");
+  const DetectionSpec& detection = scenario.detection;
+  check.Positive("detection.measurement_variance", detection.measurement_variance, "");
+  if (detection.switch_rate)
+    check.NonNegative("detection.switch_rate", *detection.switch_rate, "1/s");
+  const auto check_vector = [&](const char* name, const std::optional<Vec3>& value,
+                                std::string_view unit, bool positive) {
+    if (!value) return;
+    for (int i = 0; i < 3; ++i) {
+      const std::string path =
+          "detection.model." + std::string(name) + "[" + std::to_string(i + 1) + "]";
+      positive ? check.Positive(path, (*value)(i), unit)
+               : check.NonNegative(path, (*value)(i), unit);
+    }
+  };
+  check_vector("wave_motion_std", detection.model.wave_motion_std, "", false);
+  check_vector("bias_std", detection.model.bias_std, "", false);
+  check_vector("bias_time_constant", detection.model.bias_time_constant, "s", true);
+  check_vector("force_noise", detection.model.force_noise, "", false);
+  check_vector("mooring_damping_ratio", detection.model.mooring_damping_ratio, "", false);
   if (!d.empty() && !scenario.vessel) check.Fail("detectors", "needs a vessel section");
 }
 

@@ -232,6 +232,18 @@ struct DetectionSpec {
   std::string observer = "ekf";         ///< per-hypothesis observer: ekf
   bool pairs = false;                   ///< also every pair of failed lines
   double measurement_variance = 0.005;  ///< observers' R per DOF [m^2, rad^2]
+  /// Rate [1/s] at which the observer bank lets the truth switch hypothesis (IMM mixing,
+  /// detectors/ekf_observer.h); 0 = independent filters as in the seeds.
+  std::optional<double> switch_rate;
+  /// The observers' disturbance model (`detection.model`, detectors::EkfOptions); unset
+  /// fields keep the detectors library's defaults. Per DOF [surge, sway, yaw].
+  struct Model {
+    std::optional<Vec3> wave_motion_std;        ///< [m, m, rad]
+    std::optional<Vec3> bias_std;               ///< [N, N, N m]
+    std::optional<Vec3> bias_time_constant;     ///< [s]
+    std::optional<Vec3> force_noise;            ///< [N sqrt(s), N sqrt(s), N m sqrt(s)]
+    std::optional<Vec3> mooring_damping_ratio;  ///< fraction of critical [-]
+  } model;
 };
 
 struct SimulationSpec {

@@ -12,8 +12,10 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -46,7 +48,7 @@ class OwnModelSimulator {
  public:
   OwnModelSimulator(const QuasiStaticMooring& mooring, const LowFrequencyModel& model,
                     const EkfOptions& options, std::uint64_t seed, const Vec3& eta0)
-      : mooring_(mooring),
+      : mooring_(&mooring),
         model_(model),
         options_(options),
         mass_inverse_(model.mass.inverse()),
@@ -69,6 +71,8 @@ class OwnModelSimulator {
   }
 
   const Vec15& state() const { return x_; }
+  /// Switches the truth to another mooring (a line parting); the state carries on.
+  void SetMooring(const QuasiStaticMooring& mooring) { mooring_ = &mooring; }
 
   /// Advances by dt with the body thrust tau held.
   void Advance(double dt, const Vec3& tau) {
@@ -112,7 +116,7 @@ class OwnModelSimulator {
     const double c = std::cos(eta.z()), s = std::sin(eta.z());
     d.segment<3>(6) = Vec3(c * nu.x() - s * nu.y(), s * nu.x() + c * nu.y(), nu.z());
     d.segment<3>(9) = -b.cwiseQuotient(options_.bias_time_constant);
-    const Vec3 f = mooring_.Load(eta) + b;  // Earth
+    const Vec3 f = mooring_->Load(eta) + b;  // Earth
     const Vec3 f_body(c * f.x() + s * f.y(), -s * f.x() + c * f.y(), f.z());
     d.segment<3>(12) = mass_inverse_ * (-model_.damping * nu + f_body + tau);
     return d;
@@ -133,7 +137,7 @@ class OwnModelSimulator {
     x_.segment<3>(12) += mass_inverse_ * force * root;
   }
 
-  const QuasiStaticMooring& mooring_;
+  const QuasiStaticMooring* mooring_;
   LowFrequencyModel model_;
   EkfOptions options_;
   Mat3 mass_inverse_;
@@ -207,7 +211,7 @@ std::vector<double> SummedLogLikelihood(int truth_h, std::uint64_t seed, int sam
   const LowFrequencyModel model = SeedLowFrequencyModel();
   const EkfOptions options;
   OwnModelSimulator truth(bank.mooring(truth_h), model, options, seed, Vec3::Zero());
-  ObserverBank observers(bank, model, options);
+  ObserverBank observers(bank, model, options, ObserverBankOptions{0.0});  // independent
   std::vector<double> sum(bank.size(), 0.0);
   for (int k = 0; k <= samples; ++k) {
     if (k > 0) truth.Advance(1.0, Vec3::Zero());
@@ -420,6 +424,104 @@ TEST(ObserverBankTest, OneFilterPerHypothesis) {
   }
   observers.Reset();
   EXPECT_FALSE(observers.filter(3).initialised());
+}
+
+// Without mixing the bank's probabilities are the plain Bayesian posterior of its filters'
+// likelihoods from a uniform prior: softmax of the summed log-likelihoods.
+TEST(ObserverBankTest, UnmixedProbabilitiesAreTheBayesianPosterior) {
+  const HypothesisBank& bank = SeedBank();
+  const LowFrequencyModel model = SeedLowFrequencyModel();
+  const EkfOptions options;
+  ObserverBank observers(bank, model, options, ObserverBankOptions{0.0});
+  OwnModelSimulator truth(bank.mooring(7), model, options, 31, Vec3::Zero());
+  std::vector<double> sum(bank.size(), 0.0);
+  for (int k = 0; k <= 40; ++k) {
+    if (k > 0) truth.Advance(1.0, Vec3::Zero());
+    const Evidence& e = observers.Update(truth.Measure(k, Vec3::Zero()));
+    EXPECT_FALSE(e.nominal.has_value());
+    for (int h = 0; h < bank.size(); ++h) sum[h] += e.hypotheses[h].log_likelihood;
+  }
+  const double top = *std::max_element(sum.begin(), sum.end());
+  double total = 0.0;
+  for (double v : sum) total += std::exp(v - top);
+  for (int h = 0; h < bank.size(); ++h) {
+    EXPECT_NEAR(observers.probabilities()[h], std::exp(sum[h] - top) / total, 1e-12) << h;
+  }
+}
+
+struct BreakRun {
+  double gain = 0.0;          // sum of log-likelihood(line k) - log-likelihood(intact), 60 s
+  double probability = 0.0;   // the bank's probability of line k 60 s after the break
+  double worst_before = 1.0;  // the lowest probability of intact in the 200 s before it
+  double nominal_nis = 0.0;   // mean NIS of the unmixed intact filter over the 60 s
+};
+
+/// Own-model truth, intact for 600 s, then line `line` parts; a bank with `switch_rate`.
+BreakRun RunBreak(int line, double switch_rate, std::uint64_t seed) {
+  const HypothesisBank& bank = SeedBank();
+  const LowFrequencyModel model = SeedLowFrequencyModel();
+  const EkfOptions options;
+  ObserverBank observers(bank, model, options, ObserverBankOptions{switch_rate});
+  OwnModelSimulator truth(bank.mooring(0), model, options, seed, Vec3::Zero());
+  BreakRun run;
+  int nominal_samples = 0;
+  for (int k = 0; k <= 660; ++k) {
+    if (k == 600) truth.SetMooring(bank.mooring(line));
+    if (k > 0) truth.Advance(1.0, Vec3::Zero());
+    const Evidence& e = observers.Update(truth.Measure(k, Vec3::Zero()));
+    double p_sum = 0.0;
+    for (double p : observers.probabilities()) {
+      EXPECT_GT(p, 0.0);
+      p_sum += p;
+    }
+    EXPECT_NEAR(p_sum, 1.0, 1e-12);
+    if (k >= 400 && k < 600)
+      run.worst_before = std::min(run.worst_before, observers.probabilities()[0]);
+    if (k > 600) {
+      run.gain += e.hypotheses[line].log_likelihood - e.hypotheses[0].log_likelihood;
+      if (e.nominal) {
+        const HypothesisEvidence& n = *e.nominal;
+        run.nominal_nis += n.innovation.dot(n.covariance.ldlt().solve(n.innovation));
+        ++nominal_samples;
+      }
+    }
+  }
+  run.probability = observers.probabilities()[line];
+  if (nominal_samples > 0) run.nominal_nis /= nominal_samples;
+  return run;
+}
+
+// Why the bank mixes (ObserverBank): independent filters let each failure hypothesis's bias
+// carry its missing line's pretension, so a break moves every bias alike and the evidence
+// is only the stiffness change. The mixing bank keeps the failure filters on the intact
+// estimate while intact holds, so the parted line's filter is the only one that predicts
+// the drift. On own-model data (intact 600 s, then the line parts), for lines 6 and 3:
+// the mixing bank gains at least 10 nats more for the parted line in the 60 s after the
+// break than the independent bank, and ends with probability > 0.9 on it; before the break
+// it never lets intact fall below 0.5. The unmixed nominal filter (for the GLR) shows the
+// break as inconsistency: mean NIS over the 60 s above 6, twice its 3 (the 60-sample mean
+// of a consistent filter is 3 +- 0.32). Measured: gains 23.4 / 27.4 nats against 9.4 /
+// 15.3, probabilities 0.92 / 0.97, intact never below 0.60, NIS 8.5 / 8.2.
+TEST(ObserverBankTest, MixingFindsALineThatPartsMidRun) {
+  for (const int line : {6, 3}) {
+    const BreakRun independent = RunBreak(line, 0.0, 40 + line);
+    const BreakRun mixing = RunBreak(line, 1e-2, 40 + line);
+    EXPECT_GT(mixing.gain, independent.gain + 10.0) << line;
+    EXPECT_GT(mixing.probability, 0.9) << line;
+    EXPECT_GT(mixing.worst_before, 0.5) << line;
+    EXPECT_GT(mixing.nominal_nis, 6.0) << line;
+  }
+}
+
+TEST(ObserverBankTest, BadSwitchRateNamesTheField) {
+  try {
+    ObserverBank observers(SeedBank(), SeedLowFrequencyModel(), EkfOptions{},
+                           ObserverBankOptions{-1.0});
+    FAIL() << "no exception";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("detection.switch_rate = -1"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

@@ -281,12 +281,63 @@ TEST(GlrTest, OppositeSignatureScoresZero) {
   EXPECT_EQ(v.hypothesis, 2);
 }
 
+// The alarm waits until g has stayed above h for `hold` seconds; the isolated line is
+// reported from the first exceedance; the alarm drops with g and re-arms after another hold.
+TEST(GlrTest, HoldDelaysTheAlarmAndResetsWhenTheStatisticFalls) {
+  Glr glr(GlrOptions{.window = 2, .threshold = 1.0, .hold = 3.0});
+  glr.Reset(2);
+  glr.SetSignatures({Vec3(1.0, 0.0, 0.0)});
+  Evidence evidence;
+  evidence.hypotheses.resize(2);
+  evidence.hypotheses[0].innovation = Vec3(2.0, 0.0, 0.0);
+  for (int t = 0; t <= 3; ++t) {
+    evidence.t = t;
+    const Verdict& v = glr.Step(evidence);
+    EXPECT_EQ(v.hypothesis, 1) << t;
+    EXPECT_EQ(v.alarm, t >= 3) << t;
+  }
+  // +0.5 then -0.5: g = max(0.5^2, 0^2 / 2) = 0.25 <= h.
+  evidence.hypotheses[0].innovation = Vec3(0.5, 0.0, 0.0);
+  evidence.t = 4;
+  EXPECT_TRUE(glr.Step(evidence).alarm);
+  evidence.hypotheses[0].innovation = Vec3(-0.5, 0.0, 0.0);
+  evidence.t = 5;
+  const Verdict& low = glr.Step(evidence);
+  EXPECT_DOUBLE_EQ(low.score[0], 0.25);
+  EXPECT_FALSE(low.alarm);
+  EXPECT_EQ(low.hypothesis, 0);
+  // Above h again: the hold starts over.
+  evidence.hypotheses[0].innovation = Vec3(3.0, 0.0, 0.0);
+  evidence.t = 6;
+  EXPECT_FALSE(glr.Step(evidence).alarm);
+}
+
+/// One hypothesis (intact) whose innovation is `innovation`, identity covariance.
+Evidence IntactOnly(const Vec3& innovation) {
+  Evidence evidence;
+  evidence.hypotheses.resize(1);
+  evidence.hypotheses[0].innovation = innovation;
+  return evidence;
+}
+
+// With Evidence::nominal present (a mixing observer bank) the GLR tests the nominal
+// filter's residuals, not hypotheses[0]'s.
+TEST(GlrTest, UsesTheNominalResidualsWhenGiven) {
+  Glr glr(GlrOptions{.threshold = 1.0});
+  glr.Reset(1);
+  Evidence evidence = IntactOnly(Vec3(0.1, 0.0, 0.0));
+  HypothesisEvidence nominal;
+  nominal.innovation = Vec3(0.0, 3.0, 0.0);
+  evidence.nominal = nominal;
+  const Verdict& v = glr.Step(evidence);
+  EXPECT_DOUBLE_EQ(v.score[0], 9.0);
+  EXPECT_TRUE(v.alarm);
+}
+
 TEST(GlrTest, ResetEmptiesTheWindow) {
   Glr glr(GlrOptions{.threshold = 1.0});
   glr.Reset(1);
-  Evidence evidence;
-  evidence.hypotheses.resize(1);
-  evidence.hypotheses[0].innovation = Vec3(3.0, 0.0, 0.0);
+  Evidence evidence = IntactOnly(Vec3(3.0, 0.0, 0.0));
   EXPECT_TRUE(glr.Step(evidence).alarm);
   EXPECT_EQ(glr.filled(), 1);
   glr.Reset(1);

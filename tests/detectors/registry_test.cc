@@ -42,19 +42,26 @@ TEST(RegistryTest, TypesAreSortedAndEveryOneBuildsWithDefaults) {
 }
 
 TEST(RegistryTest, DefaultsAreTheReferenceSheetValues) {
-  // reference/README.md: DHT floor 1e-9, MLE forgetting 0.999, GLR window 50.
+  // reference/README.md: DHT floor 1e-9, GLR window 50. MLE, GLR threshold and hold: tuned
+  // on the coupled thesis plant (detectors/mle.h, detectors/registry.cc).
   const auto dht = MakeDetector(Spec("dht"), "d");
   EXPECT_EQ(dynamic_cast<const Dht&>(*dht).options().floor, 1e-9);
   EXPECT_EQ(dynamic_cast<const Dht&>(*dht).options().threshold, 0.99);
   EXPECT_EQ(dynamic_cast<const Dht&>(*dht).options().hold, 10.0);
   EXPECT_FALSE(dynamic_cast<const Dht&>(*dht).options().prior_intact.has_value());
   const auto mle = MakeDetector(Spec("mle"), "d");
-  EXPECT_EQ(dynamic_cast<const Mle&>(*mle).options().forgetting_factor, 0.999);
-  EXPECT_EQ(dynamic_cast<const Mle&>(*mle).options().hold, 30.0);
-  EXPECT_EQ(dynamic_cast<const Mle&>(*mle).options().margin, 10.0);
+  EXPECT_EQ(dynamic_cast<const Mle&>(*mle).options().forgetting_factor, 0.99);
+  EXPECT_EQ(dynamic_cast<const Mle&>(*mle).options().hold, 10.0);
+  EXPECT_EQ(dynamic_cast<const Mle&>(*mle).options().margin, 5.0);
   const auto glr = MakeDetector(Spec("glr"), "d");
   EXPECT_EQ(dynamic_cast<const Glr&>(*glr).options().window, 50);
-  EXPECT_DOUBLE_EQ(dynamic_cast<const Glr&>(*glr).threshold(), GlrDefaultThreshold(1e-6, 50));
+  EXPECT_EQ(dynamic_cast<const Glr&>(*glr).threshold(), 120.0);
+  EXPECT_EQ(dynamic_cast<const Glr&>(*glr).options().hold, 15.0);
+}
+
+TEST(RegistryTest, GlrThresholdOrFalseAlarmProbabilityNotBoth) {
+  EXPECT_EQ(MessageOf(Spec("glr", {{"threshold", 50}, {"false_alarm_probability", 1e-3}})),
+            "detectors[2]: give threshold or false_alarm_probability, not both");
 }
 
 TEST(RegistryTest, GivenParametersReachTheDetector) {
@@ -88,7 +95,7 @@ TEST(RegistryTest, UnknownParameterNamesTheKnownOnes) {
             "margin)");
   EXPECT_EQ(MessageOf(Spec("glr", {{"M", 50}})),
             "detectors[2]: unknown parameter 'M' for glr (known: false_alarm_probability, "
-            "threshold, window)");
+            "hold, threshold, window)");
 }
 
 TEST(RegistryTest, OutOfRangeValuesGiveTheRule) {
@@ -121,7 +128,7 @@ TEST(RegistryTest, HelpListsEveryTypeAndParameter) {
   }
   EXPECT_NE(help.find("floor                    default 1e-09; in (0, 1);"), std::string::npos)
       << help;
-  EXPECT_NE(help.find("hold                     default 30 s; >= 0;"), std::string::npos);
+  EXPECT_NE(help.find("hold                     default 15 s; >= 0;"), std::string::npos);
 }
 
 TEST(RegistryTest, EveryDefaultLiesInItsRange) {

@@ -105,6 +105,16 @@ sensors:
   tension_cells: {rate_hz: 1, noise: {std_dev: 1.0e4}}
 failure: {line: 2, time: 300, mode: node, node: 10}
 simulation: {duration: 1000, output_rate_hz: 2, seed: 7}
+detection:
+  observer: ekf
+  pairs: false
+  measurement_variance: 0.005
+  switch_rate: 0.01
+  model: {wave_motion_std: [0.15, 0.15, 0.0087], bias_std: [1.0e6, 1.0e6, 5.0e7], bias_time_constant: [1000, 1000, 1000], force_noise: [5.0e4, 5.0e4, 1.0e7], mooring_damping_ratio: [0, 0, 0]}
+detectors:
+  - {type: dht, floor: 1.0e-9}
+  - {type: mle, forgetting_factor: 0.99}
+  - {type: glr, threshold: 120}
 )";
 
 // Replaces the first `old_text` at or after the first `after` ("" = the start).
@@ -342,6 +352,17 @@ inline const BadInput kValidationErrors[] = {
      "failure.mode: unknown failure mode 'middle' (known: anchor, fairlead, node)"},
     {"FailureNodeOutOfRange", "failure:", "node: 10", "node: 60", "node: ^60",
      "failure.node: 60 must be in 1..39"},
+    {"DetectionSwitchRateNegative", "detection:", "switch_rate: 0.01", "switch_rate: -1",
+     "switch_rate: ^-1", "detection.switch_rate: -1 1/s must be >= 0"},
+    {"DetectionBiasStdNegative", "detection:", "bias_std: [1.0e6", "bias_std: [-1.0e6",
+     "bias_std: [^-1.0e6", "detection.model.bias_std[1]: -1e+06 must be >= 0"},
+    {"DetectionTimeConstantZero", "detection:", "bias_time_constant: [1000, 1000, 1000]",
+     "bias_time_constant: [1000, 0, 1000]", "bias_time_constant: [1000, ^0",
+     "detection.model.bias_time_constant[2]: 0 s must be > 0"},
+    {"DetectionModelUnknownKey", "detection:", "force_noise:", "force_noises:", "^force_noises:",
+     "detection.model: unknown key 'force_noises' (known: bias_std, bias_time_constant, "
+     "force_noise, "
+     "mooring_damping_ratio, wave_motion_std)"},
     {"SimulationDurationZero", "simulation:", "duration: 1000", "duration: 0", "duration: ^0",
      "simulation.duration: 0 s must be > 0"},
 };

@@ -355,9 +355,17 @@ void Simulation::StartDetection() {
       model.damping(i, j) = v.linear_damping(dof[i], dof[j]);
     }
   }
+  const scenarios::DetectionSpec& d = scenario_.detection;
   detectors::EkfOptions ekf;
-  ekf.measurement_variance = Vec3::Constant(scenario_.detection.measurement_variance);
-  p.observers.emplace(*p.bank, model, ekf);
+  ekf.measurement_variance = Vec3::Constant(d.measurement_variance);
+  ekf.wave_motion_std = d.model.wave_motion_std.value_or(ekf.wave_motion_std);
+  ekf.bias_std = d.model.bias_std.value_or(ekf.bias_std);
+  ekf.bias_time_constant = d.model.bias_time_constant.value_or(ekf.bias_time_constant);
+  ekf.force_noise = d.model.force_noise.value_or(ekf.force_noise);
+  ekf.mooring_damping_ratio = d.model.mooring_damping_ratio.value_or(ekf.mooring_damping_ratio);
+  detectors::ObserverBankOptions bank_options;
+  bank_options.switch_rate = d.switch_rate.value_or(bank_options.switch_rate);
+  p.observers.emplace(*p.bank, model, ekf, bank_options);
   for (std::size_t i = 0; i < scenario_.detectors.size(); ++i) {
     p.detectors.push_back(BuildDetector(scenario_, i));
     p.detectors.back()->Reset(p.bank->size());
