@@ -975,9 +975,9 @@ void CheckDetectors(const Checker& check, const Scenario& scenario) {
       }
     }
   }
-  if (scenario.detection.observer != "ekf") {
+  if (scenario.detection.observer != "ekf" && scenario.detection.observer != "passive") {
     check.Fail("detection.observer",
-               "unknown observer '" + scenario.detection.observer + "' (known: ekf)");
+               "unknown observer '" + scenario.detection.observer + "' (known: ekf, passive)");
   }
   const DetectionSpec& detection = scenario.detection;
   check.Positive("detection.measurement_variance", detection.measurement_variance, "");

@@ -229,7 +229,9 @@ struct DetectorEntry {
 
 /// How the hypothesis bank and its observers are built (`detection:`).
 struct DetectionSpec {
-  std::string observer = "ekf";         ///< per-hypothesis observer: ekf
+  /// Per-hypothesis observer: "ekf" (an EKF each, mixed by switch_rate) or "passive" (seed
+  /// 000's passive observer with a covariance from training runs; never mixed).
+  std::string observer = "ekf";
   bool pairs = false;                   ///< also every pair of failed lines
   double measurement_variance = 0.005;  ///< observers' R per DOF [m^2, rad^2]
   /// Rate [1/s] at which the observer bank lets the truth switch hypothesis (IMM mixing,

@@ -25,6 +25,18 @@ const std::string kLibrary = MOORSIM_SOURCE_DIR "/scenarios/library/";
 constexpr double kFailureTime = 400.0;  // the thesis files' failure time
 constexpr double kAllowedDelay = 180.0;
 
+/// No alarm before the break; the first alarm after it within kAllowedDelay, naming `line`.
+void ExpectEveryDetectorFinds(const Simulation& sim, int line) {
+  for (const DetectorRecord& r : sim.detector_records()) {
+    SCOPED_TRACE(r.label);
+    EXPECT_EQ(r.false_alarms, 0);
+    ASSERT_TRUE(r.alarm_time.has_value());
+    EXPECT_GE(*r.alarm_time, kFailureTime);
+    EXPECT_LE(*r.alarm_time - kFailureTime, kAllowedDelay);
+    EXPECT_EQ(r.isolated, line);
+  }
+}
+
 class SingleLineFailure : public ::testing::TestWithParam<int> {};
 
 TEST_P(SingleLineFailure, EveryDetectorAlarmsAndNamesTheLineWithin180s) {
@@ -37,17 +49,24 @@ TEST_P(SingleLineFailure, EveryDetectorAlarmsAndNamesTheLineWithin180s) {
   ASSERT_EQ(scenario.failure.time, kFailureTime);
   Simulation sim(scenario, scenario.simulation.seed);
   sim.AdvanceTo(scenario.simulation.duration);
-  for (const DetectorRecord& r : sim.detector_records()) {
-    SCOPED_TRACE(r.label);
-    EXPECT_EQ(r.false_alarms, 0);
-    ASSERT_TRUE(r.alarm_time.has_value());
-    EXPECT_GE(*r.alarm_time, kFailureTime);
-    EXPECT_LE(*r.alarm_time - kFailureTime, kAllowedDelay);
-    EXPECT_EQ(r.isolated, line);
-  }
+  ExpectEveryDetectorFinds(sim, line);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllEightLines, SingleLineFailure, ::testing::Range(1, 9));
+
+// detection.observer: passive (seed 000's observers with covariances from training runs of
+// their own models) on the thesis's line-6 case: every detector names line 6 within 180 s.
+// Measured at seed 1: DHT 83 s, MLE 57 s, GLR 52 s. Over all eight lines the MLE and GLR
+// isolate every one (37-57 s); the DHT misses lines 3, 4, 7 and names line 1 for line 8
+// (benchmarks/README.md), so the EKF bank stays the default.
+TEST(CoupledDetection, PassiveObserversFindLineSix) {
+  const scenarios::Scenario scenario =
+      scenarios::LoadScenario(kLibrary + "thesis_line6_current.yaml",
+                              {"detection.observer=passive", "simulation.duration=600"});
+  Simulation sim(scenario, scenario.simulation.seed);
+  sim.AdvanceTo(scenario.simulation.duration);
+  ExpectEveryDetectorFinds(sim, 6);
+}
 
 TEST(CoupledDetection, NoAlarmInAnHourWithoutFailure) {
   const scenarios::Scenario scenario = scenarios::LoadScenario(

@@ -12,6 +12,8 @@
 #include "detectors/glr.h"
 #include "detectors/glr_signatures.h"
 #include "detectors/hypothesis_bank.h"
+#include "detectors/innovation_covariance.h"
+#include "detectors/passive_observer.h"
 #include "detectors/registry.h"
 #include "mooring_fem/line_simulation.h"
 #include "scenarios/load.h"
@@ -275,7 +277,8 @@ struct Simulation::Parts {
   std::vector<double> measured_tensions;
   // Detection: the hypothesis bank, one observer per hypothesis, the detectors.
   std::optional<detectors::HypothesisBank> bank;
-  std::optional<detectors::ObserverBank> observers;
+  std::optional<detectors::ObserverBank> observers;       // detection.observer: ekf
+  std::optional<detectors::PassiveObserverBank> passive;  // detection.observer: passive
   std::vector<std::unique_ptr<detectors::Detector>> detectors;
   std::vector<detectors::Verdict> verdicts;
   Vec3 thrust_issued = Vec3::Zero();  // what the allocation sent to the thrusters
@@ -365,7 +368,22 @@ void Simulation::StartDetection() {
   ekf.mooring_damping_ratio = d.model.mooring_damping_ratio.value_or(ekf.mooring_damping_ratio);
   detectors::ObserverBankOptions bank_options;
   bank_options.switch_rate = d.switch_rate.value_or(bank_options.switch_rate);
-  p.observers.emplace(*p.bank, model, ekf, bank_options);
+  if (d.observer == "passive") {
+    // Seed 000's passive observers, each with the innovation covariance of a 10000 s
+    // training run of its own hypothesis's model (section 4.4), held at the setpoint, with
+    // the noise levels of detection.model; streams "training.*" of the run seed.
+    detectors::PassiveObserverOptions passive;
+    passive.bias_time_constant = ekf.bias_time_constant;
+    passive.mooring_damping_ratio = ekf.mooring_damping_ratio;
+    detectors::CovarianceTrainingOptions training;
+    training.pose = options.reference_pose;
+    training.sample_interval = 1.0 / scenario_.sensors.gnss_rate;
+    training.seed = seed_;
+    p.passive.emplace(*p.bank, model, passive,
+                      detectors::TrainPassiveCovariances(*p.bank, model, passive, ekf, training));
+  } else {
+    p.observers.emplace(*p.bank, model, ekf, bank_options);
+  }
   for (std::size_t i = 0; i < scenario_.detectors.size(); ++i) {
     p.detectors.push_back(BuildDetector(scenario_, i));
     p.detectors.back()->Reset(p.bank->size());
@@ -484,7 +502,7 @@ void Simulation::DiscreteEvents() {
       fresh[i] = m.valid[i];
     }
     last_sensor_time_ = t_;
-    if (parts_->observers) {
+    if (parts_->observers || parts_->passive) {
       // The detectors see what a real system has: the measured pose and the thrust the
       // allocation sent to the thrusters (after its saturation handling).
       detectors::Observation observation;
@@ -496,7 +514,9 @@ void Simulation::DiscreteEvents() {
         observation.tensions = Eigen::Map<const VecX>(parts_->measured_tensions.data(),
                                                       parts_->measured_tensions.size());
       }
-      const detectors::Evidence& evidence = parts_->observers->Update(observation);
+      const detectors::Evidence& evidence = parts_->observers
+                                                ? parts_->observers->Update(observation)
+                                                : parts_->passive->Update(observation);
       const bool failed = scenario_.failure.line > 0;
       for (std::size_t i = 0; i < parts_->detectors.size(); ++i) {
         const detectors::Verdict& v = parts_->verdicts[i] = parts_->detectors[i]->Update(evidence);
