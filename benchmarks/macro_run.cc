@@ -93,6 +93,16 @@ int main(int argc, char** argv) {
       "solves %.1f %%, everything else %.1f %%\n",
       100 * rhs / wall, 100 * jac / wall, 100 * setup / wall, 100 * solve / wall,
       100 * other / wall);
+  if (s.contains("detection") && s["detection"]["samples"].get<long>() > 0) {
+    const nlohmann::json& d = s["detection"];
+    const double update = d["update_seconds"].get<double>();
+    const double setup = d["setup_seconds"].get<double>();
+    const long samples = d["samples"].get<long>();
+    std::printf(
+        "detection: %ld samples, %.1f us per sample (observers + detectors), updates %.1f %% "
+        "of wall, setup %.3f s (%.1f %% of wall)\n",
+        samples, 1e6 * update / samples, 100 * update / wall, setup, 100 * setup / wall);
+  }
   std::printf("peak memory (max RSS of the run) %.1f MB, run.h5 %.1f MB\n",
               usage.ru_maxrss / 1024.0, h5_size / 1e6);
   return 0;

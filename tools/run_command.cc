@@ -243,6 +243,10 @@ int Run(const RunOptions& o) {
     detectors[d.label] = j;
   }
   summary["detectors"] = detectors;
+  const simulation::DetectionTiming& timing = sim.detection_timing();
+  summary["detection"] = {{"setup_seconds", timing.setup_seconds},
+                          {"update_seconds", timing.update_seconds},
+                          {"samples", timing.samples}};
   summary["status"] = status;
   if (!message.empty()) summary["error"] = message;
   summary["simulated_time"] = sim.time();

@@ -332,7 +332,12 @@ Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed)
   system_ = std::make_unique<CoupledSystem>(*plant_, attachment_);
   x_.assign(system_->StateSize(), 0.0);
   SettleMooredEquilibrium();
-  if (!scenario_.detectors.empty()) StartDetection();
+  if (!scenario_.detectors.empty()) {
+    const auto start = std::chrono::steady_clock::now();
+    StartDetection();
+    detection_.setup_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
   StartIntegrator();
 }
 
@@ -505,6 +510,7 @@ void Simulation::DiscreteEvents() {
     if (parts_->observers || parts_->passive) {
       // The detectors see what a real system has: the measured pose and the thrust the
       // allocation sent to the thrusters (after its saturation handling).
+      const auto start = std::chrono::steady_clock::now();
       detectors::Observation observation;
       observation.t = t_;
       observation.pose = m.value;
@@ -531,6 +537,9 @@ void Simulation::DiscreteEvents() {
         }
         r.alarm = v.alarm;
       }
+      detection_.update_seconds +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      ++detection_.samples;
     }
   }
   if (parts_->tension_cells && parts_->tension_cells->Due(t_) && t_ > last_tension_time_) {

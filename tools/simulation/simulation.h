@@ -73,6 +73,13 @@ struct DetectorRecord {
   bool alarm = false;  // at the latest sample
 };
 
+/// Wall time spent on detection (steady clock).
+struct DetectionTiming {
+  double setup_seconds = 0.0;   ///< hypothesis bank, observers, signatures, training
+  double update_seconds = 0.0;  ///< observer bank and detectors, all samples
+  long samples = 0;             ///< observations processed
+};
+
 /// Builds every detector of the scenario once to check its type and parameters; a bad one
 /// is an InputError placed at its entry in the file. `moorsim validate` and `run` call it.
 void CheckDetectors(const scenarios::Scenario& scenario);
@@ -122,6 +129,9 @@ class Simulation {
   std::uint64_t seed() const { return seed_; }
   /// Seconds of wall time spent in the integrator so far.
   double integrator_seconds() const { return integrator_seconds_; }
+  /// Time in detection; included in integrator_seconds() for the updates (they run at the
+  /// sensor events inside AdvanceTo), not for the setup (in the constructor).
+  const DetectionTiming& detection_timing() const { return detection_; }
 
  private:
   struct Parts;
@@ -146,6 +156,7 @@ class Simulation {
   double t_ = 0.0;
   Vec6 initial_pose_ = Vec6::Zero();
   double integrator_seconds_ = 0.0;
+  DetectionTiming detection_;
 
   // Discrete schedule (sample counters, so instants are k / rate exactly).
   long control_index_ = 0;
