@@ -15,6 +15,7 @@ Command AddStaticCommand(CLI::App& app);
 Command AddSimulateLinesCommand(CLI::App& app);
 Command AddValidateCommand(CLI::App& app);
 Command AddRunCommand(CLI::App& app);
+Command AddAnalyzeCommand(CLI::App& app);
 
 /// Splits "a,b,c" into numbers; throws InputError naming the flag on anything else.
 std::vector<double> ParseNumberList(const std::string& flag, const std::string& text);

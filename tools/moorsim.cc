@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   add(&moorsim::cli::AddRunCommand);
   add(&moorsim::cli::AddSimulateLinesCommand);
   add(&moorsim::cli::AddValidateCommand);
+  add(&moorsim::cli::AddAnalyzeCommand);
   // CLI11 would only say "A subcommand is required" for a misspelt command.
   if (argc > 1 && argv[1][0] != '-') {
     const std::string name = argv[1];

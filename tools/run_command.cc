@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "detectors/registry.h"
 #include "scenarios/load.h"
 #include "tools/commands.h"
 #include "tools/output/hdf5_file.h"
@@ -272,6 +273,7 @@ Command AddRunCommand(CLI::App& app) {
       "simulate the vessel on its FEM lines with waves, current, wind, thrusters, controller "
       "and sensors; writes DIR/run.h5 and DIR/summary.json");
   sub->add_option("scenario", o->scenario, "scenario YAML file")->required();
+  sub->footer("\n" + detectors::DetectorHelp());
   sub->add_option("--out", o->out, "output directory (default out/<scenario name>)");
   sub->add_option("--seed", o->seed, "run seed (default simulation.seed of the scenario)");
   sub->add_option("--duration", o->duration, "simulated time [s] (default simulation.duration)");

@@ -1,7 +1,9 @@
 // `moorsim run` end to end: the datasets and attributes DESIGN.md section 7 names, the
 // summary, bit-for-bit reproducibility per seed, --set overrides and their errors.
 #include <gtest/gtest.h>
+
 #include <hdf5.h>
+#include <algorithm>
 
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -217,6 +219,45 @@ TEST(RunCommand, DetectorsWriteScoresDecisionsAlarmsAndASummary) {
              dir.path());
   EXPECT_EQ(bad.exit_code, 2) << bad.Describe();
   EXPECT_EQ(bad.err, "moorsim: " + kSeed + ": detectors[1].floor: 2 must be in (0, 1)\n");
+}
+
+}  // namespace
+}  // namespace moorsim::testing
+
+namespace moorsim::testing {
+namespace {
+
+// Bad detector configuration in a scenario file fails `moorsim validate` with one line that
+// places it (file:line:col) and names the entry, the value and the rule; exit code 2.
+TEST(ValidateDetectors, BadConfigurationIsOneLineWithExitCode2) {
+  TempDirectory dir(::testing::TempDir());
+  std::string base = ReadWholeFile(kSeed);
+  const std::string relative = "../../data/fpso_wamit/fpso";
+  base.replace(base.find(relative), relative.size(), MOORSIM_SOURCE_DIR "/data/fpso_wamit/fpso");
+  struct Case {
+    std::string entry, message;
+  };
+  const Case cases[] = {
+      {"{type: dhx}", "detectors[1].type: unknown detector 'dhx' (known: dht, glr, mle)"},
+      {"{type: dht, floor: 0}", "detectors[1].floor: 0 must be in (0, 1)"},
+      {"{type: dht, floor: 1}", "detectors[1].floor: 1 must be in (0, 1)"},
+      {"{type: mle, forgetting_factor: 1.5}",
+       "detectors[1].forgetting_factor: 1.5 must be in (0, 1]"},
+      {"{type: mle, forgetting_factor: 0}", "detectors[1].forgetting_factor: 0 must be in (0, 1]"},
+      {"{type: glr, threshold: }", "detectors[1].threshold: an empty value must be a number"},
+      {"{type: glr, threshold: 50, false_alarm_probability: 0.001}",
+       "detectors[1]: give threshold or false_alarm_probability, not both"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.entry);
+    const std::filesystem::path file = dir.path() / "bad.yaml";
+    WriteWholeFile(file, base + "\ndetectors:\n  - " + c.entry + "\n");
+    const CliResult r = RunCli({"validate", file.string()}, dir.path());
+    EXPECT_EQ(r.exit_code, 2) << r.Describe();
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(r.err.rfind("moorsim: " + file.string() + ":", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(": " + c.message + "\n"), std::string::npos) << r.err;
+  }
 }
 
 }  // namespace

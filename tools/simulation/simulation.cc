@@ -1,5 +1,7 @@
 #include "tools/simulation/simulation.h"
 
+#include "tools/simulation/detection_models.h"
+
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -345,34 +347,12 @@ Simulation::~Simulation() = default;
 
 void Simulation::StartDetection() {
   Parts& p = *parts_;
-  detectors::HypothesisBankOptions options;
-  options.include_pairs = scenario_.detection.pairs;
-  options.moored_heave = initial_pose_(2);
-  const Vec3& start = scenario_.vessel->initial_pose;
-  options.reference_pose = scenario_.controller.setpoint.value_or(start);
+  const DetectionModels models = MakeDetectionModels(scenario_, plant_->model(), initial_pose_);
+  const detectors::HypothesisBankOptions& options = models.bank;
   p.bank.emplace(scenario_.mooring, options);
-  // The observers' horizontal-plane model: the vessel's own mass (with A(0)) and linear
-  // damping in surge, sway and yaw.
-  const vessel::VesselParameters& v = plant_->model().parameters();
-  const Mat6 M = plant_->model().mass();
-  const int dof[3] = {0, 1, 5};
-  detectors::LowFrequencyModel model;
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) {
-      model.mass(i, j) = M(dof[i], dof[j]);
-      model.damping(i, j) = v.linear_damping(dof[i], dof[j]);
-    }
-  }
+  const detectors::LowFrequencyModel& model = models.model;
+  const detectors::EkfOptions& ekf = models.ekf;
   const scenarios::DetectionSpec& d = scenario_.detection;
-  detectors::EkfOptions ekf;
-  ekf.measurement_variance = Vec3::Constant(d.measurement_variance);
-  ekf.wave_motion_std = d.model.wave_motion_std.value_or(ekf.wave_motion_std);
-  ekf.bias_std = d.model.bias_std.value_or(ekf.bias_std);
-  ekf.bias_time_constant = d.model.bias_time_constant.value_or(ekf.bias_time_constant);
-  ekf.force_noise = d.model.force_noise.value_or(ekf.force_noise);
-  ekf.mooring_damping_ratio = d.model.mooring_damping_ratio.value_or(ekf.mooring_damping_ratio);
-  detectors::ObserverBankOptions bank_options;
-  bank_options.switch_rate = d.switch_rate.value_or(bank_options.switch_rate);
   if (d.observer == "passive") {
     // Seed 000's passive observers, each with the innovation covariance of a 10000 s
     // training run of its own hypothesis's model (section 4.4), held at the setpoint, with
@@ -387,7 +367,7 @@ void Simulation::StartDetection() {
     p.passive.emplace(*p.bank, model, passive,
                       detectors::TrainPassiveCovariances(*p.bank, model, passive, ekf, training));
   } else {
-    p.observers.emplace(*p.bank, model, ekf, bank_options);
+    p.observers.emplace(*p.bank, model, ekf, models.observer_bank);
   }
   for (std::size_t i = 0; i < scenario_.detectors.size(); ++i) {
     p.detectors.push_back(BuildDetector(scenario_, i));
