@@ -51,6 +51,7 @@ class Detector:
     score: np.ndarray | None = None  # (N, hypotheses): probability, NLL or statistic
     kind: str = ""  # detector type (dht, mle, glr)
     hypotheses: list[str] = field(default_factory=list)
+    threshold: float | None = None  # the alarm rule's threshold on the score, if it has one
 
 
 @dataclass
@@ -114,8 +115,10 @@ def read_detectors(h5: h5py.File, rows: int) -> dict[str, Detector]:
         kind = attribute_text(group[name].attrs.get("type", ""))
         labels = attribute_text(group.attrs.get("hypotheses", ""))
         hypotheses = labels.split(",") if labels else []
+        threshold = group[name].attrs.get("threshold")
         detectors[name] = Detector(read_table(h5, f"{base}/decision", None, rows), alarm, score,
-                                   kind, hypotheses)
+                                   kind, hypotheses,
+                                   float(threshold) if threshold is not None else None)
     return detectors
 
 
@@ -347,6 +350,9 @@ def plot_scores(plt, run: Run, out_dir: Path) -> Path:
             ax.plot(run.time, score[:, h], linewidth=1.6 if failed or h == 0 else 0.7,
                     color="black" if h == 0 else (FAILURE_COLOUR if failed else None),
                     label=text)
+        if detector.threshold is not None:
+            ax.axhline(detector.threshold, color="tab:red", linestyle="--", linewidth=0.9,
+                       label=f"alarm threshold {detector.threshold:g}")
         ax.set_yscale(scale)
         ax.set_title(f"{name} ({detector.kind})", loc="left", fontsize="medium")
         ax.set_ylabel(label)

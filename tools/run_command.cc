@@ -102,6 +102,7 @@ class RunWriter {
                                      {}, output::TableType::kInt32);
       t.alarm = file_.CreateTable(group + "/alarm", 0, "0/1", {}, output::TableType::kInt8);
       file_.SetAttribute(group, "type", d.type);
+      if (d.threshold) file_.SetAttribute(group, "threshold", *d.threshold);
       detector_tables_.push_back(t);
     }
   }

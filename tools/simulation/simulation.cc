@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/random.h"
+#include "detectors/dht.h"
 #include "detectors/ekf_observer.h"
 #include "detectors/glr.h"
 #include "detectors/glr_signatures.h"
@@ -375,6 +376,11 @@ void Simulation::StartDetection() {
     DetectorRecord record;
     record.label = scenario_.detectors[i].label;
     record.type = scenario_.detectors[i].type;
+    if (const auto* glr = dynamic_cast<const detectors::Glr*>(p.detectors.back().get())) {
+      record.threshold = glr->threshold();
+    } else if (const auto* dht = dynamic_cast<const detectors::Dht*>(p.detectors.back().get())) {
+      record.threshold = dht->options().threshold;
+    }
     detector_records_.push_back(record);
   }
   // GLR detectors isolate by the failure signatures computed from the same models.

@@ -67,6 +67,9 @@ struct Sample {
 struct DetectorRecord {
   std::string label;
   std::string type;
+  /// The threshold the detector's alarm rule compares its score with (GLR: h on g; DHT:
+  /// the posterior), for plots; unset for detectors without one (MLE: a margin on gaps).
+  std::optional<double> threshold;
   std::optional<double> alarm_time;
   int isolated = 0;
   int false_alarms = 0;
