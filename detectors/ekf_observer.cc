@@ -3,27 +3,23 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <sstream>
-#include <string>
+#include <string_view>
 #include <utility>
 
 #include <Eigen/Cholesky>
 
 #include "core/error.h"
+#include "detectors/observer_support.h"
 
 namespace moorsim::detectors {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-constexpr double kLogTwoPi = 1.8378770664093453;  // log(2 pi)
-
-double WrapAngle(double angle) {
-  double wrapped = std::remainder(angle, kTwoPi);
-  if (wrapped <= -kPi) wrapped += kTwoPi;
-  return wrapped;
-}
+using internal::CheckScalar;
+using internal::CheckVector;
+using internal::kLogTwoPi;
+using internal::Rotation;
+using internal::WrapAngle;
 
 /// exp(A) by scaling and squaring with a truncated Taylor series: A is scaled by 2^-k so
 /// its 1-norm is below 1/2, where 20 terms are exact to rounding. Construction-time and
@@ -45,50 +41,21 @@ Eigen::Matrix<double, N, N> MatrixExponential(const Eigen::Matrix<double, N, N>&
   return result;
 }
 
-void CheckVector(const char* name, const Vec3& value, bool allow_zero) {
-  for (int i = 0; i < 3; ++i) {
-    const double v = value(i);
-    const bool ok = std::isfinite(v) && (allow_zero ? v >= 0.0 : v > 0.0);
-    if (!ok) {
-      std::ostringstream out;
-      out.precision(10);
-      out << "ekf." << name << "[" << i + 1 << "] = " << v << ": must be finite and "
-          << (allow_zero ? ">= 0" : "> 0");
-      throw InputError(out.str());
-    }
-  }
-}
-
-void CheckScalar(const char* name, double value) {
-  if (!(std::isfinite(value) && value > 0.0)) {
-    std::ostringstream out;
-    out.precision(10);
-    out << "ekf." << name << " = " << value << ": must be finite and > 0";
-    throw InputError(out.str());
-  }
-}
-
-/// Yaw rotation R(psi) of a [force, force, moment] vector (the moment is unchanged).
-Mat3 Rotation(double c, double s) {
-  Mat3 r;
-  r << c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0;
-  return r;
-}
-
 }  // namespace
 
 void Validate(const EkfOptions& options) {
-  CheckVector("wave_frequency", options.wave_frequency, false);
-  CheckVector("wave_damping", options.wave_damping, false);
-  CheckVector("wave_motion_std", options.wave_motion_std, true);
-  CheckVector("bias_time_constant", options.bias_time_constant, false);
-  CheckVector("bias_std", options.bias_std, true);
-  CheckVector("force_noise", options.force_noise, true);
-  CheckVector("measurement_variance", options.measurement_variance, false);
-  CheckVector("mooring_damping_ratio", options.mooring_damping_ratio, true);
-  CheckVector("initial_velocity_std", options.initial_velocity_std, true);
-  CheckScalar("max_substep", options.max_substep);
-  CheckScalar("max_interval", options.max_interval);
+  constexpr std::string_view kPrefix = "ekf.";
+  CheckVector(kPrefix, "wave_frequency", options.wave_frequency, false);
+  CheckVector(kPrefix, "wave_damping", options.wave_damping, false);
+  CheckVector(kPrefix, "wave_motion_std", options.wave_motion_std, true);
+  CheckVector(kPrefix, "bias_time_constant", options.bias_time_constant, false);
+  CheckVector(kPrefix, "bias_std", options.bias_std, true);
+  CheckVector(kPrefix, "force_noise", options.force_noise, true);
+  CheckVector(kPrefix, "measurement_variance", options.measurement_variance, false);
+  CheckVector(kPrefix, "mooring_damping_ratio", options.mooring_damping_ratio, true);
+  CheckVector(kPrefix, "initial_velocity_std", options.initial_velocity_std, true);
+  CheckScalar(kPrefix, "max_substep", options.max_substep);
+  CheckScalar(kPrefix, "max_interval", options.max_interval);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -98,14 +65,7 @@ HypothesisEkf::HypothesisEkf(QuasiStaticMooring mooring, const LowFrequencyModel
                              const Mat3& mooring_damping, const EkfOptions& options)
     : mooring_(std::move(mooring)), options_(options) {
   Validate(options);
-  if (!model.mass.allFinite() || !model.damping.allFinite() || !mooring_damping.allFinite()) {
-    throw InputError("ekf: the mass, damping and mooring damping matrices must be finite");
-  }
-  const Eigen::LLT<Mat3> mass_llt(0.5 * (model.mass + model.mass.transpose()));
-  if (mass_llt.info() != Eigen::Success) {
-    throw InputError("ekf: the mass matrix M = M_RB + A(0) must be positive definite");
-  }
-  mass_inverse_ = mass_llt.solve(Mat3::Identity());
+  mass_inverse_ = internal::CheckedMass("ekf", model, mooring_damping).inverse;
   damping_ = model.damping + mooring_damping;
   bias_rate_ = options.bias_time_constant.cwiseInverse();
   // Var(xi2) = s^2 / (4 lambda w0) for xi2'' + 2 lambda w0 xi2' + w0^2 xi2 = s w'.
@@ -350,24 +310,7 @@ HypothesisEvidence HypothesisEkf::MeasurementUpdate(const Observation& observati
 }
 
 HypothesisEvidence HypothesisEkf::Update(const Observation& observation) {
-  if (!std::isfinite(observation.t)) {
-    std::ostringstream out;
-    out << "observation.t = " << observation.t << ": must be finite";
-    throw InputError(out.str());
-  }
-  if (!observation.tau_command.allFinite()) {
-    std::ostringstream out;
-    out << "observation.tau_command at t = " << observation.t << " s is not finite";
-    throw InputError(out.str());
-  }
-  for (int i = 0; i < 3; ++i) {
-    if (observation.valid[i] && !std::isfinite(observation.pose(i))) {
-      std::ostringstream out;
-      out << "observation.pose[" << i + 1 << "] = " << observation.pose(i)
-          << " at t = " << observation.t << " s: a valid channel must be finite";
-      throw InputError(out.str());
-    }
-  }
+  internal::CheckObservation(observation);
   HypothesisEvidence evidence;
   evidence.covariance = options_.measurement_variance.asDiagonal();
   evidence.dimension = 0;
@@ -379,13 +322,7 @@ HypothesisEvidence HypothesisEkf::Update(const Observation& observation) {
     nis_ = 0.0;
     return evidence;
   }
-  const double dt = observation.t - t_;
-  if (!(dt > 0.0) || dt > options_.max_interval) {
-    std::ostringstream out;
-    out << "observation.t = " << observation.t << " s: must advance from the previous " << t_
-        << " s by (0, " << options_.max_interval << "] s";
-    throw InputError(out.str());
-  }
+  const double dt = internal::CheckInterval(observation.t, t_, options_.max_interval);
   Predict(dt);
   t_ = observation.t;
   evidence = MeasurementUpdate(observation);
@@ -398,10 +335,7 @@ HypothesisEvidence HypothesisEkf::Update(const Observation& observation) {
 
 void Validate(const ObserverBankOptions& options) {
   if (!(std::isfinite(options.switch_rate) && options.switch_rate >= 0.0)) {
-    std::ostringstream out;
-    out.precision(10);
-    out << "detection.switch_rate = " << options.switch_rate << ": must be finite and >= 0";
-    throw InputError(out.str());
+    internal::ThrowField("detection.switch_rate", options.switch_rate, "must be finite and >= 0");
   }
 }
 
@@ -410,17 +344,16 @@ ObserverBank::ObserverBank(const HypothesisBank& bank, const LowFrequencyModel& 
     : options_(bank_options) {
   Validate(options);
   Validate(bank_options);
-  const bool damped = (options.mooring_damping_ratio.array() > 0.0).any();
   filters_.reserve(bank.size());
   for (int h = 0; h < bank.size(); ++h) {
-    const Mat3 mooring_damping =
-        damped ? bank.MooringDamping(h, model.mass, options.mooring_damping_ratio) : Mat3::Zero();
-    filters_.emplace_back(bank.mooring(h), model, mooring_damping, options);
+    filters_.emplace_back(
+        bank.mooring(h), model,
+        internal::MooringDampingFor(bank, h, model.mass, options.mooring_damping_ratio), options);
   }
   if (bank_options.switch_rate > 0.0 && bank.size() > 0) {
-    const Mat3 mooring_damping =
-        damped ? bank.MooringDamping(0, model.mass, options.mooring_damping_ratio) : Mat3::Zero();
-    nominal_.emplace(bank.mooring(0), model, mooring_damping, options);
+    nominal_.emplace(
+        bank.mooring(0), model,
+        internal::MooringDampingFor(bank, 0, model.mass, options.mooring_damping_ratio), options);
   }
   const std::size_t n = filters_.size();
   evidence_.hypotheses.resize(n);

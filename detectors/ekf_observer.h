@@ -85,6 +85,7 @@
 #include "core/types.h"
 #include "detectors/detector.h"
 #include "detectors/hypothesis_bank.h"
+#include "detectors/observer_state.h"
 
 namespace moorsim::detectors {
 
@@ -126,14 +127,8 @@ struct EkfOptions {
 /// Throws moorsim::InputError naming the field ("ekf.bias_std[2]") and the value.
 void Validate(const EkfOptions& options);
 
-class HypothesisEkf {
+class HypothesisEkf : public ObserverStateLayout {
  public:
-  static constexpr int kStates = 15;
-  static constexpr int kWave = 0;       ///< xi1 (3), xi2 (3)
-  static constexpr int kPose = 6;       ///< eta = x, y [m] NED, psi [rad]
-  static constexpr int kBias = 9;       ///< b [N, N, N m] Earth
-  static constexpr int kVelocity = 12;  ///< nu = u, v [m/s], r [rad/s] body
-  using State = Eigen::Matrix<double, kStates, 1>;
   using Covariance = Eigen::Matrix<double, kStates, kStates>;
   /// The low-frequency part [eta, b, nu].
   using LfState = Eigen::Matrix<double, 9, 1>;

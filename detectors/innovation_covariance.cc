@@ -2,32 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <sstream>
 #include <string>
 #include <utility>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 #include "core/error.h"
+#include "detectors/observer_support.h"
 
 namespace moorsim::detectors {
 namespace {
 
-[[noreturn]] void ThrowField(const std::string& field, double value, const char* rule) {
-  std::ostringstream out;
-  out.precision(10);
-  out << field << " = " << value << ": " << rule;
-  throw InputError(out.str());
-}
-
-/// Yaw rotation R(psi) of a [force, force, moment] vector (the moment is unchanged).
-Mat3 Rotation(double c, double s) {
-  Mat3 r;
-  r << c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0;
-  return r;
-}
+using internal::MooringDampingFor;
+using internal::Rotation;
+using internal::ThrowField;
 
 /// exp(A t) of the wave filter A = [0 1; -w0^2 -2 lambda w0] in closed form: with
 /// a = -lambda w0 and B = A - a I, B^2 = delta I, delta = w0^2 (lambda^2 - 1), so
@@ -58,10 +47,6 @@ Eigen::Matrix2d CholeskyFactor(const Eigen::Matrix2d& q) {
   if (l(0, 0) > 0.0) l(1, 0) = q(1, 0) / l(0, 0);
   l(1, 1) = std::sqrt(std::max(q(1, 1) - l(1, 0) * l(1, 0), 0.0));
   return l;
-}
-
-Mat3 MooringDampingFor(const HypothesisBank& bank, int h, const Mat3& mass, const Vec3& ratio) {
-  return (ratio.array() > 0.0).any() ? bank.MooringDamping(h, mass, ratio) : Mat3::Zero();
 }
 
 std::string StreamName(std::string_view streams, const char* source) {
@@ -168,14 +153,7 @@ HypothesisModelSimulator::HypothesisModelSimulator(QuasiStaticMooring mooring,
     ThrowField("simulation.max_substep", max_substep, "must be finite and > 0");
   }
   if (!pose.allFinite()) throw InputError("simulation.pose must be finite");
-  if (!model.mass.allFinite() || !model.damping.allFinite() || !mooring_damping.allFinite()) {
-    throw InputError("simulation: the mass, damping and mooring damping matrices must be finite");
-  }
-  const Eigen::LLT<Mat3> mass_llt(0.5 * (model.mass + model.mass.transpose()));
-  if (mass_llt.info() != Eigen::Success) {
-    throw InputError("simulation: the mass matrix M = M_RB + A(0) must be positive definite");
-  }
-  mass_inverse_ = mass_llt.solve(Mat3::Identity());
+  mass_inverse_ = internal::CheckedMass("simulation", model, mooring_damping).inverse;
   damping_ = model.damping + mooring_damping;
   force_noise_ = mass_inverse_ * noise.force_noise.asDiagonal();
 
@@ -270,9 +248,7 @@ Observation HypothesisModelSimulator::Measure(double t, const Vec3& tau) {
   observation.pose =
       x_.segment<3>(Hpo::kPose) + x_.segment<3>(Hpo::kWave + 3) +
       Vec3(r(0) * measure_x_.Normal(), r(1) * measure_y_.Normal(), r(2) * measure_psi_.Normal());
-  double psi = std::remainder(observation.pose.z(), 2.0 * std::numbers::pi);
-  if (psi <= -std::numbers::pi) psi += 2.0 * std::numbers::pi;
-  observation.pose.z() = psi;
+  observation.pose.z() = internal::WrapAngle(observation.pose.z());
   observation.tau_command = tau;
   return observation;
 }

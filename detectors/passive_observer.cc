@@ -1,87 +1,54 @@
 #include "detectors/passive_observer.h"
 
 #include <cmath>
-#include <numbers>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include <Eigen/Cholesky>
 
 #include "core/error.h"
+#include "detectors/observer_support.h"
 
 namespace moorsim::detectors {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-constexpr double kLogTwoPi = 1.8378770664093453;  // log(2 pi)
+using internal::kLogTwoPi;
+using internal::Rotation;
+using internal::WrapAngle;
 
-double WrapAngle(double angle) {
-  double wrapped = std::remainder(angle, kTwoPi);
-  if (wrapped <= -kPi) wrapped += kTwoPi;
-  return wrapped;
-}
+constexpr std::string_view kPrefix = "passive.";
 
-[[noreturn]] void ThrowField(const std::string& field, double value, const char* rule) {
-  std::ostringstream out;
-  out.precision(10);
-  out << "passive." << field << " = " << value << ": " << rule;
-  throw InputError(out.str());
-}
-
-/// "name[i + 1]", the 1-based element of a Vec3 option.
-std::string Element(const char* name, int i) {
-  std::ostringstream out;
-  out << name << "[" << i + 1 << "]";
-  return out.str();
-}
-
-void CheckVector(const char* name, const Vec3& value, bool allow_zero) {
-  for (int i = 0; i < 3; ++i) {
-    const double v = value(i);
-    if (!(std::isfinite(v) && (allow_zero ? v >= 0.0 : v > 0.0))) {
-      ThrowField(Element(name, i), v,
-                 allow_zero ? "must be finite and >= 0" : "must be finite and > 0");
-    }
-  }
-}
-
-void CheckScalar(const char* name, double value) {
-  if (!(std::isfinite(value) && value > 0.0)) {
-    ThrowField(name, value, "must be finite and > 0");
-  }
-}
-
-/// Yaw rotation R(psi) of a [force, force, moment] vector (the moment is unchanged).
-Mat3 Rotation(double c, double s) {
-  Mat3 r;
-  r << c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0;
-  return r;
+/// ThrowField for the element "passive.<name>[i + 1]".
+[[noreturn]] void ThrowElement(std::string_view name, int i, double value, std::string_view rule) {
+  internal::ThrowField(std::string(kPrefix) + internal::Element(name, i), value, rule);
 }
 
 }  // namespace
 
 void Validate(const PassiveObserverOptions& options) {
-  CheckVector("wave_frequency", options.wave_frequency, false);
-  CheckVector("wave_damping", options.wave_damping, false);
-  CheckVector("notch_damping", options.notch_damping, false);
-  CheckVector("cutoff_ratio", options.cutoff_ratio, false);
-  CheckVector("bias_time_constant", options.bias_time_constant, false);
-  CheckVector("velocity_gain", options.velocity_gain, false);
-  CheckVector("bias_gain", options.bias_gain, false);
-  CheckVector("mooring_damping_ratio", options.mooring_damping_ratio, true);
-  CheckScalar("max_substep", options.max_substep);
-  CheckScalar("max_interval", options.max_interval);
+  using internal::CheckScalar;
+  using internal::CheckVector;
+  CheckVector(kPrefix, "wave_frequency", options.wave_frequency, false);
+  CheckVector(kPrefix, "wave_damping", options.wave_damping, false);
+  CheckVector(kPrefix, "notch_damping", options.notch_damping, false);
+  CheckVector(kPrefix, "cutoff_ratio", options.cutoff_ratio, false);
+  CheckVector(kPrefix, "bias_time_constant", options.bias_time_constant, false);
+  CheckVector(kPrefix, "velocity_gain", options.velocity_gain, false);
+  CheckVector(kPrefix, "bias_gain", options.bias_gain, false);
+  CheckVector(kPrefix, "mooring_damping_ratio", options.mooring_damping_ratio, true);
+  CheckScalar(kPrefix, "max_substep", options.max_substep);
+  CheckScalar(kPrefix, "max_interval", options.max_interval);
   for (int i = 0; i < 3; ++i) {
     // The notch needs zeta_n > lambda (K1 changes sign otherwise; Fossen 2011 11.4.1).
     if (!(options.notch_damping(i) > options.wave_damping(i))) {
-      ThrowField(Element("notch_damping", i), options.notch_damping(i),
-                 "must be > wave_damping (the notch is deeper than the wave peak)");
+      ThrowElement("notch_damping", i, options.notch_damping(i),
+                   "must be > wave_damping (the notch is deeper than the wave peak)");
     }
     // Fossen's tuning rule 1/T << K3/K4 < w0 < w_c (the loop transfer is then SPR).
     if (!(options.cutoff_ratio(i) > 1.0)) {
-      ThrowField(Element("cutoff_ratio", i), options.cutoff_ratio(i), "must be > 1 (w_c > w0)");
+      ThrowElement("cutoff_ratio", i, options.cutoff_ratio(i), "must be > 1 (w_c > w0)");
     }
     const double ratio = options.bias_gain(i) / options.velocity_gain(i);
     if (!(ratio > 1.0 / options.bias_time_constant(i) && ratio < options.wave_frequency(i))) {
@@ -90,7 +57,7 @@ void Validate(const PassiveObserverOptions& options) {
       rule << "bias_gain / velocity_gain = " << ratio << " 1/s must lie in (1 / T, w0) = ("
            << 1.0 / options.bias_time_constant(i) << ", " << options.wave_frequency(i)
            << ") (Fossen's rule 1/T << K3/K4 < w0)";
-      ThrowField(Element("bias_gain", i), options.bias_gain(i), rule.str().c_str());
+      ThrowElement("bias_gain", i, options.bias_gain(i), rule.str());
     }
   }
 }
@@ -122,15 +89,9 @@ HypothesisPassiveObserver::HypothesisPassiveObserver(QuasiStaticMooring mooring,
     : mooring_(std::move(mooring)),
       options_(options),
       gains_(ComputePassiveObserverGains(options)) {
-  if (!model.mass.allFinite() || !model.damping.allFinite() || !mooring_damping.allFinite()) {
-    throw InputError("passive: the mass, damping and mooring damping matrices must be finite");
-  }
-  mass_ = 0.5 * (model.mass + model.mass.transpose());
-  const Eigen::LLT<Mat3> mass_llt(mass_);
-  if (mass_llt.info() != Eigen::Success) {
-    throw InputError("passive: the mass matrix M = M_RB + A(0) must be positive definite");
-  }
-  mass_inverse_ = mass_llt.solve(Mat3::Identity());
+  const internal::MassMatrices mass = internal::CheckedMass("passive", model, mooring_damping);
+  mass_ = mass.mass;
+  mass_inverse_ = mass.inverse;
   damping_ = model.damping + mooring_damping;
   bias_rate_ = options.bias_time_constant.cwiseInverse();
   wave_stiffness_ = options.wave_frequency.cwiseAbs2();
@@ -239,24 +200,7 @@ void HypothesisPassiveObserver::Propagate(double dt) {
 }
 
 HypothesisEvidence HypothesisPassiveObserver::Update(const Observation& observation) {
-  if (!std::isfinite(observation.t)) {
-    std::ostringstream out;
-    out << "observation.t = " << observation.t << ": must be finite";
-    throw InputError(out.str());
-  }
-  if (!observation.tau_command.allFinite()) {
-    std::ostringstream out;
-    out << "observation.tau_command at t = " << observation.t << " s is not finite";
-    throw InputError(out.str());
-  }
-  for (int i = 0; i < 3; ++i) {
-    if (observation.valid[i] && !std::isfinite(observation.pose(i))) {
-      std::ostringstream out;
-      out << "observation.pose[" << i + 1 << "] = " << observation.pose(i)
-          << " at t = " << observation.t << " s: a valid channel must be finite";
-      throw InputError(out.str());
-    }
-  }
+  internal::CheckObservation(observation);
   HypothesisEvidence evidence;
   evidence.covariance = covariance_;
   evidence.dimension = 0;
@@ -275,13 +219,7 @@ HypothesisEvidence HypothesisPassiveObserver::Update(const Observation& observat
     }
     return evidence;
   }
-  const double dt = observation.t - t_;
-  if (!(dt > 0.0) || dt > options_.max_interval) {
-    std::ostringstream out;
-    out << "observation.t = " << observation.t << " s: must advance from the previous " << t_
-        << " s by (0, " << options_.max_interval << "] s";
-    throw InputError(out.str());
-  }
+  const double dt = internal::CheckInterval(observation.t, t_, options_.max_interval);
   Propagate(dt);
   t_ = observation.t;
 
@@ -324,11 +262,10 @@ PassiveObserverBank::PassiveObserverBank(const HypothesisBank& bank, const LowFr
         << " hypotheses: need one per hypothesis";
     throw InputError(out.str());
   }
-  const bool damped = (options.mooring_damping_ratio.array() > 0.0).any();
   observers_.reserve(bank.size());
   for (int h = 0; h < bank.size(); ++h) {
     const Mat3 mooring_damping =
-        damped ? bank.MooringDamping(h, model.mass, options.mooring_damping_ratio) : Mat3::Zero();
+        internal::MooringDampingFor(bank, h, model.mass, options.mooring_damping_ratio);
     try {
       observers_.emplace_back(bank.mooring(h), model, mooring_damping, covariances[h], options);
     } catch (const InputError& e) {

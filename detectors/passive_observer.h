@@ -94,6 +94,7 @@
 #include "core/types.h"
 #include "detectors/detector.h"
 #include "detectors/hypothesis_bank.h"
+#include "detectors/observer_state.h"
 
 namespace moorsim::detectors {
 
@@ -138,15 +139,8 @@ struct PassiveObserverGains {
 /// Validates `options` and evaluates the gains.
 PassiveObserverGains ComputePassiveObserverGains(const PassiveObserverOptions& options);
 
-class HypothesisPassiveObserver {
+class HypothesisPassiveObserver : public ObserverStateLayout {
  public:
-  static constexpr int kStates = 15;
-  static constexpr int kWave = 0;       ///< xi1 (3), xi2 (3)
-  static constexpr int kPose = 6;       ///< eta = x, y [m] NED, psi [rad]
-  static constexpr int kBias = 9;       ///< b [N, N, N m] Earth
-  static constexpr int kVelocity = 12;  ///< nu = u, v [m/s], r [rad/s] body
-  using State = Eigen::Matrix<double, kStates, 1>;
-
   /// `mooring_damping` is D_mo [N s/m, ...] in body axes, added to the model's D;
   /// `innovation_covariance` is Sigma_h [m^2, m^2, rad^2 ...], symmetric positive
   /// definite. Throws moorsim::InputError on bad options, a mass that is not positive

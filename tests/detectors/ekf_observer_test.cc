@@ -24,24 +24,14 @@
 #include "core/error.h"
 #include "core/random.h"
 #include "detectors/hypothesis_bank.h"
-#include "scenarios/load.h"
+#include "tests/detectors/observer_test_support.h"
 
 namespace moorsim::detectors {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
 using Vec15 = Eigen::Matrix<double, 15, 1>;
-
-scenarios::MooringSpec SeedMooring() {
-  return scenarios::LoadScenario(std::string(MOORSIM_SOURCE_DIR) +
-                                 "/scenarios/library/seed_tapm.yaml")
-      .mooring;
-}
-
-const HypothesisBank& SeedBank() {
-  static const HypothesisBank bank(SeedMooring());
-  return bank;
-}
+using testing::SeedBank;
 
 /// The filter's model as a stochastic simulation: state [xi1 (3), xi2 (3), eta, b, nu].
 class OwnModelSimulator {
@@ -273,14 +263,7 @@ TEST(EkfModelTest, TransitionIsTheJacobianOfTheStep) {
 
 /// A filter already running for 20 s on a still vessel at `eta`.
 HypothesisEkf WarmFilter(const QuasiStaticMooring& mooring, const Vec3& eta) {
-  HypothesisEkf filter(mooring, SeedLowFrequencyModel(), Mat3::Zero());
-  for (int k = 0; k <= 20; ++k) {
-    Observation obs;
-    obs.t = k;
-    obs.pose = eta;
-    filter.Update(obs);
-  }
-  return filter;
+  return testing::Warm(HypothesisEkf(mooring, SeedLowFrequencyModel(), Mat3::Zero()), eta);
 }
 
 // A missing channel drops out of the likelihood: dimension 2, and the log-likelihood is
@@ -316,14 +299,8 @@ TEST(EkfMissingChannelTest, DimensionAndLikelihoodFollowTheValidChannels) {
   EXPECT_GT(filter.covariance()(HypothesisEkf::kPose, HypothesisEkf::kPose), variance_before);
 
   // The first observation only initialises, and only once all channels are there.
-  HypothesisEkf fresh(mooring, SeedLowFrequencyModel(), Mat3::Zero());
-  obs.t = 0.0;
-  obs.valid = {true, true, false};
-  EXPECT_EQ(fresh.Update(obs).dimension, 0);
-  EXPECT_FALSE(fresh.initialised());
-  obs.valid = {true, true, true};
-  EXPECT_EQ(fresh.Update(obs).dimension, 0);
-  EXPECT_TRUE(fresh.initialised());
+  testing::ExpectInitialisesOnACompleteObservation(
+      HypothesisEkf(mooring, SeedLowFrequencyModel(), Mat3::Zero()));
 }
 
 // Heading across +-pi: a vessel at heading 180 deg whose gyro reports values on both sides
@@ -333,17 +310,9 @@ TEST(EkfMissingChannelTest, DimensionAndLikelihoodFollowTheValidChannels) {
 TEST(EkfHeadingWrapTest, InnovationWrapsAcrossPi) {
   const QuasiStaticMooring no_lines;
   HypothesisEkf filter = WarmFilter(no_lines, Vec3(0.0, 0.0, kPi - 0.01));
-  for (int k = 21; k < 60; ++k) {
-    Observation obs;
-    obs.t = k;
-    // Alternately just below +pi and just above -pi: 0.02 rad apart on the circle.
-    obs.pose = Vec3(0.0, 0.0, k % 2 == 0 ? kPi - 0.01 : -kPi + 0.01);
-    const HypothesisEvidence e = filter.Update(obs);
-    EXPECT_LT(std::abs(e.innovation.z()), 0.05) << "t " << k;
-    EXPECT_GT(filter.pose().z(), -kPi);
-    EXPECT_LE(filter.pose().z(), kPi);
-    EXPECT_LT(filter.normalised_innovation_squared(), 20.0);
-  }
+  testing::ExpectHeadingWrapsAcrossPi(filter, [](const HypothesisEkf& f, int k) {
+    EXPECT_LT(f.normalised_innovation_squared(), 20.0) << "t " << k;
+  });
   // Own-model data near 180 deg, wrapped: still consistent (500 samples: mean 3 +- 0.11,
   // bound +-3.3 sigma).
   const RunStatistics stats = RunConsistency(no_lines, 31, 500, false, Vec3(5.0, -3.0, kPi));
@@ -368,14 +337,8 @@ TEST(EkfInputTest, BadParametersNameTheField) {
   singular.mass(2, 2) = 0.0;
   EXPECT_THROW(HypothesisEkf(QuasiStaticMooring(), singular, Mat3::Zero()), InputError);
 
-  // Time must advance.
-  HypothesisEkf filter = WarmFilter(QuasiStaticMooring(), Vec3::Zero());
-  Observation obs;
-  obs.t = 20.0;  // the last sample's time again
-  EXPECT_THROW(filter.Update(obs), InputError);
-  obs.t = 21.0;
-  obs.pose.x() = std::nan("");
-  EXPECT_THROW(filter.Update(obs), InputError);
+  // Time must advance; a valid channel must be finite.
+  testing::ExpectBadObservationsThrow(WarmFilter(QuasiStaticMooring(), Vec3::Zero()));
 }
 
 // With use_thrust_command = false the command is ignored: two filters fed the same poses
@@ -386,17 +349,7 @@ TEST(EkfThrustTest, CommandCanBeIgnored) {
   HypothesisEkf a(SeedBank().mooring(0), SeedLowFrequencyModel(), Mat3::Zero(), options);
   HypothesisEkf b(SeedBank().mooring(0), SeedLowFrequencyModel(), Mat3::Zero(), options);
   HypothesisEkf used(SeedBank().mooring(0), SeedLowFrequencyModel(), Mat3::Zero());
-  Observation obs;
-  for (int k = 0; k < 10; ++k) {
-    obs.t = k;
-    obs.pose = Vec3(0.01 * k, -0.02 * k, 0.001 * k);
-    obs.tau_command = Vec3::Zero();
-    a.Update(obs);
-    obs.tau_command = Vec3(5e6, -3e6, 1e8);
-    b.Update(obs);
-    used.Update(obs);
-  }
-  EXPECT_EQ(a.state(), b.state());
+  testing::FeedDifferentCommands(a, b, used);
   EXPECT_GT((used.state() - a.state()).segment<3>(HypothesisEkf::kVelocity).norm(), 1e-3);
 }
 
@@ -407,21 +360,7 @@ TEST(ObserverBankTest, OneFilterPerHypothesis) {
   EkfOptions options;
   options.mooring_damping_ratio = Vec3(0.1, 0.1, 0.1);
   ObserverBank observers(bank, SeedLowFrequencyModel(), options);
-  EXPECT_EQ(observers.size(), 9);
-  Observation obs;
-  for (int k = 0; k < 5; ++k) {
-    obs.t = k;
-    const Evidence& e = observers.Update(obs);
-    EXPECT_EQ(e.t, obs.t);
-    ASSERT_EQ(e.hypotheses.size(), 9u);
-    EXPECT_EQ(e.hypotheses[0].dimension, k == 0 ? 0 : 3);
-  }
-  // At the origin the intact model is at rest, the line-k models are pushed: the intact
-  // filter explains a still vessel best.
-  const Evidence& e = observers.evidence();
-  for (int h = 1; h < 9; ++h) {
-    EXPECT_GT(e.hypotheses[0].log_likelihood, e.hypotheses[h].log_likelihood) << h;
-  }
+  testing::ExpectEvidenceForEachHypothesis(observers, 5);
   observers.Reset();
   EXPECT_FALSE(observers.filter(3).initialised());
 }

@@ -18,19 +18,13 @@
 #include "core/random.h"
 #include "detectors/hypothesis_bank.h"
 #include "detectors/passive_observer.h"
-#include "scenarios/load.h"
+#include "tests/detectors/observer_test_support.h"
 
 namespace moorsim::detectors {
 namespace {
 
 using State = HypothesisPassiveObserver::State;
-
-const HypothesisBank& SeedBank() {
-  static const HypothesisBank bank(
-      scenarios::LoadScenario(std::string(MOORSIM_SOURCE_DIR) + "/scenarios/library/seed_tapm.yaml")
-          .mooring);
-  return bank;
-}
+using testing::SeedBank;
 
 /// Sigma_h of every hypothesis, trained once with the defaults (10000 s, seed 1).
 const std::vector<Mat3>& SeedCovariances() {

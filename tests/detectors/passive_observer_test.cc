@@ -19,20 +19,14 @@
 #include "core/error.h"
 #include "detectors/hypothesis_bank.h"
 #include "detectors/innovation_covariance.h"
-#include "scenarios/load.h"
+#include "tests/detectors/observer_test_support.h"
 
 namespace moorsim::detectors {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
 using State = HypothesisPassiveObserver::State;
-
-const HypothesisBank& SeedBank() {
-  static const HypothesisBank bank(
-      scenarios::LoadScenario(std::string(MOORSIM_SOURCE_DIR) + "/scenarios/library/seed_tapm.yaml")
-          .mooring);
-  return bank;
-}
+using testing::SeedBank;
 
 /// A plausible innovation covariance (the trained one is about diag(0.031, 0.031, 0.010)).
 Mat3 TypicalCovariance() { return Vec3(0.03, 0.03, 0.01).asDiagonal(); }
@@ -191,15 +185,9 @@ TEST(PassiveObserverConvergenceTest, LiteralGainsDoNotEstimateTheBias) {
 
 /// An observer already running for 20 s on a still vessel at `eta`.
 HypothesisPassiveObserver WarmObserver(const QuasiStaticMooring& mooring, const Vec3& eta) {
-  HypothesisPassiveObserver observer(mooring, SeedLowFrequencyModel(), Mat3::Zero(),
-                                     TypicalCovariance());
-  for (int k = 0; k <= 20; ++k) {
-    Observation obs;
-    obs.t = k;
-    obs.pose = eta;
-    observer.Update(obs);
-  }
-  return observer;
+  return testing::Warm(HypothesisPassiveObserver(mooring, SeedLowFrequencyModel(), Mat3::Zero(),
+                                                 TypicalCovariance()),
+                       eta);
 }
 
 // Heading across +-pi: a vessel at heading 180 deg whose gyro reports values on both sides
@@ -208,16 +196,9 @@ HypothesisPassiveObserver WarmObserver(const QuasiStaticMooring& mooring, const 
 TEST(PassiveObserverHeadingWrapTest, InnovationWrapsAcrossPi) {
   const QuasiStaticMooring no_lines;
   HypothesisPassiveObserver observer = WarmObserver(no_lines, Vec3(0.0, 0.0, kPi - 0.01));
-  for (int k = 21; k < 60; ++k) {
-    Observation obs;
-    obs.t = k;
-    obs.pose = Vec3(0.0, 0.0, k % 2 == 0 ? kPi - 0.01 : -kPi + 0.01);
-    const HypothesisEvidence e = observer.Update(obs);
-    EXPECT_LT(std::abs(e.innovation.z()), 0.05) << "t " << k;
-    EXPECT_GT(observer.pose().z(), -kPi);
-    EXPECT_LE(observer.pose().z(), kPi);
-    EXPECT_LT(std::abs(std::remainder(observer.pose().z() - kPi, 2.0 * kPi)), 0.03);
-  }
+  testing::ExpectHeadingWrapsAcrossPi(observer, [](const HypothesisPassiveObserver& o, int k) {
+    EXPECT_LT(std::abs(std::remainder(o.pose().z() - kPi, 2.0 * kPi)), 0.03) << "t " << k;
+  });
 }
 
 // A missing channel drops out of the likelihood (dimension 2, the 2-D Gaussian under the
@@ -266,15 +247,8 @@ TEST(PassiveObserverMissingChannelTest, DimensionLikelihoodAndCorrection) {
   EXPECT_DOUBLE_EQ(observer.time(), 23.0);
 
   // The first observation only initialises, and only once all channels are there.
-  HypothesisPassiveObserver fresh(mooring, SeedLowFrequencyModel(), Mat3::Zero(), sigma);
-  obs.t = 0.0;
-  obs.valid = {true, true, false};
-  EXPECT_EQ(fresh.Update(obs).dimension, 0);
-  EXPECT_FALSE(fresh.initialised());
-  obs.valid = {true, true, true};
-  EXPECT_EQ(fresh.Update(obs).dimension, 0);
-  EXPECT_TRUE(fresh.initialised());
-  EXPECT_EQ(fresh.pose(), obs.pose);
+  testing::ExpectInitialisesOnACompleteObservation(
+      HypothesisPassiveObserver(mooring, SeedLowFrequencyModel(), Mat3::Zero(), sigma));
 }
 
 // The full-channel log-likelihood is the 3-D Gaussian of the innovation under Sigma.
@@ -305,17 +279,7 @@ TEST(PassiveObserverThrustTest, CommandCanBeIgnored) {
   HypothesisPassiveObserver a(mooring, model, Mat3::Zero(), TypicalCovariance(), options);
   HypothesisPassiveObserver b(mooring, model, Mat3::Zero(), TypicalCovariance(), options);
   HypothesisPassiveObserver used(mooring, model, Mat3::Zero(), TypicalCovariance());
-  Observation obs;
-  for (int k = 0; k < 10; ++k) {
-    obs.t = k;
-    obs.pose = Vec3(0.01 * k, -0.02 * k, 0.001 * k);
-    obs.tau_command = Vec3::Zero();
-    a.Update(obs);
-    obs.tau_command = Vec3(5e6, -3e6, 1e8);
-    b.Update(obs);
-    used.Update(obs);
-  }
-  EXPECT_EQ(a.state(), b.state());
+  testing::FeedDifferentCommands(a, b, used);
   EXPECT_GT(used.velocity().head<2>().norm() - a.velocity().head<2>().norm(), 1e-3);
 }
 
@@ -374,13 +338,7 @@ TEST(PassiveObserverInputTest, BadOptionsNameTheField) {
       InputError);
 
   // Time must advance; a valid channel must be finite.
-  HypothesisPassiveObserver observer = WarmObserver(QuasiStaticMooring(), Vec3::Zero());
-  Observation obs;
-  obs.t = 20.0;
-  EXPECT_THROW(observer.Update(obs), InputError);
-  obs.t = 21.0;
-  obs.pose.x() = std::nan("");
-  EXPECT_THROW(observer.Update(obs), InputError);
+  testing::ExpectBadObservationsThrow(WarmObserver(QuasiStaticMooring(), Vec3::Zero()));
 }
 
 // The bank runs one observer per hypothesis and hands back evidence for each; it needs one
@@ -391,21 +349,7 @@ TEST(PassiveObserverBankTest, OneObserverPerHypothesis) {
   options.mooring_damping_ratio = Vec3(0.1, 0.1, 0.1);
   const std::vector<Mat3> covariances(bank.size(), TypicalCovariance());
   PassiveObserverBank observers(bank, SeedLowFrequencyModel(), options, covariances);
-  EXPECT_EQ(observers.size(), 9);
-  Observation obs;
-  for (int k = 0; k < 30; ++k) {
-    obs.t = k;
-    const Evidence& e = observers.Update(obs);
-    EXPECT_EQ(e.t, obs.t);
-    ASSERT_EQ(e.hypotheses.size(), 9u);
-    EXPECT_EQ(e.hypotheses[0].dimension, k == 0 ? 0 : 3);
-  }
-  // At the origin the intact model is at rest, the line-k models are pushed: the intact
-  // observer explains a still vessel best.
-  const Evidence& e = observers.evidence();
-  for (int h = 1; h < 9; ++h) {
-    EXPECT_GT(e.hypotheses[0].log_likelihood, e.hypotheses[h].log_likelihood) << h;
-  }
+  testing::ExpectEvidenceForEachHypothesis(observers, 30);
   observers.Reset();
   EXPECT_FALSE(observers.observer(3).initialised());
 
