@@ -261,6 +261,20 @@ int Run(const RunOptions& o) {
   if (!o.quiet) {
     std::fprintf(stderr, "moorsim run: %.0f s simulated in %.1f s (%.0fx real time) -> %s\n",
                  sim.time(), wall, sim.time() / wall, dir.string().c_str());
+    // One line per detector: what it concluded (summary.json has the same).
+    for (const simulation::DetectorRecord& d : sim.detector_records()) {
+      if (d.alarm_time) {
+        std::fprintf(stderr, "  %s: alarm at %.0f s, line %d", d.label.c_str(), *d.alarm_time,
+                     d.isolated);
+        if (scenario.failure.line > 0) {
+          std::fprintf(stderr, " (delay %.0f s after line %d parted)",
+                       *d.alarm_time - scenario.failure.time, scenario.failure.line);
+        }
+      } else {
+        std::fprintf(stderr, "  %s: no alarm", d.label.c_str());
+      }
+      std::fprintf(stderr, ", %d false alarm%s\n", d.false_alarms, d.false_alarms == 1 ? "" : "s");
+    }
   }
   return 0;
 }
