@@ -362,6 +362,7 @@ ObserverBank::ObserverBank(const HypothesisBank& bank, const LowFrequencyModel& 
   predicted_.resize(n);
   mixed_state_.resize(n);
   mixed_covariance_.resize(n);
+  difference_.resize(n);
   weight_.resize(n);
   Reset();
 }
@@ -398,7 +399,8 @@ void ObserverBank::Mix(double dt) {
     for (int i = 0; i < n; ++i) {
       if (weight_[i] == 0.0) continue;
       weight_[i] /= total;
-      HypothesisEkf::State d = filters_[i].state() - own;
+      HypothesisEkf::State& d = difference_[i];
+      d = filters_[i].state() - own;
       d(HypothesisEkf::kPose + 2) = WrapAngle(d(HypothesisEkf::kPose + 2));
       x0 += weight_[i] * d;
     }
@@ -406,9 +408,7 @@ void ObserverBank::Mix(double dt) {
     P0.setZero();
     for (int i = 0; i < n; ++i) {
       if (weight_[i] == 0.0) continue;
-      HypothesisEkf::State d = filters_[i].state() - own;
-      d(HypothesisEkf::kPose + 2) = WrapAngle(d(HypothesisEkf::kPose + 2));
-      d -= x0;
+      const HypothesisEkf::State d = difference_[i] - x0;
       P0.noalias() += weight_[i] * (filters_[i].covariance() + d * d.transpose());
     }
     x0 += own;

@@ -264,6 +264,7 @@ class ObserverBank {
   // Mixing work space, sized once.
   std::vector<HypothesisEkf::State> mixed_state_;
   std::vector<HypothesisEkf::Covariance> mixed_covariance_;
+  std::vector<HypothesisEkf::State> difference_;  // x_i - x_j, heading wrapped
   std::vector<double> weight_;
 };
 
