@@ -1,7 +1,7 @@
 // Macro benchmark: runs the real `moorsim simulate-lines` on the seed mooring with the
 // turret surging 5 m / 100 s plus 2 m / 10 s, at several segment counts, and judges each
 // run against a reference run of the same model with tolerances 100x tighter
-// (NUMERICS.md item 1: "it finished" is not "it is right").
+// (docs/design.md section 8.1: "it finished" is not "it is right").
 //
 //   moorsim_macro_benchmark [--duration S] [--segments 20,50,100] [--reference-scale 0.01]
 //                           [--scenario FILE] [--moorsim PATH] [--no-reference]

@@ -1,5 +1,5 @@
 // The monolithic coupling of a rigid body (the vessel) with subsystems attached to points on
-// it (the mooring lines), as one OdeSystem for one CVODE instance (DESIGN.md section 4).
+// it (the mooring lines), as one OdeSystem for one CVODE instance (docs/design.md section 4).
 //
 // State layout: [body states (eta, nu, then the body's own extra states such as thrust),
 // attached-subsystem states]. Kinematics in, forces out: the body tells where each

@@ -26,4 +26,11 @@ class SolverError : public Error {
   using Error::Error;
 };
 
+/// A broken programming contract (wrong sizes, a call out of order): a bug, reported as a
+/// failed run rather than an abort.
+class ContractError : public Error {
+ public:
+  using Error::Error;
+};
+
 }  // namespace moorsim

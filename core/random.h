@@ -1,9 +1,9 @@
 // Independent, reproducible random streams: one per noise source, derived from the run
 // seed and the source's name.
 //
-// Why one stream per name: the seed thesis's simulator fed every DOF's sensor noise from
+// Why one stream per name: the TAPM thesis's simulator fed every DOF's sensor noise from
 // one seed, so x, y and psi carried the same noise and its detector results were void
-// (DESIGN.md section 5). Here each source ("gnss.x", "gnss.y", "gyro.psi",
+// (docs/design.md section 2). Here each source ("gnss.x", "gnss.y", "gyro.psi",
 // "waves.phases", ...) derives its own stream, so adding, removing or reordering sources
 // never shifts another source's numbers, and a run is repeated bit for bit from its seed.
 //

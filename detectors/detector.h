@@ -1,4 +1,4 @@
-// The detector interface (DESIGN.md section 6). A detector watches the evidence the
+// The detector interface (docs/design.md section 6). A detector watches the evidence the
 // hypothesis observers derive from the noisy pose stream and says, at every sample, which
 // hypothesis it believes (0 = all lines intact, k = line k failed, further indices for
 // pairs) and whether it declares a failure.

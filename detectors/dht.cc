@@ -89,7 +89,7 @@ const Verdict& Dht::Step(const Evidence& evidence) {
   std::vector<double>& posterior = verdict_.score;
   const std::size_t n = posterior.size();
 
-  // Seed 001 eq. 47 in log space: a_k = log h_k + log p(y | H_k), then log-sum-exp.
+  // Hassani et al. 2018, eq. 47 in log space: a_k = log h_k + log p(y | H_k), then log-sum-exp.
   double a_max = -std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < n; ++k) {
     log_weight_[k] = std::log(posterior[k]) + evidence.hypotheses[k].log_likelihood;

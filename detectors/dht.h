@@ -1,7 +1,7 @@
 // Dynamic hypothesis testing (DHT): the Bayesian posterior probability of every hypothesis
 // given the pose history, updated one sample at a time.
 //
-// Recursion (seed 001 eq. 47, with the Gaussian likelihood of eq. 51):
+// Recursion (Hassani et al. 2018, eq. 47, with the Gaussian likelihood of eq. 51):
 //
 //   h_k(t+1) = p(y(t+1) | H_k, Z(t)) h_k(t) / sum_i p(y(t+1) | H_i, Z(t)) h_i(t),
 //
@@ -10,7 +10,7 @@
 // log-sum-exp (subtract max_k a_k before exponentiating), so likelihoods of -1e4 nats or
 // less neither underflow nor lose the differences between hypotheses.
 //
-// Probability floor (seed 000 section 4.6.2: without one, a hypothesis that has been
+// Probability floor (TAPM thesis section 4.6.2: without one, a hypothesis that has been
 // unlikely for a long time needs arbitrarily long to recover when it becomes true). After
 // each normalisation every probability below p_min is raised to exactly p_min and all
 // others are scaled by one common factor so that the total is 1 again; if that scaling
@@ -19,8 +19,8 @@
 // and the ratios between the hypotheses above the floor are the Bayesian ones. This needs
 // N p_min < 1 (Reset() checks). The thesis's code (appendix A.1) instead takes
 // max(h, p_min) and divides by the sum, which leaves floored entries slightly below p_min.
-// Theorem 1 of seed 001 (the h_k stay a probability distribution) thus holds with the
-// floor, and Theorem 2 (the true hypothesis's h_k -> 1 when it is distinguishable) holds
+// Theorem 1 of Hassani et al. 2018 (the h_k stay a probability distribution) thus holds with
+// the floor, and Theorem 2 (the true hypothesis's h_k -> 1 when it is distinguishable) holds
 // up to the floor: h_true -> 1 - (N - 1) p_min.
 //
 // Verdict: score = the posterior h_0..h_{N-1}; hypothesis = argmax (ties: lowest index).
@@ -46,20 +46,20 @@
 namespace moorsim::detectors {
 
 struct DhtOptions {
-  /// p_min: no probability falls below it (seed 000 section 4.6.2 uses 1e-9; the
-  /// reference sheet marks it "use"). In (0, 1) and N p_min < 1.
+  /// p_min: no probability falls below it (TAPM thesis section 4.6.2 uses 1e-9, as
+  /// does moorsim, docs/design.md section 9). In (0, 1) and N p_min < 1.
   double floor = 1e-9;
   /// The posterior a failure hypothesis must reach for the alarm, in (0, 1): 0.99 means
   /// 99:1 odds against all other hypotheses together.
   double threshold = 0.99;
   /// [s] How long the same failure hypothesis must stay above `threshold` before the
-  /// alarm; >= 0. The seed thesis saw the DHT flick between hypotheses for tens of seconds
+  /// alarm; >= 0. The TAPM thesis saw the DHT flick between hypotheses for tens of seconds
   /// after a break (chapter 5: line 7 "oscillating between lines 3 and 4"); 10 s, about
   /// 1.4 peak wave periods (7 s), keeps wave-frequency excursions of the posterior from
   /// raising the alarm while adding little to the thesis's ~1 min detection times.
   double hold = 10.0;
   /// Prior probability of the intact hypothesis, in (0, 1); the rest is shared equally by
-  /// the failure hypotheses. Unset: uniform 1/N over all hypotheses (seed 000 appendix A.1).
+  /// the failure hypotheses. Unset: uniform 1/N over all hypotheses (TAPM thesis appendix A.1).
   std::optional<double> prior_intact;
 };
 

@@ -1,4 +1,4 @@
-// Distinguishability of the hypotheses (seed 001 section 4, Theorem 2): how fast, in
+// Distinguishability of the hypotheses (Hassani et al. 2018, section 4, Theorem 2): how fast, in
 // expectation, the log-likelihood ratio between two hypotheses' filters grows, computed
 // off-line from the models alone, so a user knows before a campaign which failures can be
 // told apart.
@@ -45,7 +45,7 @@
 // A_i, A_j share the rotated-load term d(R^T)/dpsi (g + b) = d(R^T)/dpsi g_i, since both
 // hold the same total load at rest.
 //
-// Stationary moments. Filter j runs its steady-state Kalman filter (seed 001 eq. 48-50;
+// Stationary moments. Filter j runs its steady-state Kalman filter (Hassani et al. 2018, eq. 48-50;
 // DARE eq. 49 by structured doubling). On z = [x; eps], x the truth and eps = x - x^-_j
 // filter j's prediction error,
 //   x_{t+1}   = Phi_i x_t + c_i + w_t,
@@ -82,9 +82,9 @@
 // thesis mooring, and five sixths of that is the cost of a wrong filter holding its bias at
 // the load difference against the mean reversion (with T = 1e5 s it drops to ~0.0007): a
 // parted line is, to a wrong filter, mostly a constant force its bias absorbs, and the
-// evidence comes from the transient. The filters are seed 001's, independent: an IMM bank
-// (ObserverBankOptions::switch_rate > 0) pulls its failure filters back to the intact
-// estimate while intact holds, which is not modelled here.
+// evidence comes from the transient. The filters are independent, as in Hassani et al. 2018:
+// an IMM bank (ObserverBankOptions::switch_rate > 0) pulls its failure filters back to the
+// intact estimate while intact holds, which is not modelled here.
 #pragma once
 
 #include <optional>
@@ -107,7 +107,7 @@ struct LinearGaussianModel {
   MatX measurement_noise;  ///< R (positive definite)
 };
 
-/// The steady-state Kalman filter of a model (seed 001 eq. 48-50): the predicted state
+/// The steady-state Kalman filter of a model (Hassani et al. 2018, eq. 48-50): the predicted state
 /// covariance P (the DARE, eq. 49), the innovation covariance S = C P C^T + R (eq. 50) and
 /// the update gain K = P C^T S^-1, so x+ = x- + K (y - C x-) and x-_{t+1} = Phi x+ + c.
 struct SteadyStateFilter {

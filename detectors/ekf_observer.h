@@ -1,24 +1,25 @@
-// An extended Kalman filter per hypothesis (seed 001 sections 2-3, eq. 28-38 and 48-50;
-// seed 000 eq. 3.6-3.17) and the bank that runs one per hypothesis of a HypothesisBank.
+// An extended Kalman filter per hypothesis (Hassani et al. 2018, sections 2-3, eq. 28-38 and 48-50;
+// TAPM thesis eq. 3.6-3.17) and the bank that runs one per hypothesis of a HypothesisBank.
 //
 // Model (horizontal plane; state x = [xi (6), eta (3), b (3), nu (3)]):
 //   xi'  = A_w xi + E_w w_w          wave-frequency motion, per DOF a second-order filter
 //                                    xi1' = xi2, xi2' = -w0^2 xi1 - 2 lambda w0 xi2 + s w
-//                                    (seed 000 eq. 3.7-3.12; seed 001 eq. 28)
-//   eta' = R(psi) nu                 (seed 000 eq. 3.6b)
+//                                    (TAPM thesis eq. 3.7-3.12; Hassani et al. 2018, eq. 28)
+//   eta' = R(psi) nu                 (TAPM thesis eq. 3.6b)
 //   b'   = -T^-1 b + w_b             Earth-frame slowly varying load, first-order Markov
-//                                    (seed 000 eq. 3.6c)
+//                                    (TAPM thesis eq. 3.6c)
 //   M nu' = -(D + D_mo) nu + R(psi)^T (g_h(eta) + b) + tau_c + w_F
 //                                    g_h: the hypothesis's quasi-static mooring load, Earth
-//                                    frame (seed 000 eq. 3.13-3.17; seed 001 eq. 32 with
-//                                    the nonlinear g_mo instead of G_mo eta)
-//   y    = eta + C_w xi + v,  C_w = [0 I],  v ~ N(0, R)   (seed 000 eq. 3.6e; 001 eq. 38)
+//                                    frame (TAPM thesis eq. 3.13-3.17; Hassani et al. 2018,
+//                                    eq. 32 with the nonlinear g_mo instead of G_mo eta)
+//   y    = eta + C_w xi + v,  C_w = [0 I],  v ~ N(0, R)
+//                                    (TAPM thesis eq. 3.6e; Hassani et al. 2018, eq. 38)
 // R(psi) rotates the force part of [Fx, Fy, Mz] and leaves Mz. The wave-frequency motion
-// is in the Earth frame, as in seed 000 (seed 001 puts it in body axes; at the small yaw
-// of a moored vessel they differ by a rotation of a sub-metre signal).
+// is in the Earth frame, as in the TAPM thesis (Hassani et al. 2018 puts it in body axes; at
+// the small yaw of a moored vessel they differ by a rotation of a sub-metre signal).
 //
 // Discretisation (the filter runs at the sample times of the observations, 1 s for the
-// seed's sensors):
+// seed case's sensors):
 //  - xi is linear and time-invariant and decoupled from the rest: its transition
 //    exp(A_w dt) and process covariance int_0^dt exp(A_w s) E Q E^T exp(A_w^T s) ds are
 //    exact (Van Loan's method, a matrix exponential by scaling and squaring), cached for
@@ -33,8 +34,8 @@
 //    Q_h). Thrust is held (zero-order hold) from one observation to the next, as the
 //    controller holds it.
 //  - Update: Joseph form over the valid channels only; the log-likelihood is that of the
-//    valid channels' innovation under their block of S (seed 001 eq. 50-51). The heading
-//    innovation is wrapped to (-pi, pi]; the filter's heading is kept in (-pi, pi].
+//    valid channels' innovation under their block of S (Hassani et al. 2018, eq. 50-51). The
+//    heading innovation is wrapped to (-pi, pi]; the filter's heading is kept in (-pi, pi].
 //
 // Process noise (Q) and why (values in EkfOptions): each source is given as the
 // stationary standard deviation it produces (wave motion, bias) or as a white-noise
@@ -90,14 +91,15 @@
 namespace moorsim::detectors {
 
 struct EkfOptions {
-  /// Wave model (seed 000 section 4.4, reference sheet): peak frequency w0 = 2 pi / 7 s.
+  /// Wave model (TAPM thesis section 4.4; docs/design.md section 9): peak frequency
+  /// w0 = 2 pi / 7 s.
   Vec3 wave_frequency = Vec3::Constant(0.8975979010256552);  ///< w0 [rad/s]
   Vec3 wave_damping = Vec3::Constant(0.1);                   ///< lambda [-]
   /// Stationary standard deviation of the wave-frequency motion C_w xi [m, m, rad]; the
   /// filter's intensity is s = std sqrt(4 lambda w0). 0.15 m, 0.15 m, 0.5 deg: tuned on
   /// the thesis plant (file comment); a 200 m FPSO moves little at 7 s.
   Vec3 wave_motion_std = Vec3(0.15, 0.15, 0.0087);
-  Vec3 bias_time_constant = Vec3::Constant(1000.0);  ///< T [s] (seed 000 section 4.4)
+  Vec3 bias_time_constant = Vec3::Constant(1000.0);  ///< T [s] (TAPM thesis section 4.4)
   /// Stationary standard deviation of the bias b [N, N, N m]: current, wind and wave
   /// drift (about 1 MN mean on the thesis plant in beam seas); the intensity is
   /// std sqrt(2 / T). See the file comment for the trade-off against detection.
@@ -109,7 +111,7 @@ struct EkfOptions {
   Vec3 force_noise = Vec3(5e4, 5e4, 1e7);
   Vec3 measurement_variance = Vec3::Constant(0.005);  ///< R diagonal [m^2, m^2, rad^2]
   /// Linear mooring damping as a fraction of critical per DOF (MooringDampingMatrix);
-  /// 0 = none. Seed 000 section 3.3.1 suggests 0.1-0.2; the default leaves it to the
+  /// 0 = none. TAPM thesis section 3.3.1 suggests 0.1-0.2; the default leaves it to the
   /// vessel's own low-frequency damping, which is already 37 % of critical in surge.
   Vec3 mooring_damping_ratio = Vec3::Zero();
   /// Whether Observation::tau_command drives the model. Set false when the plant's
@@ -195,7 +197,7 @@ class HypothesisEkf : public ObserverStateLayout {
 /// How the observer bank couples its filters.
 struct ObserverBankOptions {
   /// Rate [1/s] at which the truth may switch from its hypothesis to any other, shared
-  /// equally among the others; 0 = independent filters, as in the seeds. With a rate > 0
+  /// equally among the others; 0 = independent filters, as in the papers. With a rate > 0
   /// the bank is an interacting-multiple-model (IMM) bank (Blom and Bar-Shalom 1988):
   /// before each sample every filter restarts from the mixture of all filters' estimates,
   /// weighted by the probability that its hypothesis came from each of theirs. See

@@ -1,6 +1,6 @@
 // Windowed generalised likelihood ratio (GLR) tests on the intact hypothesis's innovations
-// (seed 003 section 4.1): a mean-change test that detects, and a known-signature test that
-// isolates.
+// (Lajic et al. 2009, section 4.1): a mean-change test that detects, and a known-signature
+// test that isolates.
 //
 // Whitening. Only hypotheses[0] (all lines intact) is used. Each innovation r is whitened
 // by its own covariance S = L L' (L the lower Cholesky factor): w = L^-1 r, so that while
@@ -9,8 +9,8 @@
 // Cholesky factor of that block of S, and each component counts only the samples that
 // carried it (see CarriedChannels() for how the missing channels are recognised).
 //
-// (a) Mean change, seed 003 eq. 21 extended to the whitened vector. With the window holding
-// the last M samples, for each candidate change time j (the last n_j = k - j + 1 samples,
+// (a) Mean change, Lajic et al. 2009, eq. 21, extended to the whitened vector. With the window
+// holding the last M samples, for each candidate change time j (the last n_j = k - j + 1 samples,
 // 1 <= n_j <= M) and each component c with n_jc > 0 samples:
 //
 //   g_j = sum_c (sum_{i=j..k} w_ic)^2 / n_jc,        g = max_j g_j.
@@ -24,7 +24,7 @@
 // At the defaults (M = 50, p_fa = 1e-6) h = 38.709. Residuals of a real observer are
 // coloured, so the real rate is higher; tune `threshold` on no-failure runs.
 //
-// (b) Known signature, seed 003 eq. 22 with a constant profile rho = s_k, Q = I in the
+// (b) Known signature, Lajic et al. 2009, eq. 22 with a constant profile rho = s_k, Q = I in the
 // whitened space: s_k is the expected whitened intact innovation while line k is failed
 // (SetSignatures). The likelihood ratio maximised over the amplitude nu >= 0 gives, per
 // failure hypothesis k,
@@ -34,7 +34,7 @@
 // (with all channels: max(0, s_k . sum w)^2 / (n_j |s_k|^2)), twice eq. 22's value so that
 // it is chi-square(1)-scaled like (a). The amplitude is one-sided because a parted line
 // removes its force, it cannot push back: with the two-sided square, opposite lines (1 and
-// 3, the seed's anchors at 0 and 180 deg) would look the same. A zero signature gives 0.
+// 3, the seed case's anchors at 0 and 180 deg) would look the same. A zero signature gives 0.
 // Without signatures the isolation falls back to the windowed log-likelihoods of all
 // hypotheses: T_k = 2 (sum over the window of log_likelihood_k - log_likelihood_0), the
 // hypothesis that explained the last M samples best.
@@ -63,7 +63,7 @@
 namespace moorsim::detectors {
 
 struct GlrOptions {
-  /// M: the number of samples the window holds (seed 003 section 4.2: M = 50); >= 2.
+  /// M: the number of samples the window holds (Lajic et al. 2009, section 4.2: M = 50); >= 2.
   int window = 50;
   /// Per-sample false-alarm probability the default threshold is derived from, for white
   /// residuals (union bound over the window), in (0, 1). 1e-6 at a 1 Hz detector: about 1 %
@@ -72,7 +72,7 @@ struct GlrOptions {
   /// h: the alarm threshold on g, > 0. Unset: GlrDefaultThreshold(false_alarm_probability,
   /// window).
   std::optional<double> threshold;
-  /// [s] How long g must stay above h before the alarm, >= 0 (0: at once, the seed's rule).
+  /// [s] How long g must stay above h before the alarm, >= 0 (0: at once, Lajic et al.'s rule).
   double hold = 0.0;
 };
 

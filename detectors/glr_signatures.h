@@ -1,5 +1,5 @@
-// The GLR's known failure signatures (seed 003 eq. 22), computed from the hypothesis models
-// themselves: s_k is the mean whitened innovation of the INTACT observer over the first M
+// The GLR's known failure signatures (Lajic et al. 2009, eq. 22), computed from the hypothesis
+// models themselves: s_k is the mean whitened innovation of the INTACT observer over the first M
 // samples after line k parts, with the vessel at rest at `pose` before the break.
 //
 // Construction, per failure hypothesis k: before the break the truth is the intact model at

@@ -1,10 +1,10 @@
-// The hypothesis-model bank (DESIGN.md section 6): one quasi-static mooring model per
+// The hypothesis-model bank (docs/design.md section 6): one quasi-static mooring model per
 // hypothesis about which lines are intact, built from the scenario's mooring by the
 // project's own catenary solver, never from hand-typed stiffness.
 //
 // Hypothesis 0 is "all lines intact", hypothesis k (1..N) is "line k failed", and, when
 // pairs are asked for, hypotheses N+1.. are every pair (i, j), i < j, in lexicographic
-// order. Seed 000 eq. 3.15-3.17 writes the restoring load as g_mo(eta) = T(beta) L_p tau_H
+// order. TAPM thesis eq. 3.15-3.17 writes the restoring load as g_mo(eta) = T(beta) L_p tau_H
 // with the breakage matrix L_p zeroing the failed lines and tau_H the lines' horizontal
 // tensions from a look-up table over the anchor-fairlead span; this file is that model:
 // LineForceTable is the look-up table (one per line, shared by every hypothesis), and
@@ -30,7 +30,7 @@ namespace moorsim::detectors {
 struct LineForceTableOptions {
   /// Horizontal offsets of the vessel [m] the table must cover: the grid spans the nominal
   /// span +- (span_margin + turret radius), so any heading and any offset up to
-  /// span_margin is inside it. Default 150 m, about 8 % of the seed's 1930 m span.
+  /// span_margin is inside it. Default 150 m, about 8 % of the seed case's 1930 m span.
   double span_margin = 150.0;
   /// Largest grid spacing [m]. With 1 m the interpolation error on the seed lines is
   /// ~3e-11 of H where H is smooth and 3.1e-7 in the interval that holds the lift-off of
@@ -106,7 +106,7 @@ class LineForceTable {
   std::vector<double> h_, dh_, v_, dv_;  // per node: H, dH/dspan, V, dV/dspan
 };
 
-/// Net horizontal load of a set of intact lines on the vessel (seed 000 eq. 3.15-3.16 with
+/// Net horizontal load of a set of intact lines on the vessel (TAPM thesis eq. 3.15-3.16 with
 /// the fairleads' true positions): line i's fairlead is at
 ///   p_i = (x, y) + Rz(psi) fairlead_body_i.xy,
 /// it is pulled horizontally toward its anchor a_i with H_i(|a_i - p_i|), and
@@ -136,19 +136,19 @@ class QuasiStaticMooring {
   std::vector<std::shared_ptr<const LineForceTable>> lines_;
 };
 
-/// The low-frequency manoeuvring model of the vessel in surge, sway and yaw (seed 000 eq.
+/// The low-frequency manoeuvring model of the vessel in surge, sway and yaw (TAPM thesis eq.
 /// 3.6d; Fossen 2011 section 7.1): M nu' = -D nu + tau. Body axes; rows surge, sway, yaw.
 struct LowFrequencyModel {
   Mat3 mass = Mat3::Zero();     ///< M = M_RB + A(0) [kg, kg, kg m^2]
   Mat3 damping = Mat3::Zero();  ///< D [N s/m, N s/m, N m s/rad]
 };
 
-/// The seed FPSO (reference sheet): M = diag(m + A11, m + A22, m 54^2 + A66) with
+/// The seed FPSO (docs/design.md section 9): M = diag(m + A11, m + A22, m 54^2 + A66) with
 /// m = 1.0041e8 kg, A11 = 7.9427e6 kg, A22 = 6.4432e7 kg, A66 = 1.4513e11 kg m^2, and
 /// D_ii = M_ii / T_i with T = 50, 100, 20 s (MSS rule).
 LowFrequencyModel SeedLowFrequencyModel();
 
-/// Linear mooring damping as a fraction of critical per DOF (seed 000 section 3.3.1: 10-20
+/// Linear mooring damping as a fraction of critical per DOF (TAPM thesis section 3.3.1: 10-20
 /// % of critical, after DNV): D_mo = diag(2 ratio_i sqrt(max(G_ii, 0) M_ii)). It uses only
 /// the diagonals of the stiffness G (Earth frame, about the neutral pose) and of the mass
 /// M (body frame); the two frames agree at heading 0. Throws moorsim::InputError on a
@@ -156,7 +156,7 @@ LowFrequencyModel SeedLowFrequencyModel();
 Mat3 MooringDampingMatrix(const Mat3& stiffness, const Mat3& mass, const Vec3& ratio);
 
 struct HypothesisBankOptions {
-  /// Also every pair of failed lines (i, j), i < j (DESIGN.md section 6).
+  /// Also every pair of failed lines (i, j), i < j (docs/design.md section 6).
   bool include_pairs = false;
   /// The vessel's moored heave [m] (NED, + down), added to every fairlead's body z.
   double moored_heave = 0.0;
@@ -191,7 +191,7 @@ class HypothesisBank {
   int Find(std::span<const int> lines) const;
 
   /// Linearised stiffness G_mo(h) = -d load / d eta at options.reference_pose (default
-  /// eta = 0), Earth frame [N/m, N/rad; N m/m, N m/rad] (DESIGN.md section 6: for the
+  /// eta = 0), Earth frame [N/m, N/rad; N m/m, N m/rad] (docs/design.md section 6: for the
   /// observers that want a linear model). Analytic, from the tables; symmetric, since the
   /// lines' load is the gradient of their potential energy in (x, y, psi).
   const Mat3& stiffness(int h) const { return hypotheses_.at(h).stiffness; }

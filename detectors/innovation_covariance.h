@@ -1,4 +1,4 @@
-// The offline innovation covariance of the passive observers (seed 000 section 4.4 and
+// The offline innovation covariance of the passive observers (TAPM thesis section 4.4 and
 // appendix A.5): the passive observer computes no covariance, so each hypothesis's
 // Sigma_h is the sample covariance (MATLAB's cov(): about the sample mean, divided by
 // n - 1) of that observer's innovations on a long run in which the hypothesis is true.
@@ -127,9 +127,9 @@ class HypothesisModelSimulator {
 
 struct CovarianceTrainingOptions {
   Vec3 pose = Vec3::Zero();      ///< pose the vessel is held about [m, m, rad] (HoldingThrust)
-  double duration = 10000.0;     ///< recorded span [s] (seed 000 section 4.4: 10000 s)
+  double duration = 10000.0;     ///< recorded span [s] (TAPM thesis section 4.4: 10000 s)
   double settle_time = 500.0;    ///< simulated and discarded first: the observer's start [s]
-  double sample_interval = 1.0;  ///< [s], the seed's sensor rate
+  double sample_interval = 1.0;  ///< [s], the TAPM thesis's sensor rate
   double max_substep = 0.25;     ///< plant RK4 substep bound [s]
   std::uint64_t seed = 1;        ///< streams "training.*", the same for every hypothesis
   int min_samples = 100;         ///< InnovationCovarianceEstimator's minimum

@@ -1,7 +1,7 @@
 // Maximum-likelihood selection (MLE): per hypothesis, the negative log-likelihood of the
 // pose history with exponential forgetting, and the hypothesis that minimises it.
 //
-// Recursion (seed 000 eq. 4.10 and appendix A.2, with the full Gaussian log-likelihood
+// Recursion (TAPM thesis eq. 4.10 and appendix A.2, with the full Gaussian log-likelihood
 // instead of the thesis's 1/2 (ln|S| + y'S^-1 y), which differs from it by the constant
 // (dim/2) ln 2 pi per sample and so ranks the hypotheses the same):
 //
@@ -10,7 +10,7 @@
 // A sample n steps back carries weight lambda^n, so J is an exponentially weighted sum with
 // an effective memory of 1/(1 - lambda) samples (1000 at the default 0.999). Under a fixed
 // true hypothesis the differences J_k - J_true settle at (mean per-sample log-likelihood
-// difference) / (1 - lambda) instead of growing without bound (seed 000 fig. 4.4 vs 5.6),
+// difference) / (1 - lambda) instead of growing without bound (TAPM thesis fig. 4.4 vs 5.6),
 // so a newly true hypothesis overtakes the old one after a bounded number of samples.
 // lambda = 1 is the plain cumulative NLL.
 //
@@ -33,7 +33,7 @@
 namespace moorsim::detectors {
 
 struct MleOptions {
-  /// lambda in (0, 1]; memory about 1 / (1 - lambda) samples. Seed 000 section 4.6.3 uses
+  /// lambda in (0, 1]; memory about 1 / (1 - lambda) samples. TAPM thesis section 4.6.3 uses
   /// 0.999; on the coupled thesis plant (waves, current, the thesis's PI, a mixing observer
   /// bank) that memory of ~1000 s holds the intact model's lead from before a break for
   /// 200-300 s after it (all eight lines detected only after 180 s, seeds 1-2), while 0.99

@@ -1,6 +1,6 @@
-// The nonlinear passive observer of seed 000 (section 3.4, eq. 3.18-3.19; gains section 4.5;
+// The nonlinear passive observer of the TAPM thesis (section 3.4, eq. 3.18-3.19; gains section 4.5;
 // Fossen 2011 section 11.4.1, Fossen & Strand 1999) per hypothesis, with a fixed, offline
-// innovation covariance for the evidence (seed 000 section 4.4), and the bank that runs one
+// innovation covariance for the evidence (TAPM thesis section 4.4), and the bank that runs one
 // per hypothesis of a HypothesisBank. An alternative to HypothesisEkf / ObserverBank
 // (detectors/ekf_observer.h): same state layout, same evidence.
 //
@@ -15,7 +15,7 @@
 // quasi-static mooring load (Earth [Fx, Fy, Mz]) and R(psi) rotating the force part of
 // [Fx, Fy, Mz] and leaving Mz, exactly as in HypothesisEkf::LowFrequencyDerivative.
 //
-// Gains (seed 000 eq. 4.4-4.8, from Fossen 2011 and MSS's ExPassiveObs.m), per DOF i:
+// Gains (TAPM thesis eq. 4.4-4.8, from Fossen 2011 and MSS's ExPassiveObs.m), per DOF i:
 //   K1_i = -2 (zeta_n - lambda) w_c / w0,  K1_{i+3} = 2 w0 (zeta_n - lambda),  K2_i = w_c,
 //   zeta_n = 1, lambda = 0.1, w_c = 1.2255 w0 (1.10 rad/s), K4 = diag(0.1, 0.1, 0.01),
 //   K3 = 0.1 K4.
@@ -34,21 +34,21 @@
 // So here K4 is an acceleration per metre [1/s^2] and K3 a jerk per metre [1/s^3]: the
 // force-level gains of eq. 3.19 are M_e K4 and M_e K3, i.e. K4_phys = R M R^T K4 so that
 // M nu' = ... + R^T K4_phys e = ... + M R^T K4 e, and b' = ... + R M R^T K3 e. With the
-// seed's numbers the slowest error modes of the seed FPSO decay with time constants of
+// TAPM thesis's numbers the slowest error modes of the seed FPSO decay with time constants of
 // about 20 s (surge, sway) and 30-36 s (yaw) (tests: LoopPolesOnTheSeedModel), and the
 // loop keeps Fossen's notch and SPR shape.
 // `mass_scaled_gains = false` gives the literal SI reading (K4 [N/m, N/m, N m/rad],
 // K3 [N/(m s), ...]) for comparison; it does not estimate the bias.
 // Other choices: the wave model uses lambda in A_w as eq. 3.10-3.11 and Fossen do (the
-// seed's initPassiveObs.m builds A_w with zeta_n instead, and uses K4 = diag(0.3, 0.3,
-// 0.01) where the text says 0.1); R is evaluated at the estimated heading, not at the
-// measured one as Fossen's R(y3): the seed's gyro noise (0.005 rad^2, 4 deg) rotated into
-// a 1 MN bias would be a 70 kN force noise.
+// TAPM thesis's initPassiveObs.m (appendix A.4) builds A_w with zeta_n instead, and uses
+// K4 = diag(0.3, 0.3, 0.01) where the text says 0.1); R is evaluated at the estimated
+// heading, not at the measured one as Fossen's R(y3): the thesis's gyro noise (0.005 rad^2,
+// 4 deg) rotated into a 1 MN bias would be a 70 kN force noise.
 // Passivity (Fossen & Strand 1999) holds for a constant heading; a moored vessel's yaw
 // rate (~1e-3 rad/s) is far below every error mode, so R and M_e are constant on their
 // time scale.
 //
-// Discretisation (observations come at 1 Hz on the seed's sensors): between two samples
+// Discretisation (observations come at 1 Hz on the seed case's sensors): between two samples
 // the measurement y and the thrust are held (zero-order hold) and the observer ODE, with
 // e(t) = y_k - y_hat(t) varying, is integrated by classic RK4 in equal substeps of at most
 // max_substep (0.5 s). The linearised observer's fastest eigenvalues on the seed model are
@@ -64,7 +64,7 @@
 // Evidence: at each observation the innovation e_k = y_k - y_hat(t_k^-) is formed from the
 // output predicted over the interval (before y_k is used), and its log-likelihood over the
 // valid channels is log N(e_v; 0, Sigma_v), Sigma_v the valid block of the fixed covariance
-// Sigma_h (seed 000 eq. 3.28 with Sigma_H from section 4.4). The innovation is 0 on invalid
+// Sigma_h (TAPM thesis eq. 3.28 with Sigma_H from section 4.4). The innovation is 0 on invalid
 // channels, the dimension is the number of valid ones, the covariance is Sigma_h. Sigma_h
 // must be the covariance of these same predicted-output innovations (see
 // detectors/innovation_covariance.h for how to train it).
@@ -99,24 +99,24 @@
 namespace moorsim::detectors {
 
 struct PassiveObserverOptions {
-  /// Wave model: peak frequency w0 = 2 pi / 7 s (seed 000 table 4.3) [rad/s].
+  /// Wave model: peak frequency w0 = 2 pi / 7 s (TAPM thesis table 4.3) [rad/s].
   Vec3 wave_frequency = Vec3::Constant(0.8975979010256552);
-  Vec3 wave_damping = Vec3::Constant(0.1);   ///< lambda [-] (seed 000 section 4.5)
-  Vec3 notch_damping = Vec3::Constant(1.0);  ///< zeta_n [-], > lambda (seed 000 section 4.5)
-  /// Cut-off w_c as a multiple of w0 [-]: 1.2255 (seed 000 section 4.5; w_c = 1.10 rad/s).
+  Vec3 wave_damping = Vec3::Constant(0.1);   ///< lambda [-] (TAPM thesis section 4.5)
+  Vec3 notch_damping = Vec3::Constant(1.0);  ///< zeta_n [-], > lambda (TAPM thesis section 4.5)
+  /// Cut-off w_c as a multiple of w0 [-]: 1.2255 (TAPM thesis section 4.5; w_c = 1.10 rad/s).
   Vec3 cutoff_ratio = Vec3::Constant(1.2255);
-  Vec3 bias_time_constant = Vec3::Constant(1000.0);  ///< T [s] (seed 000 A.4)
-  /// K4 (seed 000 eq. 4.8): with mass_scaled_gains, an acceleration per metre (per rad)
+  Vec3 bias_time_constant = Vec3::Constant(1000.0);  ///< T [s] (TAPM thesis appendix A.4)
+  /// K4 (TAPM thesis eq. 4.8): with mass_scaled_gains, an acceleration per metre (per rad)
   /// of innovation [1/s^2]; see the file comment.
   Vec3 velocity_gain = Vec3(0.1, 0.1, 0.01);
-  /// K3 = 0.1 K4 (seed 000 eq. 4.7): with mass_scaled_gains [1/s^3]. Fossen's rule
+  /// K3 = 0.1 K4 (TAPM thesis eq. 4.7): with mass_scaled_gains [1/s^3]. Fossen's rule
   /// 1/T << K3/K4 < w0 must hold (checked: 1/T < K3/K4 < w0).
   Vec3 bias_gain = Vec3(0.01, 0.01, 0.001);
   /// true: the force-level gains are M_e K4 and M_e K3 (file comment). false: K4 and K3
   /// are taken literally in SI [N/m, N/m, N m/rad] and [N/(m s), ...].
   bool mass_scaled_gains = true;
   /// Linear mooring damping as a fraction of critical per DOF (MooringDampingMatrix);
-  /// 0 = none, as EkfOptions. (Seed 000 A.4 adds 0.1 D.)
+  /// 0 = none, as EkfOptions. (TAPM thesis appendix A.4 adds 0.1 D.)
   Vec3 mooring_damping_ratio = Vec3::Zero();
   /// Whether Observation::tau_command drives the model (as EkfOptions).
   bool use_thrust_command = true;
@@ -127,7 +127,7 @@ struct PassiveObserverOptions {
 /// Throws moorsim::InputError naming the field ("passive.velocity_gain[3]") and the value.
 void Validate(const PassiveObserverOptions& options);
 
-/// The gain matrices of eq. 3.19, diagonal blocks per DOF (seed 000 eq. 4.4-4.8).
+/// The gain matrices of eq. 3.19, diagonal blocks per DOF (TAPM thesis eq. 4.4-4.8).
 struct PassiveObserverGains {
   Vec3 k1_integral = Vec3::Zero();  ///< K1_i, rows of xi1 [-]: -2 (zeta_n - lambda) w_c / w0
   Vec3 k1_wave = Vec3::Zero();      ///< K1_{i+3}, rows of xi2 [1/s]: 2 w0 (zeta_n - lambda)

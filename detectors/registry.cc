@@ -44,7 +44,7 @@ constexpr double kGlrThreshold = 120.0;
 constexpr double kGlrHold = 15.0;
 constexpr std::array<DetectorParameter, 4> kDhtParameters = {{
     {"floor", DhtOptions{}.floor, "", kProbability, "",
-     "probability floor p_min (seed 000: 1e-9); hypotheses x floor must be < 1"},
+     "probability floor p_min (TAPM thesis: 1e-9); hypotheses x floor must be < 1"},
     {"hold", DhtOptions{}.hold, "", kNonNegative, "s",
      "time the same failure hypothesis must stay >= threshold before the alarm"},
     {"prior_intact", std::nullopt, "uniform 1/N", kProbability, "",
@@ -63,12 +63,12 @@ constexpr std::array<DetectorParameter, 4> kGlrParameters = {{
      "alarm threshold h on the mean-change statistic g (tuned on the thesis plant, whose "
      "residuals are coloured by wave drift)"},
     {"window", GlrOptions{}.window, "", kWindow, "samples",
-     "M, the change times searched (seed 003: 50)"},
+     "M, the change times searched (Lajic et al. 2009: 50)"},
 }};
 
 constexpr std::array<DetectorParameter, 3> kMleParameters = {{
     {"forgetting_factor", MleOptions{}.forgetting_factor, "", kUpToOne, "",
-     "lambda: J <- lambda J - log-likelihood (seed 000: 0.999); memory 1/(1 - lambda) samples"},
+     "lambda: J <- lambda J - log-likelihood (TAPM thesis: 0.999); memory 1/(1 - lambda) samples"},
     {"hold", MleOptions{}.hold, "", kNonNegative, "s",
      "time a failure hypothesis must have been the argmin before the alarm"},
     {"margin", MleOptions{}.margin, "", kNonNegative, "nats",
@@ -110,13 +110,13 @@ std::unique_ptr<Detector> MakeMle(const DetectorParameters& p) {
 // The registry, sorted by name.
 constexpr std::array<DetectorType, 3> kDetectors = {{
     {"dht", MakeDht, kDhtParameters,
-     "dynamic hypothesis testing: floored Bayesian posterior of every hypothesis (seed 001 "
-     "eq. 47/51)"},
+     "dynamic hypothesis testing: floored Bayesian posterior of every hypothesis (Hassani et al. "
+     "2018, eq. 47/51)"},
     {"glr", MakeGlr, kGlrParameters,
      "windowed GLR on the intact model's whitened innovations: mean change detects, known "
-     "signatures isolate (seed 003 eq. 21/22)"},
+     "signatures isolate (Lajic et al. 2009, eq. 21/22)"},
     {"mle", MakeMle, kMleParameters,
-     "maximum likelihood: negative log-likelihood with forgetting, argmin (seed 000 eq. "
+     "maximum likelihood: negative log-likelihood with forgetting, argmin (TAPM thesis eq. "
      "4.10)"},
 }};
 
@@ -236,9 +236,7 @@ std::string DetectorHelp() {
 namespace internal {
 
 void ContractViolation(std::string_view where, std::string_view what) {
-  std::fprintf(stderr, "%.*s: contract violated: %.*s\n", static_cast<int>(where.size()),
-               where.data(), static_cast<int>(what.size()), what.data());
-  std::abort();
+  throw ContractError(std::string(where) + ": contract violated: " + std::string(what));
 }
 
 void CheckEvidence(std::string_view detector, const Evidence& evidence, int hypotheses) {

@@ -94,8 +94,9 @@ std::string DetectorHelp();
 
 namespace internal {
 
-/// Reports a broken programmer's contract ("<where>: contract violated: <what>" on stderr)
-/// and aborts: an always-on assert.
+/// Reports a broken programmer's contract: throws moorsim::ContractError "<where>: contract
+/// violated: <what>", an always-on assert that a run reports as failed instead of aborting
+/// the process (a batch of runs goes on).
 [[noreturn]] void ContractViolation(std::string_view where, std::string_view what);
 
 inline void Require(bool condition, std::string_view where, std::string_view what) {

@@ -1,6 +1,6 @@
 // What the water and the seabed do to a line: current velocity vs depth, and the
 // regularised seabed contact law. Both are smooth (C1) so the implicit integrator's
-// Newton iteration sees no kinks (NUMERICS.md item 3).
+// Newton iteration sees no kinks (docs/design.md section 8.3).
 #pragma once
 
 #include <vector>

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "core/error.h"
+#include "core/sample_clock.h"
 
 namespace moorsim::mooring_fem {
 
@@ -99,21 +101,23 @@ void LineSimulation::ScheduleFailure(double t, const LineFailure& failure) {
 }
 
 void LineSimulation::AdvanceTo(double t) {
-  while (t_ < t) {
-    const bool event_due = !events_.empty() && events_.front().time <= t;
-    const double target = event_due ? events_.front().time : t;
-    if (target > t_) {
-      integrator_->AdvanceTo(target);
-      t_ = integrator_->time();
-      std::copy(integrator_->state(), integrator_->state() + x_.size(), x_.begin());
-    }
-    if (event_due) {
-      const LineFailure failure = events_.front().failure;
-      events_.erase(events_.begin());
-      x_ = mooring_.ApplyFailure(failure, x_.data(), system_.Fairleads(t_));
-      StartIntegrator();
-    }
-  }
+  AdvanceThroughEvents(
+      t, [this]() -> Integrator& { return *integrator_; },
+      [this](double) {
+        return events_.empty() ? std::numeric_limits<double>::infinity() : events_.front().time;
+      },
+      [this](double now) {
+        if (now > t_) {
+          t_ = now;
+          std::copy(integrator_->state(), integrator_->state() + x_.size(), x_.begin());
+        }
+        while (!events_.empty() && events_.front().time <= t_) {
+          const LineFailure failure = events_.front().failure;
+          events_.erase(events_.begin());
+          x_ = mooring_.ApplyFailure(failure, x_.data(), system_.Fairleads(t_));
+          StartIntegrator();
+        }
+      });
 }
 
 std::vector<Vec3> LineSimulation::FairleadForces() {

@@ -25,7 +25,7 @@ constexpr int kAbove = 2;
 
 // Morison drag of half a segment (stretched length L) on relative velocity u, and its
 // derivatives w.r.t. u and the segment vector l. Normal part -c_n (L/2)|u_n| u_n,
-// tangential part -c_t (L/2) |s| s t with s = u . t (seed 002 eq. 7, drag on the
+// tangential part -c_t (L/2) |s| s t with s = u . t (Ren & Skjetne 2016, eq. 7, drag on the
 // stretched length).
 struct HalfSegmentDrag {
   Vec3 force;

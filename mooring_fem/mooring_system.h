@@ -1,4 +1,5 @@
-// The lumped-mass Galerkin FEM of all mooring lines (Aamo & Fossen; seed 002 eq. 7).
+// The lumped-mass Galerkin FEM of all mooring lines (Aamo & Fossen 2001, as written in
+// Ren & Skjetne 2016, eq. 7).
 //
 // Each line of unstretched length L is split into n equal segments, nodes 0..n from the
 // anchor to the fairlead. A node carries half of each adjacent segment: its dry mass, its

@@ -19,7 +19,7 @@ struct SourceMark {
   int column = 0;
 };
 
-/// Material and hydrodynamic properties of one line type (seed 002 Table 2 style).
+/// Material and hydrodynamic properties of one line type (Ren & Skjetne 2016, Table 2 style).
 struct LineType {
   std::string name;
   double diameter = 0.0;         ///< nominal (hydrodynamic and displacement) diameter [m]
@@ -112,7 +112,7 @@ struct SolverSpec {
   double max_step = 0.0;  ///< [s]; 0 = no limit
 };
 
-/// The vessel (DESIGN.md section 5). Defaults are the seed FPSO (reference sheet).
+/// The vessel (docs/design.md section 5). Defaults are the seed FPSO (docs/design.md section 9).
 struct LowFrequencyDampingSpec {
   double surge_time = 50.0;  ///< B_11 = (M + A)_11 / T [s]
   double sway_time = 100.0;  ///< [s]
@@ -199,7 +199,7 @@ struct ChannelNoiseSpec {
 struct SensorsSpec {
   double gnss_rate = 1.0;  ///< [Hz]
   double gyro_rate = 1.0;  ///< [Hz]
-  /// Reference sheet: measurement variance 0.005 m^2 / rad^2 per DOF.
+  /// Seed case (docs/design.md section 9): measurement variance 0.005 m^2 / rad^2 per DOF.
   ChannelNoiseSpec north{.std_dev = 0.070710678118654752};
   ChannelNoiseSpec east{.std_dev = 0.070710678118654752};
   ChannelNoiseSpec heading{.std_dev = 0.070710678118654752};
@@ -235,7 +235,7 @@ struct DetectionSpec {
   bool pairs = false;                   ///< also every pair of failed lines
   double measurement_variance = 0.005;  ///< observers' R per DOF [m^2, rad^2]
   /// Rate [1/s] at which the observer bank lets the truth switch hypothesis (IMM mixing,
-  /// detectors/ekf_observer.h); 0 = independent filters as in the seeds.
+  /// detectors/ekf_observer.h); 0 = independent filters as in the papers.
   std::optional<double> switch_rate;
   /// The observers' disturbance model (`detection.model`, detectors::EkfOptions); unset
   /// fields keep the detectors library's defaults. Per DOF [surge, sway, yaw].

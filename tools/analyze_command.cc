@@ -1,5 +1,5 @@
 // `moorsim analyze`: how well the detectors' hypotheses can be told apart, from the models
-// alone, before a campaign (seed 001 Theorem 2; detectors/distinguishability.h).
+// alone, before a campaign (Hassani et al. 2018, Theorem 2; detectors/distinguishability.h).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -85,8 +85,8 @@ int Analyze(const AnalyzeOptions& o) {
   std::vector<std::string> labels;
   for (int h = 0; h < n; ++h) labels.push_back(bank.Label(h));
   const double heading_deg = pose.z() * 180.0 / std::numbers::pi;
-  // The analysis is of seed 001's bank: one EKF per hypothesis, independent. Say so when
-  // the scenario's detectors would see something else.
+  // The analysis is of the bank of Hassani et al. 2018: one EKF per hypothesis,
+  // independent. Say so when the scenario's detectors would see something else.
   std::vector<std::string> notes;
   const double switch_rate = models.observer_bank.switch_rate;
   if (scenario.detection.observer != "ekf") {
@@ -95,8 +95,8 @@ int Analyze(const AnalyzeOptions& o) {
   }
   if (switch_rate > 0.0) {
     notes.push_back(
-        "these are independent filters (seed 001; detection.switch_rate 0); the scenario's bank "
-        "mixes them (IMM, switch_rate " +
+        "these are independent filters (Hassani et al. 2018; detection.switch_rate 0); the "
+        "scenario's bank mixes them (IMM, switch_rate " +
         FormatNumber(switch_rate) +
         "/s), which pulls the failure filters back to the intact estimate while intact holds, so "
         "its evidence after a break differs from (and is mostly larger than) the transient "
@@ -157,7 +157,7 @@ int Analyze(const AnalyzeOptions& o) {
       pose.x(), pose.y(), heading_deg, d.sample_interval);
   std::printf(
       "Expected log-likelihood ratio per sample D(row || column) [nats/sample]: data from the "
-      "row's\nmodel, the row's filter against the column's (seed 001 Theorem 2)\n\n");
+      "row's\nmodel, the row's filter against the column's (Hassani et al. 2018, Theorem 2)\n\n");
   std::size_t width = 10;
   for (const std::string& l : labels) width = std::max(width, l.size() + 2);
   const int w = static_cast<int>(width);
@@ -213,20 +213,21 @@ int Analyze(const AnalyzeOptions& o) {
 Command AddAnalyzeCommand(CLI::App& app) {
   auto o = std::make_shared<AnalyzeOptions>();
   CLI::App* sub = app.add_subcommand(
-      "analyze",
-      "How well the failure hypotheses can be told apart, before a campaign.\n"
+      "analyze", "how well the failure hypotheses can be told apart, before a campaign");
+  sub->footer(
+      "\n"
       "Each hypothesis (intact, line k failed, pairs if detection.pairs) is its EKF's model\n"
       "linearised at the station-keeping pose (the controller setpoint) and sampled at the\n"
       "GNSS rate. For every pair it prints the expected growth of the log-likelihood ratio,\n"
-      "D(i||j) in nats per sample, on data from model i (a Kullback-Leibler rate, seed 001\n"
-      "Theorem 2): the DHT's odds against a wrong j shrink like exp(-n D). A pair with D\n"
-      "below --min-rate both ways is flagged hard to tell apart. It then prints the expected\n"
-      "evidence gathered in the first --window seconds after each line parts, against intact\n"
-      "and against the most confusable other failure: this is what sets the detection delay\n"
-      "(a parted line is, to a wrong filter, mostly a constant force its bias absorbs, so the\n"
-      "steady rates are small and the evidence comes from the transient).\n"
-      "Assumptions: independent filters (seed 001; detection.switch_rate 0), the thrust\n"
-      "holding each model at rest at the setpoint, noise as detection.model and\n"
+      "D(i||j) in nats per sample, on data from model i (a Kullback-Leibler rate, Hassani et\n"
+      "al. 2018, Theorem 2): the DHT's odds against a wrong j shrink like exp(-n D). A pair\n"
+      "with D below --min-rate both ways is flagged hard to tell apart. It then prints the\n"
+      "expected evidence gathered in the first --window seconds after each line parts, against\n"
+      "intact and against the most confusable other failure: this is what sets the detection\n"
+      "delay (a parted line is, to a wrong filter, mostly a constant force its bias absorbs, so\n"
+      "the steady rates are small and the evidence comes from the transient).\n"
+      "Assumptions: independent filters (Hassani et al. 2018; detection.switch_rate 0), the\n"
+      "thrust holding each model at rest at the setpoint, noise as detection.model and\n"
       "detection.measurement_variance state (wave motion, bias, force noise).");
   sub->add_option("scenario", o->scenario, "scenario YAML file")->required();
   sub->add_option("--set", o->sets, "override a scenario value: key.path=value (repeatable)");

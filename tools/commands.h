@@ -1,5 +1,5 @@
 // The moorsim subcommands. Each registers its options on a CLI11 subcommand and returns a
-// callable that runs it; main() maps exceptions to exit codes (DESIGN.md section 2).
+// callable that runs it; main() maps exceptions to exit codes (docs/design.md section 2).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -19,6 +19,9 @@ Command AddAnalyzeCommand(CLI::App& app);
 
 /// Splits "a,b,c" into numbers; throws InputError naming the flag on anything else.
 std::vector<double> ParseNumberList(const std::string& flag, const std::string& text);
+/// The flag's text if it is not empty; throws InputError naming the flag otherwise (an
+/// empty value is never taken as "not given").
+const std::string& RequireText(const std::string& flag, const std::string& text);
 /// One number (no list); throws InputError naming the flag otherwise.
 double ParseNumber(const std::string& flag, const std::string& text);
 /// One whole number in [min, max]; throws InputError naming the flag and the range.

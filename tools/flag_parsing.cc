@@ -11,10 +11,12 @@
 namespace moorsim::cli {
 
 std::vector<double> ParseNumberList(const std::string& flag, const std::string& text) {
+  if (text.empty()) throw InputError(flag + ": no numbers in ''");
   std::vector<double> values;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
+  // Every item between commas counts, so "1,2," and "1,,2" have an empty item: an error.
+  for (std::size_t begin = 0;;) {
+    const std::size_t comma = text.find(',', begin);
+    const std::string item = text.substr(begin, comma == std::string::npos ? comma : comma - begin);
     std::size_t used = 0;
     double value = 0.0;
     try {
@@ -22,13 +24,20 @@ std::vector<double> ParseNumberList(const std::string& flag, const std::string& 
     } catch (const std::exception&) {
       used = 0;
     }
+    if (item.empty()) throw InputError(flag + ": empty item in '" + text + "'");
     if (used == 0 || used != item.size() || !std::isfinite(value)) {
       throw InputError(flag + ": '" + item + "' in '" + text + "' is not a finite number");
     }
     values.push_back(value);
+    if (comma == std::string::npos) break;
+    begin = comma + 1;
   }
-  if (values.empty()) throw InputError(flag + ": no numbers in '" + text + "'");
   return values;
+}
+
+const std::string& RequireText(const std::string& flag, const std::string& text) {
+  if (text.empty()) throw InputError(flag + ": empty value (give one or leave the flag out)");
+  return text;
 }
 
 double ParseNumber(const std::string& flag, const std::string& text) {

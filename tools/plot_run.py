@@ -12,7 +12,7 @@ Figures (in --out, default RUN_DIR):
   detector_scores.png  each detector's per-hypothesis scores: DHT probabilities, MLE
                   negative log-likelihoods, GLR statistics
 
-The layout of run.h5 is DESIGN.md section 7 (SI units, NED Earth frame: x north, y east,
+The layout of run.h5 is docs/design.md section 7 (SI units, NED Earth frame: x north, y east,
 heading psi from north towards east). A missing file or required dataset ends the script
 with a one-line error and exit code 2.
 
@@ -334,7 +334,7 @@ SCORE_LABELS = {
 
 
 def plot_scores(plt, run: Run, out_dir: Path) -> Path:
-    """Per detector, every hypothesis's score against time (seed 000 figures 5.4-5.6)."""
+    """Per detector, every hypothesis's score against time (TAPM thesis figures 5.4-5.6)."""
     names = [n for n in sorted(run.detectors) if run.detectors[n].score is not None]
     figure, axes = new_figure(plt, run, "Detector scores", rows=len(names),
                               height=1.2 + 2.6 * len(names))

@@ -24,6 +24,8 @@ struct SimulateLinesOptions {
   int segments = 0;
   double tolerance_scale = 1.0;
   std::vector<std::string> parts;
+  std::vector<std::string> sets;
+  bool segments_given = false;
   bool quiet = false;
 };
 
@@ -87,7 +89,7 @@ ScheduledPart ParsePart(const std::string& text, const scenarios::Scenario& scen
 }
 
 int RunSimulateLines(const SimulateLinesOptions& o) {
-  scenarios::Scenario scenario = scenarios::LoadScenario(o.scenario);
+  scenarios::Scenario scenario = scenarios::LoadScenario(o.scenario, o.sets);
   if (!(o.duration > 0.0)) {
     throw InputError("--duration: " + FormatNumber(o.duration) + " s must be > 0");
   }
@@ -97,7 +99,14 @@ int RunSimulateLines(const SimulateLinesOptions& o) {
   if (!(o.tolerance_scale > 0.0)) {
     throw InputError("--tolerance-scale: " + FormatNumber(o.tolerance_scale) + " must be > 0");
   }
-  if (o.segments != 0) {
+  // At most this many CSV rows: a smaller interval is a typo, not a request for terabytes.
+  constexpr double kMaxRows = 1e7;
+  if (o.duration / o.output_interval > kMaxRows) {
+    throw InputError("--output-interval: " + FormatNumber(o.output_interval) + " s gives " +
+                     FormatNumber(std::floor(o.duration / o.output_interval)) +
+                     " rows over --duration " + FormatNumber(o.duration) + " s (at most 1e7)");
+  }
+  if (o.segments_given) {
     if (o.segments < 2 || o.segments > 10000) {
       throw InputError("--segments: " + std::to_string(o.segments) + " must be in 2..10000");
     }
@@ -173,10 +182,11 @@ int RunSimulateLines(const SimulateLinesOptions& o) {
 Command AddSimulateLinesCommand(CLI::App& app) {
   auto o = std::make_shared<SimulateLinesOptions>();
   CLI::App* sub = app.add_subcommand(
-      "simulate-lines",
-      "Mooring lines alone with the turret on a prescribed path, from the FEM's static\n"
-      "equilibrium; writes fairlead tensions vs time (CSV) and prints wall time, real-time\n"
-      "factor and CVODE statistics.");
+      "simulate-lines", "the mooring lines alone with the turret on a prescribed path (CSV)");
+  sub->footer(
+      "\nThe lines start from the FEM's static equilibrium; the command writes fairlead\n"
+      "tensions vs time (CSV) and prints wall time, real-time factor and CVODE statistics.");
+  sub->add_option("--set", o->sets, "override a scenario value: key.path=value (repeatable)");
   sub->add_option("scenario", o->scenario, "scenario YAML file")->required();
   sub->add_option("--motion", o->motion,
                   "surge:A1,T1[,A2,T2...] or sway:...: sum of A_i sin(2 pi t / T_i) [m, s]")
@@ -184,13 +194,17 @@ Command AddSimulateLinesCommand(CLI::App& app) {
   sub->add_option("--duration", o->duration, "simulated time [s]")->required();
   sub->add_option("--out", o->out, "CSV file: time and each line's fairlead tension [N]");
   sub->add_option("--output-interval", o->output_interval, "CSV row interval [s] (default 0.5)");
-  sub->add_option("--segments", o->segments, "override every line's number of segments");
+  CLI::Option* segments =
+      sub->add_option("--segments", o->segments, "override every line's number of segments");
   sub->add_option("--tolerance-scale", o->tolerance_scale,
                   "multiply rtol and every atol by this (e.g. 0.01 for a reference run)");
   sub->add_option("--part", o->parts,
                   "part a line: LINE:TIME[:fairlead|anchor|node=K] (repeatable)");
   sub->add_flag("--quiet", o->quiet, "no progress lines on stderr");
-  return [o] { return RunSimulateLines(*o); };
+  return [o, segments] {
+    o->segments_given = segments->count() > 0;
+    return RunSimulateLines(*o);
+  };
 }
 
 }  // namespace moorsim::cli

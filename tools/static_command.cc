@@ -26,6 +26,7 @@ struct StaticOptions {
   std::string broken;
   bool broken_given = false;
   bool json = false;
+  std::vector<std::string> sets;
 };
 
 struct StaticLineResult {
@@ -37,7 +38,7 @@ struct StaticLineResult {
 };
 
 int RunStatic(const StaticOptions& o) {
-  const scenarios::Scenario scenario = scenarios::LoadScenario(o.scenario);
+  const scenarios::Scenario scenario = scenarios::LoadScenario(o.scenario, o.sets);
   const std::vector<double> offset = ParseNumberList("--offset", o.offset);
   if (offset.size() != 3) {
     throw InputError("--offset: '" + o.offset + "' must be X,Y,PSI_DEG (three numbers)");
@@ -51,7 +52,10 @@ int RunStatic(const StaticOptions& o) {
         throw InputError("--broken: line " + FormatNumber(k) + " does not exist (lines are 1.." +
                          std::to_string(num_lines) + ")");
       }
-      broken.insert(static_cast<int>(k));
+      if (!broken.insert(static_cast<int>(k)).second) {
+        throw InputError("--broken: line " + FormatNumber(k) + " is given twice in '" + o.broken +
+                         "'");
+      }
     }
   }
 
@@ -147,10 +151,10 @@ int RunStatic(const StaticOptions& o) {
 
 Command AddStaticCommand(CLI::App& app) {
   auto o = std::make_shared<StaticOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "static",
-      "Static mooring loads on the vessel at a pose.\n"
-      "How it is computed: every line is first placed on the analytic elastic catenary\n"
+  CLI::App* sub =
+      app.add_subcommand("static", "static mooring loads on the vessel at a pose (FEM at rest)");
+  sub->footer(
+      "\nHow it is computed: every line is first placed on the analytic elastic catenary\n"
       "(frictionless seabed) between its anchor and its fairlead, then Newton's method on the\n"
       "sparse FEM stiffness drives every node's net force to zero, so the numbers are the\n"
       "FEM lines settled to rest (same segments, seabed contact and weights as in a run),\n"
@@ -160,12 +164,13 @@ Command AddStaticCommand(CLI::App& app) {
       "divided by the weight per metre. The analytic catenary tension is printed alongside.\n"
       "Units: N, m, N m; Earth frame NED (x north, y east, z down).");
   sub->add_option("scenario", o->scenario, "scenario YAML file")->required();
+  sub->add_option("--set", o->sets, "override a scenario value: key.path=value (repeatable)");
   sub->add_option("--offset", o->offset,
                   "vessel pose X,Y,PSI_DEG: north and east offset [m] of the reference point "
                   "and heading [deg] (default 0,0,0)");
   CLI::Option* broken =
       sub->add_option("--broken", o->broken, "lines K[,K...] parted at the fairlead (1-based)");
-  sub->add_flag("--json", o->json, "print one JSON object (DESIGN.md section 7)");
+  sub->add_flag("--json", o->json, "print one JSON object (docs/design.md section 7)");
   return [o, broken] {
     o->broken_given = broken->count() > 0;
     return RunStatic(*o);
@@ -174,7 +179,7 @@ Command AddStaticCommand(CLI::App& app) {
 
 Command AddValidateCommand(CLI::App& app) {
   auto path = std::make_shared<std::string>();
-  CLI::App* sub = app.add_subcommand("validate", "Load and check a scenario, then exit");
+  CLI::App* sub = app.add_subcommand("validate", "load and check a scenario, then exit");
   sub->add_option("scenario", *path, "scenario YAML file")->required();
   return [path] {
     const scenarios::Scenario s = scenarios::LoadScenario(*path);

@@ -10,11 +10,11 @@
 //
 // Controllers, built by name through MakeController():
 //   "none"          zero thrust;
-//   "pi"            the seed thesis's TAPM controller (seed 000 section 4.3, eq. 4.1-4.2);
+//   "pi"            the TAPM thesis's controller (its section 4.3, eq. 4.1-4.2);
 //   "observer_pid"  the MSS nonlinear MIMO PID (Fossen 2011 chapter 12; MSS
 //                   PIDnonlinearMIMO) on the low-frequency estimates of the
 //                   passive nonlinear observer with wave filtering (Fossen & Strand 1999,
-//                   Automatica 35; Fossen 2011 section 11.4.1; seed 000 eq. 3.18-3.19).
+//                   Automatica 35; Fossen 2011 section 11.4.1; TAPM thesis eq. 3.18-3.19).
 //
 // Update() is called once per sample and allocates nothing; everything is sized at
 // construction.
@@ -46,7 +46,7 @@ struct PoseMeasurementInput {
 };
 
 /// The horizontal-plane low-frequency model the observer predicts with (Fossen 2011
-/// section 7.1 low-speed model with a linearised position mooring; seed 000 eq. 3.13-3.14):
+/// section 7.1 low-speed model with a linearised position mooring; TAPM thesis eq. 3.13-3.14):
 ///   eta' = R(psi) nu,   M nu' + D nu + R(psi)^T G (eta) = tau + R(psi)^T b.
 /// Rows and columns are surge, sway, yaw.
 struct ManoeuvringModel {
@@ -55,7 +55,7 @@ struct ManoeuvringModel {
   Mat3 mooring_stiffness = Mat3::Zero();  ///< G [N/m, N m/rad], NED, about eta = 0
 };
 
-/// The seed FPSO (reference sheet): M = diag(m + A11, m + A22, m 54^2 + A66) with
+/// The seed FPSO (docs/design.md section 9): M = diag(m + A11, m + A22, m 54^2 + A66) with
 /// m = 1.0041e8 kg, A11 = 7.94e6 kg, A22 = 6.44e7 kg, A66 = 1.45e11 kg m^2; D by the MSS
 /// rule D_ii = M_ii / T_i with T = 50, 100, 20 s; G linearised about the neutral pose of
 /// scenarios/library/seed_tapm.yaml (`moorsim static --offset` at +-1 m and +-1 deg):
@@ -99,10 +99,10 @@ class PositionController {
 };
 
 // ---------------------------------------------------------------------------------------
-// PI (PID) on the measured pose: the seed thesis's TAPM controller.
+// PI (PID) on the measured pose: the TAPM thesis's controller.
 
 struct PiControllerOptions {
-  /// Seed 000 eq. 4.1-4.2 (the thesis calls them "in no way optimal"): note that the yaw
+  /// TAPM thesis eq. 4.1-4.2 (the thesis calls them "in no way optimal"): note that the yaw
   /// gains are nearly six orders below the seed turret's yaw stiffness (5.7e8 N m/rad), so
   /// with them the mooring, not the controller, holds the heading.
   Vec3 kp = Vec3(1e5, 1e6, 1e3);  ///< [N/m, N/m, N m/rad], NED axes
@@ -116,7 +116,7 @@ struct PiControllerOptions {
   double derivative_filter_time = 10.0;
 };
 
-/// The TAPM controller of seed 000 section 4.3 (the MSS PID block, eq. 4.1-4.2), in the
+/// The TAPM controller of the TAPM thesis (section 4.3, the MSS PID block, eq. 4.1-4.2), in the
 /// physically consistent form of Fossen's nonlinear PID for DP (Fossen 2011 chapter 12):
 ///   e = eta_m - eta_d (NED; e_psi wrapped),   z_k = z_{k-1} + dt e_k,
 ///   tau = -R(psi_m)^T (Kp e + Ki z + Kd e')
@@ -158,24 +158,24 @@ class PiController final : public PositionController {
 // Passive nonlinear observer with wave filtering.
 
 struct PassiveObserverOptions {
-  /// Peak frequency of the wave-frequency motion per DOF, omega_0 [rad/s] (seed 000 table
+  /// Peak frequency of the wave-frequency motion per DOF, omega_0 [rad/s] (TAPM thesis table
   /// 4.3: 2 pi / 7 s).
   Vec3 wave_peak_frequency = Vec3::Constant(2.0 * 3.14159265358979323846 / 7.0);
   double wave_damping = 0.1;   ///< lambda [-] of the wave model (Fossen 2011: 0.1)
   double notch_damping = 1.0;  ///< zeta_n [-] of the notch (> lambda; Fossen 2011: 1.0)
   /// omega_c / omega_0 [-], the cut-off of the position low-pass K2 = diag(omega_c)
-  /// (seed 000 section 4.5 after Fossen 2011: 1.2255; must be > 1).
+  /// (TAPM thesis section 4.5 after Fossen 2011: 1.2255; must be > 1).
   double cutoff_ratio = 1.2255;
-  /// K4 per unit mass [1/s^2]: K4 = diag(M) k4 [N/m, N/m, N m/rad]. Seed 000 eq. 4.8 (from
+  /// K4 per unit mass [1/s^2]: K4 = diag(M) k4 [N/m, N/m, N m/rad]. TAPM thesis eq. 4.8 (from
   /// Fossen 2011 example 11.6, as the thesis cites it) gives (0.1, 0.1, 0.01), values for a
   /// mass-normalised model: applied unscaled to SI masses they would move a 1e8 kg vessel's
   /// velocity estimate by 1e-9 m/s^2 per metre of error and the bias would never converge.
   /// Scaling K3 and K4 alike keeps K3/K4, and with it the passivity conditions.
   Vec3 k4_per_mass = Vec3(0.1, 0.1, 0.01);
-  /// K3 = k3_ratio K4 [N/(m s), N m/(rad s)] (seed 000 eq. 4.7: 0.1). Passivity needs
+  /// K3 = k3_ratio K4 [N/(m s), N m/(rad s)] (TAPM thesis eq. 4.7: 0.1). Passivity needs
   /// 1/T < K3/K4 < omega_0 < omega_c per DOF (Fossen & Strand 1999).
   double k3_ratio = 0.1;
-  Vec3 bias_time_constant = Vec3::Constant(1000.0);  ///< T [s] (seed 000: 1000 s)
+  Vec3 bias_time_constant = Vec3::Constant(1000.0);  ///< T [s] (TAPM thesis: 1000 s)
   /// true: the wave-frequency model xi_hat is on and eta_hat, nu_hat carry only the
   /// low-frequency motion. false: no wave model (K1 = 0, xi_hat = 0): eta_hat follows the
   /// measurement through K2 alone, wave motion included (a comparison case).
@@ -187,7 +187,7 @@ struct PassiveObserverOptions {
 };
 
 /// The passive nonlinear observer of Fossen & Strand (1999), Fossen 2011 section 11.4.1, as
-/// in seed 000 eq. 3.19, with the linearised mooring in the model:
+/// in TAPM thesis eq. 3.19, with the linearised mooring in the model:
 ///   y_tilde = y - eta_hat - Cw xi_hat             (heading part wrapped)
 ///   xi_hat'  = Aw xi_hat + K1(omega_0) y_tilde     Aw = [0 I; -Omega^2 -2 Lambda Omega]
 ///   eta_hat' = R nu_hat + K2 y_tilde

@@ -2,7 +2,7 @@
 // drag on the submerged hull, wind drag on the hull and superstructure above water, and
 // the NPD (Froya) wind gust spectrum with a random-phase realisation of the wind speed.
 //
-// Conventions (DESIGN.md section 2): SI units, angles in radians. Earth frame NED (x north,
+// Conventions (docs/design.md section 2): SI units, angles in radians. Earth frame NED (x north,
 // y east, z down); body frame x forward, y starboard, z down, origin midship on the
 // waterline and the centreline. eta = [x y z phi theta psi], nu = [u v w p q r] (Fossen
 // 2011, "Handbook of Marine Craft Hydrodynamics and Motion Control", ch. 2). Loads are
@@ -48,7 +48,7 @@ struct HullGeometry {
   double kinematic_viscosity = 1.19e-6;
 };
 
-/// The seed FPSO (reference sheet: Lpp 200 m, B 44 m, T 12 m, nabla 97 961 m^3, so
+/// The seed FPSO (docs/design.md section 9: Lpp 200 m, B 44 m, T 12 m, nabla 97 961 m^3, so
 /// C_B = 0.928): wetted surface and C_d2D left to their estimates (12 243 m^2 and 0.661),
 /// k = 0.505 from Watanabe's regression k = -0.095 + 25.6 C_B / ((L/B)^2 sqrt(B/T)) (as
 /// quoted by Molland, Turnock & Hudson, "Ship Resistance and Propulsion", 2011, ch. 4).
@@ -64,7 +64,7 @@ double DennyMumfordWettedSurface(double length, double draught, double displaced
 /// digitised by Leite, Aranha, Umeda & de Conti, Applied Ocean Research 20, 1998, and used
 /// for cross-flow drag in Fossen 2011 ch. 6): about 2 for a deep thin plate, falling to about 0.56
 /// for a flat, wide section. Linear interpolation between the digitised points, held at
-/// the end values outside their range [0.011, 4.0]. The seed's B / (2 T) = 1.83 gives
+/// the end values outside their range [0.011, 4.0]. The seed FPSO's B / (2 T) = 1.83 gives
 /// 0.661. Throws moorsim::InputError if the ratio is not positive and finite.
 double HoernerCrossFlowDragCoefficient(double half_beam_over_draught);
 
@@ -190,7 +190,7 @@ struct WindParameters {
   WindCoefficientTable coefficients;
 };
 
-/// The seed FPSO above water (the project's choice; the seeds give no topsides): A_F =
+/// The seed FPSO above water (the project's choice; the papers give no topsides): A_F =
 /// 1200 m^2 (44 m beam x ~9 m freeboard of hull, plus ~800 m^2 of accommodation, flare
 /// and process modules seen end-on), A_L = 4500 m^2 (200 m x 9 m of hull plus topsides
 /// ~15 m high over ~180 m, counted ~90 % solid), L = 200 m, rho_a = 1.226 kg/m^3, and

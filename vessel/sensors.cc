@@ -19,12 +19,6 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// A time is at instant k if it is within a billionth of a sample interval of k / rate, or
-// within a few units in the last place of t (two instruments' k1 / rate1 and k2 / rate2
-// for the same instant differ by at most one rounding each, eps |t| / 2).
-constexpr double kInstantToleranceIntervals = 1e-9;
-constexpr double kInstantToleranceUlps = 4.0 * std::numeric_limits<double>::epsilon();
-
 [[noreturn]] void ThrowBadValue(std::string_view key, double value, std::string_view constraint) {
   internal::ThrowBadValue(key, value, "", constraint);
 }
@@ -104,45 +98,6 @@ void ValidatePoseSensorSpec(const PoseSensorSpec& spec, std::string_view key_pat
   RequireProbability(Key(gnss, "dropout_probability"), spec.gnss_dropout_probability);
   RequireProbability(Key(gyro, "dropout_probability"), spec.gyro_dropout_probability);
   RequireNonNegative(Key(gnss, "dropout_mean_duration_s"), spec.gnss_dropout_mean_duration);
-}
-
-// --- SensorClock ---------------------------------------------------------------------
-
-SensorClock::SensorClock(double rate, std::string_view key_path) : rate_(rate) {
-  RequirePositive(key_path, rate);
-}
-
-namespace {
-
-double InstantTolerance(double t, double rate) {
-  return kInstantToleranceIntervals / rate + kInstantToleranceUlps * std::abs(t);
-}
-
-// Beyond 2^53 samples k / rate no longer has distinct instants; no run gets near it.
-constexpr double kMaxIndex = 0x1.0p53;
-
-}  // namespace
-
-std::optional<std::int64_t> SensorClock::Index(double t) const {
-  const double scaled = t * rate_;
-  if (!(scaled > -0.5 && scaled < kMaxIndex)) return std::nullopt;  // also rejects NaN
-  const auto k = static_cast<std::int64_t>(std::nearbyint(scaled));
-  if (std::abs(t - Instant(k)) > InstantTolerance(t, rate_)) return std::nullopt;
-  return k;
-}
-
-double SensorClock::NextSampleTime(double t) const {
-  if (std::isnan(t)) return t;
-  const double limit = t + InstantTolerance(t, rate_);
-  if (limit < 0.0) return 0.0;
-  const double scaled = t * rate_;
-  if (!(scaled < kMaxIndex)) return std::numeric_limits<double>::infinity();
-  // k: the last instant at or before t (within the tolerance), from a guess that the
-  // rounding of t * rate can leave one off either way.
-  auto k = static_cast<std::int64_t>(std::max(0.0, std::floor(scaled)));
-  while (k > 0 && Instant(k) > limit) --k;
-  while (Instant(k + 1) <= limit) ++k;
-  return Instant(k + 1);
 }
 
 // --- internal::ChannelError ----------------------------------------------------------

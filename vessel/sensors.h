@@ -18,7 +18,7 @@
 // its correlation between samples is exp(-|t_i - t_j| / tau). With tau = 0 the variance
 // grows as q^2 t.
 //
-// Independence by construction. The seed thesis drew every DOF's noise from one seed, so
+// Independence by construction. The TAPM thesis drew every DOF's noise from one seed, so
 // x, y and psi carried the same numbers and its detection results were void. Here every
 // noise source has its own stream, RandomStream::Derive(run_seed, name) with the names
 //
@@ -52,6 +52,7 @@
 #include <vector>
 
 #include "core/random.h"
+#include "core/sample_clock.h"
 #include "core/types.h"
 
 namespace moorsim::vessel {
@@ -67,13 +68,14 @@ struct ChannelNoise {
   double outlier_std_dev = 0.0;      ///< s, standard deviation of an outlier [u], >= 0
 };
 
-/// The reference sheet's measurement variance, 0.005 m^2 (GNSS) and 0.005 rad^2 (gyro) per
-/// DOF (seed 000 appendix A, the R of its observers): sigma = sqrt(0.005) = 0.0707 m and
-/// 0.0707 rad (4.05 deg, large for a real gyrocompass; it is the thesis's number).
+/// The seed case's measurement variance (docs/design.md section 9), 0.005 m^2 (GNSS) and
+/// 0.005 rad^2 (gyro) per DOF (TAPM thesis appendix A, the R of its observers):
+/// sigma = sqrt(0.005) = 0.0707 m and 0.0707 rad (4.05 deg, large for a real gyrocompass; it is
+/// the thesis's number).
 inline constexpr double kSeedPoseStdDev = 0.070710678118654752;
 
 /// GNSS (north, east) and gyro (heading) as two instruments with their own rates and
-/// dropouts. The defaults are the seed's sensors (see SeedPoseSensors()).
+/// dropouts. The defaults are the seed case's sensors (see SeedPoseSensors()).
 struct PoseSensorSpec {
   double gnss_rate = 1.0;                            ///< GNSS sample rate [Hz], > 0
   double gyro_rate = 1.0;                            ///< gyro sample rate [Hz], > 0
@@ -100,7 +102,7 @@ struct PoseSensorSpec {
   double gnss_dropout_mean_duration = 0.0;
 };
 
-/// The seed's sensors: GNSS and gyro at 1 Hz (the thesis samples at 1 Hz), white noise of
+/// The seed case's sensors: GNSS and gyro at 1 Hz (the thesis samples at 1 Hz), white noise of
 /// sigma = sqrt(0.005) on each DOF, no bias, outliers or dropouts. Equal to
 /// PoseSensorSpec{}; the name says where the numbers come from.
 PoseSensorSpec SeedPoseSensors();
@@ -115,27 +117,8 @@ void ValidateChannelNoise(const ChannelNoise& noise, std::string_view key_path);
 /// "<key_path>.gnss.dropout_probability", "<key_path>.gnss.dropout_mean_duration_s", ...
 void ValidatePoseSensorSpec(const PoseSensorSpec& spec, std::string_view key_path = "sensors");
 
-/// The instants k / rate, k = 0, 1, 2, ..., of a sampled instrument.
-class SensorClock {
- public:
-  /// Throws moorsim::InputError "<key_path>: <rate> must be > 0" for a rate that is not a
-  /// positive finite number.
-  explicit SensorClock(double rate, std::string_view key_path = "rate_hz");
-
-  /// The index k >= 0 of the instant at t, if t is one (within the file comment's
-  /// tolerance).
-  std::optional<std::int64_t> Index(double t) const;
-  bool Due(double t) const { return Index(t).has_value(); }
-  /// The first instant strictly after t (an instant within the tolerance of t counts as
-  /// t itself, so this is the one after it); 0 for t before instant 0.
-  double NextSampleTime(double t) const;
-  /// t_k = k / rate [s], rounded once.
-  double Instant(std::int64_t k) const { return static_cast<double>(k) / rate_; }
-  double rate() const { return rate_; }
-
- private:
-  double rate_ = 1.0;
-};
+/// The instants k / rate of a sampled instrument (core/sample_clock.h).
+using SensorClock = SampleClock;
 
 namespace internal {
 

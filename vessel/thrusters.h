@@ -36,8 +36,8 @@ struct ThrusterSpec {
   double rate_limit = 0.0;     ///< [N/s] on the command; 0 = none
 };
 
-/// The seed vessel's layout (reference sheet: two fixed aft thrusters, one bow tunnel;
-/// positions and ratings are not given by the seeds, these are the project's choice):
+/// The seed vessel's layout (docs/design.md section 9: two fixed aft thrusters, one bow tunnel;
+/// positions and ratings are not given by the TAPM thesis, these are the project's choice):
 /// aft at x = -90 m, y = +-8 m, 1 MN ahead / 0.6 MN astern; bow tunnel at x = +90 m,
 /// 0.6 MN either way; time constant 5 s; rate limit 0.2 MN/s.
 std::vector<ThrusterSpec> SeedThrusters();

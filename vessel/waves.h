@@ -1,7 +1,7 @@
 // Irregular first-order waves: the JONSWAP spectrum, cos-2s directional spreading and
 // random-phase realisations of the sea surface.
 //
-// Conventions (DESIGN.md section 2): SI units, angles in radians, Earth frame NED (x north,
+// Conventions (docs/design.md section 2): SI units, angles in radians, Earth frame NED (x north,
 // y east, z down). The wave elevation eta is positive UP (eta = -z of the free surface).
 // A direction theta is the direction the waves travel TO, measured from north (+x)
 // toward east (+y): theta = 0 travels north, theta = pi/2 travels east. Waves "from the
@@ -9,7 +9,7 @@
 // (the scenario loader) adds pi.
 //
 // Linear (Airy) deep-water theory throughout: the wave number is k = omega^2 / g. In the
-// seed's 1000 m of water, deep water (k h > pi, i.e. tanh(k h) > 0.996) holds above
+// seed case's 1000 m of water, deep water (k h > pi, i.e. tanh(k h) > 0.996) holds above
 // omega = sqrt(pi g / h) = 0.18 rad/s, well below the default lowest component (0.45 rad/s
 // for Tp = 7 s).
 #pragma once

@@ -1,11 +1,11 @@
 // End-to-end tests of the `moorsim` command line: the built binary (MOORSIM_CLI) runs as a
 // child process, and the tests check its exit code, stdout and stderr the way a user or a
-// script sees them (DESIGN.md sections 2 and 7):
+// script sees them (docs/design.md sections 2 and 7):
 //
 // - bad input (a scenario the loader rejects, a bad flag) is exit code 2 and exactly one
 //   line on stderr naming the file/field or flag and the value;
 // - `static --json` prints one JSON object whose numbers agree with the analytic catenary
-//   and with the symmetry of the seed's spread;
+//   and with the symmetry of the seed case's spread;
 // - `simulate-lines` writes the documented CSV;
 // - the help texts exist and say how `static` computes its numbers.
 //
@@ -254,7 +254,7 @@ TEST_F(CliTest, ValidateAcceptsTheSeed) {
 
 struct FlagCase {
   std::string name;
-  std::vector<std::string> args;    // "SEED" is replaced by the seed's path
+  std::vector<std::string> args;    // "SEED" is replaced by seed_tapm.yaml's path
   std::string flag;                 // what the message must name
   std::vector<std::string> values;  // ...and at least one of these
 };
@@ -379,7 +379,7 @@ INSTANTIATE_TEST_SUITE_P(Flags, CliFlagError, ::testing::ValuesIn(FlagCases()),
 // ---------------------------------------------------------------------------------------
 // 3. `static --json`.
 
-// The seed's geometry (scenarios/library/seed_tapm.yaml), horizontal only [m]: anchors in
+// The seed case's geometry (scenarios/library/seed_tapm.yaml), horizontal only [m]: anchors in
 // the Earth frame, fairleads in the body frame.
 constexpr double kDiag = 14.142135623730951;
 constexpr std::array<std::array<double, 2>, 8> kAnchors = {{{1950, 0},
@@ -447,10 +447,10 @@ TEST_F(CliStatic, SeedJsonMatchesCatenaryAndSymmetry) {
       EXPECT_GT(line[key].get<double>(), 0.0) << key << " in " << line.dump();
     }
   }
-  // Lines 1-4 against the analytic catenary (6.059 MN to the 4 figures the reference
-  // prints, 0.01 %): 0.1 % leaves room for the FEM's 50-segment discretisation and the
+  // Lines 1-4 against the analytic catenary (6.059 MN to the 4 figures docs/design.md
+  // section 9 gives, 0.01 %): 0.1 % leaves room for the FEM's 50-segment discretisation and the
   // seabed penalty's sink, and still catches the wrong end of the line (the top segment's
-  // midpoint tension is 0.8 % lower, DESIGN.md section 7).
+  // midpoint tension is 0.8 % lower, docs/design.md section 8.4).
   for (std::size_t i = 0; i < 4; ++i) {
     EXPECT_NEAR(j["lines"][i]["fairlead_tension"].get<double>(), kCatenaryFairleadTension,
                 1e-3 * kCatenaryFairleadTension)
@@ -567,7 +567,7 @@ TEST_F(CliTest, SimulateLinesWritesTensionCsv) {
   EXPECT_EQ(lines[i], "time,line1,line2,line3,line4,line5,line6,line7,line8");
   ++i;
 
-  // Rows every 0.5 s from 0 through 4 s. The seed's static tension is 6.06 MN; 2 m of
+  // Rows every 0.5 s from 0 through 4 s. The seed case's static tension is 6.06 MN; 2 m of
   // surge moves it by ~2 % (10 m of offset moves line 1 by 3 %), so every value within
   // 10 % of it is physical and a unit or sign slip is not.
   ASSERT_EQ(lines.size() - i, 9u) << "expected rows at t = 0, 0.5, ..., 4";

@@ -1,4 +1,4 @@
-// `moorsim run` end to end: the datasets and attributes DESIGN.md section 7 names, the
+// `moorsim run` end to end: the datasets and attributes docs/design.md section 7 names, the
 // summary, bit-for-bit reproducibility per seed, --set overrides and their errors.
 #include <gtest/gtest.h>
 

@@ -5,7 +5,7 @@
 // The synthetic bank: 9 hypotheses (0 intact, 1-8 single-line failures) whose models differ
 // only by the pose offset they predict, m_0 = 0 and m_k = L (delta u_k), where S = L L' is
 // the innovation covariance all share and the u_k are unit vectors 45 deg apart in the
-// horizontal plane with a yaw part, like the push of the seed's eight lines. The true pose
+// horizontal plane with a yaw part, like the push of the seed case's eight lines. The true pose
 // is y = m_truth + e with e ~ N(0, S); hypothesis k's innovation is y - m_k and its
 // log-likelihood the exact Gaussian one. So the true hypothesis's innovations are white
 // N(0, S) and every other one's have mean m_truth - m_k, of whitened size
@@ -68,7 +68,7 @@ std::atomic<long> g_allocations{0};
 namespace moorsim::detectors {
 namespace {
 
-// The seed thesis's MLE (forgetting 0.999, and the hold and margin these tests were written
+// The TAPM thesis's MLE (forgetting 0.999, and the hold and margin these tests were written
 // for); MleOptions' defaults are tuned for the coupled plant instead (detectors/mle.h).
 constexpr MleOptions kSeedMle{.forgetting_factor = 0.999, .hold = 30.0, .margin = 10.0};
 
@@ -144,9 +144,9 @@ class SyntheticBank {
 // DHT
 
 TEST(DhtSyntheticTest, PosteriorOfTheTrueHypothesisGoesToOneAndStaysADistribution) {
-  // Seed 001 Theorem 1 at every sample: h_k >= floor and sum h_k = 1. The sum is formed from
-  // 9 terms each rounded once after the floor's scaling, so 1e-12 is ~1000 ulp of slack.
-  // Theorem 2: the true hypothesis's posterior -> 1. With delta = 1 the nearest wrong
+  // Hassani et al. 2018, Theorem 1, at every sample: h_k >= floor and sum h_k = 1. The sum is
+  // formed from 9 terms each rounded once after the floor's scaling, so 1e-12 is ~1000 ulp of
+  // slack. Theorem 2: the true hypothesis's posterior -> 1. With delta = 1 the nearest wrong
   // hypothesis loses on average 0.5 * 0.77^2 = 0.29 nats per sample, so from the uniform
   // prior the log odds need ~ ln(999 * 8) / 0.29 = 31 samples to reach 0.999; 200 is ample.
   // Afterwards a wrong hypothesis sits near the floor (log odds -20.7) and drifts down, so

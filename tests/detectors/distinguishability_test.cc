@@ -195,7 +195,7 @@ HypothesisBankOptions ThesisBankOptions() {
   return options;
 }
 
-/// The thesis analysis with the seed's diagonal vessel model, shared by several tests.
+/// The thesis analysis with the seed case's diagonal vessel model, shared by several tests.
 const Distinguishability& ThesisAnalysis() {
   static const HypothesisBank bank(ThesisMooring(), ThesisBankOptions());
   static const Distinguishability d =
@@ -237,7 +237,7 @@ TEST(DistinguishabilityTest, RatesAreKullbackLeiblerRates) {
   }
 }
 
-// The thesis mooring with the seed's diagonal vessel model is symmetric under two mirror
+// The thesis mooring with the seed case's diagonal vessel model is symmetric under two mirror
 // images through the vessel's axes at the setpoint (heading -135 deg): port-starboard
 // (body y -> -y) swaps lines 1 and 2, 3 and 4, 6 and 8; fore-aft (x -> -x) swaps 1 and 4, 2
 // and 3, 5 and 7. The noise is isotropic in the horizontal plane and the mass and damping

@@ -305,7 +305,7 @@ TEST(EkfMissingChannelTest, DimensionAndLikelihoodFollowTheValidChannels) {
 
 // Heading across +-pi: a vessel at heading 180 deg whose gyro reports values on both sides
 // of the branch cut. The innovation is wrapped, so it stays small, and the estimate stays
-// in (-pi, pi]. No mooring (a free vessel): the seed's body-fixed turret would make 180
+// in (-pi, pi]. No mooring (a free vessel): the seed case's body-fixed turret would make 180
 // deg an unstable equilibrium.
 TEST(EkfHeadingWrapTest, InnovationWrapsAcrossPi) {
   const QuasiStaticMooring no_lines;

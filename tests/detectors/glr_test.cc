@@ -1,4 +1,5 @@
-// The GLR detector against the distribution theory of its statistics (seed 003 eq. 21/22).
+// The GLR detector against the distribution theory of its statistics (Lajic et al. 2009,
+// eq. 21/22).
 //
 // Monte-Carlo bounds: an estimated tail rate over N independent trials has standard error
 // sqrt(p (1 - p) / N); every bound below is 4.5 standard errors, so a correct detector

@@ -1,6 +1,6 @@
 // Tests of the hypothesis-model bank (detectors/hypothesis_bank.h): the catenary look-up
-// table against the solver it tabulates, the seed numbers of the reference sheet
-// (/work/shared/reference/README.md), the mooring load against SolveLineCatenary in
+// table against the solver it tabulates, the seed case's numbers
+// (docs/design.md section 9), the mooring load against SolveLineCatenary in
 // Earth coordinates, the analytic Jacobian against central differences, and the bank's
 // bookkeeping.
 #include "detectors/hypothesis_bank.h"
@@ -120,9 +120,9 @@ TEST_F(HypothesisBankTest, TableExtrapolatesLinearlyOutsideItsRange) {
   EXPECT_EQ(slope, 0.0);
 }
 
-// Reference sheet: H = 3.497 MN and V = 4.948 MN per line at the origin (span 1930 m,
-// fairlead depth 12 m). The diagonal anchors, at (1378.9, 1378.9), are 1950.06 m out, so
-// their lines' own nominal span is 6 cm longer and their H 1.5 kN higher.
+// Seed case (docs/design.md section 9): H = 3.497 MN and V = 4.948 MN per line at the origin
+// (span 1930 m, fairlead depth 12 m). The diagonal anchors, at (1378.9, 1378.9), are
+// 1950.06 m out, so their lines' own nominal span is 6 cm longer and their H 1.5 kN higher.
 TEST_F(HypothesisBankTest, SeedTensionAtTheOrigin) {
   for (int i = 0; i < bank_->num_lines(); ++i) {
     const LineForceTable& table = bank_->table(i);
@@ -135,8 +135,9 @@ TEST_F(HypothesisBankTest, SeedTensionAtTheOrigin) {
   EXPECT_LT(bank_->mooring(0).Load(Vec3::Zero()).head<2>().norm(), 1e3);
 }
 
-// Reference sheet: surge stiffness about 81 kN/m near the origin (81.57 kN/m by `moorsim
-// static` at +-1 m, vessel/controller.h), the same in sway; yaw 5.657e8 N m/rad.
+// Seed case (docs/design.md section 9): surge stiffness about 81 kN/m near the origin
+// (81.57 kN/m by `moorsim static` at +-1 m, vessel/controller.h), the same in sway;
+// yaw 5.657e8 N m/rad.
 TEST_F(HypothesisBankTest, SeedStiffnessAtTheOrigin) {
   const Mat3& G = bank_->stiffness(0);
   EXPECT_NEAR(G(0, 0), 81.57e3, 0.2e3);
@@ -147,7 +148,7 @@ TEST_F(HypothesisBankTest, SeedStiffnessAtTheOrigin) {
 }
 
 // The thesis cases hold heading -135 deg with the locked turret's fairleads turned to
-// match; linearised there, their stiffness is the seed's at heading 0.
+// match; linearised there, their stiffness is the seed case's at heading 0.
 TEST(HypothesisBankReferencePoseTest, ThesisStiffnessAtItsHeading) {
   const scenarios::MooringSpec thesis =
       scenarios::LoadScenario(std::string(MOORSIM_SOURCE_DIR) +
@@ -165,8 +166,8 @@ TEST(HypothesisBankReferencePoseTest, ThesisStiffnessAtItsHeading) {
   EXPECT_GT(std::abs(bank.mooring(0).Load(Vec3::Zero()).z()), 1e8);
 }
 
-// Reference sheet: with line 6 gone the net force at the origin is 3.50 MN toward
-// (+x, -y), away from line 6 (anchor at (-1378.9, 1378.9)).
+// Seed case (docs/design.md section 9): with line 6 gone the net force at the origin is
+// 3.50 MN toward (+x, -y), away from line 6 (anchor at (-1378.9, 1378.9)).
 TEST_F(HypothesisBankTest, SeedLineSixFailureForce) {
   const int h = bank_->Find(std::vector<int>{6});
   ASSERT_EQ(h, 6);

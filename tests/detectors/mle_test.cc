@@ -14,7 +14,7 @@
 namespace moorsim::detectors {
 namespace {
 
-// The seed thesis's MLE (forgetting 0.999, and the hold and margin these tests were written
+// The TAPM thesis's MLE (forgetting 0.999, and the hold and margin these tests were written
 // for); MleOptions' defaults are tuned for the coupled plant instead (detectors/mle.h).
 constexpr MleOptions kSeedMle{.forgetting_factor = 0.999, .hold = 30.0, .margin = 10.0};
 

@@ -1,5 +1,5 @@
 // What the tests of the hypothesis observers share (ekf_observer_test.cc,
-// passive_observer_test.cc, innovation_covariance_test.cc): the seed's hypothesis bank and
+// passive_observer_test.cc, innovation_covariance_test.cc): the seed case's hypothesis bank and
 // the checks both observers (HypothesisEkf, HypothesisPassiveObserver) and both banks
 // (ObserverBank, PassiveObserverBank) must pass alike.
 #pragma once
@@ -25,7 +25,7 @@ inline scenarios::MooringSpec SeedMooring() {
       .mooring;
 }
 
-/// The seed's hypothesis bank (intact and each line failed), built once.
+/// The seed case's hypothesis bank (intact and each line failed), built once.
 inline const HypothesisBank& SeedBank() {
   static const HypothesisBank bank(SeedMooring());
   return bank;
@@ -108,7 +108,7 @@ void ExpectBadObservationsThrow(Observer observer) {
   EXPECT_THROW(observer.Update(obs), InputError);
 }
 
-/// Runs `observers` (a bank of the seed's 9 hypotheses) on `samples` samples of a still
+/// Runs `observers` (a bank of the seed case's 9 hypotheses) on `samples` samples of a still
 /// vessel at the origin: evidence for each hypothesis at each sample, dimension 0 at the
 /// first (initialisation) and 3 after. At the origin the intact model is at rest and the
 /// line-k models are pushed, so the intact observer explains a still vessel best.

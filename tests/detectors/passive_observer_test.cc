@@ -1,5 +1,5 @@
-// Tests of the passive observers (detectors/passive_observer.h): the gains against the seed's
-// numbers, the loop's poles, convergence on noise-free data from the observer's own model
+// Tests of the passive observers (detectors/passive_observer.h): the gains against the TAPM
+// thesis's numbers, the loop's poles, convergence on noise-free data from the observer's own model
 // (HypothesisModelSimulator with every noise source off), heading wrap, missing channels,
 // the bank and bad input. The statistical checks with the offline covariance are in
 // innovation_covariance_test.cc.
@@ -31,7 +31,7 @@ using testing::SeedBank;
 /// A plausible innovation covariance (the trained one is about diag(0.031, 0.031, 0.010)).
 Mat3 TypicalCovariance() { return Vec3(0.03, 0.03, 0.01).asDiagonal(); }
 
-// Seed 000 eq. 4.5-4.8 with zeta_n = 1, lambda = 0.1, w0 = 2 pi / 7, w_c = 1.2255 w0:
+// TAPM thesis eq. 4.5-4.8 with zeta_n = 1, lambda = 0.1, w0 = 2 pi / 7, w_c = 1.2255 w0:
 // the numbers of MSS's ExPassiveObs.m (w0 = 0.8976, w_c = 1.1).
 TEST(PassiveObserverGainsTest, MatchTheSeed) {
   const PassiveObserverGains gains = ComputePassiveObserverGains({});

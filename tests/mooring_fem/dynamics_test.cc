@@ -66,7 +66,7 @@ TEST(LineDynamics, PartedLineFallsToTheSeabedAndEnergyNeverGrows) {
   const double t_fail = 5.0;
   sim.ScheduleFailure(t_fail, {0, FailureMode::kFairlead, 0});
 
-  // The event fires at the requested time, not at the first step (NUMERICS.md item 6).
+  // The event fires at the requested time, not at the first step (docs/design.md section 8.6).
   sim.AdvanceTo(t_fail - 1e-3);
   EXPECT_NEAR(sim.FairleadForces()[0].norm(), 6.06e6, 0.01 * 6.06e6);
   EXPECT_TRUE(sim.mooring().attached(0));
@@ -166,7 +166,7 @@ std::vector<double> SurgeTensions(double tolerance_scale, double duration) {
 }
 
 TEST(LineDynamics, DefaultTolerancesTrackATightReferenceUnderSurge) {
-  // NUMERICS.md item 1: judge the default settings against a run with 100x tighter
+  // docs/design.md section 8.1: judge the default settings against a run with 100x tighter
   // tolerances. Bar: RMS difference < 0.5 % of the RMS tension (the criterion).
   const std::vector<double> run = SurgeTensions(1.0, 120.0);
   const std::vector<double> ref = SurgeTensions(0.01, 120.0);
@@ -190,7 +190,7 @@ namespace {
 // Largest fairlead-force difference [N] over 30 s of the surge motion between
 // CVODE (tolerances scaled by `tolerance_scale`) and classical RK4 at 5 ms on the same
 // right-hand side. RK4 at 5 ms is far below its stability limit for 20 segments (highest
-// axial mode 16 rad/s, NUMERICS.md item 2) and its error is far below CVODE's.
+// axial mode 16 rad/s, docs/design.md section 8.2) and its error is far below CVODE's.
 double LargestDifferenceFromRungeKutta(double tolerance_scale) {
   scenarios::Scenario s = SeedScenario(20);
   ScaleTolerances(s.solver, tolerance_scale);

@@ -71,7 +71,7 @@ Vec3 NodeAcceleration(const Vec3& velocity, double current_speed, double current
   return Vec3(a[0], a[1], a[2]);
 }
 
-// The same from the formulas of seed 002 eq. 7, written out for a node with two
+// The same from the formulas of Ren & Skjetne 2016, eq. 7, written out for a node with two
 // collinear half segments along x (total length l0).
 Vec3 ExpectedAcceleration(const Vec3& velocity, const Vec3& current) {
   const double area = kPi * kD * kD / 4.0;

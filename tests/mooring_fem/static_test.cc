@@ -55,7 +55,8 @@ TEST(StaticFem, FairleadTensionMatchesCatenaryAndConvergesWithSegments) {
 }
 
 TEST(StaticFem, SeedTensionMatchesTheReferenceSheet) {
-  // Reference sheet: 3.497 MN horizontal, 4.948 MN vertical, 6.059 MN total per line.
+  // Seed case (docs/design.md section 9): 3.497 MN horizontal, 4.948 MN vertical, 6.059 MN
+  // total per line.
   const scenarios::Scenario s = SeedScenario(50);
   MooringSystem mooring(s.mooring);
   const std::vector<double> x = StaticState(mooring, {});
@@ -123,7 +124,8 @@ TEST(StaticFem, RestoringForceMatchesCatenarySumFromZeroToEightyMetres) {
 }
 
 TEST(StaticFem, SurgeStiffnessNearTheOriginMatchesTheReferenceSheet) {
-  // Reference sheet: about 81 kN/m near the origin. Central difference over +-1 m.
+  // Seed case (docs/design.md section 9): about 81 kN/m near the origin. Central difference
+  // over +-1 m.
   const scenarios::Scenario s = SeedScenario(50);
   MooringSystem mooring(s.mooring);
   auto fx = [&](double x0) {
@@ -157,8 +159,8 @@ TEST(StaticFem, CatenaryPlacementIsCloseToFemEquilibrium) {
 }
 
 TEST(StaticFem, BrokenLineSixLeavesThreePointFiveMeganewtonsAwayFromIt) {
-  // Reference sheet: with line 6 gone the net force at the origin is 3.50 MN toward
-  // (+x, -y), away from line 6's anchor at (-1378.9, 1378.9).
+  // Seed case (docs/design.md section 9): with line 6 gone the net force at the origin is
+  // 3.50 MN toward (+x, -y), away from line 6's anchor at (-1378.9, 1378.9).
   scenarios::Scenario s = SeedScenario(50);
   std::erase_if(s.mooring.lines, [](const scenarios::LineSpec& l) { return l.id == 6; });
   MooringSystem mooring(s.mooring);

@@ -83,7 +83,7 @@ TEST(SeedScenario, HasTheReferenceNumbers) {
   EXPECT_EQ(chain.friction_axial, 0.5);
   EXPECT_EQ(chain.friction_lateral, 1.0);
 
-  // Seed 000 table 4.2, z = +1000 in NED (the thesis prints -1000, z up).
+  // TAPM thesis table 4.2, z = +1000 in NED (the thesis prints -1000, z up).
   const double anchors[8][2] = {{1950, 0},          {0, 1950},        {-1950, 0},
                                 {0, -1950},         {1378.9, 1378.9}, {-1378.9, 1378.9},
                                 {-1378.9, -1378.9}, {1378.9, -1378.9}};

@@ -54,7 +54,7 @@ TEST_P(SingleLineFailure, EveryDetectorAlarmsAndNamesTheLineWithin180s) {
 
 INSTANTIATE_TEST_SUITE_P(AllEightLines, SingleLineFailure, ::testing::Range(1, 9));
 
-// detection.observer: passive (seed 000's observers with covariances from training runs of
+// detection.observer: passive (the TAPM thesis's observers with covariances from training runs of
 // their own models) on the thesis's line-6 case: every detector names line 6 within 180 s.
 // Measured at seed 1: DHT 83 s, MLE 57 s, GLR 52 s. Over all eight lines the MLE and GLR
 // isolate every one (37-57 s); the DHT misses lines 3, 4, 7 and names line 1 for line 8

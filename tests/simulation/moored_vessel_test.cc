@@ -66,8 +66,8 @@ double FairleadDepth(Simulation& sim) {
 
 TEST(MooredVessel, StartsAtTheMooredDraughtAndStaysAtRest) {
   Simulation sim(testing::SeedVesselScenario(), 1);
-  // Eight lines each pull down 4.95 MN at the fairlead (reference sheet): the vessel sinks by
-  // about 8 x 4.95e6 / C33 = 8 x 4.95e6 / 8.363e7 = 0.47 m.
+  // Eight lines each pull down 4.95 MN at the fairlead (docs/design.md section 9): the vessel
+  // sinks by about 8 x 4.95e6 / C33 = 8 x 4.95e6 / 8.363e7 = 0.47 m.
   const double expected = 8 * 4.948e6 / 8.3627e7;
   EXPECT_NEAR(sim.initial_pose()(2), expected, 0.01 * expected);
   // The hull is symmetric port/starboard (no heel); fore and aft it is not (C35 != 0): the
@@ -77,7 +77,7 @@ TEST(MooredVessel, StartsAtTheMooredDraughtAndStaysAtRest) {
   const double e0 = sim.MechanicalEnergy();
   sim.AdvanceTo(60.0);
   const Eigen::Map<const Vec6> eta(sim.state().data());
-  // A quiet start (NUMERICS.md item 7): the static start is the FEM's own equilibrium, so
+  // A quiet start (docs/design.md section 8.7): the static start is the FEM's own equilibrium, so
   // nothing moves by more than a few millimetres.
   EXPECT_LT(std::hypot(eta(0), eta(1)), 5e-3);
   EXPECT_LT(std::abs(eta(2) - sim.initial_pose()(2)), 5e-3);

@@ -20,7 +20,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
-const double kWavePeriod = 7.0;  // [s], seed 000 table 4.3
+const double kWavePeriod = 7.0;  // [s], TAPM thesis table 4.3
 
 Vec3 BodyToNed(const Vec3& v, double psi) {
   return Vec3(std::cos(psi) * v.x() - std::sin(psi) * v.y(),
@@ -140,7 +140,7 @@ double SettlingTime(const std::vector<Vec3>& eta, const Vec3& eta_d, double radi
 // --- (1) PI: zero steady-state error under a constant NED load -------------------------
 
 TEST(PiController, SettlesAtTheSetpointUnderAConstantNedLoad) {
-  // Thesis gains, heading -135 deg (seed 000's initial heading), load 200 kN north and
+  // Thesis gains, heading -135 deg (the TAPM thesis's initial heading), load 200 kN north and
   // 100 kN west. Closed form for P alone: (Kp + G) e = d, i.e. 1.10 m north, 0.092 m west.
   // The integral removes it; its slowest pole is Ki / (Kp + G) = 1e3 / 1.08e6 -> ~1080 s
   // in the east channel, so 10 000 s leaves e^-8 of the 0.09 m. Settling criterion: the
@@ -323,7 +323,7 @@ TEST(ObserverPidController, DropoutOfAChannelKeepsTheLoopOnTheModel) {
 TEST(PassiveObserver, TracksTheLowFrequencyPoseAndTheNedBias) {
   // Open loop: the plant is pushed by a slow known thrust (periods 400 and 600 s), a
   // constant NED load d, and the measurement carries a 1 m, 7 s wave motion in x and y,
-  // 1 deg in yaw, and white noise (sigma^2 = 0.005 m^2 as in seed 000; 0.1 deg).
+  // 1 deg in yaw, and white noise (sigma^2 = 0.005 m^2 as in the TAPM thesis; 0.1 deg).
   const ManoeuvringModel model = TestModel();
   PassiveObserver observer(model, PassiveObserverOptions{}, 1.0);
   observer.Reset(Vec3(0, 0, -135 * kDeg));
@@ -433,7 +433,7 @@ TEST(PassiveObserver, ChannelMissingAtTheStartKeepsTheInitialGuessUntilItsFirstS
 // --- (6) observer PID closed loop -------------------------------------------------------
 
 TEST(ObserverPidController, SettlesWithTheWaveMotionFilteredOutOfTheCommand) {
-  // From seed 000's initial pose (2 m, 2 m off, heading -135 deg) with a constant NED load,
+  // From the TAPM thesis's initial pose (2 m, 2 m off, heading -135 deg) with a constant NED load,
   // measured through 1 m of 7 s wave motion and noise. Run with and without the wave
   // model and compare the 7 s content of the command.
   double wave_content[2] = {0.0, 0.0};

@@ -44,7 +44,7 @@ TEST(FpsoModel, DampingRuleOfTheReferenceSheet) {
   EXPECT_DOUBLE_EQ(p.linear_damping(5, 5), M(5, 5) / 20.0);
   // Roll at 7 % of critical.
   EXPECT_NEAR(p.linear_damping(3, 3) / (2.0 * std::sqrt(M(3, 3) * p.restoring(3, 3))), 0.07, 1e-12);
-  // Mass: rho x displaced volume (reference sheet 1.0041e8 kg).
+  // Mass: rho x displaced volume (docs/design.md section 9: 1.0041e8 kg).
   EXPECT_NEAR(SeedFpsoMass().mass, 1.0041e8, 1e4);
 }
 

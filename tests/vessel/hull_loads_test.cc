@@ -54,7 +54,7 @@ Vec6 Velocity(double u, double v, double r) {
   return nu;
 }
 
-/// Hoerner's curve at the seed's B / (2 T) = 1.8333, interpolated by hand between the
+/// Hoerner's curve at the seed FPSO's B / (2 T) = 1.8333, interpolated by hand between the
 /// digitised points (1.639, 0.6914) and (1.860, 0.6571).
 double SeedCrossFlowDrag() {
   const double ratio = 44.0 / 24.0;

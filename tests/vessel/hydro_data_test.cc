@@ -1,7 +1,8 @@
 // The WAMIT reader (vessel/hydro_data.h): the seed FPSO against the facts of its WAMIT log
-// and the reference sheet, the frame and heading conventions against the kinematics of a
-// hull riding long waves (derived here in the project's own frame, independent of WAMIT's),
-// the interpolation rules, and one test per kind of bad input on small synthetic files.
+// and the seed case's table (docs/design.md section 9), the frame and heading conventions
+// against the kinematics of a hull riding long waves (derived here in the project's own frame,
+// independent of WAMIT's), the interpolation rules, and one test per kind of bad input on
+// small synthetic files.
 #include "vessel/hydro_data.h"
 
 #include <gtest/gtest.h>
@@ -80,7 +81,7 @@ TEST(WamitFpso, HeaveRestoringIsTheWaterplaneArea) {
 
 TEST(WamitFpso, RollRestoringGivesTheMetacentricHeight) {
   // WAMIT's C44 includes the weight's moment, so C44 = ρ g ∇ GM_T with ∇ = 97 961 m³.
-  // 0.5 %: the reference sheet's GM_T = 7.95 m has three digits (±0.06 %); the rest covers
+  // 0.5 %: the seed case's GM_T = 7.95 m has three digits (±0.06 %); the rest covers
   // the log's spread of the volume (VOLX, VOLY, VOLZ differ by 2e-6).
   const double gm_t = Fpso().restoring(3, 3) / (kRho * kG * 97961.0);
   EXPECT_NEAR(gm_t, 7.95, 5e-3 * 7.95);

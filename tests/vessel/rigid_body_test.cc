@@ -42,8 +42,8 @@ TEST(RigidBody, EulerRatesReproduceTheRotationRate) {
 }
 
 MassProperties SeedFpso() {
-  // Reference sheet: 1.0041e8 kg, radii of gyration 16.3 / 54 / 54 m, CG 1 m below the
-  // waterline (z = +1 in the body frame, z down), on the centreline.
+  // Seed case (docs/design.md section 9): 1.0041e8 kg, radii of gyration 16.3 / 54 / 54 m,
+  // CG 1 m below the waterline (z = +1 in the body frame, z down), on the centreline.
   return {1.0041e8, Vec3(0.0, 0.0, 1.0), Vec3(16.3, 54.0, 54.0)};
 }
 

@@ -132,7 +132,7 @@ TEST(SensorSpecTest, SeedSensorsAreTheReferenceSheets) {
   EXPECT_EQ(seed.gnss_rate, 1.0);
   EXPECT_EQ(seed.gyro_rate, 1.0);
   for (const ChannelNoise& c : {seed.north, seed.east, seed.heading}) {
-    // Measurement variance 0.005 m^2 / rad^2 per DOF (reference sheet, seed 000).
+    // Measurement variance 0.005 m^2 / rad^2 per DOF (TAPM thesis; docs/design.md section 9).
     EXPECT_DOUBLE_EQ(c.std_dev * c.std_dev, 0.005);
     EXPECT_EQ(c.std_dev, std::sqrt(0.005));
     EXPECT_EQ(c.bias_walk, 0.0);

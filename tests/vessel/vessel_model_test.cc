@@ -15,7 +15,7 @@
 namespace moorsim::vessel {
 namespace {
 
-// Seed-like FPSO numbers (reference sheet): mass, radii of gyration, CG 1 m below the
+// Seed-like FPSO numbers (docs/design.md section 9): mass, radii of gyration, CG 1 m below the
 // waterline; added mass and restoring of the right size, with couplings so that the test
 // is not trivially diagonal.
 VesselParameters TestVessel(double damping_scale) {

@@ -28,7 +28,7 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kGravity = 9.81;
 constexpr double kSigmas = 4.5;
 
-/// The seed sea state (reference README, seed 000 table 4.3).
+/// The seed sea state (TAPM thesis table 4.3; docs/design.md section 9).
 JonswapParameters SeedSeaState(double gamma = 3.3) {
   JonswapParameters sea;
   sea.significant_height = 2.5;

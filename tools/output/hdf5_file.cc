@@ -53,6 +53,16 @@ class Handle {
 /// setting belongs to the calling thread's error stack (Debian's HDF5 is thread-safe), so
 /// each thread that touches a file switches it off once.
 void SilenceHdf5Printing() {
+  // HDF5 closes every file still open at exit. A file whose close failed (a full disk
+  // fails the final metadata flush) stays in its table, and HDF5 1.10 then crashes in that
+  // exit handler (seen: SIGSEGV in H5F__close_cb after "No space left on device"). Every
+  // Hdf5File is closed explicitly, so the exit handler has nothing to do: switch it off,
+  // before the first HDF5 call of the process where possible (afterwards it is a no-op).
+  static const bool no_atexit = [] {
+    H5dont_atexit();
+    return true;
+  }();
+  (void)no_atexit;
   thread_local bool silenced = false;
   if (!silenced) {
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
@@ -510,6 +520,11 @@ void Hdf5File::SetAttribute(const std::string& object_path, const std::string& n
 void Hdf5File::SetAttribute(const std::string& object_path, const std::string& name,
                             std::int64_t value) {
   Live().SetNumberAttribute(object_path, name, H5T_STD_I64LE, H5T_NATIVE_INT64, &value);
+}
+
+void Hdf5File::SetAttribute(const std::string& object_path, const std::string& name,
+                            std::uint64_t value) {
+  Live().SetNumberAttribute(object_path, name, H5T_STD_U64LE, H5T_NATIVE_UINT64, &value);
 }
 
 TableId Hdf5File::CreateTable(const std::string& dataset_path, int columns,

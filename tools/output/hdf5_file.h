@@ -1,4 +1,4 @@
-// Writer for the simulator's time-series output (run.h5, DESIGN.md section 7): an HDF5
+// Writer for the simulator's time-series output (run.h5, docs/design.md section 7): an HDF5
 // file of growing tables, one row per output sample, with units and column names as
 // attributes.
 //
@@ -75,12 +75,14 @@ class Hdf5File {
 
   /// Sets (or replaces) the attribute `name` of the existing group or table `object_path`;
   /// "/" is the file itself. Strings are stored as variable-length UTF-8 scalars, doubles
-  /// as IEEE 754 binary64 and integers as signed 64-bit (pass an std::int64_t: a plain
-  /// int or an unsigned seed is ambiguous between the numeric overloads on purpose).
+  /// as IEEE 754 binary64 and integers as signed or unsigned 64-bit (pass an std::int64_t
+  /// or std::uint64_t: a plain int is ambiguous between the numeric overloads on purpose).
   void SetAttribute(const std::string& object_path, const std::string& name,
                     const std::string& value);
   void SetAttribute(const std::string& object_path, const std::string& name, double value);
   void SetAttribute(const std::string& object_path, const std::string& name, std::int64_t value);
+  /// Unsigned 64-bit (seeds: 2^63 and above stay positive).
+  void SetAttribute(const std::string& object_path, const std::string& name, std::uint64_t value);
 
   /// Creates an empty, extendible table at `dataset_path` (absolute, e.g.
   /// "/vessel/pose_true"; missing parent groups are created). `columns` > 0 gives a

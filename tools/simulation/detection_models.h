@@ -1,4 +1,4 @@
-// The detectors' models of a scenario, as the simulation builds them (DESIGN.md section 6):
+// The detectors' models of a scenario, as the simulation builds them (docs/design.md section 6):
 // the hypothesis bank's options, the observers' horizontal-plane vessel model, their EKF
 // options and how the observer bank couples them. One place, so `moorsim run` and
 // `moorsim analyze` see the same models.

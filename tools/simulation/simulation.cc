@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/random.h"
+#include "core/sample_clock.h"
 #include "detectors/dht.h"
 #include "detectors/ekf_observer.h"
 #include "detectors/glr.h"
@@ -296,7 +297,8 @@ Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed)
                                 .length_scale = scenario.vessel->length_scale})),
       mooring_(scenario.mooring),
       attachment_(mooring_),
-      parts_(std::make_unique<Parts>()) {
+      parts_(std::make_unique<Parts>()),
+      controller_clock_(scenario.controller.rate, "controller.rate_hz") {
   const scenarios::VesselSpec& v = *scenario_.vessel;
   plant_ = std::make_unique<vessel::VesselPlant>(VesselParameters(v, hydro_), Thrusters(v));
   plant_->AddLoad(&parts_->external);
@@ -355,7 +357,7 @@ void Simulation::StartDetection() {
   const detectors::EkfOptions& ekf = models.ekf;
   const scenarios::DetectionSpec& d = scenario_.detection;
   if (d.observer == "passive") {
-    // Seed 000's passive observers, each with the innovation covariance of a 10000 s
+    // The TAPM thesis's passive observers, each with the innovation covariance of a 10000 s
     // training run of its own hypothesis's model (section 4.4), held at the setpoint, with
     // the noise levels of detection.model; streams "training.*" of the run seed.
     detectors::PassiveObserverOptions passive;
@@ -474,10 +476,13 @@ void Simulation::StartIntegrator() {
 }
 
 double Simulation::NextEventTime() const {
+  // Every clock is asked by its integer sample index (core/sample_clock.h), and every
+  // instant at or before t_ has been handled by DiscreteEvents, so each candidate lies
+  // strictly after t_.
   double next = std::numeric_limits<double>::infinity();
   if (failure_pending_) next = std::min(next, scenario_.failure.time);
   next = std::min(next, parts_->sensors->NextSampleTime(t_));
-  next = std::min(next, static_cast<double>(control_index_) / scenario_.controller.rate);
+  next = std::min(next, controller_clock_.Instant(next_control_index_));
   if (parts_->tension_cells) next = std::min(next, parts_->tension_cells->NextSampleTime(t_));
   return next;
 }
@@ -532,9 +537,9 @@ void Simulation::DiscreteEvents() {
     parts_->measured_tensions = parts_->tension_cells->Sample(t_, FairleadTensions());
     last_tension_time_ = t_;
   }
-  const double dt = 1.0 / scenario_.controller.rate;
-  if (t_ >= static_cast<double>(control_index_) * dt) {
-    ++control_index_;
+  const double dt = 1.0 / controller_clock_.rate();
+  if (const std::int64_t k = controller_clock_.LastIndex(t_); k >= next_control_index_) {
+    next_control_index_ = k + 1;
     vessel::PoseMeasurementInput input;
     input.time = t_;
     input.pose = last_measurement_;
@@ -560,18 +565,16 @@ void Simulation::DiscreteEvents() {
 
 void Simulation::AdvanceTo(double t) {
   const auto start = std::chrono::steady_clock::now();
-  DiscreteEvents();
-  while (t_ < t) {
-    // CVODE stops exactly at discrete events (the command changes there); other output
-    // times are interpolated from its steps, which then carry on past them.
-    const double event = NextEventTime();
-    if (std::isfinite(event)) integrator_->SetStopTime(event);
-    const double target = std::min(t, event);
-    integrator_->AdvanceTo(target);
-    t_ = integrator_->time();
-    std::copy(integrator_->state(), integrator_->state() + x_.size(), x_.begin());
-    DiscreteEvents();
-  }
+  AdvanceThroughEvents(
+      t, [this]() -> Integrator& { return *integrator_; },
+      [this](double) { return NextEventTime(); },
+      [this](double now) {
+        if (now > t_) {
+          t_ = now;
+          std::copy(integrator_->state(), integrator_->state() + x_.size(), x_.begin());
+        }
+        DiscreteEvents();
+      });
   integrator_seconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

@@ -22,6 +22,7 @@
 
 #include "core/coupled_system.h"
 #include "core/integrator.h"
+#include "core/sample_clock.h"
 #include "detectors/detector.h"
 #include "mooring_fem/mooring_attachment.h"
 #include "mooring_fem/mooring_system.h"
@@ -38,7 +39,7 @@ class ThrusterDynamics;
 
 namespace moorsim::simulation {
 
-/// Everything recorded at one output instant (DESIGN.md section 7), SI units.
+/// Everything recorded at one output instant (docs/design.md section 7), SI units.
 struct Sample {
   double time = 0.0;
   Vec6 pose_true = Vec6::Zero();           ///< low-frequency + wave-frequency eta (NED)
@@ -161,8 +162,9 @@ class Simulation {
   double integrator_seconds_ = 0.0;
   DetectionTiming detection_;
 
-  // Discrete schedule (sample counters, so instants are k / rate exactly).
-  long control_index_ = 0;
+  // Discrete schedule: integer sample indices, instants k / rate (core/sample_clock.h).
+  SampleClock controller_clock_;
+  std::int64_t next_control_index_ = 0;  // first controller instant not yet acted on
   double last_sensor_time_ = -1.0;
   double last_tension_time_ = -1.0;
   bool failure_pending_ = false;

@@ -1,0 +1,442 @@
+#include "tools/simulation/run.h"
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <new>
+#include <optional>
+#include <span>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include "core/error.h"
+#include "core/sample_clock.h"
+#include "scenarios/load.h"
+#include "tools/output/hdf5_file.h"
+
+namespace moorsim::simulation {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string Join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const std::string& s : items) out += (out.empty() ? "" : "\n") + s;
+  return out;
+}
+
+/// The tables of run.h5 (docs/design.md section 7) and how each sample fills them.
+class RunWriter {
+ public:
+  RunWriter(const std::string& path, const scenarios::Scenario& scenario, Simulation& sim)
+      : file_(path) {
+    file_.SetAttribute("/", "scenario", scenario.text);
+    file_.SetAttribute("/", "scenario_name", scenario.name);
+    file_.SetAttribute("/", "scenario_path", scenario.source_path);
+    file_.SetAttribute("/", "overrides", Join(scenario.overrides));
+    file_.SetAttribute("/", "seed", sim.seed());
+    file_.SetAttribute("/", "version", std::string(MOORSIM_VERSION));
+    file_.SetAttribute("/", "failure_line", static_cast<std::int64_t>(scenario.failure.line));
+    file_.SetAttribute("/", "failure_time",
+                       scenario.failure.line > 0 ? scenario.failure.time : kNaN);
+    file_.SetAttribute("/", "failure_mode",
+                       scenario.failure.line > 0 ? scenario.failure.mode : std::string());
+    const std::vector<std::string> eta = {"x", "y", "z", "phi", "theta", "psi"};
+    const std::string eta_units = "m,m,m,rad,rad,rad";
+    const std::string load_units = "N,N,N,N m,N m,N m";
+    const std::vector<std::string> load = {"X", "Y", "Z", "K", "M", "N"};
+    time_ = file_.CreateTable("/time", 0, "s");
+    pose_true_ = file_.CreateTable("/vessel/pose_true", 6, eta_units, eta);
+    pose_lf_ = file_.CreateTable("/vessel/pose_low_frequency", 6, eta_units, eta);
+    velocity_ = file_.CreateTable("/vessel/velocity_true", 6, "m/s,m/s,m/s,rad/s,rad/s,rad/s",
+                                  {"u", "v", "w", "p", "q", "r"});
+    measured_ = file_.CreateTable("/vessel/pose_measured", 3, "m,m,rad", {"x", "y", "psi"});
+    const int lines = sim.num_lines();
+    std::vector<std::string> line_names;
+    for (int i = 1; i <= lines; ++i) line_names.push_back("line " + std::to_string(i));
+    tension_ = file_.CreateTable("/mooring/fairlead_tension", lines, "N", line_names);
+    if (scenario.sensors.tension_cells) {
+      tension_measured_ = file_.CreateTable("/mooring/tension_measured", lines, "N", line_names);
+    }
+    const output::TableId anchors =
+        file_.CreateTable("/mooring/anchors", 3, "m,m,m", {"x", "y", "z"});
+    for (int i = 0; i < lines; ++i) {
+      const Vec3 a = sim.mooring().line(i).anchor;
+      file_.Append(anchors, std::vector<double>{a.x(), a.y(), a.z()});
+    }
+    commanded_ = file_.CreateTable("/thrust/commanded", 3, "N,N,N m", {"X", "Y", "N"});
+    delivered_ = file_.CreateTable("/thrust/delivered", 3, "N,N,N m", {"X", "Y", "N"});
+    mooring_ = file_.CreateTable("/environment/mooring", 6, load_units, load);
+    drift_ = file_.CreateTable("/environment/waves_drift", 6, load_units, load);
+    current_ = file_.CreateTable("/environment/current", 6, load_units, load);
+    wind_ = file_.CreateTable("/environment/wind", 6, load_units, load);
+    thrust_ = file_.CreateTable("/environment/thrust", 6, load_units, load);
+    file_.CreateGroup("/detectors");
+    const std::vector<std::string> hypotheses = sim.HypothesisLabels();
+    if (!hypotheses.empty()) {
+      std::string joined;
+      for (const std::string& h : hypotheses) joined += (joined.empty() ? "" : ",") + h;
+      file_.SetAttribute("/detectors", "hypotheses", joined);
+    }
+    for (const DetectorRecord& d : sim.detector_records()) {
+      const std::string group = "/detectors/" + d.label;
+      const char* score_units = d.type == "dht"   ? "probability"
+                                : d.type == "mle" ? "nats (negative log-likelihood)"
+                                                  : "chi-square statistic";
+      Tables t;
+      t.score = file_.CreateTable(group + "/score", static_cast<int>(hypotheses.size()),
+                                  score_units, hypotheses);
+      t.decision = file_.CreateTable(group + "/decision", 0, "hypothesis (0 = intact, k = line k)",
+                                     {}, output::TableType::kInt32);
+      t.alarm = file_.CreateTable(group + "/alarm", 0, "0/1", {}, output::TableType::kInt8);
+      file_.SetAttribute(group, "type", d.type);
+      if (d.threshold) file_.SetAttribute(group, "threshold", *d.threshold);
+      detector_tables_.push_back(t);
+    }
+  }
+
+  void Append(const Sample& s) {
+    file_.Append(time_, s.time);
+    Row(pose_true_, s.pose_true);
+    Row(pose_lf_, s.pose_low_frequency);
+    Row(velocity_, s.velocity);
+    Row(measured_, s.pose_measured);
+    file_.Append(tension_, s.fairlead_tension);
+    if (tension_measured_) {
+      std::vector<double> row = s.tension_measured;
+      row.resize(s.fairlead_tension.size(), kNaN);
+      file_.Append(*tension_measured_, row);
+    }
+    Row(commanded_, s.thrust_commanded);
+    Row(delivered_, s.thrust_delivered);
+    Row(mooring_, s.load_mooring);
+    Row(drift_, s.load_wave_drift);
+    Row(current_, s.load_current);
+    Row(wind_, s.load_wind);
+    Row(thrust_, s.load_thrust);
+    for (std::size_t i = 0; i < detector_tables_.size() && i < s.detectors.size(); ++i) {
+      const detectors::Verdict& v = s.detectors[i];
+      file_.Append(detector_tables_[i].score, v.score);
+      file_.Append(detector_tables_[i].decision, static_cast<std::int32_t>(v.hypothesis));
+      file_.Append(detector_tables_[i].alarm, static_cast<std::int32_t>(v.alarm ? 1 : 0));
+    }
+  }
+
+  void Flush() { file_.Flush(); }
+  void Close() { file_.Close(); }
+
+ private:
+  template <class V>
+  void Row(output::TableId table, const V& v) {
+    file_.Append(table, std::span<const double>(v.data(), static_cast<std::size_t>(v.size())));
+  }
+
+  output::Hdf5File file_;
+  output::TableId time_, pose_true_, pose_lf_, velocity_, measured_, tension_, commanded_,
+      delivered_, mooring_, drift_, current_, wind_, thrust_;
+  std::optional<output::TableId> tension_measured_;
+  struct Tables {
+    output::TableId score, decision, alarm;
+  };
+  std::vector<Tables> detector_tables_;
+};
+
+nlohmann::json Stats(const IntegratorStats& s) {
+  return {{"steps", s.steps},
+          {"rhs_evaluations", s.rhs_evals},
+          {"jacobian_evaluations", s.jacobian_evals},
+          {"linear_setups", s.linear_setups},
+          {"newton_iterations", s.newton_iterations},
+          {"newton_failures", s.newton_failures},
+          {"error_test_failures", s.error_test_failures},
+          {"rhs_seconds", s.rhs_seconds},
+          {"jacobian_seconds", s.jacobian_seconds},
+          {"linear_setup_seconds", s.linear_setup_seconds},
+          {"linear_solve_seconds", s.linear_solve_seconds}};
+}
+
+/// What every summary.json starts with: the run's identity.
+nlohmann::json SummaryHead(const scenarios::Scenario& scenario) {
+  nlohmann::json summary;
+  summary["scenario"] = scenario.name;
+  summary["scenario_path"] = scenario.source_path;
+  summary["overrides"] = scenario.overrides;
+  summary["seed"] = scenario.simulation.seed;
+  summary["version"] = MOORSIM_VERSION;
+  summary["duration"] = scenario.simulation.duration;
+  if (scenario.failure.line > 0) {
+    summary["failure"] = {{"line", scenario.failure.line},
+                          {"time", scenario.failure.time},
+                          {"mode", scenario.failure.mode}};
+  } else {
+    summary["failure"] = nullptr;
+  }
+  return summary;
+}
+
+/// The per-detector results and detection timing of a run.
+void AddDetection(const scenarios::Scenario& scenario, const Simulation& sim,
+                  nlohmann::json& summary) {
+  nlohmann::json detectors = nlohmann::json::object();
+  const std::vector<std::string> labels = sim.HypothesisLabels();
+  const int lines = sim.num_lines();
+  for (const DetectorRecord& d : sim.detector_records()) {
+    nlohmann::json j;
+    j["type"] = d.type;
+    j["alarm_time"] = d.alarm_time ? nlohmann::json(*d.alarm_time) : nlohmann::json(nullptr);
+    // Hypothesis k <= number of lines is "line k failed"; pairs are named by their label.
+    if (!d.alarm_time) {
+      j["isolated_line"] = nullptr;
+    } else if (d.isolated >= 1 && d.isolated <= lines) {
+      j["isolated_line"] = d.isolated;
+    } else {
+      j["isolated_line"] = nullptr;
+      j["isolated_hypothesis"] = labels.at(d.isolated);
+    }
+    j["delay"] = (d.alarm_time && scenario.failure.line > 0)
+                     ? nlohmann::json(*d.alarm_time - scenario.failure.time)
+                     : nlohmann::json(nullptr);
+    j["false_alarms"] = d.false_alarms;
+    detectors[d.label] = j;
+  }
+  summary["detectors"] = detectors;
+  const DetectionTiming& timing = sim.detection_timing();
+  summary["detection"] = {{"setup_seconds", timing.setup_seconds},
+                          {"update_seconds", timing.update_seconds},
+                          {"samples", timing.samples}};
+}
+
+std::string SystemError(int error) { return std::strerror(error); }
+
+void RemoveQuietly(const std::filesystem::path& path) {
+  std::error_code ignored;
+  std::filesystem::remove(path, ignored);
+}
+
+std::filesystem::path Partial(const std::filesystem::path& path) {
+  return path.string() + ".partial";
+}
+
+volatile std::sig_atomic_t g_stop_signal = 0;
+
+extern "C" void OnStopSignal(int signal) {
+  g_stop_signal = signal;
+  std::signal(signal, SIG_DFL);  // a second one ends the process at once
+}
+
+}  // namespace
+
+const char* StatusName(RunStatus status) {
+  switch (status) {
+    case RunStatus::kOk:
+      return "ok";
+    case RunStatus::kFailed:
+      return "failed";
+    case RunStatus::kInterrupted:
+      return "interrupted";
+    case RunStatus::kRejected:
+      return "rejected";
+  }
+  return "failed";
+}
+
+int RunResult::ExitCode() const {
+  switch (status) {
+    case RunStatus::kOk:
+      return 0;
+    case RunStatus::kFailed:
+      return 1;
+    case RunStatus::kRejected:
+      return 2;
+    case RunStatus::kInterrupted:
+      return 128 + (signal > 0 ? signal : SIGINT);
+  }
+  return 1;
+}
+
+void WriteFileAtomically(const std::filesystem::path& path, const std::string& text) {
+  const std::filesystem::path partial = Partial(path);
+  const auto fail = [&](const std::string& what, int error) {
+    RemoveQuietly(partial);
+    throw Error(path.string() + ": " + what + ": " + SystemError(error));
+  };
+  const int fd = ::open(partial.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) fail("cannot create", errno);
+  std::size_t written = 0;
+  while (written < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int error = n < 0 ? errno : ENOSPC;
+      ::close(fd);
+      fail("write failed", error);
+    }
+    written += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0 && errno != EINVAL) {
+    const int error = errno;
+    ::close(fd);
+    fail("fsync failed", error);
+  }
+  if (::close(fd) != 0) fail("close failed", errno);
+  std::error_code error;
+  std::filesystem::rename(partial, path, error);
+  if (error) {
+    RemoveQuietly(partial);
+    throw Error(path.string() + ": rename failed: " + error.message());
+  }
+}
+
+void InstallStopSignalHandlers() {
+  g_stop_signal = 0;
+  std::signal(SIGINT, OnStopSignal);
+  std::signal(SIGTERM, OnStopSignal);
+}
+
+int StopSignal() { return g_stop_signal; }
+
+RunResult RunScenario(const RunRequest& request) noexcept {
+  RunResult result;
+  // 1. Everything about the input, before anything is simulated or written.
+  std::optional<scenarios::Scenario> loaded;
+  try {
+    loaded.emplace(scenarios::LoadScenario(request.scenario_path, request.overrides));
+    CheckDetectors(*loaded);
+    result.directory =
+        request.out.empty() ? std::filesystem::path("out") / loaded->name : request.out;
+    std::error_code error;
+    std::filesystem::create_directories(result.directory, error);
+    if (error) {
+      throw InputError("--out " + result.directory.string() +
+                       ": cannot create the directory: " + error.message());
+    }
+  } catch (const InputError& e) {
+    result.status = RunStatus::kRejected;
+    result.message = e.what();
+    return result;
+  } catch (const std::exception& e) {
+    result.status = RunStatus::kFailed;
+    result.message = e.what();
+    return result;
+  }
+  const scenarios::Scenario& scenario = *loaded;
+  const std::filesystem::path run_path = result.directory / "run.h5";
+  const std::filesystem::path summary_path = result.directory / "summary.json";
+  nlohmann::json summary = SummaryHead(scenario);
+
+  // 2. The run. Any failure from here on is reported in summary.json.
+  const auto start = std::chrono::steady_clock::now();
+  std::unique_ptr<Simulation> sim;
+  std::unique_ptr<RunWriter> writer;
+  bool run_file_broken = false;
+  result.status = RunStatus::kOk;
+  try {
+    try {
+      sim = std::make_unique<Simulation>(scenario, scenario.simulation.seed);
+    } catch (const InputError& e) {  // a scenario the loader's rules let through
+      result.status = RunStatus::kRejected;
+      result.message = e.what();
+      return result;
+    }
+    try {
+      writer = std::make_unique<RunWriter>(Partial(run_path).string(), scenario, *sim);
+    } catch (const Error&) {
+      run_file_broken = true;
+      throw;
+    }
+    // Output rows at k / rate for every k with k / rate <= duration (integer indices).
+    const SampleClock rows(scenario.simulation.output_rate, "simulation.output_rate_hz");
+    const std::int64_t last_row = rows.LastIndex(scenario.simulation.duration);
+    auto last_progress = start;
+    for (std::int64_t k = 0; k <= last_row; ++k) {
+      sim->AdvanceTo(rows.Instant(k));
+      try {
+        writer->Append(sim->Record());
+        if (request.flush_rows > 0 && (k + 1) % request.flush_rows == 0) writer->Flush();
+      } catch (const Error&) {
+        run_file_broken = true;
+        throw;
+      }
+      if (request.stop_requested) {
+        if (const int signal = request.stop_requested(); signal != 0 && k < last_row) {
+          result.status = RunStatus::kInterrupted;
+          result.signal = signal;
+          result.message = "stopped by signal " + std::to_string(signal) + " (" +
+                           strsignal(signal) + ") at t = " + std::to_string(sim->time()) + " s";
+          break;
+        }
+      }
+      const auto now = std::chrono::steady_clock::now();
+      if (request.progress && std::chrono::duration<double>(now - last_progress).count() > 2.0) {
+        const double wall = std::chrono::duration<double>(now - start).count();
+        std::fprintf(stderr, "moorsim run: t = %.0f / %.0f s (%.0f %%), %.0fx real time\n",
+                     sim->time(), scenario.simulation.duration,
+                     100.0 * sim->time() / scenario.simulation.duration, sim->time() / wall);
+        last_progress = now;
+      }
+    }
+  } catch (const std::bad_alloc&) {
+    result.status = RunStatus::kFailed;
+    result.message = "out of memory";
+  } catch (const std::exception& e) {
+    result.status = RunStatus::kFailed;
+    result.message = e.what();
+  }
+
+  // 3. Close run.h5: complete, or holding every row so far. A file that could not be
+  // written is removed (on a full disk that also frees room for summary.json).
+  if (writer) {
+    try {
+      writer->Close();
+    } catch (const std::exception& e) {
+      if (!run_file_broken) {
+        run_file_broken = true;
+        result.status = RunStatus::kFailed;
+        result.message = e.what();
+      }
+    }
+    writer.reset();
+  }
+  RemoveQuietly(summary_path);
+  if (run_file_broken) {
+    RemoveQuietly(Partial(run_path));
+    RemoveQuietly(run_path);
+  } else if (sim) {
+    std::error_code error;
+    std::filesystem::rename(Partial(run_path), run_path, error);
+    if (error) {
+      result.status = RunStatus::kFailed;
+      result.message = run_path.string() + ": rename failed: " + error.message();
+    }
+  }
+
+  // 4. summary.json.
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.simulated_time = sim ? sim->time() : 0.0;
+  try {
+    if (sim) AddDetection(scenario, *sim, summary);
+    summary["status"] = StatusName(result.status);
+    if (!result.message.empty()) summary["error"] = result.message;
+    if (result.status == RunStatus::kInterrupted) summary["signal"] = result.signal;
+    summary["simulated_time"] = result.simulated_time;
+    summary["wall_time"] = wall;
+    summary["real_time_factor"] = wall > 0.0 ? result.simulated_time / wall : 0.0;
+    if (sim) summary["integrator"] = Stats(sim->stats());
+    summary["outputs"] = {
+        {"run", run_file_broken || !sim ? nlohmann::json(nullptr) : nlohmann::json("run.h5")}};
+    WriteFileAtomically(summary_path, summary.dump(2) + "\n");
+    result.summary_written = true;
+  } catch (const std::exception& e) {
+    if (result.status == RunStatus::kOk) result.status = RunStatus::kFailed;
+    result.message += std::string(result.message.empty() ? "" : "; ") + e.what();
+  }
+  result.summary = std::move(summary);
+  return result;
+}
+
+}  // namespace moorsim::simulation

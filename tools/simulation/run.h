@@ -1,0 +1,86 @@
+// One coupled run of a scenario as a library call: what `moorsim run` does, what the batch
+// runner and the tests call. It loads and checks the scenario, simulates, writes run.h5 and
+// summary.json, and returns a status; no exception escapes.
+//
+// Outputs are never a lie (docs/design.md section 7):
+// * run.h5 and summary.json are written under temporary names (".partial") and renamed into
+//   place at the end, the old summary.json removed first, so an old complete result is
+//   never paired with a new partial one: a run.h5 without a summary.json is incomplete;
+// * run.h5 is flushed every `flush_rows` rows, so a run killed outright leaves a
+//   run.h5.partial that opens and holds the rows up to the last flush;
+// * a stop request (SIGINT/SIGTERM through InstallStopSignalHandlers) ends the run at the
+//   next output row: the file is closed with every row so far and summary.json says
+//   "interrupted" with the simulated time reached;
+// * every write is checked; when run.h5 cannot be written (disk full) the run stops, the
+//   broken file is removed, and summary.json says "failed" with the reason if it fits.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "tools/simulation/simulation.h"
+
+namespace moorsim::simulation {
+
+enum class RunStatus {
+  kOk,           ///< simulated to the end, outputs written
+  kFailed,       ///< the integrator, the static start or an output write failed
+  kInterrupted,  ///< stopped on request (a signal) before the end
+  kRejected,     ///< bad input: nothing was simulated or written
+};
+
+/// "ok", "failed", "interrupted", "rejected": the summary's "status".
+const char* StatusName(RunStatus status);
+
+struct RunRequest {
+  std::string scenario_path;
+  /// key.path=value overrides, in order (the `--set` flags, then --seed/--duration).
+  std::vector<std::string> overrides;
+  /// Output directory; empty = out/<scenario name>.
+  std::filesystem::path out;
+  /// Progress lines on stderr (every ~2 s of wall time).
+  bool progress = false;
+  /// run.h5 is flushed to disk every this many rows.
+  long flush_rows = 256;
+  /// Asked after every output row: a nonzero value (a signal number) stops the run there.
+  std::function<int()> stop_requested;
+};
+
+struct RunResult {
+  RunStatus status = RunStatus::kRejected;
+  /// Why the run did not complete (empty when ok): one line.
+  std::string message;
+  /// The signal that interrupted the run (0 if none).
+  int signal = 0;
+  std::filesystem::path directory;
+  double simulated_time = 0.0;
+  /// summary.json as written (empty for a rejected run).
+  nlohmann::json summary;
+  /// False if summary.json could not be written (the reason is in message).
+  bool summary_written = false;
+
+  /// Exit code of the CLI: 0 ok, 1 failed, 2 rejected, 128 + signal when interrupted.
+  int ExitCode() const;
+};
+
+/// Runs the scenario as described above. Never throws (std::bad_alloc aside).
+RunResult RunScenario(const RunRequest& request) noexcept;
+
+/// Writes `text` to `path` through `path`.partial, checking every write, the flush and
+/// the close, then renames it into place. Throws moorsim::Error naming the file and the
+/// system's reason; the partial file is removed on failure.
+void WriteFileAtomically(const std::filesystem::path& path, const std::string& text);
+
+/// Makes SIGINT and SIGTERM set a flag that StopSignal() returns, instead of killing the
+/// process; a second signal of the same kind kills as usual.
+void InstallStopSignalHandlers();
+/// The signal number caught since InstallStopSignalHandlers, 0 if none.
+int StopSignal();
+
+}  // namespace moorsim::simulation
