@@ -14,24 +14,24 @@ using Array = Eigen::Map<Eigen::ArrayXd>;
 // element is read before it is written and no other element depends on it.
 Array A(N_Vector v) { return Array(N_VGetArrayPointer_Serial(v), N_VGetLength_Serial(v)); }
 
-void LinearSum(realtype a, N_Vector x, realtype b, N_Vector y, N_Vector z) {
+void LinearSum(sunrealtype a, N_Vector x, sunrealtype b, N_Vector y, N_Vector z) {
   A(z) = a * A(x) + b * A(y);
 }
-void Const(realtype c, N_Vector z) { A(z).setConstant(c); }
+void Const(sunrealtype c, N_Vector z) { A(z).setConstant(c); }
 void Prod(N_Vector x, N_Vector y, N_Vector z) { A(z) = A(x) * A(y); }
 void Div(N_Vector x, N_Vector y, N_Vector z) { A(z) = A(x) / A(y); }
-void Scale(realtype c, N_Vector x, N_Vector z) { A(z) = c * A(x); }
+void Scale(sunrealtype c, N_Vector x, N_Vector z) { A(z) = c * A(x); }
 void Abs(N_Vector x, N_Vector z) { A(z) = A(x).abs(); }
 void Inv(N_Vector x, N_Vector z) { A(z) = A(x).inverse(); }
-void AddConst(N_Vector x, realtype b, N_Vector z) { A(z) = A(x) + b; }
+void AddConst(N_Vector x, sunrealtype b, N_Vector z) { A(z) = A(x) + b; }
 
-realtype WrmsNorm(N_Vector x, N_Vector w) {
+sunrealtype WrmsNorm(N_Vector x, N_Vector w) {
   const double n = static_cast<double>(N_VGetLength_Serial(x));
   return std::sqrt((A(x) * A(w)).square().sum() / n);
 }
 
 // z = sum_i c[i] X[i]. z may be one of the X[i], so accumulate element-major in blocks.
-int LinearCombination(int nvec, realtype* c, N_Vector* X, N_Vector z) {
+int LinearCombination(int nvec, sunrealtype* c, N_Vector* X, N_Vector z) {
   const sunindextype n = N_VGetLength_Serial(z);
   double* out = N_VGetArrayPointer_Serial(z);
   constexpr sunindextype kBlock = 256;
@@ -49,14 +49,14 @@ int LinearCombination(int nvec, realtype* c, N_Vector* X, N_Vector z) {
 }
 
 // Z[i] = a[i] x + Y[i]; Z[i] may be Y[i].
-int ScaleAddMulti(int nvec, realtype* a, N_Vector x, N_Vector* Y, N_Vector* Z) {
+int ScaleAddMulti(int nvec, sunrealtype* a, N_Vector x, N_Vector* Y, N_Vector* Z) {
   for (int i = 0; i < nvec; ++i) A(Z[i]) = a[i] * A(x) + A(Y[i]);
   return 0;
 }
 
 int SparseZero(SUNMatrix m) {
   const sunindextype nnz = SUNSparseMatrix_NNZ(m);
-  std::memset(SUNSparseMatrix_Data(m), 0, nnz * sizeof(realtype));
+  std::memset(SUNSparseMatrix_Data(m), 0, nnz * sizeof(sunrealtype));
   std::memset(SUNSparseMatrix_IndexValues(m), 0, nnz * sizeof(sunindextype));
   std::memset(SUNSparseMatrix_IndexPointers(m), 0,
               (SUNSparseMatrix_NP(m) + 1) * sizeof(sunindextype));
@@ -75,10 +75,10 @@ int SparseCopy(SUNMatrix a, SUNMatrix b) {
   const sunindextype nz = SUNSparseMatrix_IndexPointers(a)[np];
   if (!SameShape(a, b) || SUNSparseMatrix_NNZ(b) < nz) return SUNMatCopy_Sparse(a, b);
   const sunindextype capacity = SUNSparseMatrix_NNZ(b);
-  std::memcpy(SUNSparseMatrix_Data(b), SUNSparseMatrix_Data(a), nz * sizeof(realtype));
+  std::memcpy(SUNSparseMatrix_Data(b), SUNSparseMatrix_Data(a), nz * sizeof(sunrealtype));
   std::memcpy(SUNSparseMatrix_IndexValues(b), SUNSparseMatrix_IndexValues(a),
               nz * sizeof(sunindextype));
-  std::memset(SUNSparseMatrix_Data(b) + nz, 0, (capacity - nz) * sizeof(realtype));
+  std::memset(SUNSparseMatrix_Data(b) + nz, 0, (capacity - nz) * sizeof(sunrealtype));
   std::memset(SUNSparseMatrix_IndexValues(b) + nz, 0, (capacity - nz) * sizeof(sunindextype));
   std::memcpy(SUNSparseMatrix_IndexPointers(b), SUNSparseMatrix_IndexPointers(a),
               (np + 1) * sizeof(sunindextype));
@@ -94,7 +94,7 @@ sunindextype Diagonal(const sunindextype* start, const sunindextype* index, suni
 }
 
 // A = c A + I.
-int SparseScaleAddI(realtype c, SUNMatrix m) {
+int SparseScaleAddI(sunrealtype c, SUNMatrix m) {
   const sunindextype* start = SUNSparseMatrix_IndexPointers(m);
   const sunindextype* index = SUNSparseMatrix_IndexValues(m);
   const sunindextype n = std::min(SUNSparseMatrix_Rows(m), SUNSparseMatrix_Columns(m));

@@ -9,9 +9,18 @@
 #pragma once
 
 #include <nvector/nvector_serial.h>
+#include <sundials/sundials_config.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
 namespace moorsim::internal {
+
+/// The communicator argument of SUNContext_Create for a serial run: a null pointer in
+/// SUNDIALS 6, SUN_COMM_NULL (SUNComm) from SUNDIALS 7 on.
+#if SUNDIALS_VERSION_MAJOR >= 7
+inline const SUNComm kNoCommunicator = SUN_COMM_NULL;
+#else
+inline void* const kNoCommunicator = nullptr;
+#endif
 
 /// Replaces the hot operations of a serial N_Vector (linear sum, scale, constant, fused
 /// linear combination and scale-add, weighted RMS norm, element-wise products).

@@ -81,7 +81,7 @@ struct Integrator::Impl {
   // KLU's own setup and solve, wrapped by timing functions in the solver's ops table. The
   // wrappers find this Impl through `active`, set around each CVode() call.
   int (*klu_setup)(SUNLinearSolver, SUNMatrix) = nullptr;
-  int (*klu_solve)(SUNLinearSolver, SUNMatrix, N_Vector, N_Vector, realtype) = nullptr;
+  int (*klu_solve)(SUNLinearSolver, SUNMatrix, N_Vector, N_Vector, sunrealtype) = nullptr;
   static thread_local Impl* active;
 
   static int TimedSetup(SUNLinearSolver S, SUNMatrix A) {
@@ -90,7 +90,7 @@ struct Integrator::Impl {
     active->setup_seconds += Now() - start;
     return flag;
   }
-  static int TimedSolve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, realtype tol) {
+  static int TimedSolve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, sunrealtype tol) {
     const double start = Now();
     const int flag = active->klu_solve(S, A, x, b, tol);
     active->solve_seconds += Now() - start;
@@ -131,7 +131,7 @@ struct Integrator::Impl {
     }
   }
 
-  static int Rhs(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
+  static int Rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
     auto* self = static_cast<Impl*>(user_data);
     const double start = Now();
     struct Clock {
@@ -168,7 +168,7 @@ struct Integrator::Impl {
     return 0;
   }
 
-  static int Jac(realtype t, N_Vector y, N_Vector fy, SUNMatrix J, void* user_data, N_Vector,
+  static int Jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void* user_data, N_Vector,
                  N_Vector, N_Vector) {
     auto* self = static_cast<Impl*>(user_data);
     const double start = Now();
@@ -206,7 +206,7 @@ Integrator::Integrator(OdeSystem& system, double t0, const double* x0,
   const SparsityPattern& pattern = system.JacobianPattern();
   if (pattern.size != n_) throw Error("integrator: Jacobian pattern size mismatch");
 
-  Check(SUNContext_Create(nullptr, &m.ctx), "SUNContext_Create");
+  Check(SUNContext_Create(internal::kNoCommunicator, &m.ctx), "SUNContext_Create");
   m.y = MakeStateVector(n_, m.ctx);
   std::copy(x0, x0 + n_, N_VGetArrayPointer(m.y));
   m.abstol = CheckPtr(N_VNew_Serial(n_, m.ctx), "N_VNew_Serial");
@@ -230,13 +230,15 @@ Integrator::Integrator(OdeSystem& system, double t0, const double* x0,
         "CVodeSetStabLimDet");
   Check(CVodeSetMaxNumSteps(m.cvode, options.max_steps_per_call), "CVodeSetMaxNumSteps");
   if (options.max_step > 0) Check(CVodeSetMaxStep(m.cvode, options.max_step), "CVodeSetMaxStep");
-  if (options.initial_step > 0) {
-    Check(CVodeSetInitStep(m.cvode, options.initial_step), "CVodeSetInitStep");
-  }
-  // CVODE's own error messages go to our exception text, not stderr.
+    // CVODE's own error messages go to our exception text, not stderr. SUNDIALS 7 replaced
+    // the per-solver handler by the context's handler stack (its default prints to stderr).
+#if SUNDIALS_VERSION_MAJOR >= 7
+  Check(SUNContext_ClearErrHandlers(m.ctx), "SUNContext_ClearErrHandlers");
+#else
   Check(CVodeSetErrHandlerFn(
             m.cvode, [](int, const char*, const char*, char*, void*) {}, nullptr),
         "CVodeSetErrHandlerFn");
+#endif
 
   m.A = CheckPtr(SUNSparseMatrix(n_, n_, pattern.nnz(), CSR_MAT, m.ctx), "SUNSparseMatrix");
   internal::InstallFastSparseOps(m.A);
@@ -259,14 +261,14 @@ void Integrator::AdvanceTo(double t_out) {
   if (t_out <= t_) return;
   Impl& m = *impl_;
   m.callback_error.clear();
-  realtype t_reached = t_;
+  sunrealtype t_reached = t_;
   Impl* const previous = Impl::active;
   Impl::active = &m;
   const int flag = CVode(m.cvode, t_out, m.y, &t_reached, CV_NORMAL);
   Impl::active = previous;
   if (flag < 0) {
-    realtype t_now = t_;
-    CVodeGetCurrentTime(m.cvode, &t_now);
+    sunrealtype t_now = t_;
+    if (CVodeGetCurrentTime(m.cvode, &t_now) < 0) t_now = t_;
     std::ostringstream msg;
     // CVodeGetReturnFlagName returns a malloc'd string that the caller frees.
     char* flag_name = CVodeGetReturnFlagName(flag);
@@ -281,38 +283,30 @@ void Integrator::AdvanceTo(double t_out) {
 
 const double* Integrator::state() const { return N_VGetArrayPointer(impl_->y); }
 
-std::vector<double> Integrator::WeightedLocalErrors() const {
-  N_Vector ele = N_VClone(impl_->y);
-  N_Vector ewt = N_VClone(impl_->y);
-  CVodeGetEstLocalErrors(impl_->cvode, ele);
-  CVodeGetErrWeights(impl_->cvode, ewt);
-  std::vector<double> out(n_);
-  for (int i = 0; i < n_; ++i) {
-    out[i] = std::abs(N_VGetArrayPointer(ele)[i]) * N_VGetArrayPointer(ewt)[i];
-  }
-  N_VDestroy(ele);
-  N_VDestroy(ewt);
-  return out;
-}
-
 IntegratorStats Integrator::stats() const {
   IntegratorStats s;
   void* cv = impl_->cvode;
   long nsteps = 0, nfevals = 0, nlinsetups = 0, netfails = 0;
   int qlast = 0, qcur = 0;
-  realtype hinused = 0, hlast = 0, hcur = 0, tcur = 0;
-  CVodeGetIntegratorStats(cv, &nsteps, &nfevals, &nlinsetups, &netfails, &qlast, &qcur, &hinused,
-                          &hlast, &hcur, &tcur);
+  sunrealtype hinused = 0, hlast = 0, hcur = 0, tcur = 0;
+  // The getters fail only for a null or uninitialised CVODE memory, which would be a bug.
+  const auto get = [](int flag, const char* call) {
+    if (flag < 0) throw ContractError(std::string("SUNDIALS call ") + call + " failed");
+  };
+  get(CVodeGetIntegratorStats(cv, &nsteps, &nfevals, &nlinsetups, &netfails, &qlast, &qcur,
+                              &hinused, &hlast, &hcur, &tcur),
+      "CVodeGetIntegratorStats");
   s.steps = nsteps;
   s.rhs_evals = nfevals;
   s.linear_setups = nlinsetups;
   s.error_test_failures = netfails;
   s.last_step = hlast;
   s.last_order = qlast;
-  CVodeGetNumJacEvals(cv, &s.jacobian_evals);
-  CVodeGetNumNonlinSolvIters(cv, &s.newton_iterations);
-  CVodeGetNumNonlinSolvConvFails(cv, &s.newton_failures);
-  CVodeGetNumStabLimOrderReds(cv, &s.stability_order_reductions);
+  get(CVodeGetNumJacEvals(cv, &s.jacobian_evals), "CVodeGetNumJacEvals");
+  get(CVodeGetNumNonlinSolvIters(cv, &s.newton_iterations), "CVodeGetNumNonlinSolvIters");
+  get(CVodeGetNumNonlinSolvConvFails(cv, &s.newton_failures), "CVodeGetNumNonlinSolvConvFails");
+  get(CVodeGetNumStabLimOrderReds(cv, &s.stability_order_reductions),
+      "CVodeGetNumStabLimOrderReds");
   s.rhs_seconds = impl_->rhs_seconds;
   s.jacobian_seconds = impl_->jacobian_seconds;
   s.linear_setup_seconds = impl_->setup_seconds;

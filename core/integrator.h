@@ -21,8 +21,7 @@ struct IntegratorOptions {
   std::vector<double> reference;
   int max_order = 5;  ///< BDF order cap, 1..5
   bool stability_limit_detection = true;
-  double max_step = 0.0;      ///< [s], 0 = unlimited
-  double initial_step = 0.0;  ///< [s], 0 = CVODE's estimate
+  double max_step = 0.0;  ///< [s], 0 = unlimited
   long max_steps_per_call = 200000;
 };
 
@@ -67,9 +66,6 @@ class Integrator {
   const double* state() const;
   int size() const { return n_; }
   IntegratorStats stats() const;
-  /// |estimated local error| x error weight of each component for the last step: the
-  /// components that limit the step size have the largest values (a diagnostic).
-  std::vector<double> WeightedLocalErrors() const;
 
  private:
   struct Impl;

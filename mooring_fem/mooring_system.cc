@@ -5,8 +5,10 @@
 #include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
+#include <string>
 
 #include "core/error.h"
 #include "mooring_fem/catenary.h"
@@ -22,6 +24,17 @@ const Vec3 kDown(0.0, 0.0, 1.0);  // NED: gravity along +z
 constexpr int kBelow = 0;
 constexpr int kSelf = 1;
 constexpr int kAbove = 2;
+
+// Static equilibrium (SettleStatic): Newton's method on the node force balance F(x) = 0.
+// Without current F is minus the gradient of a convex potential (tension-only springs,
+// weight, seabed penalty), so K = dF/dx is negative semi-definite, but singular where a
+// node has no taut segment and no seabed contact: nodes placed on the continuum catenary
+// near touchdown, where a segment's chord is shorter than the arc it spans, hang slack. A
+// shift (K - mu I) then makes the step solvable (Levenberg-Marquardt), and the line search
+// follows the potential, not the residual norm, which a slack node falling does not change.
+constexpr int kMaxStaticIterations = 500;
+constexpr int kMaxLineSearchSteps = 60;
+constexpr double kMaxLineSearchExtrapolation = 1e9;
 
 // Morison drag of half a segment (stretched length L) on relative velocity u, and its
 // derivatives w.r.t. u and the segment vector l. Normal part -c_n (L/2)|u_n| u_n,
@@ -587,10 +600,22 @@ double MooringSystem::SettleStatic(std::span<const Vec3> fairlead_positions, dou
     // Round-off floor of the node force balance is ~1e-15 EA; ask for far less than any
     // physical effect (1e-11 EA = 2 mN for the seed chain) but well above that floor.
     const double tolerance = 1e-11 * lp.axial_stiffness;
+    // The Levenberg-Marquardt shift starts at a millionth of one segment's axial stiffness
+    // and may grow to a million times it (then a step moves a node by less than a millionth
+    // of the elastic stretch its residual force would cause: no progress is possible).
+    const double segment_stiffness = lp.axial_stiffness / lp.segment_length;
+    const double min_shift = 1e-6 * segment_stiffness;
+    const double max_shift = 1e6 * segment_stiffness;
     Eigen::VectorXd residual(3 * S);
+    // The largest node force [N]; +inf for a state with a zero-length segment (two nodes
+    // on top of each other: no tangent, no force).
     auto evaluate = [&]() {
       GatherChain(c, x, fairleads);
-      ComputeSegments(c);
+      try {
+        ComputeSegments(c);
+      } catch (const RecoverableStateError&) {
+        return std::numeric_limits<double>::infinity();
+      }
       for (int i = 0; i < S; ++i) {
         Vec3 F;
         Mat3 M;
@@ -599,17 +624,43 @@ double MooringSystem::SettleStatic(std::span<const Vec3> fairlead_positions, dou
       }
       return residual.lpNorm<Eigen::Infinity>();
     };
+    const auto fail = [&](const std::string& why) {
+      std::ostringstream msg;
+      msg << "static equilibrium of line " << lp.id << " did not converge: " << why;
+      throw Error(msg.str());
+    };
     double norm = evaluate();
+    if (!std::isfinite(norm)) {
+      GatherChain(c, x, fairleads);
+      try {
+        ComputeSegments(c);
+      } catch (const RecoverableStateError& e) {
+        throw Error("static equilibrium of line " + std::to_string(lp.id) +
+                    ": the start state is degenerate (" + e.what() + ")");
+      }
+      fail("the node forces of the start state are not finite");
+    }
     int iteration = 0;
+    double shift = 0.0;
     Eigen::SparseLU<Eigen::SparseMatrix<double>> solver;
     std::vector<Eigen::Triplet<double>> triplets;
+    std::vector<double> saved(6 * S);
     while (norm > tolerance) {
-      if (++iteration > 100) {
-        std::ostringstream msg;
-        msg << "static equilibrium of line " << lp.id << " did not converge (residual " << norm
-            << " N after 100 Newton iterations)";
-        throw Error(msg.str());
+      if (++iteration > kMaxStaticIterations) {
+        std::ostringstream why;
+        why << "residual node force " << norm << " N after " << kMaxStaticIterations
+            << " Newton iterations (tolerance " << tolerance << " N)";
+        fail(why.str());
       }
+      const auto raise_shift = [&]() {
+        shift = std::max(min_shift, 10.0 * shift);
+        if (shift > max_shift) {
+          std::ostringstream why;
+          why << "residual node force " << norm << " N and no step reduces it (iteration "
+              << iteration << ")";
+          fail(why.str());
+        }
+      };
       triplets.clear();
       for (int i = 0; i < S; ++i) {
         NodeForceJacobian(c, first + i, Vec3::Zero(), &J);
@@ -619,29 +670,71 @@ double MooringSystem::SettleStatic(std::span<const Vec3> fairlead_positions, dou
             for (int b = 0; b < 3; ++b) triplets.emplace_back(3 * i + a, 3 * j + b, B(a, b));
           }
         }
+        if (shift > 0.0) {
+          for (int a = 0; a < 3; ++a) triplets.emplace_back(3 * i + a, 3 * i + a, -shift);
+        }
       }
       Eigen::SparseMatrix<double> K(3 * S, 3 * S);
       K.setFromTriplets(triplets.begin(), triplets.end());
       solver.compute(K);
-      if (solver.info() != Eigen::Success) {
-        throw Error("static equilibrium of line " + std::to_string(lp.id) +
-                    ": singular stiffness matrix");
+      if (solver.info() != Eigen::Success) {  // a node with no taut segment and no contact
+        raise_shift();
+        continue;
       }
       const Eigen::VectorXd step = solver.solve(-residual);
-      // Backtracking on the residual norm keeps the iteration from overshooting the
-      // seabed contact or going slack.
-      std::vector<double> saved(xc, xc + 6 * S);
-      double lambda = 1.0;
-      double trial = 0.0;
-      for (int tries = 0; tries < 30; ++tries) {
+      // phi(lambda) = F(x + lambda step) . step is minus the slope of the potential energy
+      // along the step: positive while the energy still falls.
+      const double phi0 = residual.dot(step);
+      if (!step.allFinite() || !(phi0 > 0.0)) {  // not downhill: lean toward F itself
+        raise_shift();
+        continue;
+      }
+      std::copy(xc, xc + 6 * S, saved.begin());
+      const auto move_to = [&](double lambda) {
         for (int i = 0; i < S; ++i) {
           for (int m = 0; m < 3; ++m) xc[6 * i + m] = saved[6 * i + m] + lambda * step(3 * i + m);
         }
-        trial = evaluate();
-        if (trial < norm || trial <= tolerance) break;
-        lambda *= 0.5;
+        return evaluate();
+      };
+      // Line search for phi = 0 (Crisfield): accept a step once |phi| has fallen to half
+      // of phi0; extrapolate while phi stays positive (a node falling slack through the
+      // water feels the same force all the way), bisect once it turns negative.
+      double below = 0.0;  // largest lambda known to have phi > 0
+      double above = std::numeric_limits<double>::infinity();
+      double lambda = 1.0;
+      double accepted = 0.0;
+      double trial = norm;
+      double evaluated_at = 0.0;
+      for (int k = 0; k < kMaxLineSearchSteps; ++k) {
+        trial = move_to(lambda);
+        evaluated_at = lambda;
+        const double phi =
+            std::isfinite(trial) ? residual.dot(step) : -std::numeric_limits<double>::infinity();
+        if (trial <= tolerance || std::abs(phi) <= 0.5 * phi0) {
+          accepted = lambda;
+          break;
+        }
+        if (phi > 0.0) {
+          below = lambda;
+          lambda = std::isinf(above) ? 2.0 * lambda : 0.5 * (below + above);
+          if (lambda > kMaxLineSearchExtrapolation) break;
+        } else {
+          above = lambda;
+          lambda = 0.5 * (below + above);
+        }
       }
+      if (accepted == 0.0) accepted = below;  // the energy fell all the way to `below`
+      if (accepted == 0.0) {                  // no progress along this step
+        std::copy(saved.begin(), saved.end(), xc);
+        norm = evaluate();
+        raise_shift();
+        continue;
+      }
+      if (evaluated_at != accepted) trial = move_to(accepted);
+      if (!std::isfinite(trial)) fail("the node forces are not finite");
       norm = trial;
+      // A full step is Newton doing well: relax the shift toward plain Newton.
+      if (accepted == 1.0) shift = shift / 10.0 < min_shift ? 0.0 : shift / 10.0;
     }
     worst = std::max(worst, norm);
   }

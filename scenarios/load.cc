@@ -87,12 +87,138 @@ std::string KeyPath(const std::string& parent, std::string_view key) {
 double Radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
 
 // ---------------------------------------------------------------------------------------
+// Text encoding: scenario files and --set values are UTF-8 (the run's outputs record them
+// in JSON, which is UTF-8 only).
+
+// Length of the well-formed UTF-8 sequence at text[i] (RFC 3629: no overlong forms, no
+// surrogates, nothing above U+10FFFF), or 0 if the byte there does not start one.
+std::size_t Utf8SequenceLength(std::string_view text, std::size_t i) {
+  const auto byte = [&](std::size_t k) {
+    return k < text.size() ? static_cast<unsigned char>(text[k]) : 0u;
+  };
+  const unsigned lead = byte(i);
+  const auto continuation = [&](std::size_t k, unsigned low = 0x80, unsigned high = 0xBF) {
+    return byte(k) >= low && byte(k) <= high;
+  };
+  if (lead < 0x80) return 1;
+  if (lead >= 0xC2 && lead <= 0xDF) return continuation(i + 1) ? 2 : 0;
+  if (lead >= 0xE0 && lead <= 0xEF) {
+    const unsigned low = lead == 0xE0 ? 0xA0 : 0x80;   // no overlong forms
+    const unsigned high = lead == 0xED ? 0x9F : 0xBF;  // no surrogates
+    return continuation(i + 1, low, high) && continuation(i + 2) ? 3 : 0;
+  }
+  if (lead >= 0xF0 && lead <= 0xF4) {
+    const unsigned low = lead == 0xF0 ? 0x90 : 0x80;   // no overlong forms
+    const unsigned high = lead == 0xF4 ? 0x8F : 0xBF;  // nothing above U+10FFFF
+    return continuation(i + 1, low, high) && continuation(i + 2) && continuation(i + 3) ? 4 : 0;
+  }
+  return 0;
+}
+
+// Offset of the first byte that is not part of well-formed UTF-8, if any.
+std::optional<std::size_t> FirstInvalidUtf8(std::string_view text) {
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t length = Utf8SequenceLength(text, i);
+    if (length == 0) return i;
+    i += length;
+  }
+  return std::nullopt;
+}
+
+std::string HexByte(unsigned char byte) {
+  static constexpr char kDigits[] = "0123456789ABCDEF";
+  return std::string("0x") + kDigits[byte >> 4] + kDigits[byte & 0xF];
+}
+
+// The text with every byte outside well-formed UTF-8 written as \xNN, so a message that
+// quotes it is UTF-8 itself.
+std::string EscapeInvalidUtf8(std::string_view text) {
+  std::string shown;
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t length = Utf8SequenceLength(text, i);
+    if (length == 0) {
+      shown += "\\x" + HexByte(static_cast<unsigned char>(text[i])).substr(2);
+      ++i;
+    } else {
+      shown.append(text.substr(i, length));
+      i += length;
+    }
+  }
+  return shown;
+}
+
+// "not valid UTF-8 (byte 0xE9); ...": the message tail for the bad byte at `offset`.
+std::string InvalidUtf8(std::string_view text, std::size_t offset) {
+  return "not valid UTF-8 (byte " + HexByte(static_cast<unsigned char>(text[offset])) +
+         "); save the file as UTF-8";
+}
+
+// 1-based line and column (in bytes, as yaml-cpp counts them) of byte `offset`.
+SourceMark MarkOfOffset(std::string_view text, std::size_t offset) {
+  const std::size_t line_start =
+      offset == 0 ? std::string_view::npos : text.rfind('\n', offset - 1);
+  const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(offset), '\n');
+  const std::size_t column =
+      line_start == std::string_view::npos ? offset + 1 : offset - line_start;
+  return {static_cast<int>(line), static_cast<int>(column)};
+}
+
+// ---------------------------------------------------------------------------------------
+// YAML tags. A tag changes how a value reads (`!!str 1.0041e8` is text that yaml-cpp still
+// converts to a number; `!!binary`, `!foo` are not numbers at all), so none is accepted.
+// yaml-cpp gives a plain scalar the tag "?" and a quoted or block scalar "!"; an explicit
+// non-specific tag (`! 5`) is also "!", told apart by the '!' written at the node (after an
+// anchor, if any).
+
+// The tag as the user wrote it ("!!str" for "tag:yaml.org,2002:str"), or nothing.
+std::optional<std::string> ExplicitTag(const YAML::Node& node, const std::string* text) {
+  const std::string& tag = node.Tag();
+  if (tag.empty() || tag == "?") return std::nullopt;
+  if (tag != "!") {
+    constexpr std::string_view kCore = "tag:yaml.org,2002:";
+    if (tag.compare(0, kCore.size(), kCore) == 0) return "!!" + tag.substr(kCore.size());
+    if (tag[0] == '!') return tag;
+    return "!<" + tag + ">";
+  }
+  const YAML::Mark mark = node.Mark();
+  if (text == nullptr || mark.is_null() || mark.pos < 0 ||
+      static_cast<std::size_t>(mark.pos) >= text->size()) {
+    return std::nullopt;
+  }
+  std::size_t i = static_cast<std::size_t>(mark.pos);
+  if ((*text)[i] == '&') {  // an anchor first: skip its name and the blanks after it
+    while (i < text->size() && (*text)[i] != ' ' && (*text)[i] != '\t' && (*text)[i] != '\n') ++i;
+    while (i < text->size() && ((*text)[i] == ' ' || (*text)[i] == '\t')) ++i;
+  }
+  if (i < text->size() && (*text)[i] == '!') return std::string("!");
+  return std::nullopt;
+}
+
+// Throws InputError `prefix`: tagged value ... for the first tagged node in a --set value.
+void CheckOverrideUntagged(const YAML::Node& node, const std::string& text,
+                           const std::string& prefix) {
+  if (const std::optional<std::string> tag = ExplicitTag(node, &text)) {
+    throw InputError(prefix + ": tagged value '" + *tag +
+                     "' (tags are not accepted; write the plain value)");
+  }
+  if (node.IsMap()) {
+    for (const auto& entry : node) {
+      CheckOverrideUntagged(entry.first, text, prefix);
+      CheckOverrideUntagged(entry.second, text, prefix);
+    }
+  } else if (node.IsSequence()) {
+    for (const auto& item : node) CheckOverrideUntagged(item, text, prefix);
+  }
+}
+
+// ---------------------------------------------------------------------------------------
 // Strict reading of one YAML node at a key path.
 
 struct ParseContext {
   std::string file;
   std::map<std::string, SourceMark>* marks;  // filled with the position of every node read
   std::vector<std::string> overridden;       // key paths set from the command line
+  const std::string* text = nullptr;         // the YAML text the marks point into
 };
 
 // Whether `path` is an overridden key path or lies under one.
@@ -133,7 +259,8 @@ class Reader {
   Reader(const ParseContext& context, YAML::Node node, std::string path, SourceMark mark)
       : context_(&context), node_(std::move(node)), path_(std::move(path)), mark_(mark) {
     // A value from --set has no place in the file: messages name the key path only.
-    if (Overridden(*context_, path_)) mark_ = {};
+    overridden_ = Overridden(*context_, path_);
+    if (overridden_) mark_ = {};
     (*context_->marks)[path_] = mark_;
   }
 
@@ -142,11 +269,13 @@ class Reader {
   std::string Text() const { return Describe(node_); }
   /// The keys of a map, in order; duplicate keys and non-scalar keys are errors.
   std::vector<std::string> Keys() const {
+    CheckUntagged("the plain map");
     std::vector<std::string> keys;
     for (const auto& entry : node_) {
       const SourceMark key_mark = ToSourceMark(entry.first.Mark());
       if (!entry.first.IsScalar())
         ThrowAt(context_->file, key_mark, path_, "keys must be plain names");
+      CheckKeyUntagged(entry.first, key_mark);
       const std::string& name = entry.first.Scalar();
       if (std::find(keys.begin(), keys.end(), name) != keys.end()) {
         ThrowAt(context_->file, key_mark, path_, "duplicate key '" + name + "'");
@@ -162,12 +291,14 @@ class Reader {
 
   /// Requires a map whose keys are all in `known`, each at most once.
   void CheckKeys(std::vector<std::string_view> known) const {
+    CheckUntagged("the plain map");
     if (!node_.IsMap()) Fail(Describe(node_) + " must be a map");
     std::vector<std::string> seen;
     for (const auto& entry : node_) {
       const YAML::Node& key = entry.first;
       const SourceMark key_mark = ToSourceMark(key.Mark());
       if (!key.IsScalar()) ThrowAt(context_->file, key_mark, path_, "keys must be plain names");
+      CheckKeyUntagged(key, key_mark);
       const std::string& name = key.Scalar();
       if (std::find(known.begin(), known.end(), name) == known.end()) {
         ThrowAt(context_->file, key_mark, path_,
@@ -201,6 +332,7 @@ class Reader {
   }
 
   std::vector<Reader> Items() const {
+    CheckUntagged("the plain list");
     if (!node_.IsSequence()) Fail(Describe(node_) + " must be a list");
     std::vector<Reader> items;
     for (std::size_t i = 0; i < node_.size(); ++i) {
@@ -211,6 +343,16 @@ class Reader {
 
   template <class T>
   T As() const;
+
+  /// Rejects an explicit tag on this value (`!!str 5`, `!foo`, `! 5`); `plain` says what
+  /// to write instead ("the plain number", "true or false", ...).
+  void CheckUntagged(std::string_view plain) const {
+    // A --set value was checked, with its own text, when it was applied.
+    if (overridden_) return;
+    if (const std::optional<std::string> tag = ExplicitTag(node_, context_->text)) {
+      Fail("tagged value '" + *tag + "' (tags are not accepted; write " + std::string(plain) + ")");
+    }
+  }
 
   template <class T>
   T Required(std::string_view key) const {
@@ -230,9 +372,18 @@ class Reader {
   }
 
  private:
+  void CheckKeyUntagged(const YAML::Node& key, SourceMark key_mark) const {
+    if (overridden_) return;
+    if (const std::optional<std::string> tag = ExplicitTag(key, context_->text)) {
+      ThrowAt(context_->file, key_mark, path_,
+              "tagged key '" + *tag + "' (tags are not accepted; write the plain name)");
+    }
+  }
+
   // A plain scalar (not quoted) that yaml-cpp's own conversion accepts.
   template <class T>
-  T Decode(const char* expected) const {
+  T Decode(const char* expected, std::string_view plain) const {
+    CheckUntagged(plain);
     T value{};
     if (!node_.IsScalar() || node_.Tag() == "!" || !YAML::convert<T>::decode(node_, value)) {
       Fail(Describe(node_) + " must be " + expected);
@@ -244,42 +395,46 @@ class Reader {
   YAML::Node node_;
   std::string path_;
   SourceMark mark_;
+  bool overridden_ = false;
 };
 
 template <>
 double Reader::As<double>() const {
-  const double value = Decode<double>("a number");
+  const double value = Decode<double>("a number", "the plain number");
   if (!std::isfinite(value)) Fail(Describe(node_) + " must be a finite number");
   return value;
 }
 
 template <>
 int Reader::As<int>() const {
-  return Decode<int>("an integer");
+  return Decode<int>("an integer", "the plain integer");
 }
 
 template <>
 bool Reader::As<bool>() const {
-  return Decode<bool>("true or false");
+  return Decode<bool>("true or false", "true or false");
 }
 
 template <>
 std::string Reader::As<std::string>() const {
+  CheckUntagged("the plain text");
   if (!node_.IsScalar()) Fail(Describe(node_) + " must be a string");
   return node_.Scalar();
 }
 
 template <>
 std::uint64_t Reader::As<std::uint64_t>() const {
+  CheckUntagged("the plain integer");
   if (!node_.IsScalar() || node_.Tag() == "!" || node_.Scalar().empty() ||
       node_.Scalar()[0] == '-') {
     Fail(Describe(node_) + " must be a non-negative integer");
   }
-  return Decode<std::uint64_t>("a non-negative integer");
+  return Decode<std::uint64_t>("a non-negative integer", "the plain integer");
 }
 
 template <>
 Vec3 Reader::As<Vec3>() const {
+  CheckUntagged("the plain list");
   if (!node_.IsSequence() || node_.size() != 3) {
     Fail(Describe(node_) + " must be a list of 3 numbers [x, y, z]");
   }
@@ -293,6 +448,14 @@ Vec3 Reader::As<Vec3>() const {
 // Neither axial_damping nor axial_damping_ratio given: half of a segment's critical
 // damping stops the stiff axial modes from ringing and is invisible at wave periods.
 constexpr double kDefaultAxialDampingRatio = 0.5;
+
+// An angle under a *_deg key, in radians. Checked here, where the degrees are still as
+// written: beyond a full turn either way it is a unit mistake or a typo.
+double AngleDegrees(const Reader& r) {
+  const double degrees = r.As<double>();
+  if (!(std::abs(degrees) <= 360.0)) r.Fail(Number(degrees) + " deg must be in [-360, 360]");
+  return Radians(degrees);
+}
 
 void ParseWater(const Reader& r, Water& water) {
   r.CheckKeys({"density", "depth", "gravity"});
@@ -311,7 +474,7 @@ void ParseSeabed(const Reader& r, Seabed& seabed) {
 
 void ParseCurrent(const Reader& r, CurrentProfile& current) {
   r.CheckKeys({"direction_deg", "profile"});
-  current.direction = Radians(r.Required<double>("direction_deg"));
+  current.direction = AngleDegrees(r.Child("direction_deg"));
   const Reader profile = r.Child("profile");
   const std::vector<Reader> points = profile.Items();
   if (points.empty()) profile.Fail("[] must hold at least one {depth, speed} point");
@@ -404,7 +567,7 @@ void ParseSolver(const Reader& r, Scenario& scenario) {
 
 // Angles under *_deg keys.
 double Degrees(const Reader& r, std::string_view key, double fallback_rad) {
-  if (std::optional<double> deg = r.Maybe<double>(key)) return Radians(*deg);
+  if (std::optional<Reader> degrees = r.Find(key)) return AngleDegrees(*degrees);
   return fallback_rad;
 }
 
@@ -466,7 +629,7 @@ void ParseEnvironment(const Reader& r, Scenario& scenario) {
     e.waves.significant_height = w->Required<double>("hs");
     e.waves.peak_period = w->Required<double>("tp");
     w->Optional("gamma", e.waves.gamma);
-    e.waves.direction_toward = Radians(w->Required<double>("direction_toward_deg"));
+    e.waves.direction_toward = AngleDegrees(w->Child("direction_toward_deg"));
     e.waves.spreading = w->Maybe<double>("spreading");
     w->Optional("components", e.waves.components);
   }
@@ -474,7 +637,7 @@ void ParseEnvironment(const Reader& r, Scenario& scenario) {
     w->CheckKeys({"components", "direction_from_deg", "gust", "speed"});
     e.wind.enabled = true;
     e.wind.speed = w->Required<double>("speed");
-    e.wind.direction_from = Radians(w->Required<double>("direction_from_deg"));
+    e.wind.direction_from = AngleDegrees(w->Child("direction_from_deg"));
     w->Optional("gust", e.wind.gust);
     w->Optional("components", e.wind.components);
   }
@@ -493,7 +656,7 @@ void ParseController(const Reader& r, Scenario& scenario) {
   if (std::optional<Reader> p = r.Find("setpoint")) {
     p->CheckKeys({"heading_deg", "x", "y"});
     c.setpoint = Vec3(p->Required<double>("x"), p->Required<double>("y"),
-                      Radians(p->Required<double>("heading_deg")));
+                      AngleDegrees(p->Child("heading_deg")));
   }
   r.Optional("kp", c.kp);
   r.Optional("ki", c.ki);
@@ -656,6 +819,22 @@ class Checker {
     }
   }
 
+  // Upper bounds and two-sided ranges. `why` (may be empty) says where the bound comes
+  // from; it follows the rule in parentheses.
+  void AtMost(const std::string& path, double value, double high, std::string_view unit,
+              std::string_view why = {}) const {
+    if (!(value <= high))
+      Fail(path, WithUnit(value, unit) + " must be <= " + Number(high) + Why(why));
+  }
+
+  void Between(const std::string& path, double value, double low, double high,
+               std::string_view unit, std::string_view why = {}) const {
+    if (!(value >= low && value <= high)) {
+      Fail(path, WithUnit(value, unit) + " must be in [" + Number(low) + ", " + Number(high) + "]" +
+                     Why(why));
+    }
+  }
+
  private:
   // A value that was not written (a default) is reported at the nearest enclosing block
   // that was: "mooring.lines[2].id" falls back to the entry "mooring.lines[2]".
@@ -668,21 +847,49 @@ class Checker {
     return {};
   }
 
+  static std::string Why(std::string_view why) {
+    return why.empty() ? "" : " (" + std::string(why) + ")";
+  }
+
   std::string file_;
   const std::map<std::string, SourceMark>& marks_;
 };
 
+// Physical bounds (issue 9). Beyond them a value is a typo or a unit mistake (a mass in
+// tonnes, a period in minutes, 1e308) that would otherwise overflow or stall the solvers
+// deep in a run. Each is stated in the message and in scenarios/README.md.
+constexpr double kMaxDepth = 12000.0;          // [m]: the deepest ocean is 11 km
+constexpr double kMaxLineLength = 20000.0;     // [m]
+constexpr double kMaxCoefficient = 10.0;       // drag, added-mass, friction: of order 1
+constexpr double kMaxTime = 1e7;               // [s], 116 days: run lengths, time constants
+constexpr double kMaxRate = 1000.0;            // [Hz]: sample and output rates
+constexpr double kMaxOffset = 1e5;             // [m]: vessel positions in the field
+constexpr double kMaxBodyCoordinate = 1000.0;  // [m]: points on the vessel
+constexpr double kMaxOutputRows = 1e9;         // simulation.duration x output_rate_hz
+// An anchor lies on the seabed: the static catenary that starts every run and the
+// detectors' quasi-static line model both take the seabed through the anchor.
+constexpr double kAnchorAboveSeabed = 1.0;  // [m]
+
+constexpr std::string_view kCoefficientWhy = "a dimensionless coefficient, of order 1";
+constexpr std::string_view kVesselPointWhy = "a point on the vessel";
+
 void CheckWater(const Checker& check, const Water& water) {
-  check.Positive("mooring.water.density", water.density, "kg/m^3");
-  check.Positive("mooring.water.gravity", water.gravity, "m/s^2");
+  check.Between("mooring.water.density", water.density, 900.0, 1100.0, "kg/m^3",
+                "water: fresh 1000, sea about 1025");
+  check.Between("mooring.water.gravity", water.gravity, 9.7, 9.9, "m/s^2", "Earth's gravity");
   check.Positive("mooring.water.depth", water.depth, "m");
+  check.AtMost("mooring.water.depth", water.depth, kMaxDepth, "m", "the deepest ocean is 11 km");
 }
 
 void CheckSeabed(const Checker& check, const Seabed& seabed) {
   check.Positive("mooring.seabed.stiffness", seabed.stiffness, "N/m^3");
+  check.AtMost("mooring.seabed.stiffness", seabed.stiffness, 1e10, "N/m^3", "stiffer than rock");
   check.NonNegative("mooring.seabed.damping", seabed.damping, "N s/m^3");
+  check.AtMost("mooring.seabed.damping", seabed.damping, 1e10, "N s/m^3");
   check.Positive("mooring.seabed.contact_smoothing", seabed.contact_smoothing, "m");
+  check.AtMost("mooring.seabed.contact_smoothing", seabed.contact_smoothing, 10.0, "m");
   check.Positive("mooring.seabed.friction_velocity", seabed.friction_velocity, "m/s");
+  check.AtMost("mooring.seabed.friction_velocity", seabed.friction_velocity, 10.0, "m/s");
 }
 
 void CheckCurrent(const Checker& check, const CurrentProfile& current) {
@@ -695,18 +902,23 @@ void CheckCurrent(const Checker& check, const CurrentProfile& current) {
   for (std::size_t i = 0; i < current.depth.size(); ++i) {
     const std::string point = ItemPath(profile, i);
     check.NonNegative(point + ".depth", current.depth[i], "m");
+    check.AtMost(point + ".depth", current.depth[i], kMaxDepth, "m", "the deepest ocean is 11 km");
     if (i > 0 && !(current.depth[i] > current.depth[i - 1])) {
       check.Fail(point + ".depth", WithUnit(current.depth[i], "m") +
                                        " must be greater than the previous point's depth " +
                                        WithUnit(current.depth[i - 1], "m"));
     }
     check.NonNegative(point + ".speed", current.speed[i], "m/s");
+    check.AtMost(point + ".speed", current.speed[i], 5.0, "m/s",
+                 "the strongest ocean currents run at about 2.5 m/s");
   }
 }
 
 void CheckLineType(const Checker& check, const LineType& type, const std::string& path,
                    const Water& water) {
   check.Positive(path + ".diameter", type.diameter, "m");
+  check.AtMost(path + ".diameter", type.diameter, 1.0, "m",
+               "the thickest mooring lines are about 0.3 m");
   // A line no heavier than the water it displaces has no submerged weight: no catenary,
   // nothing holds it on the seabed.
   const double displaced = water.density * std::numbers::pi * type.diameter * type.diameter / 4.0;
@@ -715,24 +927,34 @@ void CheckLineType(const Checker& check, const LineType& type, const std::string
                WithUnit(type.mass_per_length, "kg/m") + " must exceed the displaced water mass " +
                    Significant(displaced, 4) + " kg/m (the line would float)");
   }
+  check.AtMost(path + ".mass_per_length", type.mass_per_length, 10000.0, "kg/m",
+               "the heaviest chains weigh about 1000 kg/m");
   check.Positive(path + ".axial_stiffness", type.axial_stiffness, "N");
+  check.AtMost(path + ".axial_stiffness", type.axial_stiffness, 1e11, "N",
+               "a solid steel bar 0.8 m thick");
   if (type.axial_damping && type.axial_damping_ratio) {
     check.Fail(path + ".axial_damping_ratio",
                Number(*type.axial_damping_ratio) + " cannot be combined with axial_damping " +
                    WithUnit(*type.axial_damping, "N s") + "; give one of them");
   }
-  if (type.axial_damping) check.NonNegative(path + ".axial_damping", *type.axial_damping, "N s");
+  if (type.axial_damping) {
+    check.NonNegative(path + ".axial_damping", *type.axial_damping, "N s");
+    check.AtMost(path + ".axial_damping", *type.axial_damping, 1e10, "N s");
+  }
   if (type.axial_damping_ratio) {
     const double ratio = *type.axial_damping_ratio;
     if (!(ratio >= 0.0 && ratio <= 10.0)) {
       check.Fail(path + ".axial_damping_ratio", Number(ratio) + " must be in [0, 10]");
     }
   }
-  check.NonNegative(path + ".drag_normal", type.drag_normal, "");
-  check.NonNegative(path + ".drag_tangential", type.drag_tangential, "");
-  check.NonNegative(path + ".added_mass_normal", type.added_mass_normal, "");
-  check.NonNegative(path + ".friction_axial", type.friction_axial, "");
-  check.NonNegative(path + ".friction_lateral", type.friction_lateral, "");
+  for (const auto& [key, value] : {std::pair{".drag_normal", type.drag_normal},
+                                   {".drag_tangential", type.drag_tangential},
+                                   {".added_mass_normal", type.added_mass_normal},
+                                   {".friction_axial", type.friction_axial},
+                                   {".friction_lateral", type.friction_lateral}}) {
+    check.NonNegative(path + key, value, "");
+    check.AtMost(path + key, value, kMaxCoefficient, "", kCoefficientWhy);
+  }
 }
 
 void CheckLineTypes(const Checker& check, const MooringSpec& mooring) {
@@ -753,24 +975,56 @@ void CheckLineTypes(const Checker& check, const MooringSpec& mooring) {
 constexpr int kMinSegments = 2;
 constexpr int kMaxSegments = 10000;
 
+// Messages name a line's entry as written; lines may already be sorted by id.
+std::string LinePath(const LineSpec& line, std::size_t index) {
+  return ItemPath("mooring.lines", line.entry > 0 ? line.entry - 1 : index);
+}
+
+// The fairlead's Earth position with the vessel at x, y [m], heading psi [rad].
+Vec3 FairleadAt(const Vec3& body, double x, double y, double psi) {
+  const double c = std::cos(psi);
+  const double s = std::sin(psi);
+  return Vec3(x + c * body.x() - s * body.y(), y + s * body.x() + c * body.y(), body.z());
+}
+
+// What keeps `line` from being held with its fairlead at `fairlead` (a message tail
+// starting with the length), or "" if nothing does. It must reach: the straight
+// anchor-fairlead distance is the least length that does. It must not be slack: a line as
+// long as the horizontal distance plus the fairlead's height above the anchor lies on the
+// seabed with no horizontal tension (the catenary's parameter H/w goes to 0), holds
+// nothing and has no unique static shape. The tension grows smoothly between the two.
+std::string LineGeometryProblem(const LineSpec& line, const Vec3& fairlead) {
+  const double distance = (line.anchor - fairlead).norm();
+  if (line.length < distance) {
+    return WithUnit(line.length, "m") + " is shorter than the anchor-fairlead distance " +
+           Fixed(distance, 1) + " m";
+  }
+  const double span = (line.anchor - fairlead).head<2>().norm();
+  const double height = line.anchor.z() - fairlead.z();
+  if (!(line.length < span + height)) {
+    return WithUnit(line.length, "m") +
+           " must be shorter than the horizontal anchor-fairlead distance plus the fairlead's "
+           "height above the anchor, " +
+           Fixed(span, 1) + " + " + Fixed(height, 1) + " = " + Fixed(span + height, 1) +
+           " m (a longer line lies slack on the seabed, with no horizontal tension)";
+  }
+  return "";
+}
+
 void CheckLines(const Checker& check, const MooringSpec& mooring) {
   const std::vector<LineSpec>& lines = mooring.lines;
   if (lines.empty()) check.Fail("mooring.lines", "[] must list at least one line");
   const int count = static_cast<int>(lines.size());
-  // Messages name the entry as written; lines may already be sorted by id.
-  const auto path_of = [](const LineSpec& line, std::size_t index) {
-    return ItemPath("mooring.lines", line.entry > 0 ? line.entry - 1 : index);
-  };
   std::vector<std::string> type_names;
   for (const LineType& type : mooring.line_types) type_names.push_back(type.name);
 
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const LineSpec& line = lines[i];
-    const std::string path = path_of(line, i);
+    const std::string path = LinePath(line, i);
     for (std::size_t j = 0; j < i; ++j) {
       if (lines[j].id == line.id) {
         check.Fail(path + ".id",
-                   std::to_string(line.id) + " is already the id of " + path_of(lines[j], j));
+                   std::to_string(line.id) + " is already the id of " + LinePath(lines[j], j));
       }
     }
     if (line.id < 1 || line.id > count) {
@@ -783,6 +1037,11 @@ void CheckLines(const Checker& check, const MooringSpec& mooring) {
     }
     check.InRange(path + ".segments", line.segments, kMinSegments, kMaxSegments);
     check.Positive(path + ".length", line.length, "m");
+    check.AtMost(path + ".length", line.length, kMaxLineLength, "m");
+    for (int k = 0; k < 3; ++k) {
+      check.Between(path + ".fairlead[" + std::to_string(k + 1) + "]", line.fairlead_body(k),
+                    -kMaxBodyCoordinate, kMaxBodyCoordinate, "m", kVesselPointWhy);
+    }
 
     const double depth = mooring.water.depth;
     if (line.anchor.z() > depth + 1e-6) {
@@ -797,11 +1056,36 @@ void CheckLines(const Checker& check, const MooringSpec& mooring) {
                                        " is above the fairlead at z = " +
                                        WithUnit(fairlead.z(), "m") + " (z points down)");
     }
-    const double distance = (line.anchor - fairlead).norm();
-    if (line.length < distance) {
-      check.Fail(path + ".length", WithUnit(line.length, "m") +
-                                       " is shorter than the anchor-fairlead distance " +
-                                       Fixed(distance, 1) + " m");
+    if (line.anchor.z() == fairlead.z()) {
+      check.Fail(path + ".anchor", "z = " + WithUnit(line.anchor.z(), "m") +
+                                       " is level with the fairlead; it must be below it (z "
+                                       "points down)");
+    }
+    if (line.anchor.z() < depth - kAnchorAboveSeabed) {
+      check.Fail(path + ".anchor", "z = " + WithUnit(line.anchor.z(), "m") +
+                                       " is above the seabed at depth " + WithUnit(depth, "m") +
+                                       " (an anchor lies on the seabed, within " +
+                                       WithUnit(kAnchorAboveSeabed, "m") + ")");
+    }
+    if (const std::string problem = LineGeometryProblem(line, fairlead); !problem.empty()) {
+      check.Fail(path + ".length", problem);
+    }
+  }
+}
+
+// The reach and slack rules of CheckLines again, with the vessel where `run` starts it.
+void CheckLinesAtInitialPose(const Checker& check, const Scenario& scenario) {
+  if (!scenario.vessel) return;
+  const Vec3& pose = scenario.vessel->initial_pose;
+  if (pose == Vec3::Zero()) return;  // the origin: CheckLines has seen it
+  const std::vector<LineSpec>& lines = scenario.mooring.lines;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const Vec3 fairlead = FairleadAt(lines[i].fairlead_body, pose.x(), pose.y(), pose.z());
+    if (const std::string problem = LineGeometryProblem(lines[i], fairlead); !problem.empty()) {
+      check.Fail("vessel.initial_pose",
+                 "at x " + WithUnit(pose.x(), "m") + ", y " + WithUnit(pose.y(), "m") +
+                     ", heading " + Significant(pose.z() * 180.0 / std::numbers::pi, 10) +
+                     " deg, " + LinePath(lines[i], i) + ".length " + problem);
     }
   }
 }
@@ -811,11 +1095,14 @@ void CheckSolver(const Checker& check, const SolverSpec& solver) {
     check.Fail("solver.rtol", Number(solver.rtol) + " must be in (0, 1)");
   }
   check.Positive("solver.atol_position", solver.atol_position, "m");
+  check.AtMost("solver.atol_position", solver.atol_position, 1.0, "m");
   check.Positive("solver.atol_velocity", solver.atol_velocity, "m/s");
+  check.AtMost("solver.atol_velocity", solver.atol_velocity, 1.0, "m/s");
   check.InRange("solver.max_order", solver.max_order, 1, 5);  // CVODE's BDF orders
   if (!(solver.max_step >= 0.0)) {
     check.Fail("solver.max_step", WithUnit(solver.max_step, "s") + " must be >= 0 (0 = no limit)");
   }
+  check.AtMost("solver.max_step", solver.max_step, kMaxTime, "s");
 }
 
 void Probability(const Checker& check, const std::string& path, double value) {
@@ -832,28 +1119,51 @@ void CheckVessel(const Checker& check, const VesselSpec& v) {
     }
   }
   check.Positive("vessel.length_scale", v.length_scale, "m");
+  check.AtMost("vessel.length_scale", v.length_scale, kMaxBodyCoordinate, "m");
   check.Positive("vessel.mass", v.mass, "kg");
+  check.AtMost("vessel.mass", v.mass, 1e9, "kg",
+               "the largest floating structures displace about 6e8 kg");
   for (int i = 0; i < 3; ++i) {
-    check.Positive("vessel.radii_of_gyration", v.radii_of_gyration(i), "m");
+    const std::string index = "[" + std::to_string(i + 1) + "]";
+    check.Between("vessel.centre_of_gravity" + index, v.centre_of_gravity(i), -kMaxBodyCoordinate,
+                  kMaxBodyCoordinate, "m", kVesselPointWhy);
+    check.Positive("vessel.radii_of_gyration" + index, v.radii_of_gyration(i), "m");
+    check.AtMost("vessel.radii_of_gyration" + index, v.radii_of_gyration(i), kMaxBodyCoordinate,
+                 "m");
   }
-  check.Positive("vessel.damping.surge_time", v.damping.surge_time, "s");
-  check.Positive("vessel.damping.sway_time", v.damping.sway_time, "s");
-  check.Positive("vessel.damping.yaw_time", v.damping.yaw_time, "s");
+  for (const auto& [key, time] : {std::pair{"surge_time", v.damping.surge_time},
+                                  {"sway_time", v.damping.sway_time},
+                                  {"yaw_time", v.damping.yaw_time}}) {
+    const std::string path = std::string("vessel.damping.") + key;
+    check.Positive(path, time, "s");
+    check.AtMost(path, time, kMaxTime, "s");
+  }
   for (const auto& [key, ratio] : {std::pair{"heave_ratio", v.damping.heave_ratio},
                                    {"roll_ratio", v.damping.roll_ratio},
                                    {"pitch_ratio", v.damping.pitch_ratio}}) {
     const std::string path = std::string("vessel.damping.") + key;
     if (!(ratio >= 0.0 && ratio < 1.0)) check.Fail(path, Number(ratio) + " must be in [0, 1)");
   }
+  check.Between("vessel.initial_pose.x", v.initial_pose.x(), -kMaxOffset, kMaxOffset, "m");
+  check.Between("vessel.initial_pose.y", v.initial_pose.y(), -kMaxOffset, kMaxOffset, "m");
   for (std::size_t i = 0; i < v.thrusters.size(); ++i) {
     const ThrusterEntry& t = v.thrusters[i];
     const std::string path = ItemPath("vessel.thrusters", i);
+    check.Between(path + ".x", t.x, -kMaxBodyCoordinate, kMaxBodyCoordinate, "m", kVesselPointWhy);
+    check.Between(path + ".y", t.y, -kMaxBodyCoordinate, kMaxBodyCoordinate, "m", kVesselPointWhy);
     check.Positive(path + ".max_thrust", t.max_thrust, "N");
+    check.AtMost(path + ".max_thrust", t.max_thrust, 1e8, "N",
+                 "the largest thrusters give about 2e6 N");
     if (!(t.min_thrust <= 0.0))
       check.Fail(path + ".min_thrust", WithUnit(t.min_thrust, "N") + " must be <= 0");
+    check.Between(path + ".min_thrust", t.min_thrust, -1e8, 0.0, "N",
+                  "the largest thrusters give about 2e6 N");
     check.Positive(path + ".weight", t.weight, "");
+    check.AtMost(path + ".weight", t.weight, 1e6, "");
     check.Positive(path + ".time_constant", t.time_constant, "s");
+    check.AtMost(path + ".time_constant", t.time_constant, 1000.0, "s");
     check.NonNegative(path + ".rate_limit", t.rate_limit, "N/s");
+    check.AtMost(path + ".rate_limit", t.rate_limit, 1e9, "N/s");
     for (std::size_t j = 0; j < i; ++j) {
       if (v.thrusters[j].name == t.name) {
         check.Fail(path + ".name",
@@ -868,16 +1178,35 @@ void CheckEnvironment(const Checker& check, const Scenario& scenario) {
   if (e.waves.enabled) {
     if (!scenario.vessel)
       check.Fail("environment.waves", "waves need a vessel section (its RAOs and drift)");
-    check.Positive("environment.waves.hs", e.waves.significant_height, "m");
-    check.Positive("environment.waves.tp", e.waves.peak_period, "s");
+    const double hs = e.waves.significant_height;
+    const double tp = e.waves.peak_period;
+    check.Positive("environment.waves.hs", hs, "m");
+    check.AtMost("environment.waves.hs", hs, 30.0, "m", "the highest sea states measured");
+    check.Between("environment.waves.tp", tp, 1.0, 40.0, "s", "wind sea and swell");
+    // Steepness Hs / Lp, Lp = g Tp^2 / (2 pi) the deep-water length of the peak wave: waves
+    // break at 1/7 (Michell 1893), and Hs is below the highest waves of the sea state.
+    const double steepness =
+        hs * 2.0 * std::numbers::pi / (scenario.mooring.water.gravity * tp * tp);
+    if (!(steepness <= 1.0 / 7.0)) {
+      check.Fail("environment.waves.hs",
+                 WithUnit(hs, "m") + " is too steep for tp " + WithUnit(tp, "s") +
+                     ": Hs / (g Tp^2 / (2 pi)) = " + Significant(steepness, 3) +
+                     " must be <= 1/7 (such waves break)");
+    }
     if (!(e.waves.gamma >= 1.0 && e.waves.gamma <= 10.0)) {
       check.Fail("environment.waves.gamma", Number(e.waves.gamma) + " must be in [1, 10]");
     }
-    if (e.waves.spreading) check.NonNegative("environment.waves.spreading", *e.waves.spreading, "");
+    if (e.waves.spreading) {
+      check.NonNegative("environment.waves.spreading", *e.waves.spreading, "");
+      check.AtMost("environment.waves.spreading", *e.waves.spreading, 100.0, "",
+                   "s = 75 is narrow swell; omit it for long-crested waves");
+    }
     check.InRange("environment.waves.components", e.waves.components, 1, 100000);
   }
   if (e.wind.enabled) {
     check.NonNegative("environment.wind.speed", e.wind.speed, "m/s");
+    check.AtMost("environment.wind.speed", e.wind.speed, 80.0, "m/s",
+                 "above any hurricane's 1-hour mean");
     check.InRange("environment.wind.components", e.wind.components, 1, 100000);
   }
 }
@@ -894,34 +1223,57 @@ void CheckController(const Checker& check, const ControllerSpec& c) {
                    JoinSorted({std::begin(kControllerTypes), std::end(kControllerTypes)}) + ")");
   }
   check.Positive("controller.rate_hz", c.rate, "Hz");
+  check.AtMost("controller.rate_hz", c.rate, kMaxRate, "Hz");
   for (int i = 0; i < 3; ++i) {
-    check.NonNegative("controller.kp", c.kp(i), "");
-    check.NonNegative("controller.ki", c.ki(i), "");
-    check.NonNegative("controller.kd", c.kd(i), "");
+    const std::string index = "[" + std::to_string(i + 1) + "]";
+    for (const auto& [key, gains] :
+         {std::pair{"controller.kp", &c.kp}, {"controller.ki", &c.ki}, {"controller.kd", &c.kd}}) {
+      check.NonNegative(key + index, (*gains)(i), "");
+      check.AtMost(key + index, (*gains)(i), 1e12, "");
+    }
+  }
+  if (c.setpoint) {
+    check.Between("controller.setpoint.x", c.setpoint->x(), -kMaxOffset, kMaxOffset, "m");
+    check.Between("controller.setpoint.y", c.setpoint->y(), -kMaxOffset, kMaxOffset, "m");
   }
   check.NonNegative("controller.natural_period", c.natural_period, "s");
+  check.AtMost("controller.natural_period", c.natural_period, 10000.0, "s");
   check.NonNegative("controller.damping_ratio", c.damping_ratio, "");
+  check.AtMost("controller.damping_ratio", c.damping_ratio, 10.0, "");
 }
 
-void CheckNoise(const Checker& check, const std::string& path, const ChannelNoiseSpec& n) {
-  check.NonNegative(path + ".std_dev", n.std_dev, "");
-  check.NonNegative(path + ".bias_walk", n.bias_walk, "");
+// One noise channel; `unit` of its values and `scale` their largest sensible size (for
+// the bias walk per sqrt(s)).
+void CheckNoise(const Checker& check, const std::string& path, const ChannelNoiseSpec& n,
+                std::string_view unit, double scale) {
+  const std::string walk_unit = std::string(unit) + "/sqrt(s)";
+  check.NonNegative(path + ".std_dev", n.std_dev, unit);
+  check.AtMost(path + ".std_dev", n.std_dev, scale, unit);
+  check.NonNegative(path + ".bias_walk", n.bias_walk, walk_unit);
+  check.AtMost(path + ".bias_walk", n.bias_walk, scale, walk_unit);
   check.NonNegative(path + ".bias_time_constant", n.bias_time_constant, "s");
+  check.AtMost(path + ".bias_time_constant", n.bias_time_constant, kMaxTime, "s");
+  check.Between(path + ".initial_bias", n.initial_bias, -scale, scale, unit);
   Probability(check, path + ".outlier_probability", n.outlier_probability);
-  check.NonNegative(path + ".outlier_std_dev", n.outlier_std_dev, "");
+  check.NonNegative(path + ".outlier_std_dev", n.outlier_std_dev, unit);
+  check.AtMost(path + ".outlier_std_dev", n.outlier_std_dev, scale, unit);
 }
 
 void CheckSensors(const Checker& check, const SensorsSpec& s) {
-  check.Positive("sensors.gnss.rate_hz", s.gnss_rate, "Hz");
-  check.Positive("sensors.gyro.rate_hz", s.gyro_rate, "Hz");
-  CheckNoise(check, "sensors.gnss.north", s.north);
-  CheckNoise(check, "sensors.gnss.east", s.east);
-  CheckNoise(check, "sensors.gyro.heading", s.heading);
+  for (const auto& [path, rate] : {std::pair{"sensors.gnss.rate_hz", s.gnss_rate},
+                                   {"sensors.gyro.rate_hz", s.gyro_rate},
+                                   {"sensors.tension_cells.rate_hz", s.tension_rate}}) {
+    check.Positive(path, rate, "Hz");
+    check.AtMost(path, rate, kMaxRate, "Hz");
+  }
+  CheckNoise(check, "sensors.gnss.north", s.north, "m", 1000.0);
+  CheckNoise(check, "sensors.gnss.east", s.east, "m", 1000.0);
+  CheckNoise(check, "sensors.gyro.heading", s.heading, "rad", std::numbers::pi);
   Probability(check, "sensors.gnss.dropout_probability", s.gnss_dropout_probability);
   check.NonNegative("sensors.gnss.dropout_mean_duration", s.gnss_dropout_mean_duration, "s");
+  check.AtMost("sensors.gnss.dropout_mean_duration", s.gnss_dropout_mean_duration, kMaxTime, "s");
   Probability(check, "sensors.gyro.dropout_probability", s.gyro_dropout_probability);
-  check.Positive("sensors.tension_cells.rate_hz", s.tension_rate, "Hz");
-  CheckNoise(check, "sensors.tension_cells.noise", s.tension_noise);
+  CheckNoise(check, "sensors.tension_cells.noise", s.tension_noise, "N", 1e8);
 }
 
 constexpr std::string_view kFailureModes[] = {"anchor", "fairlead", "node"};
@@ -981,29 +1333,42 @@ void CheckDetectors(const Checker& check, const Scenario& scenario) {
   }
   const DetectionSpec& detection = scenario.detection;
   check.Positive("detection.measurement_variance", detection.measurement_variance, "");
-  if (detection.switch_rate)
+  check.AtMost("detection.measurement_variance", detection.measurement_variance, 1e4, "");
+  if (detection.switch_rate) {
     check.NonNegative("detection.switch_rate", *detection.switch_rate, "1/s");
+    check.AtMost("detection.switch_rate", *detection.switch_rate, kMaxRate, "1/s");
+  }
   const auto check_vector = [&](const char* name, const std::optional<Vec3>& value,
-                                std::string_view unit, bool positive) {
+                                std::string_view unit, bool positive, double high) {
     if (!value) return;
     for (int i = 0; i < 3; ++i) {
       const std::string path =
           "detection.model." + std::string(name) + "[" + std::to_string(i + 1) + "]";
       positive ? check.Positive(path, (*value)(i), unit)
                : check.NonNegative(path, (*value)(i), unit);
+      check.AtMost(path, (*value)(i), high, unit);
     }
   };
-  check_vector("wave_motion_std", detection.model.wave_motion_std, "", false);
-  check_vector("bias_std", detection.model.bias_std, "", false);
-  check_vector("bias_time_constant", detection.model.bias_time_constant, "s", true);
-  check_vector("force_noise", detection.model.force_noise, "", false);
-  check_vector("mooring_damping_ratio", detection.model.mooring_damping_ratio, "", false);
+  check_vector("wave_motion_std", detection.model.wave_motion_std, "", false, 1000.0);
+  check_vector("bias_std", detection.model.bias_std, "", false, 1e12);
+  check_vector("bias_time_constant", detection.model.bias_time_constant, "s", true, kMaxTime);
+  check_vector("force_noise", detection.model.force_noise, "", false, 1e12);
+  check_vector("mooring_damping_ratio", detection.model.mooring_damping_ratio, "", false, 10.0);
   if (!d.empty() && !scenario.vessel) check.Fail("detectors", "needs a vessel section");
 }
 
 void CheckSimulation(const Checker& check, const SimulationSpec& s) {
   check.Positive("simulation.duration", s.duration, "s");
+  check.AtMost("simulation.duration", s.duration, kMaxTime, "s", "116 days");
   check.Positive("simulation.output_rate_hz", s.output_rate, "Hz");
+  check.AtMost("simulation.output_rate_hz", s.output_rate, kMaxRate, "Hz");
+  const double rows = s.duration * s.output_rate;
+  if (!(rows <= kMaxOutputRows)) {
+    check.Fail("simulation.output_rate_hz",
+               WithUnit(s.output_rate, "Hz") + " for simulation.duration " +
+                   WithUnit(s.duration, "s") + " would write " + Significant(rows, 4) +
+                   " rows (at most " + Number(kMaxOutputRows) + ")");
+  }
 }
 
 }  // namespace
@@ -1023,6 +1388,7 @@ void Validate(const Scenario& scenario) {
   CheckLines(check, mooring);
   CheckSolver(check, scenario.solver);
   if (scenario.vessel) CheckVessel(check, *scenario.vessel);
+  CheckLinesAtInitialPose(check, scenario);
   CheckEnvironment(check, scenario);
   CheckController(check, scenario.controller);
   CheckSensors(check, scenario.sensors);
@@ -1058,6 +1424,7 @@ std::string ApplyOverride(YAML::Node& root, const std::string& assignment) {
   } catch (const YAML::Exception& error) {
     throw InputError(flag + ": the value is not YAML: " + error.msg);
   }
+  CheckOverrideUntagged(parsed, value, flag);
   // Split "a.b[2].c" into steps.
   std::vector<std::pair<std::string, int>> steps;  // (key, -1) or ("", index)
   std::size_t i = 0;
@@ -1140,7 +1507,18 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source_n
   scenario.text = yaml_text;
   scenario.overrides = overrides;
   scenario.name = std::filesystem::path(source_name).stem().string();
-  ParseContext context{source_name, &scenario.marks, {}};
+  // Bytes that are not UTF-8 would pass as text and stop the JSON writer after the run.
+  if (const std::optional<std::size_t> bad = FirstInvalidUtf8(yaml_text)) {
+    ThrowAt(source_name, MarkOfOffset(yaml_text, *bad), "", InvalidUtf8(yaml_text, *bad));
+  }
+  for (const std::string& assignment : overrides) {
+    if (const std::optional<std::size_t> bad = FirstInvalidUtf8(assignment)) {
+      throw InputError("--set " + EscapeInvalidUtf8(assignment) + ": not valid UTF-8 (byte " +
+                       HexByte(static_cast<unsigned char>(assignment[*bad])) + " at character " +
+                       std::to_string(*bad + 1) + ")");
+    }
+  }
+  ParseContext context{source_name, &scenario.marks, {}, &yaml_text};
   try {
     const std::vector<YAML::Node> documents = YAML::LoadAll(yaml_text);
     if (documents.empty() || documents[0].IsNull()) {

@@ -58,10 +58,15 @@
 //     max_step: 0                    # [s], 0 = no limit
 //
 // Strictness: unknown keys, duplicate keys, a value of the wrong kind (a quoted "0.08"
-// where a number belongs, 2.5 where an integer belongs, .inf or .nan) and missing
-// required keys are all errors. The coupled-simulation sections (vessel, environment,
-// controller, sensors, failure, simulation) are documented in scenarios/README.md; each is
-// a row of the top-level section table in load.cc.
+// where a number belongs, 2.5 where an integer belongs, .inf or .nan), an explicit YAML tag
+// (`!!str 5`, `!foo`, `! 5`), text that is not UTF-8 and missing required keys are all
+// errors. Every number has a physical range (water.gravity in [9.7, 9.9], depth <= 12000 m,
+// line length <= 20000 m, ..., listed in scenarios/README.md), angles under *_deg keys are
+// in [-360, 360], an anchor lies on the seabed below its fairlead, and a line must reach
+// its fairlead without lying slack: distance <= length < horizontal distance + height.
+// The coupled-simulation sections (vessel, environment, controller, sensors, failure,
+// simulation) are documented in scenarios/README.md; each is a row of the top-level
+// section table in load.cc.
 #pragma once
 
 #include <string>
@@ -90,8 +95,9 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source_n
 
 /// The semantic checks: physically impossible or inconsistent values (non-positive
 /// diameter, a line lighter than the water it displaces, a line shorter than its
-/// anchor-fairlead distance, ids that are not 1..N, ...). Positions come from
-/// Scenario::marks. Throws moorsim::InputError at the first violation.
+/// anchor-fairlead distance or so long it lies slack, a value outside its physical range,
+/// ids that are not 1..N, ...). Positions come from Scenario::marks. Throws
+/// moorsim::InputError at the first violation.
 void Validate(const Scenario& scenario);
 
 /// Throws InputError "<file>:<line>:<col>: <path>: <what>", placed at `path` (key path with

@@ -49,8 +49,7 @@ int Run(const RunOptions& o) {
   request.overrides = o.sets;
   if (o.seed) request.overrides.push_back("simulation.seed=" + RequireText("--seed", *o.seed));
   if (o.duration) {
-    request.overrides.push_back("simulation.duration=" +
-                                FormatNumber(ParseNumber("--duration", *o.duration)));
+    request.overrides.push_back("simulation.duration=" + RequireText("--duration", *o.duration));
   }
   if (o.out) request.out = RequireText("--out", *o.out);
   request.progress = !o.quiet;

@@ -3,11 +3,17 @@
 #include <gtest/gtest.h>
 
 #include <hdf5.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <algorithm>
 
 #include <cmath>
+#include <csignal>
+#include <cstdint>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "tests/cli/run_cli.h"
@@ -16,6 +22,7 @@ namespace moorsim::testing {
 namespace {
 
 const std::string kSeed = MOORSIM_SOURCE_DIR "/scenarios/library/seed_tapm.yaml";
+const std::string kThesisNoFailure = MOORSIM_SOURCE_DIR "/scenarios/library/thesis_no_failure.yaml";
 
 /// Shape of a dataset (empty if it does not exist).
 std::vector<hsize_t> Shape(hid_t file, const char* path) {
@@ -258,6 +265,77 @@ TEST(ValidateDetectors, BadConfigurationIsOneLineWithExitCode2) {
     EXPECT_EQ(r.err.rfind("moorsim: " + file.string() + ":", 0), 0u) << r.err;
     EXPECT_NE(r.err.find(": " + c.message + "\n"), std::string::npos) << r.err;
   }
+}
+
+TEST(RunCommand, ATenHertzControllerFinishes) {
+  // Once a hang: the controller's instant k / 10 and its test t >= k * 0.1 disagreed.
+  TempDirectory dir(::testing::TempDir());
+  const CliResult r =
+      RunCli({"run", kThesisNoFailure, "--duration", "20", "--set", "controller.rate_hz=10",
+              "--out", (dir.path() / "r").string(), "--quiet"},
+             dir.path(), std::chrono::seconds(120));
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  const nlohmann::json summary =
+      nlohmann::json::parse(ReadWholeFile(dir.path() / "r" / "summary.json"));
+  EXPECT_EQ(summary["simulated_time"], 20.0);
+}
+
+TEST(RunCommand, SigtermStopsTheRunClosesTheFileAndExits143) {
+  TempDirectory dir(::testing::TempDir());
+  const std::filesystem::path out = dir.path() / "r";
+  std::string program = MOORSIM_CLI;
+  std::vector<std::string> text = {program,  "run",   kThesisNoFailure, "--duration",
+                                   "100000", "--out", out.string(),     "--quiet"};
+  std::vector<char*> argv;
+  for (std::string& a : text) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, program.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+  // The partial file exists once the handlers are in place and the run has started.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (!std::filesystem::exists(out / "run.h5.partial") &&
+         std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  kill(pid, SIGTERM);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 143);
+  const nlohmann::json summary = nlohmann::json::parse(ReadWholeFile(out / "summary.json"));
+  EXPECT_EQ(summary["status"], "interrupted");
+  EXPECT_EQ(summary["signal"], SIGTERM);
+  const double reached = summary["simulated_time"].get<double>();
+  EXPECT_GT(reached, 0.0);
+  EXPECT_LT(reached, 100000.0);
+  EXPECT_FALSE(std::filesystem::exists(out / "run.h5.partial"));
+  const hid_t file = H5Fopen((out / "run.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  EXPECT_EQ(Shape(file, "/time"), std::vector<hsize_t>{static_cast<hsize_t>(reached) + 1});
+  H5Fclose(file);
+}
+
+TEST(RunCommand, TheSeedAttributeIsUnsigned) {
+  TempDirectory dir(::testing::TempDir());
+  const std::string out = (dir.path() / "seed").string();
+  const CliResult r = RunCli(
+      {"run", kSeed, "--out", out, "--duration", "1", "--seed", "9223372036854775808", "--quiet"},
+      dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  const hid_t file = H5Fopen((out + "/run.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  const hid_t attribute = H5Aopen(file, "seed", H5P_DEFAULT);
+  const hid_t type = H5Aget_type(attribute);
+  EXPECT_EQ(H5Tget_sign(type), H5T_SGN_NONE);
+  std::uint64_t seed = 0;
+  H5Aread(attribute, H5T_NATIVE_UINT64, &seed);
+  EXPECT_EQ(seed, 9223372036854775808ull);
+  H5Tclose(type);
+  H5Aclose(attribute);
+  H5Fclose(file);
+  const nlohmann::json summary = nlohmann::json::parse(ReadWholeFile(out + "/summary.json"));
+  EXPECT_EQ(summary["seed"].get<std::uint64_t>(), 9223372036854775808ull);
 }
 
 }  // namespace

@@ -13,7 +13,7 @@ namespace {
 
 class FastKernels : public ::testing::Test {
  protected:
-  void SetUp() override { ASSERT_EQ(SUNContext_Create(nullptr, &ctx_), 0); }
+  void SetUp() override { ASSERT_EQ(SUNContext_Create(internal::kNoCommunicator, &ctx_), 0); }
   void TearDown() override {
     for (N_Vector v : vectors_) N_VDestroy(v);
     for (SUNMatrix m : matrices_) SUNMatDestroy(m);
@@ -91,7 +91,7 @@ TEST_F(FastKernels, FusedOperationsMatchTheLibraryWithAliasing) {
   auto [z0, z1] = Pair(n);
   N_VEnableFusedOps_Serial(a0, SUNTRUE);
   N_VEnableFusedOps_Serial(z0, SUNTRUE);
-  realtype coef[4] = {0.5, -1.25, 2.0, 0.125};
+  sunrealtype coef[4] = {0.5, -1.25, 2.0, 0.125};
   // z = 0.5 z - 1.25 a + 2 b + 0.125 c, with z itself as the first term.
   N_Vector plain[4] = {z0, a0, b0, c0};
   N_Vector fast[4] = {z1, a1, b1, c1};

@@ -545,6 +545,42 @@ TEST(SolveCatenaryTest, ConvergesOverWideRangeOfGeometries) {
   EXPECT_GT(solved, 300);  // most of the 420 cases are reachable
 }
 
+TEST(SolveCatenaryTest, NearlyVerticalAndTwentyKilometreLinesSolveOrSayTheyCannotReach) {
+  // Issue 9, item 6: an anchor (almost) straight under its fairlead, and lines of up to
+  // 20 km, at every regime (slack, touchdown, lifted, taut). No iteration may end
+  // unconverged: either the end is reproduced or Error says the line cannot reach.
+  int solved = 0;
+  for (double length : {1.0, 2250.0, 20000.0}) {
+    for (double height_fraction : {1e-6, 0.3, 0.999, 1.0005}) {
+      for (double span_fraction : {0.0, 1e-15, 1e-9, 1e-6, 1e-3, 0.05, 1.0}) {
+        CatenaryLineProperties line = SeedLine();
+        line.length = length;
+        const double height = height_fraction * length;
+        const double span = span_fraction * length;
+        SCOPED_TRACE("L " + std::to_string(length) + " span " + std::to_string(span) + " height " +
+                     std::to_string(height));
+        CatenarySolution sol;
+        try {
+          sol = SolveCatenary(line, span, height);
+        } catch (const Error& e) {
+          EXPECT_NE(std::string(e.what()).find("cannot reach"), std::string::npos) << e.what();
+          continue;
+        }
+        ++solved;
+        const Eigen::Vector2d end = CatenaryPointAt(line, sol, line.length);
+        const double tolerance = 1e-9 * length;
+        // Slack (H = 0) solutions place the hanging part over the anchor (documented).
+        if (sol.horizontal_tension > 0.0 || span == 0.0) {
+          EXPECT_NEAR(end.x(), span, tolerance);
+        }
+        EXPECT_NEAR(end.y(), height, tolerance);
+        EXPECT_TRUE(std::isfinite(sol.fairlead_tension));
+      }
+    }
+  }
+  EXPECT_GT(solved, 60);  // of 84
+}
+
 // --- Errors ----------------------------------------------------------------------------------
 
 TEST(SolveCatenaryTest, RejectsFairleadNotAboveAnchor) {

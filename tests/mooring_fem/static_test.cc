@@ -2,9 +2,12 @@
 // continuum solution) for the seed mooring.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
 
+#include "core/error.h"
 #include "mooring_fem/catenary.h"
 #include "test_support.h"
 
@@ -173,6 +176,76 @@ TEST(StaticFem, BrokenLineSixLeavesThreePointFiveMeganewtonsAwayFromIt) {
   EXPECT_GT(net.x(), 0.0);
   EXPECT_LT(net.y(), 0.0);
   EXPECT_NEAR(net.x(), -net.y(), 1e-3 * net.head<2>().norm());
+}
+
+// --- Geometries that used to stop the static solution (issue 9, item 6) -------------------
+
+// Line 1 of the seed alone, with its anchor and length changed.
+MooringSystem LineOne(const Vec3& anchor, double length) {
+  scenarios::Scenario s = SeedScenario(50);
+  s.mooring.lines.resize(1);
+  s.mooring.lines[0].anchor = anchor;
+  s.mooring.lines[0].length = length;
+  return MooringSystem(s.mooring);
+}
+
+TEST(StaticFem, SlackSegmentsInTheCatenaryPlacementStillSettle) {
+  // 2700 m to an anchor 1930 m out: H = 257 kN, so the curvature near touchdown is w/H =
+  // 0.01 /m and a 54 m segment's chord falls 1.3 % short of its arc, more than the 0.11 %
+  // stretch: the placed segments there are slack, their nodes have no stiffness and plain
+  // Newton met a singular matrix. The line must still settle, onto the catenary's loads.
+  MooringSystem mooring = LineOne(Vec3(1950.0, 0.0, 1000.0), 2700.0);
+  const auto fairleads = FairleadsAt(mooring, {});
+  const std::vector<double> x = StaticState(mooring, {});
+  const std::vector<LineLoad> loads = mooring.LineLoads(x.data(), fairleads);
+  const LineProperties& lp = mooring.line(0);
+  const CatenarySolution cat =
+      SolveLineCatenary(CatenaryProperties(lp), lp.anchor, fairleads[0].position).solution;
+  const Vec3& f = loads[0].fairlead_force;
+  EXPECT_NEAR(f.head<2>().norm(), cat.horizontal_tension, 0.02 * cat.horizontal_tension);
+  EXPECT_NEAR(f.z(), cat.vertical_tension, 0.01 * cat.vertical_tension);
+}
+
+TEST(StaticFem, LineLongerThanSpanPlusDepthSettlesSlack) {
+  // 20 km of chain to an anchor 1930 m out (the loader rejects this at the reference pose;
+  // a vessel offset toward an anchor can still make a line slack): no horizontal tension,
+  // the fairlead carries the vertical hanging part, ~ w x height = 2.6 MN.
+  MooringSystem mooring = LineOne(Vec3(1950.0, 0.0, 1000.0), 20000.0);
+  const auto fairleads = FairleadsAt(mooring, {});
+  const std::vector<double> x = StaticState(mooring, {});
+  const Vec3 f = mooring.LineLoads(x.data(), fairleads)[0].fairlead_force;
+  const double hanging = mooring.line(0).weight_per_length * (1000.0 - 12.0);
+  EXPECT_LT(f.head<2>().norm(), 1e-3 * hanging);
+  EXPECT_NEAR(f.z(), hanging, 0.02 * hanging);
+}
+
+TEST(StaticFem, UnsettleableStartStatesThrowErrorsNamingTheLine) {
+  MooringSystem mooring = LineOne(Vec3(1950.0, 0.0, 1000.0), 2250.0);
+  const std::vector<Vec3> p = testing::Positions(FairleadsAt(mooring, {}));
+  // Forces that overflow (node 1 placed 1e300 m away) used to end the iteration at once
+  // and report a residual of 0.
+  std::vector<double> x(mooring.StateSize());
+  mooring.CatenaryState(p, x.data());
+  std::fill(x.begin(), x.begin() + 3, 1e300);
+  try {
+    mooring.SettleStatic(p, x.data());
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "static equilibrium of line 1 did not converge: the node forces of the start "
+              "state are not finite");
+  }
+  // Two nodes on top of each other: no tangent, no force.
+  mooring.CatenaryState(p, x.data());
+  std::copy(x.begin(), x.begin() + 3, x.begin() + 6);  // node 2 onto node 1
+  try {
+    mooring.SettleStatic(p, x.data());
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "static equilibrium of line 1: the start state is degenerate (line 1 segment 2 "
+              "has length 0 m)");
+  }
 }
 
 }  // namespace

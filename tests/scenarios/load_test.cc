@@ -292,6 +292,105 @@ TEST(BadScenarioText, ValuesWithoutPositionAreNamedByPathOnly) {
   EXPECT_EQ(ValidateError(s), "test.yaml: mooring.lines[3].segments: 1 must be in 2..10000");
 }
 
+// ---------------------------------------------------------------------------------------
+// Tags, encodings and ranges (issue 9): what must still be accepted, and the cases a
+// one-spot edit of kBase cannot express.
+
+std::string OverrideError(const std::vector<std::string>& overrides) {
+  try {
+    ParseScenario(kBase, "test.yaml", overrides);
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  return "(no error)";
+}
+
+TEST(ScenarioText, QuotedBlockAndAnchoredValuesAreNotTags) {
+  // yaml-cpp gives quoted and block scalars the tag "!", like an explicit `! x`.
+  std::string text = Edit(kBase, "", "name: base", "name: \"base\"");
+  text = Edit(text, "- id: 2", "type: wire", "type: >-\n        wire");
+  text = Edit(text, "- id: 3", "type: chain", "type: 'chain'");
+  text = Edit(text, "vessel:", "length_scale: 1", "length_scale: &one 1");
+  text = Edit(text, "name: aft_port", "weight: 1", "weight: *one");
+  Scenario s;
+  ASSERT_NO_THROW(s = ParseScenario(text, "test.yaml")) << ErrorOf(text);
+  EXPECT_EQ(s.name, "base");
+  EXPECT_EQ(s.mooring.lines[1].type, "wire");
+  EXPECT_EQ(s.mooring.lines[2].type, "chain");
+  EXPECT_EQ(s.vessel->thrusters[0].weight, 1.0);
+}
+
+TEST(ScenarioText, ValidUtf8IsKept) {
+  // Two-, three- and four-byte sequences, and a byte-order mark.
+  const std::string name = "caf\xC3\xA9 \xE2\x9A\x93 \xF0\x9F\x8C\x8A";
+  const std::string text = "\xEF\xBB\xBF" + Edit(kBase, "", "name: base", "name: " + name);
+  EXPECT_EQ(ParseScenario(text, "test.yaml").name, name);
+}
+
+TEST(ScenarioText, BadByteAfterMultiByteCharactersIsPlacedByByteColumn) {
+  // Columns count bytes, as yaml-cpp's own marks do: "name: é" is 8 bytes.
+  const std::string text = Edit(kBase, "", "name: base", "name: \xC3\xA9\xFF");
+  EXPECT_EQ(ErrorOf(text), "test.yaml:1:9: not valid UTF-8 (byte 0xFF); save the file as UTF-8");
+}
+
+TEST(ScenarioText, OverridesMustBeUtf8AndUntagged) {
+  EXPECT_EQ(OverrideError({"name=caf\xE9"}),
+            "--set name=caf\\xE9: not valid UTF-8 (byte 0xE9 at character 9)");
+  EXPECT_EQ(OverrideError({"vessel.mass=!!str 1.0041e8"}),
+            "--set vessel.mass=!!str 1.0041e8: tagged value '!!str' (tags are not accepted; "
+            "write the plain value)");
+  EXPECT_EQ(OverrideError({"vessel.mass=! 1.0041e8"}),
+            "--set vessel.mass=! 1.0041e8: tagged value '!' (tags are not accepted; write the "
+            "plain value)");
+  EXPECT_EQ(OverrideError({"environment.wind={speed: !!float 12, direction_from_deg: 0}"}),
+            "--set environment.wind={speed: !!float 12, direction_from_deg: 0}: tagged value "
+            "'!!float' (tags are not accepted; write the plain value)");
+  EXPECT_EQ(OverrideError({"name=\"caf\xC3\xA9\"", "vessel.mass=2.0e8"}), "(no error)");
+  // Range checks see overridden values too, by key path only.
+  EXPECT_EQ(OverrideError({"mooring.water.gravity=1e308"}),
+            "test.yaml: mooring.water.gravity: 1e+308 m/s^2 must be in [9.7, 9.9] (Earth's "
+            "gravity)");
+}
+
+TEST(ScenarioText, BoundsThemselvesAreAccepted) {
+  std::string text = Edit(kBase, "", "density: 1025", "density: 1100");
+  text = Edit(text, "", "gravity: 9.81", "gravity: 9.7");
+  text = Edit(text, "", "direction_deg: 90", "direction_deg: -360");
+  text = Edit(text, "initial_pose:", "heading_deg: 10", "heading_deg: 360");
+  text = Edit(text, "- id: 1", "segments: 30", "segments: 30\n      fairlead: [20, 0, 12]");
+  text = Edit(text, "- name: chain", "drag_normal: 0.3", "drag_normal: 10");
+  text = Edit(text, "controller:", "rate_hz: 1", "rate_hz: 1000");
+  text = Edit(text, "simulation:", "duration: 1000", "duration: 1.0e7");
+  // 1e7 s x 100 Hz = 1e9 rows, the most allowed.
+  text = Edit(text, "simulation:", "output_rate_hz: 2", "output_rate_hz: 100");
+  text = Edit(text, "environment:", "hs: 2.5", "hs: 10.7");  // g 9.7: steepness 0.1414 < 1/7
+  const std::string error = ErrorOf(text);
+  // The extra fairlead key is a duplicate: proves the edit landed, then drop it.
+  EXPECT_NE(error.find("duplicate key 'fairlead'"), std::string::npos) << error;
+  text = Edit(text, "- id: 1", "segments: 30\n      fairlead: [20, 0, 12]", "segments: 30");
+  EXPECT_EQ(ErrorOf(text), "(no error)");
+}
+
+TEST(ScenarioText, LineRulesWithoutAVesselUseTheOrigin) {
+  // A lines-only scenario: the reach and slack rules at the origin, no initial pose.
+  const std::string minimal = R"(mooring:
+  water: {depth: 300}
+  line_types:
+    - {name: c, diameter: 0.1, mass_per_length: 200, axial_stiffness: 1e9, drag_normal: 1,
+       drag_tangential: 0.5, added_mass_normal: 1}
+  lines:
+    - {type: c, anchor: [800, 0, 300], fairlead: [10, 0, 10], length: 1079.9}
+)";
+  EXPECT_EQ(ErrorOf(minimal), "(no error)");  // 790 m across + 290 m down = 1080 m
+  const std::string slack = Edit(minimal, "", "length: 1079.9", "length: 1080");
+  EXPECT_EQ(ErrorOf(slack),
+            "test.yaml:" + PositionOf(slack, "", "length: ^1080") +
+                ": mooring.lines[1].length: 1080 m must be shorter than the horizontal "
+                "anchor-fairlead distance plus the fairlead's height above the anchor, 790.0 + "
+                "290.0 = 1080.0 m (a longer line lies slack on the seabed, with no horizontal "
+                "tension)");
+}
+
 std::string LoadError(const std::string& path) {
   try {
     LoadScenario(path);

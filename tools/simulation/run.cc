@@ -9,6 +9,7 @@
 #include <new>
 #include <optional>
 #include <span>
+#include <sstream>
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -365,8 +366,10 @@ RunResult RunScenario(const RunRequest& request) noexcept {
         if (const int signal = request.stop_requested(); signal != 0 && k < last_row) {
           result.status = RunStatus::kInterrupted;
           result.signal = signal;
-          result.message = "stopped by signal " + std::to_string(signal) + " (" +
-                           strsignal(signal) + ") at t = " + std::to_string(sim->time()) + " s";
+          std::ostringstream message;
+          message << "stopped by signal " << signal << " (" << strsignal(signal)
+                  << ") at t = " << sim->time() << " s";
+          result.message = message.str();
           break;
         }
       }

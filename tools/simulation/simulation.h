@@ -131,6 +131,8 @@ class Simulation {
   /// Mooring load (body frame) of the static start and the pose found there.
   const Vec6& initial_pose() const { return initial_pose_; }
   std::uint64_t seed() const { return seed_; }
+  /// Controller updates so far (one per controller instant k / rate reached).
+  std::int64_t controller_updates() const { return next_control_index_; }
   /// Seconds of wall time spent in the integrator so far.
   double integrator_seconds() const { return integrator_seconds_; }
   /// Time in detection; included in integrator_seconds() for the updates (they run at the

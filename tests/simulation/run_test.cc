@@ -1,0 +1,224 @@
+// One run as a library call (tools/simulation/run.h): every clock reached at any rate, the
+// status and exit code of each outcome, and outputs that never lie after an interruption,
+// a crash or a full disk (fault injection: a stop request at a chosen row, a child process
+// that dies without closing its files, a file-size limit that makes writes fail).
+#include "tools/simulation/run.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <hdf5.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/sample_clock.h"
+#include "scenarios/load.h"
+
+namespace moorsim::simulation {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kThesis = MOORSIM_SOURCE_DIR "/scenarios/library/thesis_no_failure.yaml";
+
+/// A fresh directory under the test's temporary directory.
+fs::path FreshDirectory(const std::string& name) {
+  const fs::path dir =
+      fs::path(::testing::TempDir()) / ("moorsim_run_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+nlohmann::json ReadJson(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return nlohmann::json::parse(text.str());
+}
+
+/// Rows of /time in an HDF5 file, -1 if it does not open.
+long TimeRows(const fs::path& path) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (file < 0) return -1;
+  long rows = -1;
+  const hid_t d = H5Dopen2(file, "/time", H5P_DEFAULT);
+  if (d >= 0) {
+    const hid_t space = H5Dget_space(d);
+    hsize_t n = 0;
+    H5Sget_simple_extent_dims(space, &n, nullptr);
+    rows = static_cast<long>(n);
+    H5Sclose(space);
+    H5Dclose(d);
+  }
+  H5Fclose(file);
+  return rows;
+}
+
+RunRequest Request(const fs::path& out, std::vector<std::string> overrides) {
+  RunRequest request;
+  request.scenario_path = kThesis;
+  request.overrides = std::move(overrides);
+  request.out = out;
+  return request;
+}
+
+// A hang fails the test instead of the suite's time limit.
+class RunTest : public ::testing::Test {
+ protected:
+  void SetUp() override { alarm(300); }
+  void TearDown() override { alarm(0); }
+};
+
+TEST_F(RunTest, EveryControllerRateReachesEveryInstant) {
+  // 10 Hz and 5 Hz once hung: the loop stopped at k / rate but fired at t >= k * (1 / rate).
+  for (const char* rate : {"0.5", "1", "2", "3", "5", "10", "20"}) {
+    SCOPED_TRACE(rate);
+    const scenarios::Scenario scenario = scenarios::LoadScenario(
+        kThesis, {std::string("controller.rate_hz=") + rate, "simulation.duration=20"});
+    Simulation sim(scenario, 1);
+    sim.AdvanceTo(20.0);
+    EXPECT_EQ(sim.time(), 20.0);
+    const SampleClock clock(scenario.controller.rate);
+    EXPECT_EQ(sim.controller_updates(), clock.LastIndex(20.0) + 1);
+    EXPECT_EQ(sim.detection_timing().samples, 21);  // the 1 Hz GNSS/gyro
+  }
+}
+
+TEST_F(RunTest, ClocksWithNoCommonPeriodAllKeepTheirInstants) {
+  // Sensors 1 Hz, controller 3 Hz, output 7 Hz.
+  const fs::path dir = FreshDirectory("clocks");
+  const RunResult r = RunScenario(Request(
+      dir, {"controller.rate_hz=3", "simulation.output_rate_hz=7", "simulation.duration=20"}));
+  ASSERT_EQ(r.status, RunStatus::kOk) << r.message;
+  EXPECT_EQ(r.ExitCode(), 0);
+  EXPECT_EQ(r.simulated_time, 20.0);
+  EXPECT_EQ(TimeRows(dir / "run.h5"), 141);
+  const nlohmann::json summary = ReadJson(dir / "summary.json");
+  EXPECT_EQ(summary["status"], "ok");
+  EXPECT_EQ(summary["detection"]["samples"], 21);
+  EXPECT_FALSE(fs::exists(dir / "run.h5.partial"));
+  fs::remove_all(dir);
+}
+
+TEST_F(RunTest, AStopRequestEndsTheRunWithEveryRowSoFarAndSaysSo) {
+  const fs::path dir = FreshDirectory("stop");
+  RunRequest request = Request(dir, {"simulation.duration=1000"});
+  int rows = 0;
+  request.stop_requested = [&rows] { return ++rows == 6 ? SIGTERM : 0; };
+  const RunResult r = RunScenario(request);
+  ASSERT_EQ(r.status, RunStatus::kInterrupted) << r.message;
+  EXPECT_EQ(r.ExitCode(), 143);
+  EXPECT_EQ(r.simulated_time, 5.0);
+  EXPECT_EQ(TimeRows(dir / "run.h5"), 6);
+  const nlohmann::json summary = ReadJson(dir / "summary.json");
+  EXPECT_EQ(summary["status"], "interrupted");
+  EXPECT_EQ(summary["simulated_time"], 5.0);
+  EXPECT_EQ(summary["signal"], SIGTERM);
+  EXPECT_EQ(summary["outputs"]["run"], "run.h5");
+  fs::remove_all(dir);
+}
+
+TEST_F(RunTest, ACrashMidRunLeavesTheOldResultWholeAndTheFlushedRowsReadable) {
+  const fs::path dir = FreshDirectory("crash");
+  // A complete earlier result in the directory.
+  ASSERT_EQ(RunScenario(Request(dir, {"simulation.duration=5"})).status, RunStatus::kOk);
+  // A longer run into the same directory dies without closing anything at row 300: after
+  // the flush at row 256, before the next one.
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    RunRequest request = Request(dir, {"simulation.duration=1000"});
+    request.flush_rows = 256;
+    int rows = 0;
+    request.stop_requested = [&rows] {
+      if (++rows == 300) _exit(0);
+      return 0;
+    };
+    RunScenario(request);
+    _exit(3);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  // The old pair is untouched: summary (5 s, ok) and run.h5 (6 rows) still belong together.
+  const nlohmann::json summary = ReadJson(dir / "summary.json");
+  EXPECT_EQ(summary["status"], "ok");
+  EXPECT_EQ(summary["duration"], 5.0);
+  EXPECT_EQ(TimeRows(dir / "run.h5"), 6);
+  // The new run's partial file opens and holds the rows up to its last flush.
+  EXPECT_EQ(TimeRows(dir / "run.h5.partial"), 256);
+  fs::remove_all(dir);
+}
+
+TEST_F(RunTest, AFullDiskFailsTheRunWithoutACrashAndTheSummarySaysWhy) {
+  const fs::path dir = FreshDirectory("full");
+  // Writes beyond 200 kB fail with EFBIG, as they would with ENOSPC on a full disk; the
+  // child also exits through HDF5's exit handlers, where a failed close once crashed.
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    std::signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{200 * 1024, 200 * 1024};
+    setrlimit(RLIMIT_FSIZE, &limit);
+    const RunResult r = RunScenario(Request(dir, {"simulation.duration=1000"}));
+    std::exit(r.summary_written ? r.ExitCode() : 10 + r.ExitCode());
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status)) << "the run crashed: signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  const nlohmann::json summary = ReadJson(dir / "summary.json");
+  EXPECT_EQ(summary["status"], "failed");
+  EXPECT_THAT(summary["error"].get<std::string>(), ::testing::HasSubstr("File too large"));
+  EXPECT_TRUE(summary["outputs"]["run"].is_null());
+  EXPECT_FALSE(fs::exists(dir / "run.h5"));
+  EXPECT_FALSE(fs::exists(dir / "run.h5.partial"));
+  fs::remove_all(dir);
+}
+
+TEST_F(RunTest, AFileThatDoesNotFitIsAnErrorNotAnEmptyFile) {
+  const fs::path dir = FreshDirectory("write");
+  std::signal(SIGXFSZ, SIG_IGN);
+  rlimit saved{};
+  getrlimit(RLIMIT_FSIZE, &saved);
+  const rlimit limit{1000, saved.rlim_max};
+  setrlimit(RLIMIT_FSIZE, &limit);
+  std::string message;
+  try {
+    WriteFileAtomically(dir / "summary.json", std::string(5000, 'x'));
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  setrlimit(RLIMIT_FSIZE, &saved);
+  EXPECT_THAT(message, ::testing::HasSubstr("summary.json: write failed: File too large"));
+  EXPECT_FALSE(fs::exists(dir / "summary.json"));
+  EXPECT_FALSE(fs::exists(dir / "summary.json.partial"));
+  WriteFileAtomically(dir / "summary.json", "{}\n");
+  EXPECT_EQ(fs::file_size(dir / "summary.json"), 3u);
+  fs::remove_all(dir);
+}
+
+TEST_F(RunTest, BadInputIsRejectedBeforeAnythingIsWritten) {
+  const fs::path dir = FreshDirectory("rejected");
+  const RunResult r = RunScenario(Request(dir / "out", {"controller.rate_hz=-1"}));
+  EXPECT_EQ(r.status, RunStatus::kRejected);
+  EXPECT_EQ(r.ExitCode(), 2);
+  EXPECT_THAT(r.message, ::testing::HasSubstr("controller.rate_hz"));
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace moorsim::simulation
