@@ -1567,10 +1567,17 @@ Scenario LoadScenario(const std::string& path, const std::vector<std::string>& o
     const std::error_code error(errno, std::generic_category());
     throw InputError(path + ": cannot open the scenario file: " + error.message());
   }
-  std::ostringstream text;
-  text << file.rdbuf();
+  // A scenario is a few kilobytes; reading stops at a cap, so a device or a wrong file
+  // (validate /dev/zero) is an error instead of a read that never ends.
+  constexpr std::size_t kMaxScenarioBytes = 4 << 20;
+  std::string text(kMaxScenarioBytes + 1, '\0');
+  file.read(text.data(), static_cast<std::streamsize>(text.size()));
   if (file.bad()) throw InputError(path + ": cannot read the scenario file");
-  return ParseScenario(text.str(), path, overrides);
+  text.resize(static_cast<std::size_t>(file.gcount()));
+  if (text.size() > kMaxScenarioBytes) {
+    throw InputError(path + ": larger than 4 MiB, not a scenario file");
+  }
+  return ParseScenario(text, path, overrides);
 }
 
 }  // namespace moorsim::scenarios

@@ -242,6 +242,11 @@ TEST_F(CliTest, MissingScenarioFileIsExit2WithOneLine) {
   }
 }
 
+TEST_F(CliTest, AnEndlessInputIsRejectedNotReadForever) {
+  const CliResult r = Run({"validate", "/dev/zero"});
+  ASSERT_TRUE(IsOneLineInputError(r, "/dev/zero", {"larger than 4 MiB"}));
+}
+
 TEST_F(CliTest, ValidateAcceptsTheSeed) {
   const CliResult r = Run({"validate", kSeed});
   ASSERT_EQ(r.exit_code, 0) << r.Describe();

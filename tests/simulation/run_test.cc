@@ -210,6 +210,21 @@ TEST_F(RunTest, AFileThatDoesNotFitIsAnErrorNotAnEmptyFile) {
   fs::remove_all(dir);
 }
 
+TEST_F(RunTest, AMooredEquilibriumThatDoesNotConvergeFailsLoudly) {
+  // A hull scaled to a fifth cannot carry the lines' 40 MN: the heave/roll/pitch iteration
+  // diverges, and the run says so instead of starting from an unbalanced pose.
+  const fs::path dir = FreshDirectory("equilibrium");
+  const RunResult r = RunScenario(Request(dir, {"vessel.length_scale=0.2"}));
+  EXPECT_EQ(r.status, RunStatus::kFailed);
+  EXPECT_EQ(r.ExitCode(), 1);
+  EXPECT_THAT(r.message, ::testing::HasSubstr("moored static equilibrium (heave, roll, pitch) "
+                                              "did not converge in 30 iterations"));
+  const nlohmann::json summary = ReadJson(dir / "summary.json");
+  EXPECT_EQ(summary["status"], "failed");
+  EXPECT_TRUE(summary["outputs"]["run"].is_null());
+  fs::remove_all(dir);
+}
+
 TEST_F(RunTest, BadInputIsRejectedBeforeAnythingIsWritten) {
   const fs::path dir = FreshDirectory("rejected");
   const RunResult r = RunScenario(Request(dir / "out", {"controller.rate_hz=-1"}));

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 #include <Eigen/Dense>
 
@@ -428,7 +429,9 @@ void Simulation::SettleMooredEquilibrium() {
   std::vector<Vec3> fairleads(mooring_.num_lines());
   std::vector<Vec3> forces(mooring_.num_lines());
   bool first = true;
-  for (int iteration = 0; iteration < 30; ++iteration) {
+  constexpr int kMaxIterations = 30;
+  double change = std::numeric_limits<double>::infinity();
+  for (int iteration = 0; iteration < kMaxIterations && !(change < 1e-9); ++iteration) {
     const std::vector<PointKinematics> points = Points();
     for (int i = 0; i < mooring_.num_lines(); ++i) fairleads[i] = points[i].position;
     if (first) mooring_.CatenaryState(fairleads, lines);
@@ -440,11 +443,18 @@ void Simulation::SettleMooredEquilibrium() {
       tau += plant_->PointLoad(x_.data(), mooring_.line(i).fairlead_body, forces[i], nullptr);
     }
     const Eigen::Vector3d updated = G.lu().solve(tau.segment<3>(2));
-    const double change = (updated - Eigen::Vector3d(x_[2], x_[3], x_[4])).norm();
+    change = (updated - Eigen::Vector3d(x_[2], x_[3], x_[4])).norm();
     x_[2] = updated(0);
     x_[3] = updated(1);
     x_[4] = updated(2);
-    if (change < 1e-9) break;
+  }
+  if (!(change < 1e-9)) {
+    std::ostringstream message;
+    message << "moored static equilibrium (heave, roll, pitch) did not converge in "
+            << kMaxIterations << " iterations: last change " << change
+            << " (m, rad; tolerance 1e-9); the lines' vertical load is too large for the "
+               "hull's hydrostatic stiffness";
+    throw Error(message.str());
   }
   initial_pose_ = Eigen::Map<const Vec6>(x_.data());
   plant_->SetStaticVerticalLoad((plant_->model().parameters().restoring * initial_pose_)(2));
