@@ -3,9 +3,8 @@
 // from an earlier verified build. It guards against unintended changes to the numbers;
 // the physics is verified by the other tests. A missing golden file is a failure.
 //
-// After an intended change, regenerate with
-//   MOORSIM_UPDATE_GOLDEN=1 build/release/tests/moorsim_mooring_fem_tests --gtest_filter=Golden*
-// and say why in the commit.
+// After an intended change, regenerate with tools/update_golden.sh and say why in the
+// commit.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -42,6 +41,9 @@ Record Simulate() {
 TEST(Golden, SeedSurgeTensionsAndStepCount) {
   const Record now = Simulate();
   if (std::getenv("MOORSIM_UPDATE_GOLDEN") != nullptr) {
+    const char* ci = std::getenv("CI");
+    ASSERT_FALSE(ci != nullptr && std::string(ci) == "true")
+        << "golden files are never rewritten under CI=true";
     std::ofstream out(kGolden);
     out.precision(12);
     out << "# moorsim golden: seed_tapm.yaml, 20 segments, surge 5 m / 100 s + 2 m / 10 s\n";
