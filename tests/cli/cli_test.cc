@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <ostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -240,6 +241,22 @@ TEST_F(CliTest, MissingScenarioFileIsExit2WithOneLine) {
     EXPECT_EQ(r.err,
               "moorsim: " + path + ": cannot open the scenario file: No such file or directory\n");
   }
+}
+
+TEST_F(CliTest, TopLevelHelpListsEachCommandOnOneLine) {
+  const CliResult r = Run({"--help"});
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  const std::string listing = r.out.substr(r.out.find("Subcommands:\n") + 13);
+  std::istringstream lines(listing);
+  std::vector<std::string> commands;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty()) continue;
+    ASSERT_EQ(line.rfind("  ", 0), 0u) << line;
+    ASSERT_NE(line[2], ' ') << "a continuation line: " << line;
+    commands.push_back(line.substr(2, line.find(' ', 2) - 2));
+  }
+  EXPECT_EQ(commands,
+            (std::vector<std::string>{"static", "run", "simulate-lines", "validate", "analyze"}));
 }
 
 TEST_F(CliTest, AnEndlessInputIsRejectedNotReadForever) {
