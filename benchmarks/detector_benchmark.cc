@@ -23,6 +23,7 @@
 #include "detectors/hypothesis_bank.h"
 #include "detectors/mle.h"
 #include "detectors/passive_observer.h"
+#include "scenarios/convert.h"
 #include "scenarios/load.h"
 
 namespace {
@@ -45,7 +46,7 @@ const HypothesisBank& Bank(bool pairs) {
     HypothesisBankOptions options;
     options.include_pairs = with_pairs;
     options.reference_pose = ReferencePose();
-    return HypothesisBank(Thesis().mooring, options);
+    return HypothesisBank(scenarios::ToMooringParameters(Thesis().mooring), options);
   };
   static const HypothesisBank single = make(false);
   static const HypothesisBank with_pairs = make(true);

@@ -23,6 +23,8 @@
 #include "mooring_fem/catenary.h"
 #include "mooring_fem/line_simulation.h"
 #include "mooring_fem/mooring_system.h"
+#include "mooring_fem/parameters.h"
+#include "scenarios/convert.h"
 #include "scenarios/load.h"
 #include "scenarios/scenario.h"
 
@@ -39,10 +41,10 @@ const moorsim::scenarios::Scenario& SeedScenario() {
 }
 
 /// The seed mooring with its first `lines` lines, each split into `segments` segments.
-moorsim::scenarios::MooringSpec SeedSpec(int lines, int segments) {
-  moorsim::scenarios::MooringSpec spec = SeedScenario().mooring;
+moorsim::mooring_fem::MooringParameters SeedSpec(int lines, int segments) {
+  moorsim::mooring_fem::MooringParameters spec =
+      moorsim::scenarios::ToMooringParameters(SeedScenario().mooring);
   if (static_cast<int>(spec.lines.size()) > lines) spec.lines.resize(lines);
-  spec.defaults.segments = segments;
   for (auto& line : spec.lines) line.segments = segments;
   return spec;
 }

@@ -284,7 +284,7 @@ Mat3 MooringDampingMatrix(const Mat3& stiffness, const Mat3& mass, const Vec3& r
 // ---------------------------------------------------------------------------------------
 // HypothesisBank
 
-HypothesisBank::HypothesisBank(const scenarios::MooringSpec& spec,
+HypothesisBank::HypothesisBank(const mooring_fem::MooringParameters& spec,
                                const HypothesisBankOptions& options) {
   if (spec.lines.empty()) throw InputError("mooring.lines: the bank needs at least one line");
   if (!std::isfinite(options.moored_heave)) {
@@ -294,7 +294,7 @@ HypothesisBank::HypothesisBank(const scenarios::MooringSpec& spec,
     throw InputError("hypothesis_bank.reference_pose: must be finite");
   }
   reference_pose_ = options.reference_pose;
-  for (const scenarios::LineSpec& line_spec : spec.lines) {
+  for (const mooring_fem::LineParameters& line_spec : spec.lines) {
     const mooring_fem::LineProperties p = mooring_fem::MakeLineProperties(spec, line_spec);
     const mooring_fem::CatenaryLineProperties line{p.length, p.weight_per_length,
                                                    p.axial_stiffness};

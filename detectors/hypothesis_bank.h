@@ -23,7 +23,7 @@
 
 #include "core/types.h"
 #include "mooring_fem/catenary.h"
-#include "scenarios/scenario.h"
+#include "mooring_fem/parameters.h"
 
 namespace moorsim::detectors {
 
@@ -173,7 +173,7 @@ class HypothesisBank {
   /// Lines come from spec.lines (ordered by id, lines[k-1] is line k) through
   /// mooring_fem::MakeLineProperties. Throws moorsim::InputError on a spec without lines,
   /// bad options, or a line without a catenary solution at the neutral pose.
-  explicit HypothesisBank(const scenarios::MooringSpec& spec,
+  explicit HypothesisBank(const mooring_fem::MooringParameters& spec,
                           const HypothesisBankOptions& options = {});
 
   int size() const { return static_cast<int>(hypotheses_.size()); }

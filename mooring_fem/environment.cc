@@ -5,7 +5,7 @@
 
 namespace moorsim::mooring_fem {
 
-CurrentField::CurrentField(const scenarios::CurrentProfile& profile)
+CurrentField::CurrentField(const CurrentProfile& profile)
     : direction_(std::cos(profile.direction), std::sin(profile.direction), 0.0),
       depth_(profile.depth),
       speed_(profile.speed) {}

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/types.h"
-#include "scenarios/scenario.h"
+#include "mooring_fem/parameters.h"
 
 namespace moorsim::mooring_fem {
 
@@ -14,7 +14,7 @@ namespace moorsim::mooring_fem {
 class CurrentField {
  public:
   CurrentField() = default;
-  explicit CurrentField(const scenarios::CurrentProfile& profile);
+  explicit CurrentField(const CurrentProfile& profile);
 
   bool empty() const { return depth_.empty(); }
   /// Water velocity at depth z (NED z, down positive) [m/s], Earth frame.

@@ -50,13 +50,13 @@ void PrescribedMotionSystem::Jacobian(double t, const double* x, const double*, 
   mooring_.Jacobian(x, Fairleads(t), values);
 }
 
-void ScaleTolerances(scenarios::SolverSpec& solver, double factor) {
+void ScaleTolerances(SolverSettings& solver, double factor) {
   solver.rtol *= factor;
   solver.atol_position *= factor;
   solver.atol_velocity *= factor;
 }
 
-IntegratorOptions MakeIntegratorOptions(const scenarios::SolverSpec& solver,
+IntegratorOptions MakeIntegratorOptions(const SolverSettings& solver,
                                         const MooringSystem& mooring) {
   IntegratorOptions o;
   o.rtol = solver.rtol;
@@ -69,9 +69,10 @@ IntegratorOptions MakeIntegratorOptions(const scenarios::SolverSpec& solver,
   return o;
 }
 
-LineSimulation::LineSimulation(const scenarios::Scenario& scenario, HarmonicMotion motion)
-    : solver_(scenario.solver),
-      mooring_(scenario.mooring),
+LineSimulation::LineSimulation(const MooringParameters& mooring, const SolverSettings& solver,
+                               HarmonicMotion motion)
+    : solver_(solver),
+      mooring_(mooring),
       system_(mooring_, std::move(motion)),
       x_(mooring_.StateSize()) {
   std::vector<Vec3> fairleads;

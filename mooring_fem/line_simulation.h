@@ -11,7 +11,7 @@
 #include "core/integrator.h"
 #include "core/ode_system.h"
 #include "mooring_fem/mooring_system.h"
-#include "scenarios/scenario.h"
+#include "mooring_fem/parameters.h"
 
 namespace moorsim::mooring_fem {
 
@@ -60,17 +60,17 @@ class PrescribedMotionSystem : public OdeSystem {
 };
 
 /// Multiplies rtol and every atol by `factor` (reference runs use 0.01).
-void ScaleTolerances(scenarios::SolverSpec& solver, double factor);
+void ScaleTolerances(SolverSettings& solver, double factor);
 
-/// Builds the integrator options (per-component absolute tolerances) from the scenario.
-IntegratorOptions MakeIntegratorOptions(const scenarios::SolverSpec& solver,
-                                        const MooringSystem& mooring);
+/// Builds the integrator options (per-component absolute tolerances) from the settings.
+IntegratorOptions MakeIntegratorOptions(const SolverSettings& solver, const MooringSystem& mooring);
 
 /// Drives a PrescribedMotionSystem with CVODE from the FEM's static equilibrium at the
 /// motion's mean pose (analytic catenary, then Newton on the FEM), with scheduled failures.
 class LineSimulation {
  public:
-  LineSimulation(const scenarios::Scenario& scenario, HarmonicMotion motion);
+  LineSimulation(const MooringParameters& mooring, const SolverSettings& solver,
+                 HarmonicMotion motion);
 
   /// A failure at time t [s]; the integrator stops exactly there, changes the topology and
   /// restarts with the state carried over.
@@ -92,7 +92,7 @@ class LineSimulation {
  private:
   void StartIntegrator();
 
-  scenarios::SolverSpec solver_;
+  SolverSettings solver_;
   MooringSystem mooring_;
   PrescribedMotionSystem system_;
   std::vector<double> x_;

@@ -72,10 +72,9 @@ HalfSegmentDrag Drag(const Vec3& u, const Vec3& t, double L, double c_n, double 
 
 }  // namespace
 
-LineProperties MakeLineProperties(const scenarios::MooringSpec& spec,
-                                  const scenarios::LineSpec& line) {
+LineProperties MakeLineProperties(const MooringParameters& spec, const LineParameters& line) {
   const auto type = std::find_if(spec.line_types.begin(), spec.line_types.end(),
-                                 [&](const scenarios::LineType& t) { return t.name == line.type; });
+                                 [&](const LineType& t) { return t.name == line.type; });
   if (type == spec.line_types.end()) {
     throw InputError("mooring.lines[" + std::to_string(line.id) + "].type: unknown line type '" +
                      line.type + "'");
@@ -110,7 +109,7 @@ LineProperties MakeLineProperties(const scenarios::MooringSpec& spec,
   return p;
 }
 
-MooringSystem::MooringSystem(const scenarios::MooringSpec& spec) : current_(spec.current) {
+MooringSystem::MooringSystem(const MooringParameters& spec) : current_(spec.current) {
   seabed_.depth = spec.water.depth;
   seabed_.stiffness = spec.seabed.stiffness;
   seabed_.damping = spec.seabed.damping;

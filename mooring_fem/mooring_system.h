@@ -28,7 +28,7 @@
 #include "core/ode_system.h"
 #include "core/types.h"
 #include "mooring_fem/environment.h"
-#include "scenarios/scenario.h"
+#include "mooring_fem/parameters.h"
 
 namespace moorsim::mooring_fem {
 
@@ -52,8 +52,8 @@ struct LineProperties {
   Vec3 fairlead_body = Vec3::Zero();   ///< body frame [m]
 };
 
-LineProperties MakeLineProperties(const scenarios::MooringSpec& spec,
-                                  const scenarios::LineSpec& line);
+/// Throws moorsim::InputError if the line's type is not one of spec.line_types.
+LineProperties MakeLineProperties(const MooringParameters& spec, const LineParameters& line);
 
 enum class EndCondition { kAnchored, kFairlead, kFree };
 
@@ -94,7 +94,7 @@ struct LineLoad {
 
 class MooringSystem {
  public:
-  explicit MooringSystem(const scenarios::MooringSpec& spec);
+  explicit MooringSystem(const MooringParameters& spec);
 
   int num_lines() const { return static_cast<int>(lines_.size()); }
   const LineProperties& line(int index) const { return lines_[index]; }

@@ -572,8 +572,8 @@ double Degrees(const Reader& r, std::string_view key, double fallback_rad) {
 }
 
 void ParseVessel(const Reader& r, Scenario& scenario) {
-  r.CheckKeys({"centre_of_gravity", "damping", "hydrodynamics", "initial_pose", "length_scale",
-               "mass", "radii_of_gyration", "thrusters"});
+  r.CheckKeys({"centre_of_gravity", "damping", "hull", "hydrodynamics", "initial_pose",
+               "length_scale", "mass", "radii_of_gyration", "thrusters", "windage"});
   VesselSpec v;
   v.hydrodynamics = r.Required<std::string>("hydrodynamics");
   r.Optional("length_scale", v.length_scale);
@@ -616,6 +616,26 @@ void ParseVessel(const Reader& r, Scenario& scenario) {
       t.Optional("rate_limit", e.rate_limit);
       v.thrusters.push_back(e);
     }
+  }
+  if (std::optional<Reader> h = r.Find("hull")) {
+    h->CheckKeys({"beam", "cross_flow_drag_coefficient", "displaced_volume", "draught",
+                  "form_factor", "kinematic_viscosity", "length", "wetted_surface"});
+    h->Optional("length", v.hull.length);
+    h->Optional("beam", v.hull.beam);
+    h->Optional("draught", v.hull.draught);
+    h->Optional("displaced_volume", v.hull.displaced_volume);
+    h->Optional("wetted_surface", v.hull.wetted_surface);
+    h->Optional("cross_flow_drag_coefficient", v.hull.cross_flow_drag_coefficient);
+    v.hull.form_factor = h->Maybe<double>("form_factor");
+    h->Optional("kinematic_viscosity", v.hull.kinematic_viscosity);
+  }
+  if (std::optional<Reader> w = r.Find("windage")) {
+    w->CheckKeys({"air_density", "frontal_area", "lateral_area", "lateral_centroid", "length"});
+    w->Optional("frontal_area", v.windage.frontal_area);
+    w->Optional("lateral_area", v.windage.lateral_area);
+    v.windage.length = w->Maybe<double>("length");
+    w->Optional("lateral_centroid", v.windage.lateral_centroid);
+    w->Optional("air_density", v.windage.air_density);
   }
   scenario.vessel = v;
 }
@@ -1109,6 +1129,57 @@ void Probability(const Checker& check, const std::string& path, double value) {
   if (!(value >= 0.0 && value < 1.0)) check.Fail(path, Number(value) + " must be in [0, 1)");
 }
 
+// The hull's particulars (the current load, vessel/hull_loads.h).
+void CheckHull(const Checker& check, const HullSpec& h) {
+  for (const auto& [key, size] :
+       {std::pair{"length", h.length}, {"beam", h.beam}, {"draught", h.draught}}) {
+    const std::string path = std::string("vessel.hull.") + key;
+    check.Positive(path, size, "m");
+    check.AtMost(path, size, kMaxBodyCoordinate, "m");
+  }
+  check.Positive("vessel.hull.displaced_volume", h.displaced_volume, "m^3");
+  // A hull holds no more than its bounding box L x B x T.
+  const double box = h.length * h.beam * h.draught;
+  if (!(h.displaced_volume <= box)) {
+    check.Fail("vessel.hull.displaced_volume", WithUnit(h.displaced_volume, "m^3") +
+                                                   " must be <= length x beam x draught = " +
+                                                   Number(box) + " m^3 (a block coefficient <= 1)");
+  }
+  check.NonNegative("vessel.hull.wetted_surface", h.wetted_surface, "m^2");
+  check.AtMost("vessel.hull.wetted_surface", h.wetted_surface, 1e6, "m^2");
+  check.NonNegative("vessel.hull.cross_flow_drag_coefficient", h.cross_flow_drag_coefficient, "");
+  check.AtMost("vessel.hull.cross_flow_drag_coefficient", h.cross_flow_drag_coefficient,
+               kMaxCoefficient, "", kCoefficientWhy);
+  if (h.form_factor && !(*h.form_factor > -1.0 && *h.form_factor <= kMaxCoefficient)) {
+    check.Fail(
+        "vessel.hull.form_factor",
+        Number(*h.form_factor) + " must be in (-1, 10] (k of (1 + k) C_F; ships 0.1 to 0.5)");
+  }
+  check.Between("vessel.hull.kinematic_viscosity", h.kinematic_viscosity, 1e-7, 1e-5, "m^2/s",
+                "water: 1.8e-6 at 0 deg C, 0.7e-6 at 40 deg C");
+}
+
+// The hull and superstructure above water (the wind load, vessel/hull_loads.h).
+void CheckWindage(const Checker& check, const VesselSpec& v) {
+  const WindageSpec& w = v.windage;
+  for (const auto& [key, area] :
+       {std::pair{"frontal_area", w.frontal_area}, {"lateral_area", w.lateral_area}}) {
+    const std::string path = std::string("vessel.windage.") + key;
+    check.Positive(path, area, "m^2");
+    check.AtMost(path, area, 1e6, "m^2");
+  }
+  if (w.length) {
+    check.Positive("vessel.windage.length", *w.length, "m");
+    check.AtMost("vessel.windage.length", *w.length, kMaxBodyCoordinate, "m");
+  }
+  const double half = 0.5 * w.length.value_or(v.hull.length);
+  check.Between("vessel.windage.lateral_centroid", w.lateral_centroid, -half, half, "m",
+                w.length ? "on the vessel: within half of windage.length from midship"
+                         : "on the vessel: within half of hull.length from midship");
+  check.Between("vessel.windage.air_density", w.air_density, 1.0, 1.5, "kg/m^3",
+                "air: 1.226 at sea level and 15 deg C");
+}
+
 void CheckVessel(const Checker& check, const VesselSpec& v) {
   const std::filesystem::path stem(v.hydrodynamics);
   for (const char* ext : {".1", ".hst"}) {
@@ -1146,6 +1217,8 @@ void CheckVessel(const Checker& check, const VesselSpec& v) {
   }
   check.Between("vessel.initial_pose.x", v.initial_pose.x(), -kMaxOffset, kMaxOffset, "m");
   check.Between("vessel.initial_pose.y", v.initial_pose.y(), -kMaxOffset, kMaxOffset, "m");
+  CheckHull(check, v.hull);
+  CheckWindage(check, v);
   for (std::size_t i = 0; i < v.thrusters.size(); ++i) {
     const ThrusterEntry& t = v.thrusters[i];
     const std::string path = ItemPath("vessel.thrusters", i);

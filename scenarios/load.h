@@ -56,6 +56,19 @@
 //     max_order: 2                   # BDF order, 1..5
 //     stability_limit_detection: false
 //     max_step: 0                    # [s], 0 = no limit
+//   vessel:                          # optional (`run` needs it); besides the keys listed
+//                                    # in scenarios/README.md, the hull and the windage:
+//     hull: {length: 200, beam: 44, draught: 12, displaced_volume: 97961,
+//            wetted_surface: 0, cross_flow_drag_coefficient: 0, kinematic_viscosity: 1.19e-6}
+//                                    # optional block and keys; these defaults are the seed
+//                                    # FPSO's [m, m, m, m^3, m^2, -, m^2/s]; wetted_surface 0
+//                                    # = Denny-Mumford, cross_flow_drag_coefficient 0 =
+//                                    # Hoerner's curve; form_factor: <k> optional, omitted =
+//                                    # Watanabe's regression (0.505 for the seed)
+//     windage: {frontal_area: 1200, lateral_area: 4500, lateral_centroid: 0, air_density: 1.226}
+//                                    # optional block and keys, the seed FPSO's [m^2, m^2, m
+//                                    # forward of midship, kg/m^3]; length: <m> optional,
+//                                    # omitted = hull.length
 //
 // Strictness: unknown keys, duplicate keys, a value of the wrong kind (a quoted "0.08"
 // where a number belongs, 2.5 where an integer belongs, .inf or .nan), an explicit YAML tag
@@ -66,7 +79,9 @@
 // its fairlead without lying slack: distance <= length < horizontal distance + height.
 // The coupled-simulation sections (vessel, environment, controller, sensors, failure,
 // simulation) are documented in scenarios/README.md; each is a row of the top-level
-// section table in load.cc.
+// section table in load.cc. The mooring and solver blocks are the FEM's parameter types
+// (mooring_fem/parameters.h; scenarios/convert.h converts), the vessel's hull and windage
+// the driver's (tools/simulation/simulation.h: ToHullGeometry, ToWindParameters).
 #pragma once
 
 #include <string>

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/types.h"
+#include "mooring_fem/parameters.h"
 
 namespace moorsim::scenarios {
 
@@ -19,33 +20,23 @@ struct SourceMark {
   int column = 0;
 };
 
-/// Material and hydrodynamic properties of one line type (Ren & Skjetne 2016, Table 2 style).
-struct LineType {
-  std::string name;
-  double diameter = 0.0;         ///< nominal (hydrodynamic and displacement) diameter [m]
-  double mass_per_length = 0.0;  ///< dry mass per unstretched length [kg/m]
-  double axial_stiffness = 0.0;  ///< EA [N]
-  /// Axial structural damping: internal force = c * strain rate, c in [N s]. If
-  /// axial_damping_ratio is set instead, c is chosen per line so that a single segment's
-  /// axial mode has that fraction of critical damping (a numerical damping that vanishes
-  /// as segments shrink).
-  std::optional<double> axial_damping;
-  std::optional<double> axial_damping_ratio;
-  double drag_normal = 0.0;        ///< C_DN [-]
-  double drag_tangential = 0.0;    ///< C_DT [-]
-  double added_mass_normal = 0.0;  ///< C_MN [-]
-  double friction_axial = 0.0;     ///< seabed Coulomb coefficient along the line [-]
-  double friction_lateral = 0.0;   ///< seabed Coulomb coefficient across the line [-]
+// The mooring and solver blocks use the FEM's own parameter types (mooring_fem/parameters.h:
+// the same fields and defaults), plus where each entry was written where messages need it.
+// scenarios::ToMooringParameters (convert.h) strips the source marks for the FEM and the
+// detectors, which never include this header.
+
+using Water = mooring_fem::Water;
+using Seabed = mooring_fem::Seabed;
+/// Integrator settings (CVODE BDF).
+using SolverSpec = mooring_fem::SolverSettings;
+
+/// A line type (mooring_fem::LineType) and where its list entry was written.
+struct LineType : mooring_fem::LineType {
   SourceMark mark;
 };
 
-struct LineSpec {
-  int id = 0;              ///< 1-based line number
-  std::string type;        ///< name of a LineType
-  Vec3 anchor;             ///< anchor position, Earth frame [m] (z = +depth for the seabed)
-  Vec3 fairlead_body;      ///< fairlead position in the body frame of the vessel [m]
-  double length = 0.0;     ///< unstretched length [m]
-  int segments = 50;       ///< number of equal segments
+/// A line (mooring_fem::LineParameters) and where it was written.
+struct LineSpec : mooring_fem::LineParameters {
   SourceMark mark;         ///< the list entry
   SourceMark length_mark;  ///< the `length` key's value (for the distance check)
   /// 1-based position of the entry in the YAML list (0 = not from YAML). Lines are sorted
@@ -53,37 +44,10 @@ struct LineSpec {
   int entry = 0;
 };
 
-struct Water {
-  double density = 1025.0;  ///< [kg/m^3]
-  double gravity = 9.81;    ///< [m/s^2]
-  double depth = 0.0;       ///< seabed depth below the mean free surface [m], > 0
-};
-
-/// Penalty contact with a flat seabed at z = water.depth, per unit of contact area
-/// (diameter x length), and regularised Coulomb friction (coefficients per line type).
-struct Seabed {
-  double stiffness = 3.0e6;  ///< [N/m^3] (pressure per metre of penetration)
-  double damping = 3.0e5;    ///< [N s/m^3]
-  /// Penetration [m] over which the contact stiffness ramps from zero to `stiffness`. A
-  /// gradual ramp keeps touchdown smooth for the implicit integrator (benchmarks/README.md:
-  /// with 2 mm, landing nodes caused most Newton failures and halved the step size).
-  double contact_smoothing = 0.5;
-  /// Speed [m/s] below which Coulomb friction is regularised (force ~ speed). Smaller is
-  /// closer to true stick-slip and costs steps (0.05 m/s ran 20 % slower than 0.1).
-  double friction_velocity = 0.1;
-};
-
-/// Current: a horizontal velocity whose speed varies piecewise linearly with depth and is
-/// held constant beyond the first and last points. `direction` is the direction the water
-/// flows TO, measured from north toward east [rad].
-struct CurrentProfile {
-  double direction = 0.0;
-  std::vector<double> depth;  ///< strictly increasing depths [m], >= 0
-  std::vector<double> speed;  ///< speeds at those depths [m/s], >= 0
+/// The current (mooring_fem::CurrentProfile) and the key it was written under.
+struct CurrentProfile : mooring_fem::CurrentProfile {
   /// Where it was written ("mooring.current" or "environment.current"), for messages.
   std::string key = "mooring.current";
-  /// Speed at the surface [m/s] (0 without a profile).
-  double SurfaceSpeed() const { return speed.empty() ? 0.0 : speed.front(); }
 };
 
 /// Values that apply to every line unless the line says otherwise.
@@ -98,18 +62,6 @@ struct MooringSpec {
   std::vector<LineType> line_types;
   LineDefaults defaults;
   std::vector<LineSpec> lines;  ///< ordered by id after loading: lines[k - 1] is line k
-};
-
-/// Integrator settings (CVODE BDF).
-struct SolverSpec {
-  double rtol = 1e-4;
-  double atol_position = 1e-3;  ///< [m]
-  double atol_velocity = 1e-3;  ///< [m/s]
-  /// BDF order cap. 2 (A-stable) by default: orders 3-5 are not A-stable and the lines'
-  /// lightly damped modes kept them at small steps (benchmarks/README.md).
-  int max_order = 2;
-  bool stability_limit_detection = false;
-  double max_step = 0.0;  ///< [s]; 0 = no limit
 };
 
 /// The vessel (docs/design.md section 5). Defaults are the seed FPSO (docs/design.md section 9).
@@ -134,6 +86,35 @@ struct ThrusterEntry {
   double rate_limit = 0.0;     ///< [N/s], 0 = none
 };
 
+/// The hull's particulars for the viscous current load (`vessel.hull`; vessel::HullGeometry,
+/// with the water density of mooring.water). Defaults: the seed FPSO (vessel::SeedFpsoHull()).
+struct HullSpec {
+  double length = 200.0;              ///< L, length between perpendiculars [m]
+  double beam = 44.0;                 ///< B [m]
+  double draught = 12.0;              ///< T [m]
+  double displaced_volume = 97961.0;  ///< nabla [m^3]
+  double wetted_surface = 0.0;        ///< S [m^2]; 0 = Denny-Mumford estimate from L, T, nabla
+  /// C_d2D [-] of a hull section; 0 = Hoerner's curve at B / (2 T).
+  double cross_flow_drag_coefficient = 0.0;
+  /// k of the viscous resistance (1 + k) C_F [-]; unset = Watanabe's regression from L, B,
+  /// T and nabla (vessel::WatanabeFormFactor; 0.505 for the seed).
+  std::optional<double> form_factor;
+  double kinematic_viscosity = 1.19e-6;  ///< of the water [m^2/s]
+};
+
+/// The hull and superstructure above water for the wind load (`vessel.windage`;
+/// vessel::WindParameters with Blendermann's loaded-tanker coefficients). Defaults: the
+/// seed FPSO (vessel::SeedFpsoWind()).
+struct WindageSpec {
+  double frontal_area = 1200.0;  ///< A_F, projected area seen from ahead [m^2]
+  double lateral_area = 4500.0;  ///< A_L, projected area seen from the side [m^2]
+  /// Reference length of the yaw moment [m]; unset = hull.length.
+  std::optional<double> length;
+  /// s_L, the lateral area's centroid forward of midship [m].
+  double lateral_centroid = 0.0;
+  double air_density = 1.226;  ///< [kg/m^3]
+};
+
 struct VesselSpec {
   /// WAMIT output stem (files stem.1, .hst, .3, .4, .9), relative paths resolved against
   /// the scenario file's directory at load time.
@@ -147,6 +128,8 @@ struct VesselSpec {
   /// the moored static equilibrium.
   Vec3 initial_pose = Vec3::Zero();
   std::vector<ThrusterEntry> thrusters;  ///< empty = the seed layout (vessel/thrusters.h)
+  HullSpec hull;
+  WindageSpec windage;
 };
 
 struct WavesSpec {

@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "detectors/distinguishability.h"
 #include "detectors/hypothesis_bank.h"
+#include "scenarios/convert.h"
 #include "scenarios/load.h"
 #include "tools/commands.h"
 #include "tools/simulation/detection_models.h"
@@ -74,7 +75,8 @@ int Analyze(const AnalyzeOptions& o) {
   simulation::Simulation sim(plant_only, scenario.simulation.seed);
   const simulation::DetectionModels models =
       simulation::MakeDetectionModels(scenario, sim.plant().model(), sim.initial_pose());
-  const detectors::HypothesisBank bank(scenario.mooring, models.bank);
+  const detectors::HypothesisBank bank(scenarios::ToMooringParameters(scenario.mooring),
+                                       models.bank);
   options.sample_interval = 1.0 / scenario.sensors.gnss_rate;
   const Vec3& pose = models.bank.reference_pose;
   const detectors::Distinguishability d =

@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "mooring_fem/line_simulation.h"
+#include "scenarios/convert.h"
 #include "scenarios/load.h"
 #include "tools/commands.h"
 
@@ -125,7 +126,8 @@ int RunSimulateLines(const SimulateLinesOptions& o) {
 
   using Clock = std::chrono::steady_clock;
   const auto t_start = Clock::now();
-  mooring_fem::LineSimulation sim(scenario, motion);
+  mooring_fem::LineSimulation sim(scenarios::ToMooringParameters(scenario.mooring), scenario.solver,
+                                  motion);
   for (const ScheduledPart& p : parts) sim.ScheduleFailure(p.time, p.failure);
   const auto t_ready = Clock::now();
 

@@ -12,6 +12,7 @@
 #include "mooring_fem/catenary.h"
 #include "mooring_fem/line_simulation.h"
 #include "mooring_fem/mooring_system.h"
+#include "scenarios/convert.h"
 #include "scenarios/load.h"
 #include "tools/commands.h"
 #include "tools/simulation/simulation.h"
@@ -60,8 +61,9 @@ int RunStatic(const StaticOptions& o) {
   }
 
   // A line parted at its fairlead puts no load on the vessel: leave it out of the FEM.
-  scenarios::MooringSpec spec = scenario.mooring;
-  std::erase_if(spec.lines, [&](const scenarios::LineSpec& l) { return broken.count(l.id) > 0; });
+  mooring_fem::MooringParameters spec = scenarios::ToMooringParameters(scenario.mooring);
+  std::erase_if(spec.lines,
+                [&](const mooring_fem::LineParameters& l) { return broken.count(l.id) > 0; });
   std::vector<StaticLineResult> results(num_lines);
   for (int i = 0; i < num_lines; ++i) {
     results[i].id = scenario.mooring.lines[i].id;

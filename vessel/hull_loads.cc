@@ -182,13 +182,20 @@ HullGeometry SeedFpsoHull() {
   hull.beam = 44.0;
   hull.draught = 12.0;
   hull.displaced_volume = 97961.0;
-  const double block_coefficient = hull.displaced_volume / (hull.length * hull.beam * hull.draught);
-  const double length_over_beam = hull.length / hull.beam;
-  // Watanabe's form-factor regression (see the declaration): 0.505 for the seed.
   hull.form_factor =
-      -0.095 + 25.6 * block_coefficient /
-                   (length_over_beam * length_over_beam * std::sqrt(hull.beam / hull.draught));
+      WatanabeFormFactor(hull.length, hull.beam, hull.draught, hull.displaced_volume);
   return hull;
+}
+
+double WatanabeFormFactor(double length, double beam, double draught, double displaced_volume) {
+  RequirePositive("hull.length", length, "m");
+  RequirePositive("hull.beam", beam, "m");
+  RequirePositive("hull.draught", draught, "m");
+  RequirePositive("hull.displaced_volume", displaced_volume, "m^3");
+  const double block_coefficient = displaced_volume / (length * beam * draught);
+  const double length_over_beam = length / beam;
+  return -0.095 + 25.6 * block_coefficient /
+                      (length_over_beam * length_over_beam * std::sqrt(beam / draught));
 }
 
 double DennyMumfordWettedSurface(double length, double draught, double displaced_volume) {

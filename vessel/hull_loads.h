@@ -50,9 +50,15 @@ struct HullGeometry {
 
 /// The seed FPSO (docs/design.md section 9: Lpp 200 m, B 44 m, T 12 m, nabla 97 961 m^3, so
 /// C_B = 0.928): wetted surface and C_d2D left to their estimates (12 243 m^2 and 0.661),
-/// k = 0.505 from Watanabe's regression k = -0.095 + 25.6 C_B / ((L/B)^2 sqrt(B/T)) (as
-/// quoted by Molland, Turnock & Hudson, "Ship Resistance and Propulsion", 2011, ch. 4).
+/// k = 0.505 from WatanabeFormFactor. A scenario's `vessel.hull` defaults to these values
+/// (scenarios/README.md).
 HullGeometry SeedFpsoHull();
+
+/// Watanabe's form-factor regression k = -0.095 + 25.6 C_B / ((L/B)^2 sqrt(B/T)) [-], with
+/// C_B = nabla / (L B T) (as quoted by Molland, Turnock & Hudson, "Ship Resistance and
+/// Propulsion", 2011, ch. 4): 0.505 for the seed FPSO. Throws moorsim::InputError if an
+/// argument is not positive and finite.
+double WatanabeFormFactor(double length, double beam, double draught, double displaced_volume);
 
 /// Denny-Mumford wetted-surface estimate S = 1.7 L T + nabla / T [m^2] for a full
 /// displacement hull (SNAME, "Principles of Naval Architecture" vol. II, 1988, ch. V).
@@ -194,7 +200,8 @@ struct WindParameters {
 /// 1200 m^2 (44 m beam x ~9 m freeboard of hull, plus ~800 m^2 of accommodation, flare
 /// and process modules seen end-on), A_L = 4500 m^2 (200 m x 9 m of hull plus topsides
 /// ~15 m high over ~180 m, counted ~90 % solid), L = 200 m, rho_a = 1.226 kg/m^3, and
-/// LoadedTankerWindCoefficients with the centroid at midship (37 rows, 5 deg apart).
+/// LoadedTankerWindCoefficients with the centroid at midship (37 rows, 5 deg apart). A
+/// scenario's `vessel.windage` defaults to these values (scenarios/README.md).
 WindParameters SeedFpsoWind();
 
 /// Wind load on the hull and superstructure from the relative wind (Fossen 2011 ch. 8,

@@ -28,6 +28,7 @@
 #include "core/error.h"
 #include "core/random.h"
 #include "detectors/hypothesis_bank.h"
+#include "scenarios/convert.h"
 #include "scenarios/load.h"
 #include "tests/support/sample_statistics.h"
 
@@ -179,10 +180,11 @@ TEST(LinearGaussianCoreTest, UnstableTruthHasNoStationaryMoments) {
 // ---------------------------------------------------------------------------------------
 // The hypothesis bank.
 
-scenarios::MooringSpec ThesisMooring() {
-  return scenarios::LoadScenario(std::string(MOORSIM_SOURCE_DIR) +
-                                 "/scenarios/library/thesis_no_failure.yaml")
-      .mooring;
+mooring_fem::MooringParameters ThesisMooring() {
+  return scenarios::ToMooringParameters(
+      scenarios::LoadScenario(std::string(MOORSIM_SOURCE_DIR) +
+                              "/scenarios/library/thesis_no_failure.yaml")
+          .mooring);
 }
 
 /// The thesis's setpoint: the origin at heading -135 deg, where its turret's fairleads
@@ -398,7 +400,7 @@ class ModelSimulator {
 /// setpoint: a small bank for the Monte-Carlo tests.
 const HypothesisBank& FourLineBank() {
   static const HypothesisBank bank = [] {
-    scenarios::MooringSpec spec = ThesisMooring();
+    mooring_fem::MooringParameters spec = ThesisMooring();
     spec.lines.resize(4);
     return HypothesisBank(spec, ThesisBankOptions());
   }();

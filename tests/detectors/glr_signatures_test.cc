@@ -9,25 +9,27 @@
 #include <string>
 
 #include "core/error.h"
+#include "scenarios/convert.h"
 #include "scenarios/load.h"
 
 namespace moorsim::detectors {
 namespace {
 
-scenarios::Scenario Seed() {
-  return scenarios::LoadScenario(MOORSIM_SOURCE_DIR "/scenarios/library/seed_tapm.yaml");
+mooring_fem::MooringParameters SeedMooring() {
+  return scenarios::ToMooringParameters(
+      scenarios::LoadScenario(MOORSIM_SOURCE_DIR "/scenarios/library/seed_tapm.yaml").mooring);
 }
 
 TEST(GlrSignatures, PointAwayFromTheFailedLinesAnchor) {
-  const scenarios::Scenario s = Seed();
+  const mooring_fem::MooringParameters mooring = SeedMooring();
   HypothesisBankOptions options;
   options.moored_heave = 0.47;
-  const HypothesisBank bank(s.mooring, options);
+  const HypothesisBank bank(mooring, options);
   const std::vector<Vec3> sig =
       GlrSignatures(bank, SeedLowFrequencyModel(), EkfOptions{}, Vec3::Zero(), 1.0, 50);
   ASSERT_EQ(sig.size(), 8u);
   for (int k = 1; k <= 8; ++k) {
-    const Vec3 anchor = s.mooring.lines[k - 1].anchor;
+    const Vec3 anchor = mooring.lines[k - 1].anchor;
     const double away = std::atan2(-anchor.y(), -anchor.x());
     const Vec3& v = sig[k - 1];
     // The x-y part of the whitened innovation: S is near-isotropic in x and y for this
@@ -45,7 +47,7 @@ TEST(GlrSignatures, PointAwayFromTheFailedLinesAnchor) {
 }
 
 TEST(GlrSignatures, BadArgumentsThrow) {
-  const HypothesisBank bank(Seed().mooring);
+  const HypothesisBank bank(SeedMooring());
   EXPECT_THROW(GlrSignatures(bank, SeedLowFrequencyModel(), {}, Vec3::Zero(), 0.0, 50), InputError);
   EXPECT_THROW(GlrSignatures(bank, SeedLowFrequencyModel(), {}, Vec3::Zero(), 1.0, 0), InputError);
 }

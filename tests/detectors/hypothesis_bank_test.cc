@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "mooring_fem/catenary.h"
 #include "mooring_fem/mooring_system.h"
+#include "scenarios/convert.h"
 #include "scenarios/load.h"
 
 namespace moorsim::detectors {
@@ -22,20 +23,21 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-scenarios::MooringSpec SeedMooring() {
-  return scenarios::LoadScenario(std::string(MOORSIM_SOURCE_DIR) +
-                                 "/scenarios/library/seed_tapm.yaml")
-      .mooring;
+mooring_fem::MooringParameters SeedMooring() {
+  return scenarios::ToMooringParameters(
+      scenarios::LoadScenario(std::string(MOORSIM_SOURCE_DIR) + "/scenarios/library/seed_tapm.yaml")
+          .mooring);
 }
 
-mooring_fem::CatenaryLineProperties CatenaryOf(const scenarios::MooringSpec& spec, int index) {
+mooring_fem::CatenaryLineProperties CatenaryOf(const mooring_fem::MooringParameters& spec,
+                                               int index) {
   const mooring_fem::LineProperties p = mooring_fem::MakeLineProperties(spec, spec.lines[index]);
   return {p.length, p.weight_per_length, p.axial_stiffness};
 }
 
 /// Net load [Fx, Fy, Mz] of the given lines (0-based) by SolveLineCatenary in Earth
 /// coordinates: an independent path to the same physics (no table, no 2-D geometry).
-Vec3 DirectLoad(const scenarios::MooringSpec& spec, const std::vector<int>& lines,
+Vec3 DirectLoad(const mooring_fem::MooringParameters& spec, const std::vector<int>& lines,
                 const Vec3& eta) {
   const double c = std::cos(eta.z());
   const double s = std::sin(eta.z());
@@ -55,17 +57,17 @@ Vec3 DirectLoad(const scenarios::MooringSpec& spec, const std::vector<int>& line
 class HypothesisBankTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    spec_ = new scenarios::MooringSpec(SeedMooring());
+    spec_ = new mooring_fem::MooringParameters(SeedMooring());
     bank_ = new HypothesisBank(*spec_);
   }
   static void TearDownTestSuite() {
     delete bank_;
     delete spec_;
   }
-  static scenarios::MooringSpec* spec_;
+  static mooring_fem::MooringParameters* spec_;
   static HypothesisBank* bank_;
 };
-scenarios::MooringSpec* HypothesisBankTest::spec_ = nullptr;
+mooring_fem::MooringParameters* HypothesisBankTest::spec_ = nullptr;
 HypothesisBank* HypothesisBankTest::bank_ = nullptr;
 
 // Interpolation error at off-grid spans, mid-interval (where cubic Hermite errs most) and
@@ -150,10 +152,10 @@ TEST_F(HypothesisBankTest, SeedStiffnessAtTheOrigin) {
 // The thesis cases hold heading -135 deg with the locked turret's fairleads turned to
 // match; linearised there, their stiffness is the seed case's at heading 0.
 TEST(HypothesisBankReferencePoseTest, ThesisStiffnessAtItsHeading) {
-  const scenarios::MooringSpec thesis =
+  const mooring_fem::MooringParameters thesis = scenarios::ToMooringParameters(
       scenarios::LoadScenario(std::string(MOORSIM_SOURCE_DIR) +
                               "/scenarios/library/thesis_no_failure.yaml")
-          .mooring;
+          .mooring);
   HypothesisBankOptions options;
   options.reference_pose = Vec3(0.0, 0.0, -0.75 * kPi);
   const HypothesisBank bank(thesis, options);
@@ -313,7 +315,7 @@ TEST(LowFrequencyModelTest, SeedNumbers) {
 }
 
 TEST(HypothesisBankInputTest, BadParametersNameTheField) {
-  scenarios::MooringSpec spec = SeedMooring();
+  mooring_fem::MooringParameters spec = SeedMooring();
   HypothesisBankOptions options;
   options.table.span_step = 0.0;
   try {
@@ -326,7 +328,7 @@ TEST(HypothesisBankInputTest, BadParametersNameTheField) {
   options.moored_heave = std::nan("");
   EXPECT_THROW(HypothesisBank(spec, options), InputError);
 
-  scenarios::MooringSpec empty = spec;
+  mooring_fem::MooringParameters empty = spec;
   empty.lines.clear();
   EXPECT_THROW(HypothesisBank{empty}, InputError);
 
@@ -342,7 +344,7 @@ TEST(HypothesisBankInputTest, BadParametersNameTheField) {
 
 // A table asked to reach farther than the line can stretch stops short of the limit.
 TEST(HypothesisBankInputTest, TableStopsWhereTheLineCannotReach) {
-  scenarios::MooringSpec spec = SeedMooring();
+  mooring_fem::MooringParameters spec = SeedMooring();
   const auto line = CatenaryOf(spec, 0);
   LineForceTableOptions options;
   options.span_margin = 600.0;

@@ -14,15 +14,16 @@
 #include "core/types.h"
 #include "detectors/detector.h"
 #include "detectors/hypothesis_bank.h"
+#include "scenarios/convert.h"
 #include "scenarios/load.h"
 
 namespace moorsim::detectors::testing {
 
 /// The mooring of the seed scenario (scenarios/library/seed_tapm.yaml).
-inline scenarios::MooringSpec SeedMooring() {
-  return scenarios::LoadScenario(std::string(MOORSIM_SOURCE_DIR) +
-                                 "/scenarios/library/seed_tapm.yaml")
-      .mooring;
+inline mooring_fem::MooringParameters SeedMooring() {
+  return scenarios::ToMooringParameters(
+      scenarios::LoadScenario(std::string(MOORSIM_SOURCE_DIR) + "/scenarios/library/seed_tapm.yaml")
+          .mooring);
 }
 
 /// The seed case's hypothesis bank (intact and each line failed), built once.

@@ -27,8 +27,9 @@ double LargestNodeMove(const MooringSystem& mooring, const std::vector<double>& 
 }
 
 TEST(LineDynamics, StaticStateStaysAtRestFor200Seconds) {
-  const scenarios::Scenario s = SeedScenario(50);
-  LineSimulation sim(s, HarmonicMotion{});  // no current in the seed case, turret still
+  const testing::SeedCase s = SeedScenario(50);
+  // No current in the seed case, turret still.
+  LineSimulation sim(s.mooring, s.solver, HarmonicMotion{});
   const std::vector<double> start = sim.state();
   const std::vector<Vec3> f0 = sim.FairleadForces();
   sim.AdvanceTo(200.0);
@@ -61,8 +62,8 @@ LineNodes NodesOfLine(const LineSimulation& sim, MooringSystem& mooring, int lin
 }
 
 TEST(LineDynamics, PartedLineFallsToTheSeabedAndEnergyNeverGrows) {
-  const scenarios::Scenario s = SeedScenario(50);
-  LineSimulation sim(s, HarmonicMotion{});
+  const testing::SeedCase s = SeedScenario(50);
+  LineSimulation sim(s.mooring, s.solver, HarmonicMotion{});
   const double t_fail = 5.0;
   sim.ScheduleFailure(t_fail, {0, FailureMode::kFairlead, 0});
 
@@ -107,8 +108,8 @@ TEST(LineDynamics, PartedLineFallsToTheSeabedAndEnergyNeverGrows) {
 double HangingWeight(const LineProperties& lp) { return lp.weight_per_length * (1000.0 - 12.0); }
 
 TEST(LineDynamics, LinePartedAtAMidNodeHangsFromTheFairlead) {
-  const scenarios::Scenario s = SeedScenario(50);
-  LineSimulation sim(s, HarmonicMotion{});
+  const testing::SeedCase s = SeedScenario(50);
+  LineSimulation sim(s.mooring, s.solver, HarmonicMotion{});
   sim.ScheduleFailure(5.0, {0, FailureMode::kNode, 25});
   sim.AdvanceTo(1000.0);
   ASSERT_EQ(sim.mooring().chains().size(), 9u);  // line 1 is now two chains
@@ -127,8 +128,8 @@ TEST(LineDynamics, LinePartedAtAMidNodeHangsFromTheFairlead) {
 }
 
 TEST(LineDynamics, ReleasedAnchorDragsAndTheLineHangsFromTheFairlead) {
-  const scenarios::Scenario s = SeedScenario(20);
-  LineSimulation sim(s, HarmonicMotion{});
+  const testing::SeedCase s = SeedScenario(20);
+  LineSimulation sim(s.mooring, s.solver, HarmonicMotion{});
   sim.ScheduleFailure(5.0, {0, FailureMode::kAnchor, 0});
   double previous = sim.MechanicalEnergy();
   for (int i = 1; i <= 100; ++i) {
@@ -145,8 +146,8 @@ TEST(LineDynamics, ReleasedAnchorDragsAndTheLineHangsFromTheFairlead) {
 }
 
 TEST(LineDynamics, FailureOfADetachedEndIsRejected) {
-  const scenarios::Scenario s = SeedScenario(20);
-  LineSimulation sim(s, HarmonicMotion{});
+  const testing::SeedCase s = SeedScenario(20);
+  LineSimulation sim(s.mooring, s.solver, HarmonicMotion{});
   sim.ScheduleFailure(1.0, {2, FailureMode::kFairlead, 0});
   sim.ScheduleFailure(2.0, {2, FailureMode::kFairlead, 0});
   EXPECT_THROW(sim.AdvanceTo(3.0), InputError);
@@ -154,9 +155,9 @@ TEST(LineDynamics, FailureOfADetachedEndIsRejected) {
 
 // Fairlead tensions of line 1 every 0.5 s under the issue's turret motion.
 std::vector<double> SurgeTensions(double tolerance_scale, double duration) {
-  scenarios::Scenario s = SeedScenario(20);
+  testing::SeedCase s = SeedScenario(20);
   ScaleTolerances(s.solver, tolerance_scale);
-  LineSimulation sim(s, testing::IssueSurge());
+  LineSimulation sim(s.mooring, s.solver, testing::IssueSurge());
   std::vector<double> t1;
   for (int i = 1; i <= static_cast<int>(duration / 0.5); ++i) {
     sim.AdvanceTo(0.5 * i);
@@ -192,9 +193,9 @@ namespace {
 // right-hand side. RK4 at 5 ms is far below its stability limit for 20 segments (highest
 // axial mode 16 rad/s, docs/design.md section 8.2) and its error is far below CVODE's.
 double LargestDifferenceFromRungeKutta(double tolerance_scale) {
-  scenarios::Scenario s = SeedScenario(20);
+  testing::SeedCase s = SeedScenario(20);
   ScaleTolerances(s.solver, tolerance_scale);
-  LineSimulation sim(s, testing::IssueSurge());
+  LineSimulation sim(s.mooring, s.solver, testing::IssueSurge());
   MooringSystem& mooring = sim.mooring();
   PrescribedMotionSystem rk_system(mooring, testing::IssueSurge());
   const int n = mooring.StateSize();

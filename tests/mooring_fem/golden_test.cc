@@ -25,8 +25,8 @@ struct Record {
 };
 
 Record Simulate() {
-  const scenarios::Scenario s = testing::SeedScenario(20);
-  LineSimulation sim(s, testing::IssueSurge());
+  const testing::SeedCase s = testing::SeedScenario(20);
+  LineSimulation sim(s.mooring, s.solver, testing::IssueSurge());
   Record r;
   for (int i = 1; i <= 12; ++i) {
     sim.AdvanceTo(10.0 * i);

@@ -15,13 +15,13 @@
 namespace moorsim::mooring_fem {
 namespace {
 
-scenarios::MooringSpec TestSpec(int segments) {
-  scenarios::MooringSpec spec;
+MooringParameters TestSpec(int segments) {
+  MooringParameters spec;
   spec.water.depth = 1000.0;
   spec.current.direction = 30.0 * std::numbers::pi / 180.0;
   spec.current.depth = {0.0, 200.0, 1000.0};
   spec.current.speed = {0.8, 0.4, 0.1};
-  scenarios::LineType type;
+  LineType type;
   type.name = "chain";
   type.diameter = 0.08;
   type.mass_per_length = 275.0;
@@ -35,7 +35,7 @@ scenarios::MooringSpec TestSpec(int segments) {
   spec.line_types.push_back(type);
   for (int i = 0; i < 2; ++i) {
     const double angle = i * 2.0 * std::numbers::pi / 3.0;
-    scenarios::LineSpec line;
+    LineParameters line;
     line.id = i + 1;
     line.type = "chain";
     line.anchor = Vec3(1950.0 * std::cos(angle), 1950.0 * std::sin(angle), 1000.0);
@@ -111,7 +111,7 @@ struct Fixture {
       x[i] += (i % 6) < 3 ? 0.05 * dist(rng) : 0.5 * dist(rng);
     }
   }
-  scenarios::MooringSpec spec;
+  MooringParameters spec;
   MooringSystem mooring;
   std::vector<PointKinematics> fairleads;
   std::vector<Vec3> positions;

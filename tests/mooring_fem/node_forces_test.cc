@@ -19,15 +19,15 @@ constexpr double kCdn = 0.3, kCdt = 1.0, kCmn = 1.5;
 constexpr int kSegments = 4;
 constexpr double kLength = 400.0, kL0 = kLength / kSegments;
 
-scenarios::MooringSpec StraightChain(double current_speed, double current_direction) {
-  scenarios::MooringSpec spec;
+MooringParameters StraightChain(double current_speed, double current_direction) {
+  MooringParameters spec;
   spec.water = {kRho, kG, 1000.0};
   if (current_speed > 0.0) {
     spec.current.direction = current_direction;
     spec.current.depth = {0.0};
     spec.current.speed = {current_speed};
   }
-  scenarios::LineType type;
+  LineType type;
   type.name = "chain";
   type.diameter = kD;
   type.mass_per_length = kMass;
@@ -37,7 +37,7 @@ scenarios::MooringSpec StraightChain(double current_speed, double current_direct
   type.drag_tangential = kCdt;
   type.added_mass_normal = kCmn;
   spec.line_types.push_back(type);
-  scenarios::LineSpec line;
+  LineParameters line;
   line.id = 1;
   line.type = "chain";
   line.anchor = Vec3(0.0, 0.0, 500.0);  // mid-water: no seabed contact
@@ -51,7 +51,7 @@ scenarios::MooringSpec StraightChain(double current_speed, double current_direct
 // Acceleration of interior node 2 for the chain straight along x, every node moving at
 // `velocity`, in a current.
 Vec3 NodeAcceleration(const Vec3& velocity, double current_speed, double current_direction) {
-  const scenarios::MooringSpec spec = StraightChain(current_speed, current_direction);
+  const MooringParameters spec = StraightChain(current_speed, current_direction);
   MooringSystem mooring(spec);
   std::vector<PointKinematics> fairleads(1);
   fairleads[0].position = Vec3(kLength, 0.0, 500.0);

@@ -25,7 +25,7 @@ struct TensionError {
 };
 
 TensionError LineOneError(int segments) {
-  const scenarios::Scenario s = SeedScenario(segments);
+  const testing::SeedCase s = SeedScenario(segments);
   MooringSystem mooring(s.mooring);
   const std::vector<double> x = StaticState(mooring, {});
   const auto fairleads = FairleadsAt(mooring, {});
@@ -60,7 +60,7 @@ TEST(StaticFem, FairleadTensionMatchesCatenaryAndConvergesWithSegments) {
 TEST(StaticFem, SeedTensionMatchesTheReferenceSheet) {
   // Seed case (docs/design.md section 9): 3.497 MN horizontal, 4.948 MN vertical, 6.059 MN
   // total per line.
-  const scenarios::Scenario s = SeedScenario(50);
+  const testing::SeedCase s = SeedScenario(50);
   MooringSystem mooring(s.mooring);
   const std::vector<double> x = StaticState(mooring, {});
   const std::vector<LineLoad> loads = mooring.LineLoads(x.data(), FairleadsAt(mooring, {}));
@@ -87,7 +87,7 @@ Vec3 NetForce(const std::vector<Vec3>& forces, const std::vector<PointKinematics
 }
 
 TEST(StaticFem, RestoringForceMatchesCatenarySumFromZeroToEightyMetres) {
-  const scenarios::Scenario s = SeedScenario(50);
+  const testing::SeedCase s = SeedScenario(50);
   MooringSystem mooring(s.mooring);
   const double line5 = std::atan2(1378.9, 1378.9);  // toward line 5's anchor
   for (double direction : {0.0, line5}) {
@@ -129,7 +129,7 @@ TEST(StaticFem, RestoringForceMatchesCatenarySumFromZeroToEightyMetres) {
 TEST(StaticFem, SurgeStiffnessNearTheOriginMatchesTheReferenceSheet) {
   // Seed case (docs/design.md section 9): about 81 kN/m near the origin. Central difference
   // over +-1 m.
-  const scenarios::Scenario s = SeedScenario(50);
+  const testing::SeedCase s = SeedScenario(50);
   MooringSystem mooring(s.mooring);
   auto fx = [&](double x0) {
     const PlanarPose pose{x0, 0.0, 0.0};
@@ -146,7 +146,7 @@ TEST(StaticFem, SurgeStiffnessNearTheOriginMatchesTheReferenceSheet) {
 TEST(StaticFem, CatenaryPlacementIsCloseToFemEquilibrium) {
   // The static start is the catenary placement refined by Newton; the refinement moves
   // nodes by the chord-vs-arc discretisation and the seabed compliance only.
-  const scenarios::Scenario s = SeedScenario(50);
+  const testing::SeedCase s = SeedScenario(50);
   MooringSystem mooring(s.mooring);
   const std::vector<Vec3> p = testing::Positions(FairleadsAt(mooring, {}));
   std::vector<double> catenary(mooring.StateSize());
@@ -164,8 +164,8 @@ TEST(StaticFem, CatenaryPlacementIsCloseToFemEquilibrium) {
 TEST(StaticFem, BrokenLineSixLeavesThreePointFiveMeganewtonsAwayFromIt) {
   // Seed case (docs/design.md section 9): with line 6 gone the net force at the origin is
   // 3.50 MN toward (+x, -y), away from line 6's anchor at (-1378.9, 1378.9).
-  scenarios::Scenario s = SeedScenario(50);
-  std::erase_if(s.mooring.lines, [](const scenarios::LineSpec& l) { return l.id == 6; });
+  testing::SeedCase s = SeedScenario(50);
+  std::erase_if(s.mooring.lines, [](const LineParameters& l) { return l.id == 6; });
   MooringSystem mooring(s.mooring);
   const auto fairleads = FairleadsAt(mooring, {});
   const std::vector<double> x = StaticState(mooring, {});
@@ -182,7 +182,7 @@ TEST(StaticFem, BrokenLineSixLeavesThreePointFiveMeganewtonsAwayFromIt) {
 
 // Line 1 of the seed alone, with its anchor and length changed.
 MooringSystem LineOne(const Vec3& anchor, double length) {
-  scenarios::Scenario s = SeedScenario(50);
+  testing::SeedCase s = SeedScenario(50);
   s.mooring.lines.resize(1);
   s.mooring.lines[0].anchor = anchor;
   s.mooring.lines[0].length = length;
@@ -259,11 +259,11 @@ TEST(StaticFem, CurrentDragsTheMooringDownstreamAndTheStateIsAtRest) {
   // seabed). The static state includes the drag on the lines at rest, so (a) the net force
   // on the vessel points downstream, (b) line 8, whose anchor lies downstream, pulls
   // harder and line 6 upstream less, and (c) a dynamic run from that state stays put.
-  scenarios::Scenario s = testing::SeedScenario(50);
+  testing::SeedCase s = testing::SeedScenario(50);
   s.mooring.current.direction = 315.0 * std::numbers::pi / 180.0;
   s.mooring.current.depth = {0.0, 1000.0};
   s.mooring.current.speed = {1.0, 0.2};
-  LineSimulation sim(s, HarmonicMotion{});
+  LineSimulation sim(s.mooring, s.solver, HarmonicMotion{});
   const std::vector<Vec3> f = sim.FairleadForces();
   Vec3 net = Vec3::Zero();
   for (const Vec3& line : f) net += line;

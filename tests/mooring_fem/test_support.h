@@ -1,5 +1,6 @@
 // Shared set-up for the mooring physics tests: the seed scenario from the library (so the
-// tests check exactly what users run) at a chosen number of segments.
+// tests check exactly what users run) at a chosen number of segments, converted to the
+// FEM's parameter types as the CLI converts it (scenarios/convert.h).
 #pragma once
 
 #include <string>
@@ -8,15 +9,24 @@
 #include "mooring_fem/catenary.h"
 #include "mooring_fem/line_simulation.h"
 #include "mooring_fem/mooring_system.h"
+#include "mooring_fem/parameters.h"
+#include "scenarios/convert.h"
 #include "scenarios/load.h"
 
 namespace moorsim::mooring_fem::testing {
 
-inline scenarios::Scenario SeedScenario(int segments) {
-  scenarios::Scenario s = scenarios::LoadScenario(std::string(MOORSIM_SOURCE_DIR) +
-                                                  "/scenarios/library/seed_tapm.yaml");
-  for (auto& line : s.mooring.lines) line.segments = segments;
-  return s;
+/// What the FEM takes of a scenario.
+struct SeedCase {
+  MooringParameters mooring;
+  SolverSettings solver;
+};
+
+inline SeedCase SeedScenario(int segments) {
+  const scenarios::Scenario s = scenarios::LoadScenario(std::string(MOORSIM_SOURCE_DIR) +
+                                                        "/scenarios/library/seed_tapm.yaml");
+  SeedCase seed{scenarios::ToMooringParameters(s.mooring), s.solver};
+  for (auto& line : seed.mooring.lines) line.segments = segments;
+  return seed;
 }
 
 /// The turret motion: surge 5 m / 100 s plus 2 m / 10 s.

@@ -74,6 +74,8 @@ vessel:
   radii_of_gyration: [16.3, 54, 54]
   damping: {surge_time: 50, sway_time: 100, yaw_time: 20, heave_ratio: 0.1, roll_ratio: 0.07, pitch_ratio: 0.1}
   initial_pose: {x: 2, y: 2, heading_deg: 10}
+  hull: {length: 200, beam: 44, draught: 12, displaced_volume: 97961, wetted_surface: 0, cross_flow_drag_coefficient: 0, form_factor: 0.505, kinematic_viscosity: 1.19e-6}
+  windage: {frontal_area: 1200, lateral_area: 4500, length: 200, lateral_centroid: 0, air_density: 1.226}
   thrusters:
     - {name: aft_port, x: -90, y: -8, angle_deg: 0, azimuth: false, max_thrust: 1.0e6, min_thrust: -6.0e5, weight: 1, time_constant: 5, rate_limit: 2.0e5}
     - {name: aft_starboard, x: -90, y: 8, max_thrust: 1.0e6, min_thrust: -6.0e5}
@@ -212,8 +214,11 @@ inline const BadInput kParseErrors[] = {
      "a scenario file holds one YAML document; this is a second one"},
     // The coupled-simulation sections (issue 3).
     {"VesselUnknownKey", "vessel:", "mass: 1.0041e8", "mas: 1.0041e8", "mas",
-     "vessel: unknown key 'mas' (known: centre_of_gravity, damping, hydrodynamics, "
-     "initial_pose, length_scale, mass, radii_of_gyration, thrusters)"},
+     "vessel: unknown key 'mas' (known: centre_of_gravity, damping, hull, hydrodynamics, "
+     "initial_pose, length_scale, mass, radii_of_gyration, thrusters, windage)"},
+    {"HullUnknownKey", "hull:", "beam: 44", "breadth: 44", "breadth",
+     "vessel.hull: unknown key 'breadth' (known: beam, cross_flow_drag_coefficient, "
+     "displaced_volume, draught, form_factor, kinematic_viscosity, length, wetted_surface)"},
     {"WavesMissingHs", "environment:", "{hs: 2.5, tp: 7", "{tp: 7", "{tp",
      "environment.waves: required key 'hs' is missing"},
     {"ControllerGainNotAList", "controller:", "kp: [1.0e5, 1.0e6, 1.0e3]", "kp: 1.0e5",
@@ -484,6 +489,26 @@ inline const BadInput kValidationErrors[] = {
      "vessel.radii_of_gyration[3]: 5400 m must be <= 1000"},
     {"SurgeTimeHuge", "vessel:", "surge_time: 50", "surge_time: 1e8", "surge_time: ^1e8",
      "vessel.damping.surge_time: 1e+08 s must be <= 1e+07"},
+    {"HullDraughtZero", "hull:", "draught: 12", "draught: 0", "draught: ^0",
+     "vessel.hull.draught: 0 m must be > 0"},
+    {"HullFullerThanItsBox", "hull:", "displaced_volume: 97961", "displaced_volume: 2e5", "2e5",
+     "vessel.hull.displaced_volume: 2e+05 m^3 must be <= length x beam x draught = 105600 m^3 "
+     "(a block coefficient <= 1)"},
+    {"HullFormFactorMinusOne", "hull:", "form_factor: 0.505", "form_factor: -1", "form_factor: ^-1",
+     "vessel.hull.form_factor: -1 must be in (-1, 10] (k of (1 + k) C_F; ships 0.1 to 0.5)"},
+    {"HullViscosityOfAir", "hull:", "kinematic_viscosity: 1.19e-6", "kinematic_viscosity: 1.5e-5",
+     "1.5e-5",
+     "vessel.hull.kinematic_viscosity: 1.5e-05 m^2/s must be in [1e-07, 1e-05] (water: 1.8e-6 "
+     "at 0 deg C, 0.7e-6 at 40 deg C)"},
+    {"WindageAreaZero", "windage:", "frontal_area: 1200", "frontal_area: 0", "frontal_area: ^0",
+     "vessel.windage.frontal_area: 0 m^2 must be > 0"},
+    {"WindageCentroidOffTheVessel", "windage:", "lateral_centroid: 0", "lateral_centroid: 150",
+     "150",
+     "vessel.windage.lateral_centroid: 150 m must be in [-100, 100] (on the vessel: within half "
+     "of windage.length from midship)"},
+    {"WindageAirDensityOfWater", "windage:", "air_density: 1.226", "air_density: 1025", "1025",
+     "vessel.windage.air_density: 1025 kg/m^3 must be in [1, 1.5] (air: 1.226 at sea level and "
+     "15 deg C)"},
     {"InitialPoseFarAway", "initial_pose:", "x: 2,", "x: 2e5,", "2e5",
      "vessel.initial_pose.x: 2e+05 m must be in [-1e+05, 1e+05]"},
     // The reach and slack rules with the vessel at its initial pose (2, 2) m, 10 deg; with

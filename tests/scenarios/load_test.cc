@@ -145,6 +145,65 @@ TEST(ParseScenario, ReadsEveryKeyOfTheBaseText) {
   EXPECT_EQ(s.solver.max_step, 0.5);
 }
 
+TEST(ParseScenario, ReadsTheHullAndWindage) {
+  const Scenario s = ParseScenario(kBase, "test.yaml");
+  ASSERT_TRUE(s.vessel.has_value());
+  const HullSpec& hull = s.vessel->hull;
+  EXPECT_EQ(hull.length, 200.0);
+  EXPECT_EQ(hull.beam, 44.0);
+  EXPECT_EQ(hull.draught, 12.0);
+  EXPECT_EQ(hull.displaced_volume, 97961.0);
+  EXPECT_EQ(hull.wetted_surface, 0.0);
+  EXPECT_EQ(hull.cross_flow_drag_coefficient, 0.0);
+  EXPECT_EQ(hull.form_factor, 0.505);
+  EXPECT_EQ(hull.kinematic_viscosity, 1.19e-6);
+  const WindageSpec& windage = s.vessel->windage;
+  EXPECT_EQ(windage.frontal_area, 1200.0);
+  EXPECT_EQ(windage.lateral_area, 4500.0);
+  EXPECT_EQ(windage.length, 200.0);
+  EXPECT_EQ(windage.lateral_centroid, 0.0);
+  EXPECT_EQ(windage.air_density, 1.226);
+
+  // A partial block keeps the other defaults; --set reaches the keys like any other.
+  const std::string partial =
+      Edit(kBase, "hull:", "length: 200, beam: 44, draught: 12, displaced_volume: 97961, ", "");
+  const Scenario p = ParseScenario(partial, "test.yaml", {"vessel.windage.lateral_area=5000"});
+  EXPECT_EQ(p.vessel->hull.length, HullSpec{}.length);
+  EXPECT_EQ(p.vessel->hull.displaced_volume, HullSpec{}.displaced_volume);
+  EXPECT_EQ(p.vessel->windage.lateral_area, 5000.0);
+}
+
+// The library's scenarios give no hull or windage: theirs are the seed FPSO's, the defaults.
+TEST(ParseScenario, HullAndWindageDefaultToTheSeedFpso) {
+  const Scenario s = LoadScenario(kSeedPath);
+  ASSERT_TRUE(s.vessel.has_value());
+  const HullSpec& hull = s.vessel->hull;
+  EXPECT_EQ(hull.length, 200.0);
+  EXPECT_EQ(hull.beam, 44.0);
+  EXPECT_EQ(hull.draught, 12.0);
+  EXPECT_EQ(hull.displaced_volume, 97961.0);
+  EXPECT_EQ(hull.wetted_surface, 0.0);               // Denny-Mumford
+  EXPECT_EQ(hull.cross_flow_drag_coefficient, 0.0);  // Hoerner
+  EXPECT_FALSE(hull.form_factor.has_value());        // Watanabe
+  EXPECT_EQ(hull.kinematic_viscosity, 1.19e-6);
+  const WindageSpec& windage = s.vessel->windage;
+  EXPECT_EQ(windage.frontal_area, 1200.0);
+  EXPECT_EQ(windage.lateral_area, 4500.0);
+  EXPECT_FALSE(windage.length.has_value());  // hull.length
+  EXPECT_EQ(windage.lateral_centroid, 0.0);
+  EXPECT_EQ(windage.air_density, 1.226);
+}
+
+// The windage length defaults to the hull's, and so does the centroid's range.
+TEST(BadScenarioText, WindageCentroidBeyondHalfTheHullLength) {
+  std::string text = Edit(kBase, "windage:", "length: 200, ", "");
+  text = Edit(text, "hull:", "length: 200", "length: 300");
+  text = Edit(text, "windage:", "lateral_centroid: 0", "lateral_centroid: -160");
+  EXPECT_EQ(ErrorOf(text), "test.yaml:" + PositionOf(text, "windage:", "-160") +
+                               ": vessel.windage.lateral_centroid: -160 m must be in [-150, 150] "
+                               "(on the vessel: within half of hull.length from midship)");
+}
+
 TEST(ParseScenario, DefaultsApplyToEverythingOptional) {
   const std::string minimal = R"(mooring:
   water: {depth: 300}

@@ -10,6 +10,7 @@
 
 #include "mooring_fem/catenary.h"
 #include "mooring_fem/mooring_system.h"
+#include "scenarios/convert.h"
 #include "tests/simulation/test_scenarios.h"
 #include "tools/simulation/simulation.h"
 
@@ -25,9 +26,10 @@ Vec3 CatenaryLoad(const scenarios::Scenario& s, const Vec3& pose, double fairlea
                   int broken = 0) {
   Vec3 load = Vec3::Zero();
   const double c = std::cos(pose.z()), sn = std::sin(pose.z());
-  for (const scenarios::LineSpec& spec : s.mooring.lines) {
+  const mooring_fem::MooringParameters mooring = scenarios::ToMooringParameters(s.mooring);
+  for (const mooring_fem::LineParameters& spec : mooring.lines) {
     if (spec.id == broken) continue;
-    const mooring_fem::LineProperties p = mooring_fem::MakeLineProperties(s.mooring, spec);
+    const mooring_fem::LineProperties p = mooring_fem::MakeLineProperties(mooring, spec);
     const CatenaryLineProperties line{p.length, p.weight_per_length, p.axial_stiffness};
     const Vec3 r(c * p.fairlead_body.x() - sn * p.fairlead_body.y(),
                  sn * p.fairlead_body.x() + c * p.fairlead_body.y(), 0.0);

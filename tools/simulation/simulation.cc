@@ -21,6 +21,7 @@
 #include "detectors/passive_observer.h"
 #include "detectors/registry.h"
 #include "mooring_fem/line_simulation.h"
+#include "scenarios/convert.h"
 #include "scenarios/load.h"
 #include "vessel/controller.h"
 #include "vessel/fpso_model.h"
@@ -84,8 +85,9 @@ class HullCurrentLoad final : public vessel::EnvironmentLoad {
 /// the hull's viscous damping; the Jacobian only steers Newton's iteration).
 class HullWindLoad final : public vessel::EnvironmentLoad {
  public:
-  HullWindLoad(const scenarios::WindSpec& spec, std::uint64_t seed)
-      : load_(vessel::SeedFpsoWind()), spec_(spec) {
+  HullWindLoad(const vessel::WindParameters& parameters, const scenarios::WindSpec& spec,
+               std::uint64_t seed)
+      : load_(parameters), spec_(spec) {
     if (spec.gust && spec.speed > 0.0) {
       RandomStream stream = RandomStream::Derive(seed, "wind.gust");
       gust_.emplace(
@@ -268,6 +270,35 @@ mooring_fem::LineFailure ToLineFailure(const scenarios::Scenario& scenario) {
   return failure;
 }
 
+vessel::HullGeometry ToHullGeometry(const scenarios::VesselSpec& spec, double water_density) {
+  const scenarios::HullSpec& h = spec.hull;
+  vessel::HullGeometry hull;
+  hull.length = h.length;
+  hull.beam = h.beam;
+  hull.draught = h.draught;
+  hull.displaced_volume = h.displaced_volume;
+  hull.wetted_surface = h.wetted_surface;
+  hull.cross_flow_drag_coefficient = h.cross_flow_drag_coefficient;
+  hull.form_factor =
+      h.form_factor ? *h.form_factor
+                    : vessel::WatanabeFormFactor(h.length, h.beam, h.draught, h.displaced_volume);
+  hull.water_density = water_density;
+  hull.kinematic_viscosity = h.kinematic_viscosity;
+  return hull;
+}
+
+vessel::WindParameters ToWindParameters(const scenarios::VesselSpec& spec) {
+  const scenarios::WindageSpec& w = spec.windage;
+  vessel::WindParameters wind;
+  wind.air_density = w.air_density;
+  wind.frontal_area = w.frontal_area;
+  wind.lateral_area = w.lateral_area;
+  wind.length = w.length.value_or(spec.hull.length);
+  wind.coefficients = vessel::LoadedTankerWindCoefficients(wind.frontal_area, wind.lateral_area,
+                                                           w.lateral_centroid / wind.length);
+  return wind;
+}
+
 struct Simulation::Parts {
   ExternalLoad external;
   std::optional<HullCurrentLoad> current;
@@ -296,7 +327,7 @@ Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed)
                                {.water_density = scenario.mooring.water.density,
                                 .gravity = scenario.mooring.water.gravity,
                                 .length_scale = scenario.vessel->length_scale})),
-      mooring_(scenario.mooring),
+      mooring_(scenarios::ToMooringParameters(scenario.mooring)),
       attachment_(mooring_),
       parts_(std::make_unique<Parts>()),
       controller_clock_(scenario.controller.rate, "controller.rate_hz") {
@@ -307,9 +338,7 @@ Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed)
   if (env.hull_viscous_drag) {
     const scenarios::CurrentProfile& c = scenario_.mooring.current;
     const Vec3 current = c.SurfaceSpeed() * Vec3(std::cos(c.direction), std::sin(c.direction), 0);
-    vessel::HullGeometry hull = vessel::SeedFpsoHull();
-    hull.water_density = scenario_.mooring.water.density;
-    parts_->current.emplace(hull, current);
+    parts_->current.emplace(ToHullGeometry(v, scenario_.mooring.water.density), current);
     plant_->AddLoad(&*parts_->current);
   }
   if (env.waves.enabled) {
@@ -317,7 +346,7 @@ Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed)
     plant_->SetSea(&*parts_->sea);
   }
   if (env.wind.enabled) {
-    parts_->wind.emplace(env.wind, seed_);
+    parts_->wind.emplace(ToWindParameters(v), env.wind, seed_);
     plant_->AddLoad(&*parts_->wind);
   }
   parts_->sensors.emplace(PoseSensorSpec(scenario_.sensors), seed_);
@@ -353,7 +382,7 @@ void Simulation::StartDetection() {
   Parts& p = *parts_;
   const DetectionModels models = MakeDetectionModels(scenario_, plant_->model(), initial_pose_);
   const detectors::HypothesisBankOptions& options = models.bank;
-  p.bank.emplace(scenario_.mooring, options);
+  p.bank.emplace(scenarios::ToMooringParameters(scenario_.mooring), options);
   const detectors::LowFrequencyModel& model = models.model;
   const detectors::EkfOptions& ekf = models.ekf;
   const scenarios::DetectionSpec& d = scenario_.detection;

@@ -27,6 +27,7 @@
 #include "mooring_fem/mooring_attachment.h"
 #include "mooring_fem/mooring_system.h"
 #include "scenarios/scenario.h"
+#include "vessel/hull_loads.h"
 #include "vessel/hydro_data.h"
 #include "vessel/vessel_plant.h"
 
@@ -91,6 +92,16 @@ void CheckDetectors(const scenarios::Scenario& scenario);
 /// A line failure in the FEM's terms, from the scenario's failure section (1-based line,
 /// node or arc length from the anchor).
 mooring_fem::LineFailure ToLineFailure(const scenarios::Scenario& scenario);
+
+/// The hull for the viscous current load, from `vessel.hull` (form factor by Watanabe's
+/// regression when not given) and the water's density. The defaults give
+/// vessel::SeedFpsoHull() with that density.
+vessel::HullGeometry ToHullGeometry(const scenarios::VesselSpec& spec, double water_density);
+
+/// The above-water hull for the wind load, from `vessel.windage` (length defaulting to
+/// vessel.hull.length) with Blendermann's loaded-tanker coefficients. The defaults give
+/// vessel::SeedFpsoWind().
+vessel::WindParameters ToWindParameters(const scenarios::VesselSpec& spec);
 
 class Simulation {
  public:

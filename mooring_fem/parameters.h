@@ -1,0 +1,98 @@
+// The mooring FEM's parameters: the water, the seabed, the current, the line types and the
+// lines, and the integrator settings. Plain structs with the defaults the scenario schema
+// documents (scenarios/README.md); the FEM takes these and nothing from the YAML layer, so
+// it can be embedded without the scenario loader. scenarios/ fills them from YAML
+// (scenarios::ToMooringParameters, scenarios/convert.h). All values SI, Earth-frame NED
+// unless a name says otherwise; angles in radians. Line numbers are 1-based.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/types.h"
+
+namespace moorsim::mooring_fem {
+
+struct Water {
+  double density = 1025.0;  ///< [kg/m^3]
+  double gravity = 9.81;    ///< [m/s^2]
+  double depth = 0.0;       ///< seabed depth below the mean free surface [m], > 0
+};
+
+/// Penalty contact with a flat seabed at z = water.depth, per unit of contact area
+/// (diameter x length), and regularised Coulomb friction (coefficients per line type).
+struct Seabed {
+  double stiffness = 3.0e6;  ///< [N/m^3] (pressure per metre of penetration)
+  double damping = 3.0e5;    ///< [N s/m^3]
+  /// Penetration [m] over which the contact stiffness ramps from zero to `stiffness`. A
+  /// gradual ramp keeps touchdown smooth for the implicit integrator (benchmarks/README.md:
+  /// with 2 mm, landing nodes caused most Newton failures and halved the step size).
+  double contact_smoothing = 0.5;
+  /// Speed [m/s] below which Coulomb friction is regularised (force ~ speed). Smaller is
+  /// closer to true stick-slip and costs steps (0.05 m/s ran 20 % slower than 0.1).
+  double friction_velocity = 0.1;
+};
+
+/// Current: a horizontal velocity whose speed varies piecewise linearly with depth and is
+/// held constant beyond the first and last points. `direction` is the direction the water
+/// flows TO, measured from north toward east [rad].
+struct CurrentProfile {
+  double direction = 0.0;
+  std::vector<double> depth;  ///< strictly increasing depths [m], >= 0
+  std::vector<double> speed;  ///< speeds at those depths [m/s], >= 0
+  /// Speed at the surface [m/s] (0 without a profile).
+  double SurfaceSpeed() const { return speed.empty() ? 0.0 : speed.front(); }
+};
+
+/// Material and hydrodynamic properties of one line type (Ren & Skjetne 2016, Table 2 style).
+struct LineType {
+  std::string name;
+  double diameter = 0.0;         ///< nominal (hydrodynamic and displacement) diameter [m]
+  double mass_per_length = 0.0;  ///< dry mass per unstretched length [kg/m]
+  double axial_stiffness = 0.0;  ///< EA [N]
+  /// Axial structural damping: internal force = c * strain rate, c in [N s]. If
+  /// axial_damping_ratio is set instead, c is chosen per line so that a single segment's
+  /// axial mode has that fraction of critical damping (a numerical damping that vanishes
+  /// as segments shrink). Neither set = no axial damping.
+  std::optional<double> axial_damping;
+  std::optional<double> axial_damping_ratio;
+  double drag_normal = 0.0;        ///< C_DN [-]
+  double drag_tangential = 0.0;    ///< C_DT [-]
+  double added_mass_normal = 0.0;  ///< C_MN [-]
+  double friction_axial = 0.0;     ///< seabed Coulomb coefficient along the line [-]
+  double friction_lateral = 0.0;   ///< seabed Coulomb coefficient across the line [-]
+};
+
+/// One line as laid out (LineProperties, mooring_system.h, are the constants derived from
+/// it, its type and the water).
+struct LineParameters {
+  int id = 0;                         ///< 1-based line number
+  std::string type;                   ///< name of a LineType
+  Vec3 anchor = Vec3::Zero();         ///< anchor position, Earth frame [m] (z = +depth: seabed)
+  Vec3 fairlead_body = Vec3::Zero();  ///< fairlead position in the body frame of the vessel [m]
+  double length = 0.0;                ///< unstretched length [m]
+  int segments = 50;                  ///< number of equal segments
+};
+
+struct MooringParameters {
+  Water water;
+  Seabed seabed;
+  CurrentProfile current;  ///< empty profile = no current
+  std::vector<LineType> line_types;
+  std::vector<LineParameters> lines;  ///< ordered by id: lines[k - 1] is line k
+};
+
+/// Integrator settings (CVODE BDF).
+struct SolverSettings {
+  double rtol = 1e-4;
+  double atol_position = 1e-3;  ///< [m]
+  double atol_velocity = 1e-3;  ///< [m/s]
+  /// BDF order cap. 2 (A-stable) by default: orders 3-5 are not A-stable and the lines'
+  /// lightly damped modes kept them at small steps (benchmarks/README.md).
+  int max_order = 2;
+  bool stability_limit_detection = false;
+  double max_step = 0.0;  ///< [s]; 0 = no limit
+};
+
+}  // namespace moorsim::mooring_fem
