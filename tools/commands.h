@@ -16,6 +16,8 @@ Command AddSimulateLinesCommand(CLI::App& app);
 Command AddValidateCommand(CLI::App& app);
 Command AddRunCommand(CLI::App& app);
 Command AddAnalyzeCommand(CLI::App& app);
+/// `moorsim batch`; argc/argv are recorded in the campaign's results.
+Command AddBatchCommand(CLI::App& app, int argc, char** argv);
 
 /// Splits "a,b,c" into numbers; throws InputError naming the flag on anything else.
 std::vector<double> ParseNumberList(const std::string& flag, const std::string& text);

@@ -24,6 +24,11 @@ int main(int argc, char** argv) {
   add(&moorsim::cli::AddSimulateLinesCommand);
   add(&moorsim::cli::AddValidateCommand);
   add(&moorsim::cli::AddAnalyzeCommand);
+  {
+    const std::size_t before = app.get_subcommands({}).size();
+    moorsim::cli::Command command = moorsim::cli::AddBatchCommand(app, argc, argv);
+    commands.emplace_back(app.get_subcommands({})[before], std::move(command));
+  }
   // CLI11 would only say "A subcommand is required" for a misspelt command.
   if (argc > 1 && argv[1][0] != '-') {
     const std::string name = argv[1];

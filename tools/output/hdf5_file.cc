@@ -197,6 +197,45 @@ class Hdf5File::Impl {
     Check(attribute.Close(), "H5Aclose", object_path, name);
   }
 
+  void WriteDataset(const std::string& dataset_path, const std::vector<std::size_t>& dims,
+                    std::size_t count, hid_t file_type, hid_t memory_type, const void* data) {
+    const std::vector<std::string> prefixes = PathPrefixes(dataset_path);
+    if (prefixes.empty()) Fail(dataset_path, "not an absolute path of named groups");
+    if (dims.empty() || dims.size() > 2) Fail(dataset_path, "a dataset has 1 or 2 dimensions");
+    std::size_t product = 1;
+    for (const std::size_t d : dims) product *= d;
+    if (product != count) {
+      Fail(dataset_path, std::to_string(count) + " values for " + std::to_string(product));
+    }
+    if (prefixes.size() > 1) CreateGroup(prefixes[prefixes.size() - 2]);
+    if (LinkExists(dataset_path)) Fail(dataset_path, "already exists");
+    const std::vector<hsize_t> extent(dims.begin(), dims.end());
+    Handle space = Make(H5Screate_simple(static_cast<int>(extent.size()), extent.data(), nullptr),
+                        H5Sclose, "H5Screate_simple", dataset_path);
+    Handle creation = Make(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "H5Pcreate(H5P_DATASET_CREATE)",
+                           dataset_path);
+    Check(H5Pset_obj_track_times(creation.get(), false), "H5Pset_obj_track_times", dataset_path);
+    Handle dataset = Make(H5Dcreate2(file_.get(), dataset_path.c_str(), file_type, space.get(),
+                                     H5P_DEFAULT, creation.get(), H5P_DEFAULT),
+                          H5Dclose, "H5Dcreate2", dataset_path);
+    if (count > 0) {
+      Check(H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "H5Dwrite",
+            dataset_path);
+    }
+    Check(dataset.Close(), "H5Dclose", dataset_path);
+  }
+
+  void WriteStrings(const std::string& dataset_path, const std::vector<std::string>& values) {
+    Handle type = Make(H5Tcopy(H5T_C_S1), H5Tclose, "H5Tcopy", dataset_path);
+    Check(H5Tset_size(type.get(), H5T_VARIABLE), "H5Tset_size", dataset_path);
+    Check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "H5Tset_cset", dataset_path);
+    std::vector<const char*> pointers;
+    pointers.reserve(values.size());
+    for (const std::string& v : values) pointers.push_back(v.c_str());
+    WriteDataset(dataset_path, {values.size()}, values.size(), type.get(), type.get(),
+                 pointers.data());
+  }
+
   TableId CreateTable(const std::string& dataset_path, int columns, const std::string& units,
                       const std::vector<std::string>& column_names, TableType type) {
     const std::vector<std::string> prefixes = PathPrefixes(dataset_path);
@@ -511,6 +550,29 @@ void Hdf5File::CreateGroup(const std::string& group_path) { Live().CreateGroup(g
 void Hdf5File::SetAttribute(const std::string& object_path, const std::string& name,
                             const std::string& value) {
   Live().SetStringAttribute(object_path, name, value);
+}
+
+void Hdf5File::WriteDataset(const std::string& dataset_path, const std::vector<std::size_t>& dims,
+                            std::span<const double> values) {
+  Live().WriteDataset(dataset_path, dims, values.size(), H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+                      values.data());
+}
+
+void Hdf5File::WriteDataset(const std::string& dataset_path, const std::vector<std::size_t>& dims,
+                            std::span<const std::int64_t> values) {
+  Live().WriteDataset(dataset_path, dims, values.size(), H5T_STD_I64LE, H5T_NATIVE_INT64,
+                      values.data());
+}
+
+void Hdf5File::WriteDataset(const std::string& dataset_path, const std::vector<std::size_t>& dims,
+                            std::span<const std::uint64_t> values) {
+  Live().WriteDataset(dataset_path, dims, values.size(), H5T_STD_U64LE, H5T_NATIVE_UINT64,
+                      values.data());
+}
+
+void Hdf5File::WriteDataset(const std::string& dataset_path,
+                            const std::vector<std::string>& values) {
+  Live().WriteStrings(dataset_path, values);
 }
 
 void Hdf5File::SetAttribute(const std::string& object_path, const std::string& name, double value) {

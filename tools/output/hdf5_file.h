@@ -84,6 +84,18 @@ class Hdf5File {
   /// Unsigned 64-bit (seeds: 2^63 and above stay positive).
   void SetAttribute(const std::string& object_path, const std::string& name, std::uint64_t value);
 
+  /// Writes a whole dataset of known size at once (no chunks, no compression): `dims` is
+  /// {rows} or {rows, columns}, `values` row-major with as many values as dims multiply
+  /// to. Missing parent groups are created; an existing dataset is an error. For tables
+  /// written once, such as a campaign's results.
+  void WriteDataset(const std::string& dataset_path, const std::vector<std::size_t>& dims,
+                    std::span<const double> values);
+  void WriteDataset(const std::string& dataset_path, const std::vector<std::size_t>& dims,
+                    std::span<const std::int64_t> values);
+  void WriteDataset(const std::string& dataset_path, const std::vector<std::size_t>& dims,
+                    std::span<const std::uint64_t> values);
+  /// A one-dimensional dataset of variable-length UTF-8 strings.
+  void WriteDataset(const std::string& dataset_path, const std::vector<std::string>& values);
   /// Creates an empty, extendible table at `dataset_path` (absolute, e.g.
   /// "/vessel/pose_true"; missing parent groups are created). `columns` > 0 gives a
   /// rows x columns dataset, `columns` == 0 a one-dimensional dataset of rows. `units` is

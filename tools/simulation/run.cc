@@ -188,6 +188,7 @@ void AddDetection(const scenarios::Scenario& scenario, const Simulation& sim,
   for (const DetectorRecord& d : sim.detector_records()) {
     nlohmann::json j;
     j["type"] = d.type;
+    if (d.threshold) j["threshold"] = *d.threshold;
     j["alarm_time"] = d.alarm_time ? nlohmann::json(*d.alarm_time) : nlohmann::json(nullptr);
     // Hypothesis k <= number of lines is "line k failed"; pairs are named by their label.
     if (!d.alarm_time) {
@@ -241,6 +242,8 @@ const char* StatusName(RunStatus status) {
       return "interrupted";
     case RunStatus::kRejected:
       return "rejected";
+    case RunStatus::kTimedOut:
+      return "timeout";
   }
   return "failed";
 }
@@ -250,6 +253,7 @@ int RunResult::ExitCode() const {
     case RunStatus::kOk:
       return 0;
     case RunStatus::kFailed:
+    case RunStatus::kTimedOut:
       return 1;
     case RunStatus::kRejected:
       return 2;
@@ -310,7 +314,7 @@ RunResult RunScenario(const RunRequest& request) noexcept {
     result.directory =
         request.out.empty() ? std::filesystem::path("out") / loaded->name : request.out;
     std::error_code error;
-    std::filesystem::create_directories(result.directory, error);
+    if (request.write_files) std::filesystem::create_directories(result.directory, error);
     if (error) {
       throw InputError("--out " + result.directory.string() +
                        ": cannot create the directory: " + error.message());
@@ -344,7 +348,9 @@ RunResult RunScenario(const RunRequest& request) noexcept {
       return result;
     }
     try {
-      writer = std::make_unique<RunWriter>(Partial(run_path).string(), scenario, *sim);
+      if (request.write_files) {
+        writer = std::make_unique<RunWriter>(Partial(run_path).string(), scenario, *sim);
+      }
     } catch (const Error&) {
       run_file_broken = true;
       throw;
@@ -355,9 +361,14 @@ RunResult RunScenario(const RunRequest& request) noexcept {
     auto last_progress = start;
     for (std::int64_t k = 0; k <= last_row; ++k) {
       sim->AdvanceTo(rows.Instant(k));
+      // Recorded whether or not a file is written, so a run is the same either way.
+      const Sample sample = sim->Record();
+      if (request.on_row) request.on_row(sample);
       try {
-        writer->Append(sim->Record());
-        if (request.flush_rows > 0 && (k + 1) % request.flush_rows == 0) writer->Flush();
+        if (writer) {
+          writer->Append(sample);
+          if (request.flush_rows > 0 && (k + 1) % request.flush_rows == 0) writer->Flush();
+        }
       } catch (const Error&) {
         run_file_broken = true;
         throw;
@@ -372,6 +383,14 @@ RunResult RunScenario(const RunRequest& request) noexcept {
           result.message = message.str();
           break;
         }
+      }
+      if (request.deadline && k < last_row &&
+          std::chrono::steady_clock::now() >= *request.deadline) {
+        result.status = RunStatus::kTimedOut;
+        std::ostringstream message;
+        message << "stopped at its wall-clock limit at t = " << sim->time() << " s";
+        result.message = message.str();
+        break;
       }
       const auto now = std::chrono::steady_clock::now();
       if (request.progress && std::chrono::duration<double>(now - last_progress).count() > 2.0) {
@@ -404,8 +423,10 @@ RunResult RunScenario(const RunRequest& request) noexcept {
     }
     writer.reset();
   }
-  RemoveQuietly(summary_path);
-  if (run_file_broken) {
+  if (request.write_files) RemoveQuietly(summary_path);
+  if (!request.write_files) {
+    // Nothing on disk.
+  } else if (run_file_broken) {
     RemoveQuietly(Partial(run_path));
     RemoveQuietly(run_path);
   } else if (sim) {
@@ -430,10 +451,13 @@ RunResult RunScenario(const RunRequest& request) noexcept {
     summary["wall_time"] = wall;
     summary["real_time_factor"] = wall > 0.0 ? result.simulated_time / wall : 0.0;
     if (sim) summary["integrator"] = Stats(sim->stats());
-    summary["outputs"] = {
-        {"run", run_file_broken || !sim ? nlohmann::json(nullptr) : nlohmann::json("run.h5")}};
-    WriteFileAtomically(summary_path, summary.dump(2) + "\n");
-    result.summary_written = true;
+    summary["outputs"] = {{"run", run_file_broken || !sim || !request.write_files
+                                      ? nlohmann::json(nullptr)
+                                      : nlohmann::json("run.h5")}};
+    if (request.write_files) {
+      WriteFileAtomically(summary_path, summary.dump(2) + "\n");
+      result.summary_written = true;
+    }
   } catch (const std::exception& e) {
     if (result.status == RunStatus::kOk) result.status = RunStatus::kFailed;
     result.message += std::string(result.message.empty() ? "" : "; ") + e.what();

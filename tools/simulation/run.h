@@ -15,6 +15,7 @@
 //   broken file is removed, and summary.json says "failed" with the reason if it fits.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -33,9 +34,10 @@ enum class RunStatus {
   kFailed,       ///< the integrator, the static start or an output write failed
   kInterrupted,  ///< stopped on request (a signal) before the end
   kRejected,     ///< bad input: nothing was simulated or written
+  kTimedOut,     ///< stopped at its wall-clock deadline (RunRequest::deadline)
 };
 
-/// "ok", "failed", "interrupted", "rejected": the summary's "status".
+/// "ok", "failed", "interrupted", "rejected", "timeout": the summary's "status".
 const char* StatusName(RunStatus status);
 
 struct RunRequest {
@@ -50,6 +52,14 @@ struct RunRequest {
   long flush_rows = 256;
   /// Asked after every output row: a nonzero value (a signal number) stops the run there.
   std::function<int()> stop_requested;
+  /// Wall-clock limit: checked after every output row; reaching it stops the run there
+  /// with status timeout.
+  std::optional<std::chrono::steady_clock::time_point> deadline;
+  /// False: write no files at all (no directory, run.h5 or summary.json); the summary is
+  /// still built and returned. A campaign's runs are kept this way unless asked.
+  bool write_files = true;
+  /// Called with every output row, in order, after it is recorded.
+  std::function<void(const Sample&)> on_row;
 };
 
 struct RunResult {
@@ -65,7 +75,8 @@ struct RunResult {
   /// False if summary.json could not be written (the reason is in message).
   bool summary_written = false;
 
-  /// Exit code of the CLI: 0 ok, 1 failed, 2 rejected, 128 + signal when interrupted.
+  /// Exit code of the CLI: 0 ok, 1 failed or timed out, 2 rejected, 128 + signal when
+  /// interrupted.
   int ExitCode() const;
 };
 

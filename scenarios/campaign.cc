@@ -1,0 +1,425 @@
+#include "scenarios/campaign.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <map>
+
+#include "core/error.h"
+#include "core/random.h"
+#include "scenarios/strict_yaml.h"
+
+namespace moorsim::scenarios {
+namespace {
+
+using namespace strict_yaml;  // NOLINT(google-build-using-namespace): the shared reader
+
+// A campaign lists at most this many runs: far beyond a campaign that finishes, small
+// enough that a typo (seeds: 1e9) is caught before anything runs.
+constexpr std::int64_t kMaxRuns = 10'000'000;
+constexpr std::int64_t kMaxValuesPerFactor = 100'000;
+
+// A YAML value as `--set` text: a scalar as written, anything else in flow style.
+std::string SetText(const YAML::Node& node) {
+  if (node.IsScalar()) return node.Scalar();
+  YAML::Emitter out;
+  out << YAML::Flow << node;
+  return out.c_str();
+}
+
+bool IsBlockName(const std::string& name) {
+  if (name.empty()) return false;
+  for (const char c : name) {
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-')) return false;
+  }
+  return true;
+}
+
+// `set:` as "key=value" texts in the order written. A key path is checked for form here;
+// whether it names a scenario key is checked when the runs' scenarios are loaded.
+std::vector<std::string> ParseSet(const Reader& r, const YAML::Node& node) {
+  std::vector<std::string> set;
+  const std::vector<std::string> keys = r.Keys();
+  if (!r.IsMap()) r.Fail(r.Text() + " must be a map of key paths to values");
+  std::size_t i = 0;
+  for (const auto& entry : node) {
+    const std::string& key = keys[i++];
+    if (key.empty() || key.find('=') != std::string::npos || key.find(' ') != std::string::npos) {
+      r.Fail("'" + key + "' is not a key path (e.g. simulation.duration)");
+    }
+    set.push_back(key + "=" + SetText(entry.second));
+  }
+  return set;
+}
+
+// Integer number of steps from `from` to `to` (inclusive), tolerant of rounding.
+std::vector<std::string> ExpandRange(const Reader& r) {
+  r.CheckKeys({"from", "to", "step"});
+  const double from = r.Required<double>("from");
+  const double to = r.Required<double>("to");
+  const double step = r.Required<double>("step");
+  if (!(step > 0.0)) r.Child("step").Fail(Number(step) + " must be > 0");
+  if (!(to >= from)) r.Child("to").Fail(Number(to) + " must be >= from (" + Number(from) + ")");
+  const double count = std::floor((to - from) / step * (1.0 + 1e-12) + 1e-9) + 1.0;
+  if (count > static_cast<double>(kMaxValuesPerFactor)) {
+    r.Fail("gives " + Number(count) + " values, more than " + std::to_string(kMaxValuesPerFactor));
+  }
+  std::vector<std::string> values;
+  for (int i = 0; i < static_cast<int>(count); ++i) {
+    // 15 significant digits: 0.1 + 2 * 0.1 reads 0.3, as written by hand.
+    values.push_back(Significant(from + i * step, 15));
+  }
+  return values;
+}
+
+CampaignFactor ParseFactor(const Reader& r, const YAML::Node& node) {
+  r.CheckKeys({"key", "values", "range", "uniform", "normal", "choice"});
+  CampaignFactor f;
+  f.mark = r.mark();
+  f.key = r.Required<std::string>("key");
+  if (f.key.empty() || f.key.find('=') != std::string::npos ||
+      f.key.find(' ') != std::string::npos) {
+    r.Child("key").Fail("'" + f.key + "' is not a key path (e.g. failure.line)");
+  }
+  int kinds = 0;
+  for (const char* k : {"values", "range", "uniform", "normal", "choice"}) {
+    if (r.Find(k)) ++kinds;
+  }
+  if (kinds != 1) r.Fail("give exactly one of values, range, uniform, normal, choice");
+  const auto list = [&](const char* key) {
+    const Reader list_reader = r.Child(key);
+    const std::vector<Reader> items = list_reader.Items();
+    if (items.empty()) list_reader.Fail("an empty list");
+    std::vector<std::string> values;
+    const YAML::Node list_node = node[key];
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      items[i].CheckUntagged("the plain value");
+      if (list_node[i].IsNull()) items[i].Fail("an empty value");
+      values.push_back(SetText(list_node[i]));
+    }
+    return values;
+  };
+  if (r.Find("values")) {
+    f.kind = CampaignFactor::Kind::kValues;
+    f.values = list("values");
+  } else if (r.Find("choice")) {
+    f.kind = CampaignFactor::Kind::kChoice;
+    f.values = list("choice");
+  } else if (const std::optional<Reader> range = r.Find("range")) {
+    f.kind = CampaignFactor::Kind::kValues;
+    f.values = ExpandRange(*range);
+  } else if (const std::optional<Reader> uniform = r.Find("uniform")) {
+    f.kind = CampaignFactor::Kind::kUniform;
+    const std::vector<Reader> bounds = uniform->Items();
+    if (bounds.size() != 2) uniform->Fail(uniform->Text() + " must be [low, high]");
+    f.low = bounds[0].As<double>();
+    f.high = bounds[1].As<double>();
+    if (!(f.high > f.low))
+      bounds[1].Fail(Number(f.high) + " must be > low (" + Number(f.low) + ")");
+  } else {
+    const Reader normal = *r.Find("normal");
+    normal.CheckKeys({"mean", "std_dev", "min", "max"});
+    f.kind = CampaignFactor::Kind::kNormal;
+    f.mean = normal.Required<double>("mean");
+    f.std_dev = normal.Required<double>("std_dev");
+    if (!(f.std_dev > 0.0)) normal.Child("std_dev").Fail(Number(f.std_dev) + " must be > 0");
+    f.min = normal.Maybe<double>("min");
+    f.max = normal.Maybe<double>("max");
+    const double low = f.min.value_or(-std::numeric_limits<double>::infinity());
+    const double high = f.max.value_or(std::numeric_limits<double>::infinity());
+    if (!(high > low))
+      normal.Child("max").Fail(Number(high) + " must be > min (" + Number(low) + ")");
+    // Rejection sampling must end: the window has to hold a fair share of the mass.
+    if (std::max(low - f.mean, f.mean - high) > 3.0 * f.std_dev) {
+      normal.Fail("[min, max] lies more than 3 standard deviations from the mean");
+    }
+  }
+  return f;
+}
+
+CampaignBlock ParseBlock(const Reader& r, const YAML::Node& node) {
+  r.CheckKeys({"name", "set", "factors", "combine", "seeds"});
+  CampaignBlock b;
+  b.mark = r.mark();
+  b.name = r.Required<std::string>("name");
+  if (!IsBlockName(b.name)) {
+    r.Child("name").Fail("'" + b.name + "' must be letters, digits, '_' or '-'");
+  }
+  if (const std::optional<Reader> set = r.Find("set")) b.set = ParseSet(*set, node["set"]);
+  if (const std::optional<Reader> factors = r.Find("factors")) {
+    const std::vector<Reader> items = factors->Items();
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      b.factors.push_back(ParseFactor(items[i], node["factors"][i]));
+      for (std::size_t j = 0; j < i; ++j) {
+        if (b.factors[j].key == b.factors[i].key) {
+          items[i].Child("key").Fail("'" + b.factors[i].key + "' is varied twice in this block");
+        }
+      }
+    }
+  }
+  if (const std::optional<Reader> combine = r.Find("combine")) {
+    const std::string c = combine->As<std::string>();
+    if (c != "grid" && c != "zip") combine->Fail("'" + c + "' must be grid or zip");
+    b.zip = c == "zip";
+  }
+  const Reader seeds = r.Child("seeds");
+  if (seeds.IsMap()) {
+    seeds.CheckKeys({"from", "to"});
+    b.first_seed = seeds.Required<std::uint64_t>("from");
+    b.last_seed = seeds.Required<std::uint64_t>("to");
+    if (*b.last_seed < *b.first_seed) {
+      seeds.Child("to").Fail(std::to_string(*b.last_seed) + " must be >= from (" +
+                             std::to_string(*b.first_seed) + ")");
+    }
+    if (*b.last_seed - *b.first_seed >= static_cast<std::uint64_t>(kMaxRuns)) {
+      seeds.Fail("more than " + std::to_string(kMaxRuns) + " seeds");
+    }
+  } else {
+    const int count = seeds.As<int>();
+    if (count < 1 || count > kMaxRuns) {
+      seeds.Fail(std::to_string(count) + " must be in [1, " + std::to_string(kMaxRuns) +
+                 "] (or {from: A, to: B})");
+    }
+    b.seed_count = count;
+  }
+  return b;
+}
+
+// The zip rule needs the factors' positions, so it is checked where they are known.
+void CheckZip(const std::string& file, const CampaignBlock& b, const std::string& path) {
+  if (!b.zip) return;
+  const CampaignFactor* first = nullptr;
+  for (const CampaignFactor& f : b.factors) {
+    if (f.kind != CampaignFactor::Kind::kValues) continue;
+    if (first == nullptr) {
+      first = &f;
+    } else if (f.values.size() != first->values.size()) {
+      ThrowAt(file, f.mark, path,
+              "combine: zip needs lists of one length: '" + f.key + "' has " +
+                  std::to_string(f.values.size()) + " values, '" + first->key + "' " +
+                  std::to_string(first->values.size()));
+    }
+  }
+}
+
+void ParseDocument(const Reader& root, const YAML::Node& document, Campaign& c) {
+  root.CheckKeys({"name", "scenario", "seed", "set", "blocks"});
+  root.Optional("name", c.name);
+  if (!IsBlockName(c.name)) {
+    root.Child("name").Fail("'" + c.name + "' must be letters, digits, '_' or '-'");
+  }
+  const Reader scenario = root.Child("scenario");
+  const std::string given = scenario.As<std::string>();
+  if (given.empty()) scenario.Fail("an empty path");
+  std::filesystem::path resolved(given);
+  if (resolved.is_relative()) {
+    resolved = std::filesystem::path(c.source_path).parent_path() / resolved;
+  }
+  c.scenario_path = resolved.lexically_normal().string();
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(c.scenario_path, error)) {
+    scenario.Fail("'" + given + "': no scenario file at " + c.scenario_path);
+  }
+  c.seed = root.Required<std::uint64_t>("seed");
+  if (const std::optional<Reader> set = root.Find("set")) c.set = ParseSet(*set, document["set"]);
+  const Reader blocks = root.Child("blocks");
+  const std::vector<Reader> items = blocks.Items();
+  if (items.empty()) blocks.Fail("an empty list (a campaign has at least one block)");
+  std::int64_t runs = 0;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    CampaignBlock b = ParseBlock(items[i], document["blocks"][i]);
+    CheckZip(c.source_path, b, ItemPath("blocks", i) + ".factors");
+    for (const CampaignBlock& earlier : c.blocks) {
+      if (earlier.name == b.name)
+        items[i].Child("name").Fail("duplicate block name '" + b.name + "'");
+    }
+    const double block_runs =
+        static_cast<double>(b.Points()) * static_cast<double>(b.SeedsPerPoint());
+    if (block_runs + static_cast<double>(runs) > static_cast<double>(kMaxRuns)) {
+      items[i].Fail("the campaign would have more than " + std::to_string(kMaxRuns) + " runs");
+    }
+    runs += b.Points() * b.SeedsPerPoint();
+    c.blocks.push_back(std::move(b));
+  }
+}
+
+}  // namespace
+
+std::int64_t CampaignBlock::Points() const {
+  std::int64_t points = 1;
+  bool any = false;
+  for (const CampaignFactor& f : factors) {
+    if (f.kind != CampaignFactor::Kind::kValues) continue;
+    const auto n = static_cast<std::int64_t>(f.values.size());
+    if (zip) {
+      points = n;  // equal lengths (checked at load)
+    } else {
+      // Saturate: the caller compares the product with kMaxRuns.
+      points = points > kMaxRuns ? points : points * n;
+    }
+    any = true;
+  }
+  return any ? points : 1;
+}
+
+std::int64_t CampaignBlock::SeedsPerPoint() const {
+  if (first_seed) return static_cast<std::int64_t>(*last_seed - *first_seed) + 1;
+  return seed_count;
+}
+
+std::int64_t Campaign::NumRuns() const {
+  std::int64_t runs = 0;
+  for (const CampaignBlock& b : blocks) runs += b.Points() * b.SeedsPerPoint();
+  return runs;
+}
+
+std::vector<std::string> Campaign::FactorKeys() const {
+  std::vector<std::string> keys;
+  for (const CampaignBlock& b : blocks) {
+    for (const CampaignFactor& f : b.factors) {
+      if (std::find(keys.begin(), keys.end(), f.key) == keys.end()) keys.push_back(f.key);
+    }
+  }
+  return keys;
+}
+
+std::uint64_t DerivedRunSeed(std::uint64_t campaign_seed, std::int64_t index) {
+  return SplitMix64Mix(SplitMix64Mix(campaign_seed) ^
+                       Fnv1a64("campaign run " + std::to_string(index)));
+}
+
+CampaignRun MakeCampaignRun(const Campaign& campaign, std::int64_t index) {
+  if (index < 0 || index >= campaign.NumRuns()) {
+    throw InputError("run " + std::to_string(index) + ": the campaign has runs 0.." +
+                     std::to_string(campaign.NumRuns() - 1));
+  }
+  CampaignRun run;
+  run.index = index;
+  std::int64_t offset = index;
+  while (true) {
+    const CampaignBlock& b = campaign.blocks[static_cast<std::size_t>(run.block)];
+    const std::int64_t size = b.Points() * b.SeedsPerPoint();
+    if (offset < size) break;
+    offset -= size;
+    ++run.block;
+  }
+  const CampaignBlock& b = campaign.blocks[static_cast<std::size_t>(run.block)];
+  const std::int64_t seeds = b.SeedsPerPoint();
+  const std::int64_t point = offset / seeds;
+  const std::int64_t replicate = offset % seeds;
+  run.seed = b.first_seed ? *b.first_seed + static_cast<std::uint64_t>(replicate)
+                          : DerivedRunSeed(campaign.seed, index);
+  // The grid's point index in mixed radix, the last listed factor fastest.
+  std::vector<std::int64_t> level(b.factors.size(), 0);
+  std::int64_t rest = point;
+  for (std::size_t i = b.factors.size(); i-- > 0;) {
+    const CampaignFactor& f = b.factors[i];
+    if (f.kind != CampaignFactor::Kind::kValues) continue;
+    const auto n = static_cast<std::int64_t>(f.values.size());
+    level[i] = b.zip ? point : rest % n;
+    rest = b.zip ? rest : rest / n;
+  }
+  for (std::size_t i = 0; i < b.factors.size(); ++i) {
+    const CampaignFactor& f = b.factors[i];
+    std::string value;
+    if (f.kind == CampaignFactor::Kind::kValues) {
+      value = f.values[static_cast<std::size_t>(level[i])];
+    } else {
+      RandomStream stream = RandomStream::Derive(
+          campaign.seed, "campaign run " + std::to_string(index) + " factor " + f.key);
+      switch (f.kind) {
+        case CampaignFactor::Kind::kUniform:
+          value = Number(f.low + (f.high - f.low) * stream.Uniform());
+          break;
+        case CampaignFactor::Kind::kNormal: {
+          const double low = f.min.value_or(-std::numeric_limits<double>::infinity());
+          const double high = f.max.value_or(std::numeric_limits<double>::infinity());
+          double x = 0.0;
+          do {
+            x = f.mean + f.std_dev * stream.Normal();
+          } while (x < low || x > high);
+          value = Number(x);
+          break;
+        }
+        case CampaignFactor::Kind::kChoice: {
+          const auto n = f.values.size();
+          const auto k = std::min(n - 1, static_cast<std::size_t>(stream.Uniform() * n));
+          value = f.values[k];
+          break;
+        }
+        case CampaignFactor::Kind::kValues:
+          break;
+      }
+    }
+    run.factors.emplace_back(f.key, value);
+  }
+  run.overrides = campaign.set;
+  run.overrides.insert(run.overrides.end(), b.set.begin(), b.set.end());
+  for (const auto& [key, value] : run.factors) run.overrides.push_back(key + "=" + value);
+  run.overrides.push_back("simulation.seed=" + std::to_string(run.seed));
+  return run;
+}
+
+std::string ShellQuote(const std::string& text) {
+  bool plain = !text.empty();
+  for (const char c : text) {
+    if (!(std::isalnum(static_cast<unsigned char>(c)) ||
+          std::string_view("_./:=,+-").find(c) != std::string_view::npos)) {
+      plain = false;
+    }
+  }
+  if (plain) return text;
+  std::string quoted = "'";
+  for (const char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+std::string CampaignRun::Command(const Campaign& campaign, const std::string& out_dir) const {
+  std::string command = "moorsim run " + ShellQuote(campaign.scenario_path);
+  if (!out_dir.empty()) command += " --out " + ShellQuote(out_dir);
+  // Every override but the seed as --set, in order; the seed last, as --seed appends it.
+  for (std::size_t i = 0; i + 1 < overrides.size(); ++i) {
+    command += " --set " + ShellQuote(overrides[i]);
+  }
+  return command + " --seed " + std::to_string(seed);
+}
+
+Campaign ParseCampaign(const std::string& yaml_text, const std::string& source_name) {
+  Campaign c;
+  c.source_path = source_name;
+  c.text = yaml_text;
+  c.name = std::filesystem::path(source_name).stem().string();
+  if (const std::optional<std::size_t> bad = FirstInvalidUtf8(yaml_text)) {
+    ThrowAt(source_name, MarkOfOffset(yaml_text, *bad), "", InvalidUtf8(yaml_text, *bad));
+  }
+  std::map<std::string, SourceMark> marks;
+  ParseContext context{source_name, &marks, {}, &yaml_text};
+  try {
+    const std::vector<YAML::Node> documents = YAML::LoadAll(yaml_text);
+    if (documents.empty() || documents[0].IsNull()) {
+      ThrowAt(source_name, {}, "", "the campaign is empty (expected a map with 'scenario')");
+    }
+    if (documents.size() > 1) {
+      ThrowAt(source_name, ToSourceMark(documents[1].Mark()), "",
+              "a campaign file holds one YAML document; this is a second one");
+    }
+    const Reader root(context, documents[0], "", ToSourceMark(documents[0].Mark()));
+    ParseDocument(root, documents[0], c);
+  } catch (const YAML::ParserException& error) {
+    ThrowAt(source_name, ToSourceMark(error.mark), "", "YAML syntax error: " + error.msg);
+  } catch (const YAML::Exception& error) {
+    ThrowAt(source_name, ToSourceMark(error.mark), "", error.msg);
+  }
+  return c;
+}
+
+Campaign LoadCampaign(const std::string& path) {
+  constexpr std::size_t kMaxCampaignBytes = 4 << 20;
+  return ParseCampaign(ReadInputFile(path, kMaxCampaignBytes, "campaign"), path);
+}
+
+}  // namespace moorsim::scenarios

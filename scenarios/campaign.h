@@ -1,0 +1,115 @@
+// A Monte-Carlo campaign: one base scenario run many times with factors varied and seeds
+// drawn, for statistics of the detectors (detection and isolation rates, delays, false
+// alarms per hour). Loading is strict like a scenario's: every problem is one
+// moorsim::InputError line "<file>:<line>:<col>: <key.path>: <what>".
+//
+// Schema (scenarios/README.md, "Campaigns"):
+//
+//   name: thesis_detection            # optional; default: the file name without extension
+//   scenario: ../library/thesis_no_failure_current.yaml   # required; relative to this file
+//   seed: 2026                        # required: the campaign seed (unsigned 64-bit)
+//   set:                              # optional: overrides for every run, as `--set`
+//     simulation.duration: 800        #   key path: value (any YAML value)
+//   blocks:                           # required, >= 1: groups of runs
+//     - name: failures                # required, unique ([A-Za-z0-9_-]+)
+//       set: {failure.mode: fairlead} # optional: overrides for this block's runs
+//       factors:                      # optional: the varied keys, each one of
+//         - {key: failure.line, values: [1, 2, 3]}            # a list of values
+//         - {key: solver.rtol, range: {from: 1e-5, to: 1e-4, step: 4.5e-5}}  # inclusive
+//         - {key: failure.time, uniform: [200, 600]}          # a draw per run
+//         - {key: environment.waves.hs, normal: {mean: 2.5, std_dev: 0.3, min: 0.5, max: 6}}
+//         - {key: controller.type, choice: [pi, observer_pid]}  # a draw per run
+//       combine: grid                 # grid (every combination of the listed values,
+//                                     # first factor slowest) or zip (the i-th value of
+//                                     # every list together; the lists equally long)
+//       seeds: 50                     # a count (each run's seed derived from the campaign
+//                                     # seed and the run index) or {from: 1, to: 50}
+//                                     # (these simulator seeds, for each point)
+//
+// Runs are numbered from 0 in order: block by block, the points of the block (grid or zip
+// order), and within a point its seeds. Random factors are drawn per run from a stream
+// named by the campaign seed, the run index and the key, so a run's values do not depend
+// on which runs are done, in what order or on how many threads. A run's overrides are the
+// campaign's `set`, the block's `set`, the factors in order, then simulation.seed: exactly
+// what `moorsim run SCENARIO --set ... --seed N` applies (CampaignRun::Command).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scenarios/scenario.h"
+
+namespace moorsim::scenarios {
+
+struct CampaignFactor {
+  enum class Kind { kValues, kUniform, kNormal, kChoice };
+  std::string key;  ///< a `--set` key path
+  Kind kind = Kind::kValues;
+  /// kValues (also an expanded range) and kChoice: each value as `--set` text.
+  std::vector<std::string> values;
+  double low = 0.0, high = 0.0;      ///< kUniform: [low, high)
+  double mean = 0.0, std_dev = 0.0;  ///< kNormal
+  std::optional<double> min, max;    ///< kNormal: draws outside are drawn again
+  SourceMark mark;                   ///< the factor's list entry
+  bool random() const { return kind != Kind::kValues; }
+};
+
+struct CampaignBlock {
+  std::string name;
+  std::vector<std::string> set;  ///< "key.path=value", in the order written
+  std::vector<CampaignFactor> factors;
+  bool zip = false;
+  /// Derived seeds: this many per point. Explicit seeds: first_seed..last_seed per point.
+  std::int64_t seed_count = 1;
+  std::optional<std::uint64_t> first_seed, last_seed;
+  SourceMark mark;
+  /// Points (combinations of the listed values) and runs of the block.
+  std::int64_t Points() const;
+  std::int64_t SeedsPerPoint() const;
+};
+
+struct Campaign {
+  std::string name;
+  std::string source_path;    ///< as given
+  std::string text;           ///< the YAML text, recorded in the results
+  std::string scenario_path;  ///< the base scenario, resolved against source_path's directory
+  std::uint64_t seed = 0;
+  std::vector<std::string> set;  ///< for every run
+  std::vector<CampaignBlock> blocks;
+  std::int64_t NumRuns() const;
+  /// Every factor key of every block, first appearance first (the results' columns).
+  std::vector<std::string> FactorKeys() const;
+};
+
+/// One run of a campaign, fully determined by the campaign and its index.
+struct CampaignRun {
+  std::int64_t index = 0;
+  int block = 0;  ///< index into Campaign::blocks
+  std::uint64_t seed = 0;
+  /// (key, value text) of every factor of the block, in order.
+  std::vector<std::pair<std::string, std::string>> factors;
+  /// The overrides RunScenario applies: campaign set, block set, factors, then
+  /// "simulation.seed=<seed>" (last, as `moorsim run --seed` appends it).
+  std::vector<std::string> overrides;
+  /// The `moorsim run` command that repeats this run alone (shell-quoted).
+  std::string Command(const Campaign& campaign, const std::string& out_dir) const;
+};
+
+/// Reads and checks the campaign file (the base scenario is not loaded here; see
+/// simulation::PrepareCampaign). Throws InputError.
+Campaign LoadCampaign(const std::string& path);
+Campaign ParseCampaign(const std::string& yaml_text, const std::string& source_name);
+
+/// The derived simulator seed of run `index`: SplitMix64Mix(SplitMix64Mix(campaign seed) ^
+/// Fnv1a64("campaign run <index>")), so neighbouring indices give unrelated seeds.
+std::uint64_t DerivedRunSeed(std::uint64_t campaign_seed, std::int64_t index);
+
+/// Run `index` (0 <= index < NumRuns()) with its seed and drawn values.
+CampaignRun MakeCampaignRun(const Campaign& campaign, std::int64_t index);
+
+/// `text` quoted for a POSIX shell when it holds anything but [A-Za-z0-9_./:=,+-].
+std::string ShellQuote(const std::string& text);
+
+}  // namespace moorsim::scenarios

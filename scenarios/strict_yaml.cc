@@ -1,0 +1,309 @@
+#include "scenarios/strict_yaml.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <system_error>
+
+#include "core/error.h"
+
+namespace moorsim::scenarios::strict_yaml {
+
+// ---------------------------------------------------------------------------------------
+// Message building, shared by the parser and Validate().
+
+// Shortest text that reads back as the same double ("-0.08", "1800", "2.5e-05").
+std::string Number(double value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
+std::string Fixed(double value, int decimals) {
+  char buffer[64];
+  const auto result =
+      std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed, decimals);
+  return std::string(buffer, result.ptr);
+}
+
+std::string Significant(double value, int digits) {
+  char buffer[32];
+  const auto result =
+      std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, digits);
+  return std::string(buffer, result.ptr);
+}
+
+std::string WithUnit(double value, std::string_view unit) {
+  return unit.empty() ? Number(value) : Number(value) + " " + std::string(unit);
+}
+
+std::string JoinSorted(std::vector<std::string> words) {
+  std::sort(words.begin(), words.end());
+  std::string joined;
+  for (const std::string& word : words) {
+    joined += (joined.empty() ? "" : ", ") + word;
+  }
+  return joined.empty() ? "none" : joined;
+}
+
+[[noreturn]] void ThrowAt(const std::string& file, SourceMark mark, const std::string& path,
+                          const std::string& what) {
+  std::string message = file;
+  if (mark.line > 0) {
+    // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on ":" + std::string&&.
+    message.append(":").append(std::to_string(mark.line));
+    message.append(":").append(std::to_string(mark.column));
+  }
+  message += ": ";
+  if (!path.empty()) message += path + ": ";
+  throw InputError(message + what);
+}
+
+SourceMark ToSourceMark(const YAML::Mark& mark) {
+  if (mark.is_null()) return {};
+  return {mark.line + 1, mark.column + 1};  // yaml-cpp counts from 0, editors from 1
+}
+
+// List indices in key paths are 1-based (mooring.lines[3] is the third entry): the project
+// numbers lines from 1 in everything a user reads, and the path should match the id.
+std::string ItemPath(const std::string& list_path, std::size_t index) {
+  return list_path + "[" + std::to_string(index + 1) + "]";
+}
+
+std::string KeyPath(const std::string& parent, std::string_view key) {
+  return parent.empty() ? std::string(key) : parent + "." + std::string(key);
+}
+
+double Radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
+
+// ---------------------------------------------------------------------------------------
+// Text encoding: scenario files and --set values are UTF-8 (the run's outputs record them
+// in JSON, which is UTF-8 only).
+
+// Length of the well-formed UTF-8 sequence at text[i] (RFC 3629: no overlong forms, no
+// surrogates, nothing above U+10FFFF), or 0 if the byte there does not start one.
+std::size_t Utf8SequenceLength(std::string_view text, std::size_t i) {
+  const auto byte = [&](std::size_t k) {
+    return k < text.size() ? static_cast<unsigned char>(text[k]) : 0u;
+  };
+  const unsigned lead = byte(i);
+  const auto continuation = [&](std::size_t k, unsigned low = 0x80, unsigned high = 0xBF) {
+    return byte(k) >= low && byte(k) <= high;
+  };
+  if (lead < 0x80) return 1;
+  if (lead >= 0xC2 && lead <= 0xDF) return continuation(i + 1) ? 2 : 0;
+  if (lead >= 0xE0 && lead <= 0xEF) {
+    const unsigned low = lead == 0xE0 ? 0xA0 : 0x80;   // no overlong forms
+    const unsigned high = lead == 0xED ? 0x9F : 0xBF;  // no surrogates
+    return continuation(i + 1, low, high) && continuation(i + 2) ? 3 : 0;
+  }
+  if (lead >= 0xF0 && lead <= 0xF4) {
+    const unsigned low = lead == 0xF0 ? 0x90 : 0x80;   // no overlong forms
+    const unsigned high = lead == 0xF4 ? 0x8F : 0xBF;  // nothing above U+10FFFF
+    return continuation(i + 1, low, high) && continuation(i + 2) && continuation(i + 3) ? 4 : 0;
+  }
+  return 0;
+}
+
+// Offset of the first byte that is not part of well-formed UTF-8, if any.
+std::optional<std::size_t> FirstInvalidUtf8(std::string_view text) {
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t length = Utf8SequenceLength(text, i);
+    if (length == 0) return i;
+    i += length;
+  }
+  return std::nullopt;
+}
+
+std::string HexByte(unsigned char byte) {
+  static constexpr char kDigits[] = "0123456789ABCDEF";
+  return std::string("0x") + kDigits[byte >> 4] + kDigits[byte & 0xF];
+}
+
+// The text with every byte outside well-formed UTF-8 written as \xNN, so a message that
+// quotes it is UTF-8 itself.
+std::string EscapeInvalidUtf8(std::string_view text) {
+  std::string shown;
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t length = Utf8SequenceLength(text, i);
+    if (length == 0) {
+      shown += "\\x" + HexByte(static_cast<unsigned char>(text[i])).substr(2);
+      ++i;
+    } else {
+      shown.append(text.substr(i, length));
+      i += length;
+    }
+  }
+  return shown;
+}
+
+// "not valid UTF-8 (byte 0xE9); ...": the message tail for the bad byte at `offset`.
+std::string InvalidUtf8(std::string_view text, std::size_t offset) {
+  return "not valid UTF-8 (byte " + HexByte(static_cast<unsigned char>(text[offset])) +
+         "); save the file as UTF-8";
+}
+
+// 1-based line and column (in bytes, as yaml-cpp counts them) of byte `offset`.
+SourceMark MarkOfOffset(std::string_view text, std::size_t offset) {
+  const std::size_t line_start =
+      offset == 0 ? std::string_view::npos : text.rfind('\n', offset - 1);
+  const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(offset), '\n');
+  const std::size_t column =
+      line_start == std::string_view::npos ? offset + 1 : offset - line_start;
+  return {static_cast<int>(line), static_cast<int>(column)};
+}
+
+// ---------------------------------------------------------------------------------------
+// YAML tags. A tag changes how a value reads (`!!str 1.0041e8` is text that yaml-cpp still
+// converts to a number; `!!binary`, `!foo` are not numbers at all), so none is accepted.
+// yaml-cpp gives a plain scalar the tag "?" and a quoted or block scalar "!"; an explicit
+// non-specific tag (`! 5`) is also "!", told apart by the '!' written at the node (after an
+// anchor, if any).
+
+// The tag as the user wrote it ("!!str" for "tag:yaml.org,2002:str"), or nothing.
+std::optional<std::string> ExplicitTag(const YAML::Node& node, const std::string* text) {
+  const std::string& tag = node.Tag();
+  if (tag.empty() || tag == "?") return std::nullopt;
+  if (tag != "!") {
+    constexpr std::string_view kCore = "tag:yaml.org,2002:";
+    if (tag.compare(0, kCore.size(), kCore) == 0) return "!!" + tag.substr(kCore.size());
+    if (tag[0] == '!') return tag;
+    return "!<" + tag + ">";
+  }
+  const YAML::Mark mark = node.Mark();
+  if (text == nullptr || mark.is_null() || mark.pos < 0 ||
+      static_cast<std::size_t>(mark.pos) >= text->size()) {
+    return std::nullopt;
+  }
+  std::size_t i = static_cast<std::size_t>(mark.pos);
+  if ((*text)[i] == '&') {  // an anchor first: skip its name and the blanks after it
+    while (i < text->size() && (*text)[i] != ' ' && (*text)[i] != '\t' && (*text)[i] != '\n') ++i;
+    while (i < text->size() && ((*text)[i] == ' ' || (*text)[i] == '\t')) ++i;
+  }
+  if (i < text->size() && (*text)[i] == '!') return std::string("!");
+  return std::nullopt;
+}
+
+// Throws InputError `prefix`: tagged value ... for the first tagged node in a --set value.
+void CheckOverrideUntagged(const YAML::Node& node, const std::string& text,
+                           const std::string& prefix) {
+  if (const std::optional<std::string> tag = ExplicitTag(node, &text)) {
+    throw InputError(prefix + ": tagged value '" + *tag +
+                     "' (tags are not accepted; write the plain value)");
+  }
+  if (node.IsMap()) {
+    for (const auto& entry : node) {
+      CheckOverrideUntagged(entry.first, text, prefix);
+      CheckOverrideUntagged(entry.second, text, prefix);
+    }
+  } else if (node.IsSequence()) {
+    for (const auto& item : node) CheckOverrideUntagged(item, text, prefix);
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// Strict reading of one YAML node at a key path.
+
+// Whether `path` is an overridden key path or lies under one.
+bool Overridden(const ParseContext& context, const std::string& path) {
+  for (const std::string& o : context.overridden) {
+    if (path == o || (path.size() > o.size() && path.compare(0, o.size(), o) == 0 &&
+                      (path[o.size()] == '.' || path[o.size()] == '['))) {
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string Describe(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Scalar:
+      // Tag "!" is yaml-cpp's mark of a quoted scalar; show the quotes so "must be a
+      // number" makes sense for "0.08".
+      return node.Tag() == "!" ? "\"" + node.Scalar() + "\"" : node.Scalar();
+    case YAML::NodeType::Sequence: {
+      // A short list of scalars reads best as written: "[0, 20] must be a list of 3 ...".
+      std::string shown = "[";
+      for (std::size_t i = 0; i < node.size(); ++i) {
+        if (!node[i].IsScalar() || i == 6) return "a list";
+        shown += (i > 0 ? ", " : "") + Describe(node[i]);
+      }
+      return shown + "]";
+    }
+    case YAML::NodeType::Map:
+      return "a map";
+    default:
+      return "an empty value";
+  }
+}
+
+template <>
+double Reader::As<double>() const {
+  const double value = Decode<double>("a number", "the plain number");
+  if (!std::isfinite(value)) Fail(Describe(node_) + " must be a finite number");
+  return value;
+}
+
+template <>
+int Reader::As<int>() const {
+  return Decode<int>("an integer", "the plain integer");
+}
+
+template <>
+bool Reader::As<bool>() const {
+  return Decode<bool>("true or false", "true or false");
+}
+
+template <>
+std::string Reader::As<std::string>() const {
+  CheckUntagged("the plain text");
+  if (!node_.IsScalar()) Fail(Describe(node_) + " must be a string");
+  return node_.Scalar();
+}
+
+template <>
+std::uint64_t Reader::As<std::uint64_t>() const {
+  CheckUntagged("the plain integer");
+  if (!node_.IsScalar() || node_.Tag() == "!" || node_.Scalar().empty() ||
+      node_.Scalar()[0] == '-') {
+    Fail(Describe(node_) + " must be a non-negative integer");
+  }
+  return Decode<std::uint64_t>("a non-negative integer", "the plain integer");
+}
+
+template <>
+Vec3 Reader::As<Vec3>() const {
+  CheckUntagged("the plain list");
+  if (!node_.IsSequence() || node_.size() != 3) {
+    Fail(Describe(node_) + " must be a list of 3 numbers [x, y, z]");
+  }
+  const std::vector<Reader> items = Items();
+  return Vec3(items[0].As<double>(), items[1].As<double>(), items[2].As<double>());
+}
+std::string ReadInputFile(const std::string& path, std::size_t max_bytes, std::string_view what) {
+  const std::string kind(what);
+  std::error_code ignored;
+  if (std::filesystem::is_directory(path, ignored)) {
+    throw InputError(path + ": is a directory, not a " + kind + " file");
+  }
+  std::ifstream file(path, std::ios::binary);
+  if (!file) {
+    const std::error_code error(errno, std::generic_category());
+    throw InputError(path + ": cannot open the " + kind + " file: " + error.message());
+  }
+  std::string text(max_bytes + 1, '\0');
+  file.read(text.data(), static_cast<std::streamsize>(text.size()));
+  if (file.bad()) throw InputError(path + ": cannot read the " + kind + " file");
+  text.resize(static_cast<std::size_t>(file.gcount()));
+  if (text.size() > max_bytes) {
+    throw InputError(path + ": larger than " + std::to_string(max_bytes >> 20) + " MiB, not a " +
+                     kind + " file");
+  }
+  return text;
+}
+
+}  // namespace moorsim::scenarios::strict_yaml

@@ -1,0 +1,113 @@
+// `moorsim batch`: a Monte-Carlo campaign (scenarios/campaign.h) run by the library's
+// RunBatch (tools/simulation/batch.h) on OpenMP threads; `--merge` joins shard directories.
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include "core/error.h"
+#include "tools/commands.h"
+#include "tools/simulation/batch.h"
+
+namespace moorsim::cli {
+namespace {
+
+struct BatchCommandOptions {
+  std::string campaign;
+  std::optional<std::string> out;
+  std::optional<std::string> threads;
+  std::optional<std::string> shard;
+  std::optional<std::string> run_timeout;
+  std::vector<std::string> merge;
+  bool keep_runs = false;
+  bool dry_run = false;
+  bool quiet = false;
+  std::string command_line;
+};
+
+// "K/N" with 1 <= K <= N.
+std::pair<int, int> ParseShard(const std::string& text) {
+  const std::size_t slash = text.find('/');
+  if (slash == std::string::npos) {
+    throw InputError("--shard " + text + ": expected K/N (e.g. 3/10: the third of ten shards)");
+  }
+  const int n = ParseInteger("--shard", text.substr(slash + 1), 1, 1'000'000);
+  const int k = ParseInteger("--shard", text.substr(0, slash), 1, n);
+  return {k - 1, n};
+}
+
+int Batch(const BatchCommandOptions& o) {
+  if (!o.merge.empty()) {
+    if (!o.campaign.empty()) throw InputError("--merge: give directories only, no campaign file");
+    if (!o.out) throw InputError("--merge needs --out DIR for the joined results");
+    std::vector<std::filesystem::path> dirs(o.merge.begin(), o.merge.end());
+    simulation::MergeCampaigns(dirs, RequireText("--out", *o.out), o.command_line);
+    std::fprintf(stderr, "moorsim batch: merged %zu directories -> %s\n", dirs.size(),
+                 o.out->c_str());
+    return 0;
+  }
+  if (o.campaign.empty()) throw InputError("batch: give a campaign file (or --merge DIR...)");
+  simulation::BatchOptions options;
+  options.campaign_path = o.campaign;
+  if (o.out) options.out = RequireText("--out", *o.out);
+  if (o.threads) options.threads = ParseInteger("--threads", *o.threads, 1, 4096);
+  if (o.shard) std::tie(options.shard_index, options.shard_count) = ParseShard(*o.shard);
+  if (o.run_timeout) {
+    options.run_timeout = ParseNumber("--run-timeout", *o.run_timeout);
+    if (!(options.run_timeout > 0.0) || options.run_timeout > 1e7) {
+      throw InputError("--run-timeout " + *o.run_timeout + ": must be in (0, 1e7] seconds");
+    }
+  }
+  options.keep_runs = o.keep_runs;
+  options.progress = !o.quiet;
+  options.command_line = o.command_line;
+  if (o.dry_run) {
+    const simulation::PreparedCampaign prepared = simulation::PrepareCampaign(o.campaign);
+    const int threads = options.threads > 0 ? options.threads : simulation::DefaultThreads();
+    std::cout << simulation::DescribeCampaign(prepared, threads);
+    return 0;
+  }
+  simulation::InstallStopSignalHandlers();
+  options.stop_requested = simulation::StopSignal;
+  const simulation::BatchResult result = simulation::RunBatch(options);
+  if (!result.message.empty()) std::cerr << "moorsim: " << result.message << "\n";
+  if (result.exit_code != 2 && !o.quiet) {
+    std::fprintf(stderr,
+                 "moorsim batch: %lld runs in this shard: %lld done now, %lld already done, "
+                 "%lld not ok -> %s\n",
+                 static_cast<long long>(result.runs), static_cast<long long>(result.done),
+                 static_cast<long long>(result.skipped), static_cast<long long>(result.failed),
+                 result.directory.string().c_str());
+  }
+  return result.exit_code;
+}
+
+}  // namespace
+
+Command AddBatchCommand(CLI::App& app, int argc, char** argv) {
+  auto o = std::make_shared<BatchCommandOptions>();
+  for (int i = 0; i < argc; ++i) {
+    o->command_line += (i ? " " : "") + scenarios::ShellQuote(argv[i]);
+  }
+  CLI::App* sub =
+      app.add_subcommand("batch", "run a Monte-Carlo campaign of many runs on all cores");
+  sub->add_option("campaign", o->campaign, "campaign YAML file");
+  sub->footer(
+      "\nWrites DIR/runs.csv and DIR/campaign.h5 (one row per run), DIR/rows/ (a file per\n"
+      "finished run: rerunning the same command resumes) and, with --keep-runs, every run's\n"
+      "run.h5 under DIR/runs/. tools/report.py DIR writes the report. Exit codes: 0 every run\n"
+      "ok, 1 some run failed or timed out (recorded in the table), 2 bad input, 130/143\n"
+      "interrupted by SIGINT/SIGTERM (finished runs are kept; the same command resumes).");
+  sub->add_option("--out", o->out, "results directory (default out/<campaign name>)");
+  sub->add_option("--threads", o->threads, "runs at once (default: every core)");
+  sub->add_option("--shard", o->shard, "K/N: only every N-th run from the K-th (job arrays)");
+  sub->add_option("--run-timeout", o->run_timeout,
+                  "wall-clock limit per run [s] (default none); a run past it is recorded as "
+                  "timeout");
+  sub->add_option("--merge", o->merge, "join these shard directories into --out")->expected(1, -1);
+  sub->add_flag("--keep-runs", o->keep_runs, "keep every run's run.h5 and summary.json");
+  sub->add_flag("--dry-run", o->dry_run, "list the runs and the estimated wall time, run nothing");
+  sub->add_flag("--quiet", o->quiet, "no progress line on stderr");
+  return [o] { return Batch(*o); };
+}
+
+}  // namespace moorsim::cli
