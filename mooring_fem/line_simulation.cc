@@ -63,6 +63,7 @@ IntegratorOptions MakeIntegratorOptions(const SolverSettings& solver,
   o.max_order = solver.max_order;
   o.stability_limit_detection = solver.stability_limit_detection;
   o.max_step = solver.max_step;
+  o.max_steps_per_call = solver.max_steps;
   for (char kind : mooring.StateKinds()) {
     o.atol.push_back(kind == 'p' ? solver.atol_position : solver.atol_velocity);
   }

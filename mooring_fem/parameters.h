@@ -93,6 +93,9 @@ struct SolverSettings {
   int max_order = 2;
   bool stability_limit_detection = false;
   double max_step = 0.0;  ///< [s]; 0 = no limit
+  /// Steps CVODE may take between two stops (events, output instants) before it gives up
+  /// with CV_TOO_MUCH_WORK: a run that crawls fails in seconds instead of hours.
+  int max_steps = 200000;
 };
 
 }  // namespace moorsim::mooring_fem

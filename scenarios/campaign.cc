@@ -43,8 +43,8 @@ bool IsBlockName(const std::string& name) {
 // whether it names a scenario key is checked when the runs' scenarios are loaded.
 std::vector<std::string> ParseSet(const Reader& r, const YAML::Node& node) {
   std::vector<std::string> set;
-  const std::vector<std::string> keys = r.Keys();
   if (!r.IsMap()) r.Fail(r.Text() + " must be a map of key paths to values");
+  const std::vector<std::string> keys = r.Keys();
   std::size_t i = 0;
   for (const auto& entry : node) {
     const std::string& key = keys[i++];

@@ -136,7 +136,7 @@ void ParseMooring(const Reader& r, Scenario& scenario) {
 void ParseName(const Reader& r, Scenario& scenario) { scenario.name = r.As<std::string>(); }
 
 void ParseSolver(const Reader& r, Scenario& scenario) {
-  r.CheckKeys({"atol_position", "atol_velocity", "max_order", "max_step", "rtol",
+  r.CheckKeys({"atol_position", "atol_velocity", "max_order", "max_step", "max_steps", "rtol",
                "stability_limit_detection"});
   SolverSpec& solver = scenario.solver;
   r.Optional("rtol", solver.rtol);
@@ -145,6 +145,7 @@ void ParseSolver(const Reader& r, Scenario& scenario) {
   r.Optional("max_order", solver.max_order);
   r.Optional("stability_limit_detection", solver.stability_limit_detection);
   r.Optional("max_step", solver.max_step);
+  r.Optional("max_steps", solver.max_steps);
 }
 
 // Angles under *_deg keys.
@@ -705,6 +706,7 @@ void CheckSolver(const Checker& check, const SolverSpec& solver) {
     check.Fail("solver.max_step", WithUnit(solver.max_step, "s") + " must be >= 0 (0 = no limit)");
   }
   check.AtMost("solver.max_step", solver.max_step, kMaxTime, "s");
+  check.InRange("solver.max_steps", solver.max_steps, 1, 100'000'000);
 }
 
 void Probability(const Checker& check, const std::string& path, double value) {

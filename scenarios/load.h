@@ -56,6 +56,7 @@
 //     max_order: 2                   # BDF order, 1..5
 //     stability_limit_detection: false
 //     max_step: 0                    # [s], 0 = no limit
+//     max_steps: 200000              # steps between two stops before CV_TOO_MUCH_WORK
 //   vessel:                          # optional (`run` needs it); besides the keys listed
 //                                    # in scenarios/README.md, the hull and the windage:
 //     hull: {length: 200, beam: 44, draught: 12, displaced_volume: 97961,

@@ -1,0 +1,123 @@
+// `moorsim batch` end to end: the dry run's listing, bad flags as one line with exit 2, a
+// small campaign's table and the report built on it (tools/report.py, checked against the
+// table by tests/tools/report_test.py), a SIGTERM that stops the batch with exit 143.
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "tests/cli/run_cli.h"
+
+namespace moorsim::testing {
+namespace {
+
+const std::string kScenario =
+    MOORSIM_SOURCE_DIR "/scenarios/library/thesis_no_failure_current.yaml";
+
+std::string WriteCampaign(const std::filesystem::path& dir, double duration) {
+  const std::filesystem::path path = dir / "small.yaml";
+  std::ofstream(path) << "scenario: " << kScenario
+                      << "\nseed: 5\nset: {simulation.duration: " << duration
+                      << "}\nblocks:\n"
+                         "  - name: failures\n"
+                         "    set: {failure.mode: fairlead, failure.time: 50}\n"
+                         "    factors: [{key: failure.line, values: [3, 7]}]\n"
+                         "    seeds: 1\n"
+                         "  - name: intact\n"
+                         "    seeds: 2\n";
+  return path.string();
+}
+
+TEST(BatchCommand, DryRunListsEveryRunAndTheEstimate) {
+  TempDirectory dir(::testing::TempDir());
+  const std::string campaign = WriteCampaign(dir.path(), 100);
+  const CliResult r = RunCli({"batch", campaign, "--dry-run", "--threads", "2"}, dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  EXPECT_NE(r.out.find("4 runs of " + kScenario), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("block failures: 2 points x 1 seeds = 2 runs"), std::string::npos);
+  EXPECT_NE(r.out.find("\n1\tfailures\t"), std::string::npos) << r.out;  // run 1's row
+  EXPECT_NE(r.out.find("line 7 at 50 s"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("estimated wall time"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "out"));  // nothing written
+}
+
+TEST(BatchCommand, BadFlagsExitWithCode2AndOneLine) {
+  TempDirectory dir(::testing::TempDir());
+  const std::string campaign = WriteCampaign(dir.path(), 100);
+  const struct {
+    std::vector<std::string> args;
+    std::string message;
+  } cases[] = {
+      {{"batch", campaign, "--shard", "3"},
+       "moorsim: --shard 3: expected K/N (e.g. 3/10: the third of ten shards)\n"},
+      {{"batch", campaign, "--shard", "0/2"},
+       "moorsim: --shard: '0' must be a whole number in 1..2\n"},
+      {{"batch", campaign, "--threads", "0"},
+       "moorsim: --threads: '0' must be a whole number in 1..4096\n"},
+      {{"batch", campaign, "--run-timeout", "-1"},
+       "moorsim: --run-timeout -1: must be in (0, 1e7] seconds\n"},
+      {{"batch"}, "moorsim: batch: give a campaign file (or --merge DIR...)\n"},
+      {{"batch", "--merge", "a", "b"}, "moorsim: --merge needs --out DIR for the joined results\n"},
+      {{"batch", (dir.path() / "none.yaml").string()},
+       "moorsim: " + (dir.path() / "none.yaml").string() +
+           ": cannot open the campaign file: No such file or directory\n"},
+  };
+  for (const auto& c : cases) {
+    const CliResult r = RunCli(c.args, dir.path());
+    EXPECT_EQ(r.exit_code, 2) << r.Describe();
+    EXPECT_EQ(r.err, c.message);
+  }
+}
+
+TEST(BatchCommand, WritesTheTableAndTheReportMatchesIt) {
+  TempDirectory dir(::testing::TempDir());
+  const std::string campaign = WriteCampaign(dir.path(), 150);
+  const std::string out = (dir.path() / "results").string();
+  const CliResult r =
+      RunCli({"batch", campaign, "--out", out, "--quiet"}, dir.path(), std::chrono::seconds(600));
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  const std::string csv = ReadWholeFile(std::filesystem::path(out) / "runs.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);  // header + 4 runs
+  EXPECT_EQ(csv.rfind("run,block,seed,status,failure.line,failure_line,", 0), 0u) << csv;
+  // The report, checked number by number against campaign.h5.
+  const CliResult report =
+      RunProgram("/usr/bin/python3", {MOORSIM_SOURCE_DIR "/tests/tools/report_test.py", out},
+                 dir.path(), std::chrono::seconds(300));
+  EXPECT_EQ(report.exit_code, 0) << report.Describe();
+  EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(out) / "report.html"));
+  // Run again: every run has its row, nothing is done twice.
+  const CliResult again = RunCli({"batch", campaign, "--out", out}, dir.path());
+  ASSERT_EQ(again.exit_code, 0) << again.Describe();
+  EXPECT_NE(again.err.find("0 done now, 4 already done"), std::string::npos) << again.err;
+}
+
+TEST(BatchCommand, SigtermStopsTheBatchWithExit143AndKeepsTheFinishedRows) {
+  TempDirectory dir(::testing::TempDir());
+  const std::string campaign = WriteCampaign(dir.path(), 2000);
+  const std::filesystem::path out = dir.path() / "results";
+  pid_t pid = 0;
+  const std::string cli = MOORSIM_CLI;
+  std::vector<std::string> args = {cli,          "batch",   campaign,    "--out",
+                                   out.string(), "--quiet", "--threads", "1"};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  ASSERT_EQ(posix_spawn(&pid, cli.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+  // Wait until the first run is under way (the campaign file is recorded before it).
+  for (int i = 0; i < 200 && !std::filesystem::exists(out / "campaign.yaml"); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ::kill(pid, SIGTERM);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status)) << "signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 143);
+  EXPECT_TRUE(std::filesystem::exists(out / "runs.csv"));  // the table of what finished
+}
+
+}  // namespace
+}  // namespace moorsim::testing

@@ -1,0 +1,283 @@
+// Campaign files: the expansion into runs (order, grid and zip, ranges, seeds, draws) and
+// one test per input rule, each asserting the whole message with its position.
+#include "scenarios/campaign.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <string>
+
+#include "core/error.h"
+
+namespace moorsim::scenarios {
+namespace {
+
+// Campaign texts are named as if they sat in scenarios/campaigns/, so the scenario path
+// resolves to the library.
+const std::string kSource = std::string(MOORSIM_SOURCE_DIR) + "/scenarios/campaigns/test.yaml";
+const std::string kScenario =
+    std::string(MOORSIM_SOURCE_DIR) + "/scenarios/library/thesis_no_failure.yaml";
+
+const std::string kCampaign = R"(name: test
+scenario: ../library/thesis_no_failure.yaml
+seed: 11
+set:
+  simulation.duration: 300
+blocks:
+  - name: failures
+    set: {failure.mode: fairlead}
+    factors:
+      - {key: failure.line, values: [1, 2, 3]}
+      - {key: "environment.current.profile[1].speed", range: {from: 0, to: 0.2, step: 0.1}}
+      - {key: failure.time, uniform: [100, 200]}
+    seeds: 2
+  - name: intact
+    factors:
+      - {key: controller.type, choice: [pi, observer_pid]}
+      - {key: environment.waves.hs, normal: {mean: 2.5, std_dev: 0.5, min: 2, max: 3}}
+    seeds: {from: 5, to: 7}
+)";
+
+std::string ErrorOf(const std::string& text) {
+  try {
+    ParseCampaign(text, kSource);
+  } catch (const InputError& error) {
+    return error.what();
+  } catch (const std::exception& error) {
+    return std::string("not an InputError: ") + error.what();
+  }
+  return "(no error)";
+}
+
+// "file:line:col: " of the first occurrence of `needle` in `text` (1-based).
+std::string At(const std::string& text, const std::string& needle) {
+  const std::size_t offset = text.find(needle);
+  EXPECT_NE(offset, std::string::npos) << needle;
+  const std::size_t line_start = text.rfind('\n', offset);
+  const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(offset), '\n');
+  const std::size_t column = line_start == std::string::npos ? offset + 1 : offset - line_start;
+  return kSource + ":" + std::to_string(line) + ":" + std::to_string(column) + ": ";
+}
+
+std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+TEST(Campaign, ExpandsBlocksInOrderGridLastFactorFastestSeedsInnermost) {
+  const Campaign c = ParseCampaign(kCampaign, kSource);
+  EXPECT_EQ(c.name, "test");
+  EXPECT_EQ(c.scenario_path, kScenario);
+  EXPECT_EQ(c.seed, 11u);
+  ASSERT_EQ(c.blocks.size(), 2u);
+  EXPECT_EQ(c.blocks[0].Points(), 9);  // 3 lines x 3 speeds
+  EXPECT_EQ(c.blocks[0].SeedsPerPoint(), 2);
+  EXPECT_EQ(c.blocks[1].Points(), 1);
+  EXPECT_EQ(c.blocks[1].SeedsPerPoint(), 3);
+  EXPECT_EQ(c.NumRuns(), 9 * 2 + 3);
+  EXPECT_EQ(c.FactorKeys(),
+            (std::vector<std::string>{"failure.line", "environment.current.profile[1].speed",
+                                      "failure.time", "controller.type", "environment.waves.hs"}));
+
+  // Run 0: line 1, speed 0, first seed; run 1: its second seed; run 2: speed 0.1.
+  const CampaignRun r0 = MakeCampaignRun(c, 0);
+  const CampaignRun r1 = MakeCampaignRun(c, 1);
+  const CampaignRun r2 = MakeCampaignRun(c, 2);
+  const CampaignRun r7 = MakeCampaignRun(c, 7);
+  EXPECT_EQ(r0.factors[0].second, "1");
+  EXPECT_EQ(r0.factors[1].second, "0");
+  EXPECT_EQ(r1.factors[1].second, "0");
+  EXPECT_EQ(r2.factors[1].second, "0.1");
+  EXPECT_EQ(r7.factors[0].second, "2");  // point 3: line 2, speed 0
+  EXPECT_EQ(r7.factors[1].second, "0");
+  EXPECT_EQ(MakeCampaignRun(c, 17).factors[1].second, "0.2");
+  EXPECT_EQ(r0.seed, DerivedRunSeed(11, 0));
+  EXPECT_NE(r0.seed, r1.seed);
+  // The overrides: campaign set, block set, factors, seed last.
+  EXPECT_EQ(r0.overrides.front(), "simulation.duration=300");
+  EXPECT_EQ(r0.overrides[1], "failure.mode=fairlead");
+  EXPECT_EQ(r0.overrides[2], "failure.line=1");
+  EXPECT_EQ(r0.overrides.back(), "simulation.seed=" + std::to_string(r0.seed));
+  EXPECT_EQ(r0.block, 0);
+
+  // The intact block: explicit seeds 5, 6, 7; draws within their bounds.
+  for (int k = 0; k < 3; ++k) {
+    const CampaignRun r = MakeCampaignRun(c, 18 + k);
+    EXPECT_EQ(r.block, 1);
+    EXPECT_EQ(r.seed, 5u + static_cast<unsigned>(k));
+    EXPECT_TRUE(r.factors[0].second == "pi" || r.factors[0].second == "observer_pid");
+    const double hs = std::stod(r.factors[1].second);
+    EXPECT_GE(hs, 2.0);
+    EXPECT_LE(hs, 3.0);
+  }
+  EXPECT_THROW(MakeCampaignRun(c, 21), InputError);
+  EXPECT_THROW(MakeCampaignRun(c, -1), InputError);
+}
+
+TEST(Campaign, DrawsDependOnlyOnTheCampaignSeedTheRunAndTheKey) {
+  const Campaign c = ParseCampaign(kCampaign, kSource);
+  std::set<std::string> times;
+  for (int i = 0; i < 18; ++i) {
+    const CampaignRun a = MakeCampaignRun(c, i);
+    const CampaignRun b = MakeCampaignRun(c, i);  // again: the same values
+    EXPECT_EQ(a.overrides, b.overrides);
+    const double t = std::stod(a.factors[2].second);
+    EXPECT_GE(t, 100.0);
+    EXPECT_LT(t, 200.0);
+    // The text reads back as the same double, so the command repeats the run exactly.
+    EXPECT_EQ(std::stod(a.factors[2].second), t);
+    times.insert(a.factors[2].second);
+  }
+  EXPECT_EQ(times.size(), 18u);  // one draw per run
+  const Campaign other = ParseCampaign(Replace(kCampaign, "seed: 11", "seed: 12"), kSource);
+  EXPECT_NE(MakeCampaignRun(other, 0).factors[2].second, MakeCampaignRun(c, 0).factors[2].second);
+  EXPECT_NE(MakeCampaignRun(other, 0).seed, MakeCampaignRun(c, 0).seed);
+}
+
+TEST(Campaign, ZipTakesTheIthValueOfEveryList) {
+  const std::string text = R"(scenario: ../library/thesis_no_failure.yaml
+seed: 1
+blocks:
+  - name: pairs
+    combine: zip
+    factors:
+      - {key: failure.line, values: [1, 2, 3]}
+      - {key: failure.time, values: [100, 200, 300]}
+    seeds: 1
+)";
+  const Campaign c = ParseCampaign(text, kSource);
+  EXPECT_EQ(c.name, "test");  // the file's stem
+  ASSERT_EQ(c.NumRuns(), 3);
+  for (int i = 0; i < 3; ++i) {
+    const CampaignRun r = MakeCampaignRun(c, i);
+    EXPECT_EQ(r.factors[0].second, std::to_string(i + 1));
+    EXPECT_EQ(r.factors[1].second, std::to_string(100 * (i + 1)));
+  }
+}
+
+TEST(Campaign, CommandRepeatsTheRunWithQuotedValues) {
+  const std::string text = R"(scenario: ../library/thesis_no_failure.yaml
+seed: 3
+set: {environment.wind: {speed: 15, direction_from_deg: 90}}
+blocks:
+  - {name: one, seeds: 1}
+)";
+  const Campaign c = ParseCampaign(text, kSource);
+  const CampaignRun r = MakeCampaignRun(c, 0);
+  EXPECT_EQ(r.overrides[0], "environment.wind={speed: 15, direction_from_deg: 90}");
+  EXPECT_EQ(r.Command(c, ""), "moorsim run " + kScenario +
+                                  " --set 'environment.wind={speed: 15, direction_from_deg: 90}'"
+                                  " --seed " +
+                                  std::to_string(r.seed));
+  EXPECT_EQ(ShellQuote("it's"), "'it'\\''s'");
+  EXPECT_EQ(ShellQuote(""), "''");
+  EXPECT_EQ(ShellQuote("a/b.yaml"), "a/b.yaml");
+}
+
+struct CampaignError {
+  const char* name;
+  std::string text;
+  std::string at;  // where the message points (searched in text); empty = no position
+  std::string message;
+};
+
+std::vector<CampaignError> Errors() {
+  const std::string& b = kCampaign;
+  return {
+      {"UnknownTopKey", Replace(b, "seed: 11", "seed: 11\nseeds: 3"), "seeds: 3",
+       "unknown key 'seeds' (known: blocks, name, scenario, seed, set)"},
+      {"MissingSeed", Replace(b, "seed: 11\n", ""), "name: test", "required key 'seed' is missing"},
+      {"NegativeSeed", Replace(b, "seed: 11", "seed: -1"), "-1",
+       "seed: -1 must be a non-negative integer"},
+      {"NoScenarioFile", Replace(b, "thesis_no_failure.yaml", "nothing.yaml"),
+       "../library/nothing.yaml",
+       "scenario: '../library/nothing.yaml': no scenario file at " +
+           std::string(MOORSIM_SOURCE_DIR) + "/scenarios/library/nothing.yaml"},
+      {"NoBlocks", Replace(b, b.substr(b.find("blocks:")), "blocks: []\n"), "[]",
+       "blocks: an empty list (a campaign has at least one block)"},
+      {"DuplicateBlock", Replace(b, "name: intact", "name: failures"),
+       "failures\n    factors:\n      - {key: controller",
+       "blocks[2].name: duplicate block name 'failures'"},
+      {"BadBlockName", Replace(b, "name: intact", "name: no good"), "no good",
+       "blocks[2].name: 'no good' must be letters, digits, '_' or '-'"},
+      {"TwoKinds", Replace(b, "values: [1, 2, 3]}", "values: [1, 2, 3], uniform: [1, 2]}"),
+       "{key: failure.line",
+       "blocks[1].factors[1]: give exactly one of values, range, uniform, normal, choice"},
+      {"NoKind", Replace(b, "{key: failure.line, values: [1, 2, 3]}", "{key: failure.line}"),
+       "{key: failure.line}",
+       "blocks[1].factors[1]: give exactly one of values, range, uniform, normal, choice"},
+      {"EmptyValues", Replace(b, "values: [1, 2, 3]", "values: []"), "[]",
+       "blocks[1].factors[1].values: an empty list"},
+      {"TwiceVaried", Replace(b, "failure.time, uniform", "failure.line, uniform"),
+       "failure.line, uniform",
+       "blocks[1].factors[3].key: 'failure.line' is varied twice in this block"},
+      {"BadKey", Replace(b, "key: failure.line", "key: 'failure line'"), "'failure line'",
+       "blocks[1].factors[1].key: 'failure line' is not a key path (e.g. failure.line)"},
+      {"RangeStep", Replace(b, "step: 0.1", "step: 0"), "0}",
+       "blocks[1].factors[2].range.step: 0 must be > 0"},
+      {"RangeBackwards", Replace(b, "to: 0.2", "to: -1"), "-1",
+       "blocks[1].factors[2].range.to: -1 must be >= from (0)"},
+      {"RangeHuge", Replace(b, "step: 0.1", "step: 1e-9"), "{from: 0",
+       "blocks[1].factors[2].range: gives 200000001 values, more than 100000"},
+      {"UniformBounds", Replace(b, "uniform: [100, 200]", "uniform: [200, 100]"), "100]",
+       "blocks[1].factors[3].uniform[2]: 100 must be > low (200)"},
+      {"UniformNotPair", Replace(b, "uniform: [100, 200]", "uniform: [100]"), "[100]",
+       "blocks[1].factors[3].uniform: [100] must be [low, high]"},
+      {"NormalStd", Replace(b, "std_dev: 0.5", "std_dev: 0"), "0, min",
+       "blocks[2].factors[2].normal.std_dev: 0 must be > 0"},
+      {"NormalWindowFar", Replace(b, "min: 2, max: 3", "min: 5, max: 6"), "{mean: 2.5",
+       "blocks[2].factors[2].normal: [min, max] lies more than 3 standard deviations from the "
+       "mean"},
+      {"ZipLengths",
+       Replace(Replace(b, "seeds: 2\n", "combine: zip\n    seeds: 2\n"), "to: 0.2", "to: 0.1"),
+       "{key: \"environment",
+       "blocks[1].factors: combine: zip needs lists of one length: "
+       "'environment.current.profile[1].speed' has 2 values, 'failure.line' 3"},
+      {"Combine", Replace(b, "seeds: 2\n", "combine: cross\n    seeds: 2\n"), "cross",
+       "blocks[1].combine: 'cross' must be grid or zip"},
+      {"SeedsZero", Replace(b, "seeds: 2", "seeds: 0"), "0\n  - name: intact",
+       "blocks[1].seeds: 0 must be in [1, 10000000] (or {from: A, to: B})"},
+      {"SeedsBackwards", Replace(b, "{from: 5, to: 7}", "{from: 7, to: 5}"), "5}",
+       "blocks[2].seeds.to: 5 must be >= from (7)"},
+      {"SeedsMissing", Replace(b, "    seeds: 2\n", ""), "name: failures",
+       "blocks[1]: required key 'seeds' is missing"},
+      {"SetNotMap", Replace(b, "simulation.duration: 300", "- 300"), "- 300",
+       "set: [300] must be a map of key paths to values"},
+      {"Tagged", Replace(b, "seed: 11", "seed: !!str 11"), "!!str",
+       "seed: tagged value '!!str' (tags are not accepted; write the plain integer)"},
+      {"Syntax", Replace(b, "seeds: 2", "seeds: [2"), "", ""},
+  };
+}
+
+TEST(Campaign, EveryRuleIsOneLocatedLine) {
+  for (const CampaignError& e : Errors()) {
+    SCOPED_TRACE(e.name);
+    const std::string error = ErrorOf(e.text);
+    if (e.message.empty()) {  // only that it is located in the file
+      EXPECT_EQ(error.rfind(kSource + ":", 0), 0u) << error;
+      continue;
+    }
+    std::string expected = e.message;
+    if (!e.at.empty()) expected = At(e.text, e.at) + e.message;
+    EXPECT_EQ(error, expected);
+    EXPECT_EQ(error.find('\n'), std::string::npos);
+  }
+}
+
+TEST(Campaign, MissingFileAndNotUtf8) {
+  try {
+    LoadCampaign("/nonexistent/campaign.yaml");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(
+        std::string(e.what()),
+        "/nonexistent/campaign.yaml: cannot open the campaign file: No such file or directory");
+  }
+  const std::string bad = Replace(kCampaign, "name: test", "name: t\xE9st");
+  EXPECT_EQ(ErrorOf(bad), kSource + ":1:8: not valid UTF-8 (byte 0xE9); save the file as UTF-8");
+}
+
+}  // namespace
+}  // namespace moorsim::scenarios

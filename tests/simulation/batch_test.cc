@@ -1,0 +1,308 @@
+// Campaigns as a library call (tools/simulation/batch.h): threads give the rows of one
+// thread, a run repeated alone gives its row, a diverging run is a failed row while the
+// rest finish, an interrupted campaign resumes to the table of an uninterrupted one,
+// shards merge to the whole, a locked or foreign directory is refused, a run past its
+// wall-clock limit is a timeout row.
+#include "tools/simulation/batch.h"
+
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "core/error.h"
+
+namespace moorsim::simulation {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path FreshDirectory(const std::string& name) {
+  const fs::path dir =
+      fs::path(::testing::TempDir()) / ("moorsim_batch_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// Seven short runs of the thesis plant with its three detectors: lines 2 and 6 parting at
+// a drawn time, two seeds each; two intact runs; one run with a step limit CVODE cannot
+// meet within its step budget (it fails at once with CV_TOO_MUCH_WORK).
+std::string CampaignText() {
+  return "name: small\n"
+         "scenario: " MOORSIM_SOURCE_DIR
+         "/scenarios/library/thesis_no_failure_current.yaml\n"
+         "seed: 99\n"
+         "set: {simulation.duration: 120}\n"
+         "blocks:\n"
+         "  - name: failures\n"
+         "    set: {failure.mode: fairlead}\n"
+         "    factors:\n"
+         "      - {key: failure.line, values: [2, 6]}\n"
+         "      - {key: failure.time, uniform: [50, 70]}\n"
+         "    seeds: 2\n"
+         "  - name: intact\n"
+         "    seeds: {from: 1, to: 2}\n"
+         "  - name: diverging\n"
+         "    set: {solver.max_step: 1.0e-6, solver.max_steps: 500}\n"
+         "    seeds: 1\n";
+}
+
+fs::path WriteCampaign(const fs::path& dir, const std::string& text) {
+  const fs::path path = dir / "campaign.yaml";
+  std::ofstream(path) << text;
+  return path;
+}
+
+// A row without what differs from run to run of the same computation: wall times.
+nlohmann::json Comparable(nlohmann::json row) {
+  row.erase("wall_time");
+  if (row.contains("integrator")) {
+    for (const char* key :
+         {"rhs_seconds", "jacobian_seconds", "linear_setup_seconds", "linear_solve_seconds"}) {
+      row["integrator"].erase(key);
+    }
+  }
+  return row;
+}
+
+std::map<std::int64_t, nlohmann::json> RowsOf(const fs::path& dir) {
+  std::map<std::int64_t, nlohmann::json> rows;
+  for (const nlohmann::json& row : ReadRows(dir))
+    rows[row.at("run").get<std::int64_t>()] = Comparable(row);
+  return rows;
+}
+
+BatchOptions Options(const fs::path& campaign, const fs::path& out, int threads) {
+  BatchOptions o;
+  o.campaign_path = campaign.string();
+  o.out = out;
+  o.threads = threads;
+  o.progress = false;
+  o.command_line = "test";
+  return o;
+}
+
+class BatchTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    root_ = new fs::path(FreshDirectory("suite"));
+    campaign_ = new fs::path(WriteCampaign(*root_, CampaignText()));
+    // The reference: every run one after another on one thread.
+    reference_ = new BatchResult(RunBatch(Options(*campaign_, *root_ / "sequential", 1)));
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*root_);
+    delete root_;
+    delete campaign_;
+    delete reference_;
+  }
+  static fs::path* root_;
+  static fs::path* campaign_;
+  static BatchResult* reference_;
+};
+fs::path* BatchTest::root_ = nullptr;
+fs::path* BatchTest::campaign_ = nullptr;
+BatchResult* BatchTest::reference_ = nullptr;
+
+TEST_F(BatchTest, ADivergingRunIsAFailedRowAndTheRestFinish) {
+  EXPECT_EQ(reference_->exit_code, 1) << reference_->message;
+  EXPECT_EQ(reference_->runs, 7);
+  EXPECT_EQ(reference_->done, 7);
+  EXPECT_EQ(reference_->failed, 1);
+  const auto rows = RowsOf(*root_ / "sequential");
+  ASSERT_EQ(rows.size(), 7u);
+  for (const auto& [run, row] : rows) {
+    SCOPED_TRACE(run);
+    if (row.at("block") == "diverging") {
+      EXPECT_EQ(row.at("status"), "failed");
+      EXPECT_NE(row.at("error").get<std::string>().find("CV_TOO_MUCH_WORK"), std::string::npos);
+    } else {
+      EXPECT_EQ(row.at("status"), "ok");
+      EXPECT_EQ(row.at("simulated_time"), 120.0);
+    }
+  }
+  // The failure runs carry their truth; every detector has a ROC record.
+  const nlohmann::json& first = rows.at(0);
+  EXPECT_EQ(first.at("failure").at("line"), 2);
+  EXPECT_EQ(first.at("lines"), 8);
+  for (const char* d : {"dht", "mle", "glr"}) {
+    const nlohmann::json& r = first.at("detectors").at(d);
+    EXPECT_EQ(r.at("thresholds").size(), r.at("false_crossings").size());
+    EXPECT_EQ(r.at("thresholds").size(), r.at("first_crossing").size());
+  }
+  EXPECT_TRUE(fs::exists(*root_ / "sequential" / "runs.csv"));
+  EXPECT_TRUE(fs::exists(*root_ / "sequential" / "campaign.h5"));
+}
+
+TEST_F(BatchTest, FourThreadsGiveTheRowsOfOne) {
+  const BatchResult threaded = RunBatch(Options(*campaign_, *root_ / "threads", 4));
+  EXPECT_EQ(threaded.exit_code, 1) << threaded.message;
+  EXPECT_EQ(RowsOf(*root_ / "threads"), RowsOf(*root_ / "sequential"));
+}
+
+TEST_F(BatchTest, ARunRepeatedAloneGivesItsRow) {
+  const PreparedCampaign p = PrepareCampaign(campaign_->string());
+  const auto rows = RowsOf(*root_ / "sequential");
+  for (const std::int64_t index : {2, 4}) {  // a failure run and an intact one
+    SCOPED_TRACE(index);
+    RunRequest request;
+    request.scenario_path = p.campaign.scenario_path;
+    request.overrides = p.runs[static_cast<std::size_t>(index)].overrides;
+    request.out = *root_ / ("alone" + std::to_string(index));
+    const RunResult alone = RunScenario(request);
+    ASSERT_EQ(alone.status, RunStatus::kOk) << alone.message;
+    const nlohmann::json& row = rows.at(index);
+    EXPECT_EQ(alone.summary.at("seed"), row.at("seed"));
+    for (const auto& [label, d] : alone.summary.at("detectors").items()) {
+      for (const char* key : {"alarm_time", "isolated_line", "delay", "false_alarms"}) {
+        EXPECT_EQ(d.at(key), row.at("detectors").at(label).at(key)) << label << " " << key;
+      }
+    }
+    EXPECT_EQ(alone.summary.at("integrator").at("steps"), row.at("integrator").at("steps"));
+    // The row's command is that run: the same overrides in the same order.
+    const std::string command = row.at("command").get<std::string>();
+    EXPECT_NE(command.find("--seed " + row.at("seed").dump()), std::string::npos) << command;
+  }
+}
+
+TEST_F(BatchTest, AnInterruptedCampaignResumesToTheSameTable) {
+  const fs::path out = *root_ / "interrupted";
+  BatchOptions o = Options(*campaign_, out, 2);
+  std::atomic<long> calls{0};
+  // SIGINT after 300 output rows: the first two runs (121 rows each) have finished, the
+  // next two are under way.
+  o.stop_requested = [&calls] { return ++calls > 300 ? SIGINT : 0; };
+  const BatchResult first = RunBatch(o);
+  EXPECT_EQ(first.exit_code, 128 + SIGINT) << first.message;
+  const std::size_t kept = RowsOf(out).size();
+  EXPECT_GT(kept, 0u);
+  EXPECT_LT(kept, 7u);
+  EXPECT_TRUE(fs::exists(out / "runs.csv"));  // the table of what finished
+
+  const BatchResult resumed = RunBatch(Options(*campaign_, out, 2));
+  EXPECT_EQ(resumed.exit_code, 1) << resumed.message;  // the diverging run
+  EXPECT_EQ(resumed.skipped, static_cast<std::int64_t>(kept));
+  EXPECT_EQ(resumed.done, 7 - static_cast<std::int64_t>(kept));
+  EXPECT_EQ(RowsOf(out), RowsOf(*root_ / "sequential"));
+}
+
+TEST_F(BatchTest, ShardsMergeToTheWholeCampaign) {
+  std::vector<fs::path> shards;
+  for (int k = 0; k < 3; ++k) {
+    BatchOptions o = Options(*campaign_, *root_ / ("shard" + std::to_string(k)), 1);
+    o.shard_index = k;
+    o.shard_count = 3;
+    const BatchResult r = RunBatch(o);
+    EXPECT_EQ(r.runs, k == 0 ? 3 : 2);
+    shards.push_back(o.out);
+  }
+  MergeCampaigns(shards, *root_ / "merged", "test");
+  EXPECT_EQ(RowsOf(*root_ / "merged"), RowsOf(*root_ / "sequential"));
+  EXPECT_TRUE(fs::exists(*root_ / "merged" / "campaign.h5"));
+  // Shards of another campaign do not merge.
+  const fs::path other = FreshDirectory("other");
+  const fs::path other_campaign =
+      WriteCampaign(other, CampaignText() + "  - name: more\n    seeds: 1\n");
+  BatchOptions o = Options(other_campaign, other / "out", 1);
+  o.shard_index = 1;
+  o.shard_count = 100;  // one run only
+  RunBatch(o);
+  EXPECT_THROW(MergeCampaigns({shards[0], other / "out"}, other / "merged", "test"), InputError);
+  fs::remove_all(other);
+}
+
+TEST_F(BatchTest, ALockedOrForeignDirectoryIsRefused) {
+  const fs::path out = *root_ / "locked";
+  fs::create_directories(out);
+  const int fd = ::open((out / "campaign.lock").c_str(), O_RDWR | O_CREAT, 0644);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+  const BatchResult locked = RunBatch(Options(*campaign_, out, 1));
+  ::close(fd);
+  EXPECT_EQ(locked.exit_code, 2);
+  EXPECT_NE(locked.message.find("another moorsim batch is writing this directory"),
+            std::string::npos)
+      << locked.message;
+
+  const fs::path foreign = FreshDirectory("foreign");
+  const fs::path campaign = WriteCampaign(foreign, CampaignText() + "# another text\n");
+  const BatchResult refused = RunBatch(Options(campaign, *root_ / "sequential", 1));
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.message.find("holds the results of another campaign"), std::string::npos)
+      << refused.message;
+  fs::remove_all(foreign);
+}
+
+TEST_F(BatchTest, ARunPastItsWallClockLimitIsATimeoutRow) {
+  BatchOptions o = Options(*campaign_, *root_ / "timeout", 1);
+  o.shard_index = 4;  // runs 4 (intact)
+  o.shard_count = 100;
+  o.run_timeout = 1e-3;  // passed before the first output row
+  const BatchResult r = RunBatch(o);
+  EXPECT_EQ(r.exit_code, 1);
+  const auto rows = RowsOf(o.out);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows.at(4).at("status"), "timeout");
+  EXPECT_LT(rows.at(4).at("simulated_time").get<double>(), 120.0);
+}
+
+TEST_F(BatchTest, BadInputNamesTheRun) {
+  const fs::path dir = FreshDirectory("bad");
+  const fs::path campaign =
+      WriteCampaign(dir, "scenario: " MOORSIM_SOURCE_DIR
+                         "/scenarios/library/thesis_no_failure.yaml\n"
+                         "seed: 1\n"
+                         "blocks:\n"
+                         "  - name: lines\n"
+                         "    factors: [{key: failure.line, values: [8, 9]}]\n"
+                         "    set: {failure.time: 100}\n"
+                         "    seeds: 1\n");
+  const BatchResult r = RunBatch(Options(campaign, dir / "out", 1));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.message.rfind(campaign.string() + ":4:5: blocks.lines: run 1 (failure.line=9): ", 0),
+            0u)
+      << r.message;
+  EXPECT_NE(r.message.find("failure.line"), std::string::npos) << r.message;
+  EXPECT_FALSE(fs::exists(dir / "out" / "rows"));  // nothing ran, nothing written
+  fs::remove_all(dir);
+}
+
+TEST(DetectorStatistic, ReadsEachDetectorsScoreTheWayItsAlarmRuleDoes) {
+  EXPECT_EQ(StatisticValue("dht", {0.1, 0.7, 0.2}), 0.7);
+  EXPECT_EQ(StatisticValue("mle", {10.0, 4.0, 12.0}), 6.0);
+  EXPECT_EQ(StatisticValue("glr", {42.0, 1.0, 2.0}), 42.0);
+  EXPECT_TRUE(std::isnan(StatisticValue("glr", {})));
+  // Upcrossings before the failure; first crossings after it.
+  StatisticTrace trace("glr", 10.0);
+  for (int t = 0; t < 20; ++t) {
+    const double g = t < 10 ? (t % 4 == 1 ? 40.0 : 5.0) : 100.0 + t;
+    trace.Add(t, {g, 0.0});
+  }
+  const nlohmann::json j = trace.ToJson();
+  const std::vector<double> grid = j.at("thresholds").get<std::vector<double>>();
+  for (std::size_t k = 0; k < grid.size(); ++k) {
+    SCOPED_TRACE(grid[k]);
+    EXPECT_EQ(j.at("false_crossings")[k], grid[k] <= 40.0 ? 3 : 0);  // t = 1, 5, 9
+    if (grid[k] <= 110.0) {
+      EXPECT_EQ(j.at("first_crossing")[k], 10.0);
+    } else if (grid[k] <= 119.0) {
+      EXPECT_EQ(j.at("first_crossing")[k], std::ceil(grid[k] - 100.0));
+    } else {
+      EXPECT_TRUE(j.at("first_crossing")[k].is_null());
+    }
+  }
+  EXPECT_EQ(j.at("max_before_failure"), 40.0);
+}
+
+}  // namespace
+}  // namespace moorsim::simulation
