@@ -66,16 +66,28 @@ int Batch(const BatchCommandOptions& o) {
     std::cout << simulation::DescribeCampaign(prepared, threads);
     return 0;
   }
+  // Under mpirun: MPI from here to the end of the batch; rank 0 alone speaks.
+  struct MpiGuard {
+    simulation::MpiSession session;
+    ~MpiGuard() { simulation::FinishMpi(session); }
+  } mpi{simulation::StartMpi(nullptr, nullptr)};
+  options.mpi = mpi.session;
+  const bool speaks = mpi.session.rank == 0;
+  options.progress = options.progress && speaks;
   simulation::InstallStopSignalHandlers();
   options.stop_requested = simulation::StopSignal;
   const simulation::BatchResult result = simulation::RunBatch(options);
+  if (!speaks) return result.exit_code;
   if (!result.message.empty()) std::cerr << "moorsim: " << result.message << "\n";
   if (result.exit_code != 2 && !o.quiet) {
     std::fprintf(stderr,
                  "moorsim batch: %lld runs in this shard: %lld done now, %lld already done, "
-                 "%lld not ok -> %s\n",
+                 "%lld not ok%s -> %s\n",
                  static_cast<long long>(result.runs), static_cast<long long>(result.done),
                  static_cast<long long>(result.skipped), static_cast<long long>(result.failed),
+                 mpi.session.size > 1
+                     ? (" (" + std::to_string(mpi.session.size) + " MPI ranks)").c_str()
+                     : "",
                  result.directory.string().c_str());
   }
   return result.exit_code;

@@ -13,6 +13,7 @@
 #include <mutex>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -97,12 +98,18 @@ class DirectoryLock {
 };
 
 /// One updating line on stderr: runs done / total, failures, elapsed, ETA, throughput.
+/// The ETA weighs runs by their simulated duration (an intact hour counts 4.5 failure runs
+/// of 800 s).
 class Progress {
  public:
-  Progress(bool enabled, std::int64_t total, std::int64_t skipped)
-      : enabled_(enabled), total_(total), skipped_(skipped), tty_(::isatty(2) == 1) {}
+  Progress(bool enabled, std::int64_t total, std::int64_t skipped, double pending_seconds)
+      : enabled_(enabled),
+        total_(total),
+        skipped_(skipped),
+        pending_seconds_(pending_seconds),
+        tty_(::isatty(2) == 1) {}
 
-  void Update(std::int64_t done, std::int64_t failed, bool last) {
+  void Update(std::int64_t done, std::int64_t failed, double seconds_done, bool last) {
     if (!enabled_) return;
     const auto now = std::chrono::steady_clock::now();
     const double since = std::chrono::duration<double>(now - shown_).count();
@@ -110,8 +117,10 @@ class Progress {
     shown_ = now;
     const double elapsed = std::chrono::duration<double>(now - start_).count();
     const double rate = elapsed > 0.0 ? static_cast<double>(done) / elapsed : 0.0;
-    const std::int64_t remaining = total_ - skipped_ - done;
-    std::string eta = rate > 0.0 ? Duration(static_cast<double>(remaining) / rate) : "?";
+    const std::string eta =
+        seconds_done > 0.0
+            ? Duration(elapsed * std::max(0.0, pending_seconds_ - seconds_done) / seconds_done)
+            : "?";
     std::fprintf(stderr,
                  "%smoorsim batch: %lld/%lld runs, %lld failed, %s elapsed, ETA %s, %.2f runs/s%s",
                  tty_ ? "\r\033[K" : "", static_cast<long long>(skipped_ + done),
@@ -123,6 +132,7 @@ class Progress {
  private:
   bool enabled_;
   std::int64_t total_, skipped_;
+  double pending_seconds_;
   bool tty_;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   std::chrono::steady_clock::time_point shown_{};
@@ -617,10 +627,114 @@ void WriteCampaignTables(const std::filesystem::path& directory, const std::stri
 // ---------------------------------------------------------------------------------------
 // The batch.
 
+namespace {
+
+/// The runs of this process (rank 0, or the only process): the pending list, and every row
+/// written to DIR/rows as it arrives, from this process's threads or another rank's.
+class LocalRunSource final : public RunSource {
+ public:
+  LocalRunSource(const PreparedCampaign& campaign, std::vector<std::int64_t> pending,
+                 std::filesystem::path rows, Progress& progress)
+      : campaign_(campaign),
+        pending_(std::move(pending)),
+        rows_(std::move(rows)),
+        progress_(progress) {}
+
+  std::optional<std::int64_t> Next() override {
+    const std::size_t k = next_.fetch_add(1);
+    if (k >= pending_.size()) return std::nullopt;
+    return pending_[k];
+  }
+  void Deliver(std::int64_t run, const std::string& row, bool ok) override {
+    WriteFileAtomically(rows_ / (RunName(run) + ".json"), row);
+    const std::lock_guard<std::mutex> guard(mutex_);
+    ++done_;
+    if (!ok) ++failed_;
+    seconds_done_ += campaign_.truth[static_cast<std::size_t>(run)].duration;
+    progress_.Update(done_, failed_, seconds_done_, false);
+  }
+  std::int64_t done() const { return done_; }
+  std::int64_t failed() const { return failed_; }
+  double seconds_done() const { return seconds_done_; }
+
+ private:
+  const PreparedCampaign& campaign_;
+  std::vector<std::int64_t> pending_;
+  std::filesystem::path rows_;
+  Progress& progress_;
+  std::atomic<std::size_t> next_{0};
+  std::mutex mutex_;
+  std::int64_t done_ = 0, failed_ = 0;
+  double seconds_done_ = 0.0;
+};
+
+/// Runs from `source` on `threads` OpenMP threads until it has none left or `stop` says
+/// so. Returns the first exception's message (empty if none); an exception stops all.
+std::string RunWorkers(const PreparedCampaign& p, const BatchOptions& o,
+                       const std::filesystem::path& directory, RunSource& source, int threads,
+                       std::atomic<int>& stop_signal, const std::function<int()>& stop) {
+  std::mutex mutex;
+  std::string first_error;
+#pragma omp parallel num_threads(threads)
+  {
+    while (stop() == 0) {
+      try {
+        const std::optional<std::int64_t> next = source.Next();
+        if (!next) break;
+        const scenarios::CampaignRun& run = p.runs[static_cast<std::size_t>(*next)];
+        const PreparedCampaign::Truth& truth = p.truth[static_cast<std::size_t>(run.index)];
+        std::vector<StatisticTrace> traces;
+        for (const auto& detector : truth.detectors) {
+          traces.emplace_back(detector.second, truth.failure_line > 0 ? truth.failure_time : kNaN);
+        }
+        RunRequest request;
+        request.scenario_path = p.campaign.scenario_path;
+        request.overrides = run.overrides;
+        request.write_files = o.keep_runs;
+        request.out = directory / "runs" / RunName(run.index);
+        request.stop_requested = stop;
+        if (o.run_timeout > 0.0) {
+          request.deadline = std::chrono::steady_clock::now() +
+                             std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                 std::chrono::duration<double>(o.run_timeout));
+        }
+        request.on_row = [&traces](const Sample& s) {
+          for (std::size_t i = 0; i < traces.size() && i < s.detectors.size(); ++i) {
+            traces[i].Add(s.time, s.detectors[i].score);
+          }
+        };
+        const RunResult r = RunScenario(request);
+        if (r.status == RunStatus::kInterrupted) continue;  // no row: done again on resume
+        source.Deliver(run.index, MakeRow(p, run, r, traces, "").dump() + "\n",
+                       r.status == RunStatus::kOk);
+      } catch (const std::exception& e) {
+        const std::lock_guard<std::mutex> guard(mutex);
+        if (first_error.empty()) first_error = e.what();
+        stop_signal.store(-1);
+      }
+    }
+  }
+  return first_error;
+}
+
+}  // namespace
+
 int DefaultThreads() { return std::max(1, omp_get_num_procs()); }
 
 BatchResult RunBatch(const BatchOptions& o) noexcept {
   BatchResult result;
+  const MpiSession& mpi = o.mpi;
+  const bool coordinator = mpi.rank == 0;
+  // Until rank 0 has said go, the other ranks wait for its decision: every early return of
+  // rank 0 must broadcast one.
+  bool decided = false;
+  const auto decide = [&](int code) {
+    if (!decided) {
+      decided = true;
+      return BroadcastDecision(mpi, code);
+    }
+    return code;
+  };
   try {
     if (o.shard_count < 1 || o.shard_index < 0 || o.shard_index >= o.shard_count) {
       throw InputError("--shard " + std::to_string(o.shard_index + 1) + "/" +
@@ -629,10 +743,38 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
     if (!(o.run_timeout >= 0.0) || !std::isfinite(o.run_timeout)) {
       throw InputError("--run-timeout " + Shortest(o.run_timeout) + ": must be >= 0 seconds");
     }
-    // 1. Everything checked before the first run.
+    // 1. Everything checked before the first run (on every rank: they all need the runs).
     const PreparedCampaign p = PrepareCampaign(o.campaign_path);
     const scenarios::Campaign& c = p.campaign;
     result.directory = o.out.empty() ? std::filesystem::path("out") / c.name : o.out;
+    const int threads = o.threads > 0 ? o.threads : DefaultThreads();
+    std::atomic<int> stop_signal{0};
+    const std::function<int()> stop = [&]() -> int {
+      if (stop_signal.load() != 0) return stop_signal.load();
+      if (o.stop_requested) {
+        const int s = o.stop_requested();
+        if (s != 0) stop_signal.store(s);
+        return s;
+      }
+      return 0;
+    };
+
+    if (!coordinator) {
+      // A worker rank: runs from rank 0, rows to rank 0; nothing of the campaign on disk.
+      if (const int go = decide(0); go != 0) {
+        result.exit_code = go;
+        return result;
+      }
+      std::unique_ptr<RunSource> remote = RemoteRunSource(mpi);
+      const std::string error =
+          RunWorkers(p, o, result.directory, *remote, threads, stop_signal, stop);
+      NotifyFinished(mpi);
+      if (!error.empty()) throw Error(error);
+      if (stop_signal.load() > 0) result.exit_code = 128 + stop_signal.load();
+      return result;
+    }
+
+    // 2. Rank 0 (or the only process) owns the directory.
     std::error_code error;
     std::filesystem::create_directories(result.directory / "rows", error);
     if (error) {
@@ -652,7 +794,7 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
     }
     WriteFileAtomically(result.directory / "campaign.json", CampaignMeta(c).dump(2) + "\n");
 
-    // 2. What is left to do in this shard.
+    // 3. What is left to do in this shard.
     std::set<std::int64_t> finished;
     for (const nlohmann::json& row : ReadRows(result.directory)) {
       finished.insert(row.at("run").get<std::int64_t>());
@@ -668,71 +810,34 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
       }
     }
 
-    // 3. The runs, on threads. Each run owns everything it builds; the shared state is
-    // the prepared campaign (read only), the next index and the counters.
-    const int threads = o.threads > 0 ? o.threads : DefaultThreads();
-    std::atomic<std::size_t> next{0};
-    std::atomic<int> stop_signal{0};
-    std::mutex mutex;  // counters, progress, first error
-    std::string first_error;
-    Progress progress(o.progress, result.runs, result.skipped);
-    const auto stop = [&]() -> int {
-      if (stop_signal.load() != 0) return stop_signal.load();
-      if (o.stop_requested) {
-        const int s = o.stop_requested();
-        if (s != 0) stop_signal.store(s);
-        return s;
-      }
-      return 0;
-    };
-#pragma omp parallel num_threads(threads)
-    {
-      while (stop() == 0) {
-        const std::size_t k = next.fetch_add(1);
-        if (k >= pending.size()) break;
-        const scenarios::CampaignRun& run = p.runs[static_cast<std::size_t>(pending[k])];
-        const PreparedCampaign::Truth& truth = p.truth[static_cast<std::size_t>(run.index)];
+    // 4. The runs: this process's threads, and the other ranks through the service thread.
+    // Each run owns everything it builds; shared are the prepared campaign (read only),
+    // the next index, the counters and the rows directory.
+    decide(0);
+    double pending_seconds = 0.0;
+    for (const std::int64_t k : pending)
+      pending_seconds += p.truth[static_cast<std::size_t>(k)].duration;
+    Progress progress(o.progress, result.runs, result.skipped, pending_seconds);
+    LocalRunSource local(p, std::move(pending), result.directory / "rows", progress);
+    std::string service_error;
+    std::thread service;
+    if (mpi.size > 1) {
+      service = std::thread([&] {
         try {
-          std::vector<StatisticTrace> traces;
-          for (const auto& detector : truth.detectors) {
-            traces.emplace_back(detector.second,
-                                truth.failure_line > 0 ? truth.failure_time : kNaN);
-          }
-          RunRequest request;
-          request.scenario_path = c.scenario_path;
-          request.overrides = run.overrides;
-          request.write_files = o.keep_runs;
-          request.out = result.directory / "runs" / RunName(run.index);
-          request.stop_requested = stop;
-          if (o.run_timeout > 0.0) {
-            request.deadline = std::chrono::steady_clock::now() +
-                               std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                   std::chrono::duration<double>(o.run_timeout));
-          }
-          request.on_row = [&traces](const Sample& s) {
-            for (std::size_t i = 0; i < traces.size() && i < s.detectors.size(); ++i) {
-              traces[i].Add(s.time, s.detectors[i].score);
-            }
-          };
-          const RunResult r = RunScenario(request);
-          if (r.status == RunStatus::kInterrupted) continue;  // no row: done again on resume
-          const nlohmann::json row = MakeRow(p, run, r, traces, "");
-          WriteFileAtomically(result.directory / "rows" / (RunName(run.index) + ".json"),
-                              row.dump() + "\n");
-          const std::lock_guard<std::mutex> guard(mutex);
-          ++result.done;
-          if (r.status != RunStatus::kOk) ++result.failed;
-          progress.Update(result.done, result.failed, false);
+          ServeRemoteWorkers(mpi, local, stop);
         } catch (const std::exception& e) {
-          const std::lock_guard<std::mutex> guard(mutex);
-          if (first_error.empty()) first_error = e.what();
-          stop_signal.store(-1);
+          service_error = e.what();
         }
-      }
+      });
     }
-    progress.Update(result.done, result.failed, true);
+    std::string first_error = RunWorkers(p, o, result.directory, local, threads, stop_signal, stop);
+    if (service.joinable()) service.join();
+    if (first_error.empty()) first_error = service_error;
+    result.done = local.done();
+    result.failed = local.failed();
+    progress.Update(result.done, result.failed, local.seconds_done(), true);
 
-    // 4. The tables, from every row there is (this batch's and earlier ones').
+    // 5. The tables, from every row there is (this batch's and earlier ones').
     WriteCampaignTables(result.directory, c.text, c.name, c.source_path, c.seed, c.FactorKeys(),
                         ReadRows(result.directory), o.command_line);
     if (!first_error.empty()) throw Error(first_error);
@@ -752,6 +857,12 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
   } catch (const std::exception& e) {
     result.exit_code = 1;
     result.message = e.what();
+  }
+  try {
+    // A rank 0 that failed before "go" releases the others with its exit code; ranks that
+    // failed the same way (they read the same files) take part in the same broadcast.
+    decide(result.exit_code);
+  } catch (const std::exception&) {
   }
   return result;
 }

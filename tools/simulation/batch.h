@@ -29,6 +29,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scenarios/campaign.h"
+#include "tools/simulation/batch_mpi.h"
 #include "tools/simulation/run.h"
 
 namespace moorsim::simulation {
@@ -84,6 +85,8 @@ struct BatchOptions {
   std::string command_line;
   /// Asked between runs and after every output row: nonzero (a signal) stops the batch.
   std::function<int()> stop_requested;
+  /// Under mpirun (StartMpi): rank 0 owns the directory and deals runs to the others.
+  MpiSession mpi;
 };
 
 /// The campaign's runs and everything checked before the first run starts.
