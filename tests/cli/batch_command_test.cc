@@ -6,6 +6,8 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -88,6 +90,29 @@ TEST(BatchCommand, WritesTheTableAndTheReportMatchesIt) {
                  dir.path(), std::chrono::seconds(300));
   EXPECT_EQ(report.exit_code, 0) << report.Describe();
   EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(out) / "report.html"));
+  // A run repeated alone in its own process (nothing shared with the batch: WAMIT data,
+  // bank and GLR signatures built afresh) gives its row's detector results.
+  for (const char* name : {"00000001.json", "00000003.json"}) {
+    const nlohmann::json row =
+        nlohmann::json::parse(ReadWholeFile(std::filesystem::path(out) / "rows" / name));
+    std::istringstream words(row.at("command").get<std::string>());
+    std::vector<std::string> args;
+    for (std::string w; words >> w;) args.push_back(w);
+    ASSERT_EQ(args.front(), "moorsim");
+    args.erase(args.begin());  // the program itself
+    const std::string alone = (dir.path() / "alone").string();
+    args.insert(args.end(), {"--out", alone, "--quiet"});
+    const CliResult run = RunCli(args, dir.path());
+    ASSERT_EQ(run.exit_code, 0) << run.Describe();
+    const nlohmann::json summary =
+        nlohmann::json::parse(ReadWholeFile(std::filesystem::path(alone) / "summary.json"));
+    for (const auto& [label, d] : summary.at("detectors").items()) {
+      for (const char* key : {"alarm_time", "isolated_line", "delay", "false_alarms"}) {
+        EXPECT_EQ(d.at(key), row.at("detectors").at(label).at(key)) << name << " " << label;
+      }
+    }
+    EXPECT_EQ(summary.at("integrator").at("steps"), row.at("integrator").at("steps"));
+  }
   // Run again: every run has its row, nothing is done twice.
   const CliResult again = RunCli({"batch", campaign, "--out", out}, dir.path());
   ASSERT_EQ(again.exit_code, 0) << again.Describe();

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <sstream>
 
@@ -23,6 +24,7 @@
 #include "mooring_fem/line_simulation.h"
 #include "scenarios/convert.h"
 #include "scenarios/load.h"
+#include "tools/simulation/shared_parts.h"
 #include "vessel/controller.h"
 #include "vessel/fpso_model.h"
 #include "vessel/hull_loads.h"
@@ -299,6 +301,36 @@ vessel::WindParameters ToWindParameters(const scenarios::VesselSpec& spec) {
   return wind;
 }
 
+namespace {
+
+/// The WAMIT data of `stem` read with `options`, once per process (shared_parts.h).
+std::shared_ptr<const vessel::HydroData> SharedHydroData(const std::string& stem,
+                                                         const vessel::WamitOptions& options) {
+  char key[128];
+  std::snprintf(key, sizeof key, "\n%.17g %.17g %.17g", options.water_density, options.gravity,
+                options.length_scale);
+  return SharedPart<vessel::HydroData>("WAMIT " + stem + key,
+                                       [&] { return vessel::ReadWamit(stem, options); });
+}
+
+/// What determines the detectors' hypothesis bank and GLR signatures: the scenario (its
+/// file, text and overrides) without the keys that cannot change them, the seed, the
+/// failure and the simulation's length and output rate. Conservative: any other override
+/// gives another key (a rebuild, never a wrong share).
+std::string DetectionKey(const scenarios::Scenario& s) {
+  std::string key = "detection " + s.source_path + "\n" + s.text;
+  for (const std::string& o : s.overrides) {
+    if (o.rfind("simulation.", 0) == 0 || o.rfind("failure.", 0) == 0 ||
+        o.rfind("failure=", 0) == 0) {
+      continue;
+    }
+    key += "\n--set " + o;
+  }
+  return key;
+}
+
+}  // namespace
+
 struct Simulation::Parts {
   ExternalLoad external;
   std::optional<HullCurrentLoad> current;
@@ -312,7 +344,7 @@ struct Simulation::Parts {
   Eigen::VectorXd directions;
   std::vector<double> measured_tensions;
   // Detection: the hypothesis bank, one observer per hypothesis, the detectors.
-  std::optional<detectors::HypothesisBank> bank;
+  std::shared_ptr<const detectors::HypothesisBank> bank;  // shared between runs (read only)
   std::optional<detectors::ObserverBank> observers;       // detection.observer: ekf
   std::optional<detectors::PassiveObserverBank> passive;  // detection.observer: passive
   std::vector<std::unique_ptr<detectors::Detector>> detectors;
@@ -323,16 +355,16 @@ struct Simulation::Parts {
 Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed)
     : scenario_(scenario),
       seed_(seed),
-      hydro_(vessel::ReadWamit(RequireVessel(scenario).hydrodynamics,
-                               {.water_density = scenario.mooring.water.density,
-                                .gravity = scenario.mooring.water.gravity,
-                                .length_scale = scenario.vessel->length_scale})),
+      hydro_(SharedHydroData(RequireVessel(scenario).hydrodynamics,
+                             {.water_density = scenario.mooring.water.density,
+                              .gravity = scenario.mooring.water.gravity,
+                              .length_scale = scenario.vessel->length_scale})),
       mooring_(scenarios::ToMooringParameters(scenario.mooring)),
       attachment_(mooring_),
       parts_(std::make_unique<Parts>()),
       controller_clock_(scenario.controller.rate, "controller.rate_hz") {
   const scenarios::VesselSpec& v = *scenario_.vessel;
-  plant_ = std::make_unique<vessel::VesselPlant>(VesselParameters(v, hydro_), Thrusters(v));
+  plant_ = std::make_unique<vessel::VesselPlant>(VesselParameters(v, *hydro_), Thrusters(v));
   plant_->AddLoad(&parts_->external);
   const scenarios::EnvironmentSpec& env = scenario_.environment;
   if (env.hull_viscous_drag) {
@@ -342,7 +374,7 @@ Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed)
     plant_->AddLoad(&*parts_->current);
   }
   if (env.waves.enabled) {
-    parts_->sea.emplace(env.waves, hydro_, scenario_.mooring.water.gravity, seed_);
+    parts_->sea.emplace(env.waves, *hydro_, scenario_.mooring.water.gravity, seed_);
     plant_->SetSea(&*parts_->sea);
   }
   if (env.wind.enabled) {
@@ -382,7 +414,16 @@ void Simulation::StartDetection() {
   Parts& p = *parts_;
   const DetectionModels models = MakeDetectionModels(scenario_, plant_->model(), initial_pose_);
   const detectors::HypothesisBankOptions& options = models.bank;
-  p.bank.emplace(scenarios::ToMooringParameters(scenario_.mooring), options);
+  // The bank and the GLR signatures depend on the scenario (not on the failure or the run's
+  // length) and on the moored heave found at the start, which the wave-frequency motion at
+  // t = 0 moves by micrometres from seed to seed: runs with the same heave to the last bit
+  // share them (shared_parts.h). With waves that is runs of one seed; in calm water, all.
+  char heave[40];
+  std::snprintf(heave, sizeof heave, "\nmoored heave %a", initial_pose_(2));
+  const std::string key = DetectionKey(scenario_) + heave;
+  p.bank = SharedPart<detectors::HypothesisBank>(key, [&] {
+    return detectors::HypothesisBank(scenarios::ToMooringParameters(scenario_.mooring), options);
+  });
   const detectors::LowFrequencyModel& model = models.model;
   const detectors::EkfOptions& ekf = models.ekf;
   const scenarios::DetectionSpec& d = scenario_.detection;
@@ -418,9 +459,12 @@ void Simulation::StartDetection() {
   // GLR detectors isolate by the failure signatures computed from the same models.
   for (const std::unique_ptr<detectors::Detector>& d : p.detectors) {
     if (auto* glr = dynamic_cast<detectors::Glr*>(d.get())) {
-      glr->SetSignatures(detectors::GlrSignatures(*p.bank, model, ekf, options.reference_pose,
-                                                  1.0 / scenario_.sensors.gnss_rate,
-                                                  glr->options().window));
+      const int window = glr->options().window;
+      glr->SetSignatures(
+          *SharedPart<std::vector<Vec3>>(key + "\nGLR window " + std::to_string(window), [&] {
+            return detectors::GlrSignatures(*p.bank, model, ekf, options.reference_pose,
+                                            1.0 / scenario_.sensors.gnss_rate, window);
+          }));
     }
   }
   p.verdicts.assign(p.detectors.size(), detectors::Verdict{});

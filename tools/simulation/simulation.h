@@ -133,7 +133,7 @@ class Simulation {
   mooring_fem::MooringSystem& mooring() { return mooring_; }
   vessel::VesselPlant& plant() { return *plant_; }
   CoupledSystem& system() { return *system_; }
-  const vessel::HydroData& hydro() const { return hydro_; }
+  const vessel::HydroData& hydro() const { return *hydro_; }
   int num_lines() const { return mooring_.num_lines(); }
   /// Number of hypotheses of the detectors' bank (0 without detectors) and their labels.
   int num_hypotheses() const;
@@ -161,7 +161,7 @@ class Simulation {
 
   scenarios::Scenario scenario_;
   std::uint64_t seed_;
-  vessel::HydroData hydro_;
+  std::shared_ptr<const vessel::HydroData> hydro_;  // shared between runs (read only)
   mooring_fem::MooringSystem mooring_;
   mooring_fem::MooringAttachment attachment_;
   std::unique_ptr<vessel::VesselPlant> plant_;
