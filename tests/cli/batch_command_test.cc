@@ -76,7 +76,7 @@ TEST(BatchCommand, BadFlagsExitWithCode2AndOneLine) {
 
 TEST(BatchCommand, WritesTheTableAndTheReportMatchesIt) {
   TempDirectory dir(::testing::TempDir());
-  const std::string campaign = WriteCampaign(dir.path(), 150);
+  const std::string campaign = WriteCampaign(dir.path(), 80);
   const std::string out = (dir.path() / "results").string();
   const CliResult r =
       RunCli({"batch", campaign, "--out", out, "--quiet"}, dir.path(), std::chrono::seconds(600));
