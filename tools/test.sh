@@ -3,9 +3,10 @@
 # the whole test suite twice: optimised (release preset) and under AddressSanitizer +
 # UndefinedBehaviorSanitizer (asan preset). Also checks clang-format. CI runs exactly this.
 # The asan test preset leaves out the long acceptance runs (detection on the coupled plant:
-# 8 x 600 s + 3600 s of simulation; the analyze Monte-Carlo checks): they take ~5 min of CPU
-# under the sanitizers and repeat code paths the shorter tests run there; the release pass
-# runs them.
+# 8 x 600 s + 3600 s of simulation; the analyze Monte-Carlo checks; the campaign tests that
+# run whole campaigns, all but the threads-equal-one-thread one; the report's Python checks;
+# the MPI batch): they take many minutes of CPU under the sanitizers and repeat code paths
+# the shorter tests run there; the release pass runs them.
 #   tools/test.sh           everything
 #   tools/test.sh --fast    release build and tests only
 set -euo pipefail
