@@ -334,9 +334,11 @@ void ParseDetectors(const Reader& r, Scenario& scenario) {
 }
 
 void ParseDetection(const Reader& r, Scenario& scenario) {
-  r.CheckKeys({"measurement_variance", "model", "observer", "pairs", "switch_rate"});
+  r.CheckKeys(
+      {"measurement_variance", "model", "observer", "pairs", "switch_rate", "training_seed"});
   DetectionSpec& d = scenario.detection;
   r.Optional("observer", d.observer);
+  r.Optional("training_seed", d.training_seed);
   r.Optional("pairs", d.pairs);
   r.Optional("measurement_variance", d.measurement_variance);
   d.switch_rate = r.Maybe<double>("switch_rate");

@@ -212,9 +212,13 @@ struct DetectorEntry {
 
 /// How the hypothesis bank and its observers are built (`detection:`).
 struct DetectionSpec {
-  /// Per-hypothesis observer: "ekf" (an EKF each, mixed by switch_rate) or "passive" (seed
-  /// 000's passive observer with a covariance from training runs; never mixed).
+  /// Per-hypothesis observer: "ekf" (an EKF each, mixed by switch_rate) or "passive" (the
+  /// TAPM thesis's passive observer with a covariance from training runs; never mixed).
   std::string observer = "ekf";
+  /// Seed of the passive observers' training runs (streams "training.*"). A property of the
+  /// detector's set-up, like a vessel's once-trained covariances, not of the run: every run
+  /// of a scenario, whatever its simulation.seed, uses the same trained covariances.
+  std::uint64_t training_seed = 1;
   bool pairs = false;                   ///< also every pair of failed lines
   double measurement_variance = 0.005;  ///< observers' R per DOF [m^2, rad^2]
   /// Rate [1/s] at which the observer bank lets the truth switch hypothesis (IMM mixing,

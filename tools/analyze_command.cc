@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/version.h"
 #include "detectors/distinguishability.h"
 #include "detectors/hypothesis_bank.h"
 #include "scenarios/convert.h"
@@ -110,7 +111,7 @@ int Analyze(const AnalyzeOptions& o) {
     out["scenario"] = scenario.source_path;
     out["scenario_name"] = scenario.name;
     out["overrides"] = scenario.overrides;
-    out["version"] = MOORSIM_VERSION;
+    out["version"] = moorsim::kVersion;
     out["hypotheses"] = labels;
     out["reference_pose"] = {pose.x(), pose.y(), heading_deg};
     out["sample_interval"] = d.sample_interval;
@@ -151,7 +152,7 @@ int Analyze(const AnalyzeOptions& o) {
     return 0;
   }
 
-  std::printf("moorsim %s analyze: %s, %d hypotheses\n", MOORSIM_VERSION,
+  std::printf("moorsim %s analyze: %s, %d hypotheses\n", moorsim::kVersion,
               scenario.source_path.c_str(), n);
   std::printf(
       "EKF models linearised at x %.3g m, y %.3g m, heading %.4g deg (the station-keeping "

@@ -1,17 +1,19 @@
 // moorsim command-line entry point: wires the subcommands and turns errors into one line
 // on stderr with exit code 2 (bad input) or 1 (a run that failed).
 #include <iostream>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "core/error.h"
+#include "core/version.h"
 #include "tools/commands.h"
 
 int main(int argc, char** argv) {
-  CLI::App app{"moorsim " MOORSIM_VERSION
+  CLI::App app{std::string("moorsim ") + moorsim::kVersion +
                " - turret-moored FPSO mooring simulator (lumped-mass FEM lines on CVODE/KLU)"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", MOORSIM_VERSION);
+  app.set_version_flag("--version", moorsim::kVersion);
   // In registration order, which is also the order of the help listing.
   std::vector<std::pair<const CLI::App*, moorsim::cli::Command>> commands;
   auto add = [&](moorsim::cli::Command (*factory)(CLI::App&)) {

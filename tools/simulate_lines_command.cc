@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/version.h"
 #include "mooring_fem/line_simulation.h"
 #include "scenarios/convert.h"
 #include "scenarios/load.h"
@@ -140,7 +141,7 @@ int RunSimulateLines(const SimulateLinesOptions& o) {
   };
   if (csv) {
     csv->precision(10);
-    *csv << "# moorsim " << MOORSIM_VERSION << " simulate-lines scenario=" << o.scenario
+    *csv << "# moorsim " << moorsim::kVersion << " simulate-lines scenario=" << o.scenario
          << " motion=" << o.motion << " duration=" << o.duration
          << " segments=" << scenario.mooring.lines.front().segments
          << " rtol=" << scenario.solver.rtol << " tolerance_scale=" << o.tolerance_scale;

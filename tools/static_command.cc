@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/version.h"
 #include "mooring_fem/catenary.h"
 #include "mooring_fem/line_simulation.h"
 #include "mooring_fem/mooring_system.h"
@@ -110,7 +111,7 @@ int RunStatic(const StaticOptions& o) {
   if (o.json) {
     nlohmann::json out;
     out["scenario"] = scenario.source_path;
-    out["version"] = MOORSIM_VERSION;
+    out["version"] = moorsim::kVersion;
     out["method"] = "fem_static";
     out["offset"] = {pose.x, pose.y, offset[2]};
     out["broken"] = std::vector<int>(broken.begin(), broken.end());
@@ -131,7 +132,7 @@ int RunStatic(const StaticOptions& o) {
     return 0;
   }
   std::printf("moorsim %s static: %s, vessel at x %.3f m, y %.3f m, heading %.3f deg\n",
-              MOORSIM_VERSION, scenario.source_path.c_str(), pose.x, pose.y, offset[2]);
+              moorsim::kVersion, scenario.source_path.c_str(), pose.x, pose.y, offset[2]);
   std::printf("FEM lines settled to rest (largest residual node force %.2e N)\n\n", residual);
   std::printf("%4s %14s %14s %14s %10s %16s\n", "line", "tension [kN]", "horiz. [kN]", "vert. [kN]",
               "ground [m]", "catenary T [kN]");

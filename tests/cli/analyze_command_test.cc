@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/version.h"
 #include "tests/cli/run_cli.h"
 
 namespace moorsim::testing {
@@ -40,7 +41,7 @@ TEST_F(AnalyzeCommandTest, JsonOnTheThesisScenario) {
   const CliResult r = Run({"analyze", kThesis, "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.Describe();
   const nlohmann::json out = nlohmann::json::parse(r.out);
-  EXPECT_EQ(out["version"], MOORSIM_VERSION);
+  EXPECT_EQ(out["version"], std::string(moorsim::kVersion));
   EXPECT_EQ(out["scenario"], kThesis);
   EXPECT_EQ(out["sample_interval"], 1.0);
   ASSERT_EQ(out["hypotheses"].size(), 9u);

@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/version.h"
 #include "tests/cli/run_cli.h"
 
 namespace moorsim::testing {
@@ -61,7 +62,7 @@ TEST(RunCommand, WritesTheDesignDatasetsAndTheSummary) {
   const nlohmann::json summary = nlohmann::json::parse(ReadWholeFile(out + "/summary.json"));
   EXPECT_EQ(summary["scenario"], "seed_tapm");
   EXPECT_EQ(summary["seed"], 1);
-  EXPECT_EQ(summary["version"], MOORSIM_VERSION);
+  EXPECT_EQ(summary["version"], std::string(moorsim::kVersion));
   EXPECT_TRUE(summary["failure"].is_null());
   EXPECT_TRUE(summary["detectors"].is_object());
   EXPECT_EQ(summary["status"], "ok");

@@ -112,6 +112,7 @@ detection:
   pairs: false
   measurement_variance: 0.005
   switch_rate: 0.01
+  training_seed: 3
   model: {wave_motion_std: [0.15, 0.15, 0.0087], bias_std: [1.0e6, 1.0e6, 5.0e7], bias_time_constant: [1000, 1000, 1000], force_noise: [5.0e4, 5.0e4, 1.0e7], mooring_damping_ratio: [0, 0, 0]}
 detectors:
   - {type: dht, floor: 1.0e-9}
@@ -611,6 +612,8 @@ inline const BadInput kValidationErrors[] = {
      "failure.node: 60 must be in 1..39"},
     {"DetectionSwitchRateNegative", "detection:", "switch_rate: 0.01", "switch_rate: -1",
      "switch_rate: ^-1", "detection.switch_rate: -1 1/s must be >= 0"},
+    {"DetectionTrainingSeedNegative", "detection:", "training_seed: 3", "training_seed: -3",
+     "training_seed: ^-3", "detection.training_seed: -3 must be a non-negative integer"},
     {"DetectionSwitchRateHuge", "observer: ekf", "switch_rate: 0.01", "switch_rate: 2000",
      "switch_rate: ^2000", "detection.switch_rate: 2000 1/s must be <= 1000"},
     {"MeasurementVarianceHuge", "observer: ekf", "measurement_variance: 0.005",

@@ -1,12 +1,17 @@
 // The process-wide cache of read-only run parts (tools/simulation/shared_parts.h): one build
-// per key, the same object for every caller, also when threads ask at once.
+// per key, the same object for every caller, also when threads ask at once; the detectors'
+// parts of a set-up are built once for all its run seeds.
 #include "tools/simulation/shared_parts.h"
 
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <string>
 #include <thread>
 #include <vector>
+
+#include "scenarios/load.h"
+#include "tools/simulation/simulation.h"
 
 namespace moorsim::simulation {
 namespace {
@@ -46,6 +51,30 @@ TEST(SharedPart, ThreadsAskingAtOnceAllGetTheFirstStored) {
   for (std::thread& t : threads) t.join();
   EXPECT_GE(builds.load(), 1);
   for (const auto* p : seen) EXPECT_EQ(p, seen.front());
+}
+
+// The moored equilibrium is the calm-water one, so the hypothesis bank, the GLR signatures and
+// the passive observers' training (from detection.training_seed) depend on the set-up, not
+// on the run seed: a second seed with waves adds no entry, another set-up does.
+TEST(SharedPart, RunsOfOneSetUpShareTheDetectorsPartsWhateverTheirSeed) {
+  const std::string library = MOORSIM_SOURCE_DIR "/scenarios/library/";
+  const std::vector<std::string> passive = {"detection.observer=passive",
+                                            "simulation.duration=500"};
+  const scenarios::Scenario scenario =
+      scenarios::LoadScenario(library + "thesis_line6_current.yaml", passive);
+  ASSERT_TRUE(scenario.environment.waves.enabled);
+  const Simulation first(scenario, 101);
+  const std::size_t entries = SharedPartCount();
+  const Simulation second(scenario, 102);
+  EXPECT_EQ(SharedPartCount(), entries);
+  // The calm-water equilibrium, to the last bit, whatever the waves do at t = 0.
+  EXPECT_EQ(first.initial_pose(), second.initial_pose());
+
+  std::vector<std::string> other = passive;
+  other.push_back("detection.measurement_variance=0.006");
+  const Simulation third(scenarios::LoadScenario(library + "thesis_line6_current.yaml", other),
+                         101);
+  EXPECT_GT(SharedPartCount(), entries);
 }
 
 }  // namespace

@@ -20,6 +20,7 @@
 #include <unistd.h>
 
 #include "core/error.h"
+#include "core/version.h"
 #include "scenarios/load.h"
 #include "tools/output/hdf5_file.h"
 
@@ -617,7 +618,7 @@ void WriteCampaignTables(const std::filesystem::path& directory, const std::stri
   WriteCsv(directory / "runs.csv", columns, rows);
   const std::map<std::string, std::string> attributes = {
       {"campaign", campaign_text},        {"campaign_name", campaign_name},
-      {"campaign_path", campaign_path},   {"version", MOORSIM_VERSION},
+      {"campaign_path", campaign_path},   {"version", moorsim::kVersion},
       {"command_line", command_line},     {"factors", JoinLines(factor_keys)},
       {"detectors", JoinLines(detectors)}};
   WriteHdf5(directory / "campaign.h5", columns, rows, detectors, attributes, campaign_seed,

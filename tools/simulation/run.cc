@@ -16,6 +16,7 @@
 
 #include "core/error.h"
 #include "core/sample_clock.h"
+#include "core/version.h"
 #include "scenarios/load.h"
 #include "tools/output/hdf5_file.h"
 
@@ -40,7 +41,7 @@ class RunWriter {
     file_.SetAttribute("/", "scenario_path", scenario.source_path);
     file_.SetAttribute("/", "overrides", Join(scenario.overrides));
     file_.SetAttribute("/", "seed", sim.seed());
-    file_.SetAttribute("/", "version", std::string(MOORSIM_VERSION));
+    file_.SetAttribute("/", "version", std::string(moorsim::kVersion));
     file_.SetAttribute("/", "failure_line", static_cast<std::int64_t>(scenario.failure.line));
     file_.SetAttribute("/", "failure_time",
                        scenario.failure.line > 0 ? scenario.failure.time : kNaN);
@@ -167,7 +168,7 @@ nlohmann::json SummaryHead(const scenarios::Scenario& scenario) {
   summary["scenario_path"] = scenario.source_path;
   summary["overrides"] = scenario.overrides;
   summary["seed"] = scenario.simulation.seed;
-  summary["version"] = MOORSIM_VERSION;
+  summary["version"] = moorsim::kVersion;
   summary["duration"] = scenario.simulation.duration;
   if (scenario.failure.line > 0) {
     summary["failure"] = {{"line", scenario.failure.line},

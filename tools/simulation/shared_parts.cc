@@ -4,7 +4,6 @@
 #include <mutex>
 
 namespace moorsim::simulation::shared_parts_detail {
-namespace {
 
 std::mutex& Mutex() {
   static std::mutex mutex;
@@ -15,8 +14,6 @@ std::map<std::string, std::shared_ptr<const void>>& Entries() {
   static std::map<std::string, std::shared_ptr<const void>> entries;
   return entries;
 }
-
-}  // namespace
 
 std::shared_ptr<const void> Find(const std::string& key) {
   const std::lock_guard<std::mutex> guard(Mutex());
@@ -30,3 +27,12 @@ std::shared_ptr<const void> Store(const std::string& key, std::shared_ptr<const 
 }
 
 }  // namespace moorsim::simulation::shared_parts_detail
+
+namespace moorsim::simulation {
+
+std::size_t SharedPartCount() {
+  const std::lock_guard<std::mutex> guard(shared_parts_detail::Mutex());
+  return shared_parts_detail::Entries().size();
+}
+
+}  // namespace moorsim::simulation

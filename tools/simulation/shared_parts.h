@@ -10,6 +10,7 @@
 // same run done alone).
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <memory>
 #include <string>
@@ -32,5 +33,8 @@ std::shared_ptr<const T> SharedPart(const std::string& key, Build build) {
   std::shared_ptr<const void> built = std::make_shared<const T>(build());
   return std::static_pointer_cast<const T>(shared_parts_detail::Store(typed, std::move(built)));
 }
+
+/// How many entries the cache holds (of every type), for tests and diagnostics.
+std::size_t SharedPartCount();
 
 }  // namespace moorsim::simulation

@@ -414,10 +414,10 @@ void Simulation::StartDetection() {
   Parts& p = *parts_;
   const DetectionModels models = MakeDetectionModels(scenario_, plant_->model(), initial_pose_);
   const detectors::HypothesisBankOptions& options = models.bank;
-  // The bank and the GLR signatures depend on the scenario (not on the failure or the run's
-  // length) and on the moored heave found at the start, which the wave-frequency motion at
-  // t = 0 moves by micrometres from seed to seed: runs with the same heave to the last bit
-  // share them (shared_parts.h). With waves that is runs of one seed; in calm water, all.
+  // The bank, the GLR signatures and the passive observers' training depend on the scenario
+  // (not on the seed, the failure or the run's length) and on the calm-water moored pose,
+  // which the scenario alone determines: every run of a set-up shares them (shared_parts.h).
+  // The heave stays in the key so that the key names everything the parts are built from.
   char heave[40];
   std::snprintf(heave, sizeof heave, "\nmoored heave %a", initial_pose_(2));
   const std::string key = DetectionKey(scenario_) + heave;
@@ -430,16 +430,20 @@ void Simulation::StartDetection() {
   if (d.observer == "passive") {
     // The TAPM thesis's passive observers, each with the innovation covariance of a 10000 s
     // training run of its own hypothesis's model (section 4.4), held at the setpoint, with
-    // the noise levels of detection.model; streams "training.*" of the run seed.
+    // the noise levels of detection.model; streams "training.*" of detection.training_seed.
     detectors::PassiveObserverOptions passive;
     passive.bias_time_constant = ekf.bias_time_constant;
     passive.mooring_damping_ratio = ekf.mooring_damping_ratio;
+    // Trained once per set-up (detection.training_seed, not the run seed) and shared by
+    // every run of it in the process, as a vessel's covariances are trained once.
     detectors::CovarianceTrainingOptions training;
     training.pose = options.reference_pose;
     training.sample_interval = 1.0 / scenario_.sensors.gnss_rate;
-    training.seed = seed_;
-    p.passive.emplace(*p.bank, model, passive,
-                      detectors::TrainPassiveCovariances(*p.bank, model, passive, ekf, training));
+    training.seed = d.training_seed;
+    p.passive.emplace(
+        *p.bank, model, passive, *SharedPart<std::vector<Mat3>>(key + "\npassive training", [&] {
+          return detectors::TrainPassiveCovariances(*p.bank, model, passive, ekf, training);
+        }));
   } else {
     p.observers.emplace(*p.bank, model, ekf, models.observer_bank);
   }
@@ -488,9 +492,13 @@ std::vector<PointKinematics> Simulation::Points() {
 }
 
 void Simulation::SettleMooredEquilibrium() {
-  // Heave, roll and pitch balance the lines' weight: G (z, phi, theta) = tau_mooring. The
-  // mooring's vertical stiffness is small next to the hydrostatic one (8 lines x ~5 MN over
-  // C33 = 8.4e7 N/m: 0.47 m), so the fixed-point iteration converges in a few steps.
+  // Heave, roll and pitch balance the lines' weight in calm water: G (z, phi, theta) =
+  // tau_mooring with the fairleads where the low-frequency pose puts them. The mooring's
+  // vertical stiffness is small next to the hydrostatic one (8 lines x ~5 MN over C33 =
+  // 8.4e7 N/m: 0.47 m), so the fixed-point iteration converges in a few steps. This
+  // equilibrium depends on the scenario alone, not on the run's seed, so the detectors'
+  // models built on it are shared by every seed (shared_parts.h); the first-order wave
+  // motion rides on it with zero mean.
   const Vec3 pose = scenario_.vessel->initial_pose;
   x_.assign(system_->StateSize(), 0.0);
   x_[0] = pose.x();
@@ -501,16 +509,24 @@ void Simulation::SettleMooredEquilibrium() {
   const Eigen::Matrix3d G = plant_->model().parameters().restoring.block<3, 3>(2, 2);
   std::vector<Vec3> fairleads(mooring_.num_lines());
   std::vector<Vec3> forces(mooring_.num_lines());
+  std::vector<PointKinematics> calm(mooring_.num_lines());  // at rest, no wave motion
+  auto calm_fairleads = [&] {
+    const Vec3 origin(x_[0], x_[1], x_[2]);
+    const Mat3 R = vessel::RotationBodyToNed(x_[3], x_[4], x_[5]);
+    for (int i = 0; i < mooring_.num_lines(); ++i) {
+      calm[i].position = origin + R * mooring_.line(i).fairlead_body;
+      fairleads[i] = calm[i].position;
+    }
+  };
   bool first = true;
   constexpr int kMaxIterations = 30;
   double change = std::numeric_limits<double>::infinity();
   for (int iteration = 0; iteration < kMaxIterations && !(change < 1e-9); ++iteration) {
-    const std::vector<PointKinematics> points = Points();
-    for (int i = 0; i < mooring_.num_lines(); ++i) fairleads[i] = points[i].position;
+    calm_fairleads();
     if (first) mooring_.CatenaryState(fairleads, lines);
     first = false;
     mooring_.SettleStatic(fairleads, lines);
-    mooring_.FairleadForces(lines, points, forces);
+    mooring_.FairleadForces(lines, calm, forces);
     Vec6 tau = Vec6::Zero();
     for (int i = 0; i < mooring_.num_lines(); ++i) {
       tau += plant_->PointLoad(x_.data(), mooring_.line(i).fairlead_body, forces[i], nullptr);
@@ -531,6 +547,13 @@ void Simulation::SettleMooredEquilibrium() {
   }
   initial_pose_ = Eigen::Map<const Vec6>(x_.data());
   plant_->SetStaticVerticalLoad((plant_->model().parameters().restoring * initial_pose_)(2));
+  // The lines start settled to the fairleads where the wave motion puts them at t = 0, so
+  // that the run starts without a transient (in calm water these are the calm ones).
+  calm_fairleads();
+  const std::vector<Vec3> at_rest = fairleads;
+  const std::vector<PointKinematics> points = Points();
+  for (int i = 0; i < mooring_.num_lines(); ++i) fairleads[i] = points[i].position;
+  if (fairleads != at_rest) mooring_.SettleStatic(fairleads, lines);
 }
 
 void Simulation::StartIntegrator() {
