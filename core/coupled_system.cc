@@ -11,6 +11,9 @@ CoupledSystem::CoupledSystem(BodyPlant& body, AttachedSubsystem& attached)
 
 void CoupledSystem::Rebuild() {
   body_size_ = body_.StateSize();
+  const std::span<const int> extra = body_.ExtraKinematicStates();
+  extra_.assign(extra.begin(), extra.end());
+  kinematic_columns_ = 12 + static_cast<int>(extra_.size());
   const SparsityPattern& sub = attached_.JacobianPattern();
   const int nb = body_size_;
   size_ = nb + sub.size;
@@ -51,6 +54,7 @@ void CoupledSystem::Rebuild() {
   for (int r = 0; r < sub.size; ++r) {
     if (velocity_row_coupled[r]) {
       for (int col = 0; col < 12; ++col) pattern_.column.push_back(col);
+      for (const int col : extra_) pattern_.column.push_back(col);
     }
     sub_row_destination_[r] = static_cast<int64_t>(pattern_.column.size());
     for (int64_t j = sub.row_start[r]; j < sub.row_start[r + 1]; ++j) {
@@ -66,7 +70,7 @@ void CoupledSystem::Rebuild() {
   sub_values_.assign(std::max<int64_t>(sub.nnz(), sub.size), 0.0);
   body_jacobian_.setZero(nb, nb);
   dtau_dnode_.assign(coupled_.size(), Mat6::Zero());
-  daccel_dbody_.assign(coupled_.size(), Eigen::Matrix<double, 3, 12>::Zero());
+  daccel_dbody_.assign(coupled_.size(), BodyColumns3::Zero());
   load_sensitivity_.setZero(nb, 6);
 }
 
@@ -98,10 +102,13 @@ void CoupledSystem::Jacobian(double t, const double* x, const double* /*xdot*/, 
 
   Mat6 dtau_deta = Mat6::Zero();
   Mat6 dtau_dnu = Mat6::Zero();
+  Eigen::Matrix<double, 6, kMaxExtraKinematicStates> dtau_dextra =
+      Eigen::Matrix<double, 6, kMaxExtraKinematicStates>::Zero();
+  const bool extra = !extra_.empty();
   tau_attached_.setZero();
-  // Per coupled attachment: d tau / d(node r, v) and d a_node / d(eta, nu).
+  // Per coupled attachment: d tau / d(node r, v) and d a_node / d(eta, nu, extra).
   std::vector<Mat6>& dtau_dnode = dtau_dnode_;
-  std::vector<Eigen::Matrix<double, 3, 12>>& daccel_dbody = daccel_dbody_;
+  std::vector<BodyColumns3>& daccel_dbody = daccel_dbody_;
   const std::size_t coupled = coupled_.size();
   for (std::size_t ci = 0; ci < coupled; ++ci) {
     const int i = coupled_[ci].attachment;
@@ -118,19 +125,30 @@ void CoupledSystem::Jacobian(double t, const double* x, const double* /*xdot*/, 
     dtau_dnode[ci].rightCols<3>() = L.J_load_force * C.J_force_node_vel;
     daccel_dbody[ci].leftCols<6>() =
         C.J_accel_fairlead_pos * P.J_pos_eta + C.J_accel_fairlead_vel * P.J_vel_eta;
-    daccel_dbody[ci].rightCols<6>() = C.J_accel_fairlead_vel * P.J_vel_nu;
+    daccel_dbody[ci].middleCols<6>(6) = C.J_accel_fairlead_vel * P.J_vel_nu;
+    if (extra) {
+      const ExtraColumns3 dF_dextra =
+          C.J_force_fairlead_pos * P.J_pos_extra + C.J_force_fairlead_vel * P.J_vel_extra;
+      dtau_dextra += L.J_load_extra + L.J_load_force * dF_dextra;
+      daccel_dbody[ci].rightCols<kMaxExtraKinematicStates>() =
+          C.J_accel_fairlead_pos * P.J_pos_extra + C.J_accel_fairlead_vel * P.J_vel_extra;
+    }
   }
   // Attachments without a free node (a one-segment chain) still load the body.
   for (const int i : uncoupled_) {
     PointLoadJacobian L;
     tau_attached_ += body_.PointLoad(x, r_body_[i], forces_[i], &L);
     dtau_deta += L.J_load_eta;
+    if (extra) dtau_dextra += L.J_load_extra;
   }
 
   body_.Jacobian(t, x, tau_attached_, &body_jacobian_);
-  body_.LoadSensitivity(x, &load_sensitivity_);
+  body_.LoadSensitivity(x, tau_attached_, &load_sensitivity_);
   body_jacobian_.leftCols<6>() += load_sensitivity_ * dtau_deta;
   body_jacobian_.middleCols<6>(6) += load_sensitivity_ * dtau_dnu;
+  for (std::size_t j = 0; j < extra_.size(); ++j) {
+    body_jacobian_.col(extra_[j]) += load_sensitivity_ * dtau_dextra.col(static_cast<int>(j));
+  }
 
   double* v = values;
   for (int r = 0; r < nb; ++r) {
@@ -147,10 +165,11 @@ void CoupledSystem::Jacobian(double t, const double* x, const double* /*xdot*/, 
     const int64_t count = sub.row_start[r + 1] - sub.row_start[r];
     std::copy_n(sub_values_.data() + sub.row_start[r], count, values + sub_row_destination_[r]);
   }
+  const int kinematic = kinematic_columns_;
   for (std::size_t ci = 0; ci < coupled; ++ci) {
     for (int k = 0; k < 3; ++k) {
-      double* row = values + sub_row_destination_[coupled_[ci].node_state + 3 + k] - 12;
-      for (int col = 0; col < 12; ++col) row[col] = daccel_dbody[ci](k, col);
+      double* row = values + sub_row_destination_[coupled_[ci].node_state + 3 + k] - kinematic;
+      for (int col = 0; col < kinematic; ++col) row[col] = daccel_dbody[ci](k, col);
     }
   }
 }

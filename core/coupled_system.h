@@ -12,6 +12,9 @@
 //                  d f_b/d node = S dtau/dF dF/d(node n-1)
 //   node rows      d a_{n-1}/d(eta, nu) = J_accel_fairlead_* d(point kinematics)/d(eta, nu)
 //
+// and likewise for the body's extra kinematic states (a turret's angle and rate, which move
+// the points), which then join eta and nu in the columns of the coupled nodes' rows.
+//
 // with dtau/deta, dtau/dnu from the attachment forces' dependence on the point's position
 // and velocity, and from the rotation of an Earth-frame force into body axes. The pattern is
 // the subsystem's own (shifted by the body's size) plus a dense body block, the coupled
@@ -27,18 +30,29 @@
 
 namespace moorsim {
 
+/// At most this many body states besides eta and nu move the attachment points (a turret's
+/// angle and rate of turn: BodyPlant::ExtraKinematicStates()).
+inline constexpr int kMaxExtraKinematicStates = 2;
+using ExtraColumns3 = Eigen::Matrix<double, 3, kMaxExtraKinematicStates>;
+
 /// Derivatives of a body point's Earth-frame kinematics with respect to the body's
-/// pose eta and velocity nu (the first 12 body states).
+/// pose eta and velocity nu (the first 12 body states) and its extra kinematic states (in
+/// the order of BodyPlant::ExtraKinematicStates(); unused columns zero).
 struct PointMotionJacobian {
   Eigen::Matrix<double, 3, 6> J_pos_eta = Eigen::Matrix<double, 3, 6>::Zero();
   Eigen::Matrix<double, 3, 6> J_vel_eta = Eigen::Matrix<double, 3, 6>::Zero();
   Eigen::Matrix<double, 3, 6> J_vel_nu = Eigen::Matrix<double, 3, 6>::Zero();
+  ExtraColumns3 J_pos_extra = ExtraColumns3::Zero();
+  ExtraColumns3 J_vel_extra = ExtraColumns3::Zero();
 };
 
 /// The body-frame load of an Earth-frame force at a body point, and its derivatives.
 struct PointLoadJacobian {
   Eigen::Matrix<double, 6, 3> J_load_force = Eigen::Matrix<double, 6, 3>::Zero();
   Mat6 J_load_eta = Mat6::Zero();  ///< through the rotation Earth -> body, force held
+  /// Through the point's dependence on the extra kinematic states, force held.
+  Eigen::Matrix<double, 6, kMaxExtraKinematicStates> J_load_extra =
+      Eigen::Matrix<double, 6, kMaxExtraKinematicStates>::Zero();
 };
 
 /// The derivatives that couple a subsystem to the body through one attachment point: the
@@ -59,17 +73,24 @@ class BodyPlant {
  public:
   virtual ~BodyPlant() = default;
   virtual int StateSize() const = 0;
+  /// Indices (ascending, >= 12) of the extra states the attachment points move with besides
+  /// eta and nu (a turret's angle and rate), at most kMaxExtraKinematicStates.
+  virtual std::span<const int> ExtraKinematicStates() const { return {}; }
   /// xdot of the body's states under the attachment load tau_attached (body frame).
   virtual void Derivatives(double t, const double* x, const Vec6& tau_attached, double* xdot) = 0;
   /// d xdot / d x of the body's own states (StateSize x StateSize), tau_attached held.
   virtual void Jacobian(double t, const double* x, const Vec6& tau_attached, MatX* J) = 0;
-  /// d xdot / d tau_attached (StateSize x 6).
-  virtual void LoadSensitivity(const double* x, Eigen::Matrix<double, Eigen::Dynamic, 6>* S) = 0;
-  /// Earth-frame position and velocity of the body point r_body [m] at time t (acceleration
-  /// left zero) and, if J is given, their derivatives with respect to eta and nu.
+  /// d xdot / d tau_attached (StateSize x 6) at tau_attached.
+  virtual void LoadSensitivity(const double* x, const Vec6& tau_attached,
+                               Eigen::Matrix<double, Eigen::Dynamic, 6>* S) = 0;
+  /// Earth-frame position and velocity of the attachment point r_body [m] (body frame, as
+  /// AttachedSubsystem::AttachmentPoint gives it; the body may move it, e.g. on a turret)
+  /// at time t (acceleration left zero) and, if J is given, their derivatives with respect
+  /// to eta, nu and the extra kinematic states.
   virtual PointKinematics PointMotion(double t, const double* x, const Vec3& r_body,
                                       PointMotionJacobian* J) = 0;
-  /// Body-frame load [N, N m] about the body origin of the Earth-frame force F at r_body.
+  /// Body-frame load [N, N m] about the body origin of the Earth-frame force F at the
+  /// attachment point r_body (where PointMotion puts it).
   virtual Vec6 PointLoad(const double* x, const Vec3& r_body, const Vec3& F,
                          PointLoadJacobian* J) = 0;
 };
@@ -150,7 +171,11 @@ class CoupledSystem : public OdeSystem {
   std::vector<Vec6> loads_;
   std::vector<double> sub_values_;
   std::vector<Mat6> dtau_dnode_;
-  std::vector<Eigen::Matrix<double, 3, 12>> daccel_dbody_;
+  // d a_node / d(eta, nu, extra kinematic states).
+  using BodyColumns3 = Eigen::Matrix<double, 3, 12 + kMaxExtraKinematicStates>;
+  std::vector<BodyColumns3> daccel_dbody_;
+  std::vector<int> extra_;      // the body's extra kinematic states
+  int kinematic_columns_ = 12;  // 12 + extra_.size()
   MatX body_jacobian_;
   Eigen::Matrix<double, Eigen::Dynamic, 6> load_sensitivity_;
   Vec6 tau_attached_ = Vec6::Zero();

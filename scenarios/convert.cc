@@ -1,5 +1,8 @@
 #include "scenarios/convert.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace moorsim::scenarios {
 
 mooring_fem::MooringParameters ToMooringParameters(const MooringSpec& spec) {
@@ -10,6 +13,18 @@ mooring_fem::MooringParameters ToMooringParameters(const MooringSpec& spec) {
   p.line_types.assign(spec.line_types.begin(), spec.line_types.end());
   p.lines.assign(spec.lines.begin(), spec.lines.end());
   return p;
+}
+
+double TurretRadius(const Scenario& scenario) {
+  if (!scenario.vessel) return 0.0;
+  const TurretSpec& t = scenario.vessel->turret;
+  if (t.radius) return *t.radius;
+  double radius = 0.0;
+  for (const LineSpec& line : scenario.mooring.lines) {
+    radius =
+        std::max(radius, std::hypot(line.fairlead_body.x() - t.x, line.fairlead_body.y() - t.y));
+  }
+  return radius;
 }
 
 }  // namespace moorsim::scenarios

@@ -13,4 +13,8 @@ namespace moorsim::scenarios {
 /// line types and lines (in the same order), without the source marks.
 mooring_fem::MooringParameters ToMooringParameters(const MooringSpec& spec);
 
+/// vessel.turret.radius, or (unset) the fairleads' largest horizontal distance from the
+/// turret centre; 0 without a vessel.
+double TurretRadius(const Scenario& scenario);
+
 }  // namespace moorsim::scenarios

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "scenarios/convert.h"
 #include "scenarios/strict_yaml.h"
 
 namespace moorsim::scenarios {
@@ -156,7 +157,7 @@ double Degrees(const Reader& r, std::string_view key, double fallback_rad) {
 
 void ParseVessel(const Reader& r, Scenario& scenario) {
   r.CheckKeys({"centre_of_gravity", "damping", "hull", "hydrodynamics", "initial_pose",
-               "length_scale", "mass", "radii_of_gyration", "thrusters", "windage"});
+               "length_scale", "mass", "radii_of_gyration", "thrusters", "turret", "windage"});
   VesselSpec v;
   v.hydrodynamics = r.Required<std::string>("hydrodynamics");
   r.Optional("length_scale", v.length_scale);
@@ -219,6 +220,20 @@ void ParseVessel(const Reader& r, Scenario& scenario) {
     v.windage.length = w->Maybe<double>("length");
     w->Optional("lateral_centroid", v.windage.lateral_centroid);
     w->Optional("air_density", v.windage.air_density);
+  }
+  if (std::optional<Reader> t = r.Find("turret")) {
+    t->CheckKeys({"bearing", "bearing_radius", "damping", "friction_coefficient", "inertia",
+                  "radius", "slip_rate", "x", "y"});
+    TurretSpec& turret = v.turret;
+    t->Optional("bearing", turret.bearing);
+    t->Optional("x", turret.x);
+    t->Optional("y", turret.y);
+    turret.radius = t->Maybe<double>("radius");
+    t->Optional("inertia", turret.inertia);
+    t->Optional("friction_coefficient", turret.friction_coefficient);
+    turret.bearing_radius = t->Maybe<double>("bearing_radius");
+    t->Optional("damping", turret.damping);
+    t->Optional("slip_rate", turret.slip_rate);
   }
   scenario.vessel = v;
 }
@@ -695,6 +710,62 @@ void CheckLinesAtInitialPose(const Checker& check, const Scenario& scenario) {
   }
 }
 
+// The turret: on the hull, the fairleads on it, a physical bearing.
+void CheckTurret(const Checker& check, const Scenario& scenario) {
+  if (!scenario.vessel) return;
+  const VesselSpec& v = *scenario.vessel;
+  const TurretSpec& t = v.turret;
+  if (t.bearing != "locked" && t.bearing != "free" && t.bearing != "friction") {
+    check.Fail("vessel.turret.bearing",
+               "unknown turret bearing '" + t.bearing + "' (known: free, friction, locked)");
+  }
+  if (t.radius) {
+    check.Positive("vessel.turret.radius", *t.radius, "m");
+  }
+  const double radius = TurretRadius(scenario);
+  // The turret's circle within the hull's waterplane rectangle L x B.
+  const double half_length = 0.5 * v.hull.length, half_beam = 0.5 * v.hull.beam;
+  if (!(std::abs(t.x) + radius <= half_length)) {
+    check.Fail("vessel.turret.x",
+               WithUnit(t.x, "m") + " puts the turret (radius " + WithUnit(radius, "m") +
+                   ") outside the hull: |x| + radius must be <= hull.length / 2 = " +
+                   WithUnit(half_length, "m"));
+  }
+  if (!(std::abs(t.y) + radius <= half_beam)) {
+    check.Fail("vessel.turret.y",
+               WithUnit(t.y, "m") + " puts the turret (radius " + WithUnit(radius, "m") +
+                   ") outside the hull: |y| + radius must be <= hull.beam / 2 = " +
+                   WithUnit(half_beam, "m"));
+  }
+  if (t.radius) {
+    const std::vector<LineSpec>& lines = scenario.mooring.lines;
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      const double distance =
+          std::hypot(lines[i].fairlead_body.x() - t.x, lines[i].fairlead_body.y() - t.y);
+      if (distance > *t.radius * (1.0 + 1e-9)) {
+        check.Fail("vessel.turret.radius",
+                   WithUnit(*t.radius, "m") + " does not reach the fairlead of " +
+                       LinePath(lines[i], i) + ", " + WithUnit(distance, "m") +
+                       " from the turret centre (the fairleads are on the turret)");
+      }
+    }
+  }
+  check.Positive("vessel.turret.inertia", t.inertia, "kg m^2");
+  check.AtMost("vessel.turret.inertia", t.inertia, 1e12, "kg m^2");
+  check.NonNegative("vessel.turret.friction_coefficient", t.friction_coefficient, "");
+  check.AtMost("vessel.turret.friction_coefficient", t.friction_coefficient, 1.0, "",
+               "a bearing's friction coefficient is about 0.001-0.1");
+  if (t.bearing_radius) {
+    check.Positive("vessel.turret.bearing_radius", *t.bearing_radius, "m");
+    check.AtMost("vessel.turret.bearing_radius", *t.bearing_radius, kMaxBodyCoordinate, "m");
+  }
+  check.NonNegative("vessel.turret.damping", t.damping, "N m s/rad");
+  check.AtMost("vessel.turret.damping", t.damping, 1e13, "N m s/rad");
+  check.Positive("vessel.turret.slip_rate", t.slip_rate, "rad/s");
+  check.AtMost("vessel.turret.slip_rate", t.slip_rate, 0.1, "rad/s",
+               "the regularisation must be far below the rates a turret turns at");
+}
+
 void CheckSolver(const Checker& check, const SolverSpec& solver) {
   if (!(solver.rtol > 0.0 && solver.rtol < 1.0)) {
     check.Fail("solver.rtol", Number(solver.rtol) + " must be in (0, 1)");
@@ -1047,6 +1118,7 @@ void Validate(const Scenario& scenario) {
   CheckLines(check, mooring);
   CheckSolver(check, scenario.solver);
   if (scenario.vessel) CheckVessel(check, *scenario.vessel);
+  CheckTurret(check, scenario);
   CheckLinesAtInitialPose(check, scenario);
   CheckEnvironment(check, scenario);
   CheckController(check, scenario.controller);

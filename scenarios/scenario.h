@@ -115,6 +115,22 @@ struct WindageSpec {
   double air_density = 1.226;  ///< [kg/m^3]
 };
 
+/// The turret that carries the fairleads (`vessel.turret`; vessel::TurretParameters). The
+/// fairleads (mooring.lines[].fairlead) are body points at turret angle 0. Defaults: locked
+/// at the reference point, as the TAPM thesis's model.
+struct TurretSpec {
+  std::string bearing = "locked";  ///< locked, free or friction
+  double x = 0.0, y = 0.0;         ///< turret centre, body frame [m]
+  /// [m]; every fairlead lies within it. Unset = the fairleads' largest horizontal distance
+  /// from the turret centre.
+  std::optional<double> radius;
+  double inertia = 6.0e8;                ///< about its axis [kg m^2]
+  double friction_coefficient = 0.0;     ///< friction: Coulomb coefficient [-]
+  std::optional<double> bearing_radius;  ///< friction: lever arm [m]; unset = radius
+  double damping = 0.0;                  ///< viscous [N m s/rad]
+  double slip_rate = 1.0e-5;             ///< friction: regularisation rate [rad/s]
+};
+
 struct VesselSpec {
   /// WAMIT output stem (files stem.1, .hst, .3, .4, .9), relative paths resolved against
   /// the scenario file's directory at load time.
@@ -130,6 +146,7 @@ struct VesselSpec {
   std::vector<ThrusterEntry> thrusters;  ///< empty = the seed layout (vessel/thrusters.h)
   HullSpec hull;
   WindageSpec windage;
+  TurretSpec turret;
 };
 
 struct WavesSpec {

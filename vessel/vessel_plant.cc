@@ -26,6 +26,38 @@ VesselPlant::VesselPlant(const VesselParameters& parameters, std::vector<Thruste
   SetThrustCommand(command_, direction);
 }
 
+void VesselPlant::SetTurret(const TurretParameters& turret) {
+  if (turret.bearing != TurretBearing::kLocked && !(turret.inertia > 0.0)) {
+    throw InputError("turret inertia must be > 0 for a turning turret");
+  }
+  turret_ = turret;
+  turret_states_[0] = turret_state();
+  turret_states_[1] = turret_state() + 1;
+}
+
+std::span<const int> VesselPlant::ExtraKinematicStates() const {
+  if (!turret_turns()) return {};
+  return {turret_states_, 2};
+}
+
+Vec3 VesselPlant::OnTurret(const double* x, const Vec3& r_fixed, Vec3* arm) const {
+  const double alpha = x[turret_state()];
+  const double c = std::cos(alpha), s = std::sin(alpha);
+  const double dx = r_fixed.x() - turret_.x, dy = r_fixed.y() - turret_.y;
+  *arm = Vec3(c * dx - s * dy, s * dx + c * dy, r_fixed.z());
+  return Vec3(turret_.x + arm->x(), turret_.y + arm->y(), r_fixed.z());
+}
+
+void VesselPlant::TurretMoments(const double* x, const Vec6& tau_attached, double* lines,
+                                double* bearing) const {
+  *lines = 0.0;
+  *bearing = 0.0;
+  if (!turret_turns()) return;
+  *lines = MomentAboutTurret(turret_, tau_attached);
+  const double rate = x[turret_state() + 1] - x[11];
+  *bearing = BearingMoment(turret_, rate, tau_attached.head<3>());
+}
+
 void VesselPlant::SetThrustCommand(const Eigen::VectorXd& command,
                                    const Eigen::VectorXd& direction) {
   const int n = num_thrusters();
@@ -91,6 +123,12 @@ void VesselPlant::Derivatives(double t, const double* x, const Vec6& tau_attache
   const Vec6 nu = Nu(x);
   Vec6 tau = tau_attached + ThrustLoad(x) + drift_ + PreloadCorrection(x);
   for (const EnvironmentLoad* load : loads_) tau += load->Load(t, eta, nu);
+  double lines = 0.0, bearing = 0.0;
+  if (turret_turns()) {
+    // The hull keeps the yaw moment of the net force at the turret centre and the bearing's.
+    TurretMoments(x, tau_attached, &lines, &bearing);
+    tau(5) += bearing - lines;
+  }
   Vec6 eta_dot, nu_dot;
   model_.Derivatives(eta, nu, tau, &eta_dot, &nu_dot);
   Eigen::Map<Vec6> out_eta(xdot), out_nu(xdot + 6);
@@ -99,9 +137,14 @@ void VesselPlant::Derivatives(double t, const double* x, const Vec6& tau_attache
   for (int k = 0; k < num_thrusters(); ++k) {
     xdot[12 + k] = (command_(k) - x[12 + k]) / thrusters_[k].time_constant;
   }
+  if (turret_turns()) {
+    const int a = turret_state();
+    xdot[a] = x[a + 1] - x[11];
+    xdot[a + 1] = (lines - bearing) / turret_.inertia;
+  }
 }
 
-void VesselPlant::Jacobian(double t, const double* x, const Vec6& /*tau_attached*/, MatX* J) {
+void VesselPlant::Jacobian(double t, const double* x, const Vec6& tau_attached, MatX* J) {
   const Vec6 eta = Eta(x);
   const Vec6 nu = Nu(x);
   const VesselModel::Jacobian B = model_.Jacobians(eta, nu);
@@ -126,25 +169,60 @@ void VesselPlant::Jacobian(double t, const double* x, const Vec6& /*tau_attached
   const int n = num_thrusters();
   J->block(6, 12, 6, n) = Minv * thrust_columns_;
   for (int k = 0; k < n; ++k) (*J)(12 + k, 12 + k) = -1.0 / thrusters_[k].time_constant;
+  if (turret_turns()) {
+    // The bearing moment depends on the relative rate Omega - r (the load held).
+    const int a = turret_state();
+    double d_rate = 0.0;
+    BearingMoment(turret_, x[a + 1] - x[11], tau_attached.head<3>(), &d_rate);
+    J->block<6, 1>(6, a + 1) += Minv.col(5) * d_rate;
+    J->block<6, 1>(6, 11) -= Minv.col(5) * d_rate;
+    (*J)(a, a + 1) = 1.0;
+    (*J)(a, 11) = -1.0;
+    (*J)(a + 1, a + 1) = -d_rate / turret_.inertia;
+    (*J)(a + 1, 11) = d_rate / turret_.inertia;
+  }
 }
 
-void VesselPlant::LoadSensitivity(const double* /*x*/,
+void VesselPlant::LoadSensitivity(const double* x, const Vec6& tau_attached,
                                   Eigen::Matrix<double, Eigen::Dynamic, 6>* S) {
   S->setZero(StateSize(), 6);
-  S->block<6, 6>(6, 0) = model_.inverse_mass();
+  if (!turret_turns()) {
+    S->block<6, 6>(6, 0) = model_.inverse_mass();
+    return;
+  }
+  // d(hull load)/d tau_attached: the identity but for the yaw moment, which is that of the
+  // net force at the turret centre plus the bearing's (through the bearing's normal loads).
+  const int a = turret_state();
+  double d_rate = 0.0;
+  Vec3 d_force = Vec3::Zero();
+  BearingMoment(turret_, x[a + 1] - x[11], tau_attached.head<3>(), &d_rate, &d_force);
+  Eigen::Matrix<double, 1, 6> d_lines;  // d M_lines / d tau_attached
+  d_lines << turret_.y, -turret_.x, 0.0, 0.0, 0.0, 1.0;
+  Eigen::Matrix<double, 1, 6> d_bearing = Eigen::Matrix<double, 1, 6>::Zero();
+  d_bearing.head<3>() = d_force.transpose();
+  Mat6 T = Mat6::Identity();
+  T.row(5) += d_bearing - d_lines;
+  S->block<6, 6>(6, 0) = model_.inverse_mass() * T;
+  S->row(a + 1) = (d_lines - d_bearing) / turret_.inertia;
 }
 
-PointKinematics VesselPlant::PointMotion(double t, const double* x, const Vec3& r_body,
+PointKinematics VesselPlant::PointMotion(double t, const double* x, const Vec3& r_fixed,
                                          PointMotionJacobian* J) {
   UpdateSea(t, x);
   UpdateRotation(x);
   const Mat3& R = rotation_;
   const Vec3 v_lin(x[6], x[7], x[8]);
   const Vec3 omega(x[9], x[10], x[11]);
+  // On a turning turret the point turns about the turret centre at the relative rate.
+  const bool turns = turret_turns();
+  Vec3 arm = Vec3::Zero();
+  const Vec3 r_body = turns ? OnTurret(x, r_fixed, &arm) : r_fixed;
+  const Vec3 d_alpha(-arm.y(), arm.x(), 0.0);  // d r_body / d alpha = e_z x arm
+  const double relative_rate = turns ? x[turret_state() + 1] - x[11] : 0.0;
   // Wave-frequency displacement and velocity of the point in body axes.
   const Vec3 r_rel = r_body + xi_.head<3>() + xi_.tail<3>().cross(r_body);
-  const Vec3 v_body =
-      v_lin + omega.cross(r_body) + xi_dot_.head<3>() + xi_dot_.tail<3>().cross(r_body);
+  Vec3 v_body = v_lin + omega.cross(r_body) + xi_dot_.head<3>() + xi_dot_.tail<3>().cross(r_body);
+  if (turns) v_body += relative_rate * d_alpha;
   PointKinematics k;
   k.position = Vec3(x[0], x[1], x[2]) + R * r_rel;
   k.velocity = R * v_body;
@@ -159,12 +237,24 @@ PointKinematics VesselPlant::PointMotion(double t, const double* x, const Vec3& 
     }
     J->J_vel_nu.leftCols<3>() = R;
     J->J_vel_nu.rightCols<3>() = -R * Skew(r_body);
+    if (turns) {
+      J->J_vel_nu.col(5) -= R * d_alpha;             // the relative rate is Omega - r
+      const Vec3 dd_alpha(-arm.x(), -arm.y(), 0.0);  // d (e_z x arm) / d alpha
+      J->J_pos_extra.col(0) = R * (d_alpha + xi_.tail<3>().cross(d_alpha));
+      J->J_pos_extra.col(1).setZero();
+      J->J_vel_extra.col(0) =
+          R * (omega.cross(d_alpha) + xi_dot_.tail<3>().cross(d_alpha) + relative_rate * dd_alpha);
+      J->J_vel_extra.col(1) = R * d_alpha;
+    }
   }
   return k;
 }
 
-Vec6 VesselPlant::PointLoad(const double* x, const Vec3& r_body, const Vec3& F,
+Vec6 VesselPlant::PointLoad(const double* x, const Vec3& r_fixed, const Vec3& F,
                             PointLoadJacobian* J) {
+  const bool turns = turret_turns();
+  Vec3 arm = Vec3::Zero();
+  const Vec3 r_body = turns ? OnTurret(x, r_fixed, &arm) : r_fixed;
   UpdateRotation(x);
   const Mat3& R = rotation_;
   const Vec3 F_body = R.transpose() * F;
@@ -181,6 +271,10 @@ Vec6 VesselPlant::PointLoad(const double* x, const Vec3& r_body, const Vec3& F,
       const Vec3 dF = dR[a].transpose() * F;
       J->J_load_eta.block<3, 1>(0, 3 + a) = dF;
       J->J_load_eta.block<3, 1>(3, 3 + a) = S * dF;
+    }
+    if (turns) {
+      J->J_load_extra.setZero();
+      J->J_load_extra.block<3, 1>(3, 0) = Vec3(-arm.y(), arm.x(), 0.0).cross(F_body);
     }
   }
   return tau;

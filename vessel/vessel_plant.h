@@ -2,13 +2,17 @@
 // low-frequency model of vessel_model.h, first-order thruster dynamics, environmental loads,
 // and the first-order wave-frequency motion superposed on the low-frequency pose.
 //
-// States: [eta (6), nu (6), delivered thrust of each thruster (N)]. The low-frequency
-// equations are
+// States: [eta (6), nu (6), delivered thrust of each thruster (N)] and, with a turret on a
+// bearing (vessel/turret.h), [turret angle alpha relative to the hull (rad), the turret's
+// rate of turn Omega about its axis (rad/s)]. The low-frequency equations are
 //   eta' = J(eta) nu
 //   M nu' + C(nu) nu + D nu + G eta = tau_attached + tau_thrust + tau_drift + sum tau_env
 //   f_k' = (f_k,cmd - f_k) / T_k
 // where tau_attached is the moorings' load (from the coupled assembler), tau_thrust = B(alpha)
 // f, tau_drift the slowly varying wave drift and tau_env the other loads (current, wind).
+// With a turret, the attachment points turn with it, and of tau_attached's yaw moment the
+// hull keeps only that of the net force at the turret centre plus the bearing moment; the
+// lines' moment about the turret axis drives the turret (vessel/turret.h).
 // The commands f_cmd and directions alpha are held between controller samples.
 //
 // Wave-frequency motion xi (body axes; surge, sway, heave [m], roll, pitch, yaw [rad]) is
@@ -19,12 +23,14 @@
 #pragma once
 
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "core/coupled_system.h"
 #include "vessel/rigid_body.h"
 #include "vessel/thrusters.h"
+#include "vessel/turret.h"
 #include "vessel/vessel_model.h"
 
 namespace moorsim::vessel {
@@ -59,6 +65,19 @@ class VesselPlant final : public BodyPlant {
   void SetSea(const SeaResponse* sea) { sea_ = sea; }
   /// Not owned.
   void AddLoad(const EnvironmentLoad* load) { loads_.push_back(load); }
+  /// The turret that carries the attachment points. Call before the coupled system is built:
+  /// a bearing other than kLocked adds two states. Default: locked at the body origin.
+  void SetTurret(const TurretParameters& turret);
+  const TurretParameters& turret() const { return turret_; }
+  /// Whether the turret turns on its bearing (has states).
+  bool turret_turns() const { return turret_.bearing != TurretBearing::kLocked; }
+  /// Index of the turret angle (the rate follows it); valid if turret_turns().
+  int turret_state() const { return 12 + num_thrusters(); }
+  /// The lines' moment about the turret axis and the bearing's moment on the hull [N m]
+  /// for the attachment load tau_attached at state x (both 0 for a locked turret).
+  void TurretMoments(const double* x, const Vec6& tau_attached, double* lines,
+                     double* bearing) const;
+
   /// Held thrust commands [N] and directions [rad] per thruster until the next call.
   void SetThrustCommand(const Eigen::VectorXd& command, const Eigen::VectorXd& direction);
 
@@ -75,10 +94,12 @@ class VesselPlant final : public BodyPlant {
   const VesselModel& model() const { return model_; }
   const std::vector<const EnvironmentLoad*>& loads() const { return loads_; }
 
-  int StateSize() const override { return 12 + num_thrusters(); }
+  int StateSize() const override { return 12 + num_thrusters() + (turret_turns() ? 2 : 0); }
+  std::span<const int> ExtraKinematicStates() const override;
   void Derivatives(double t, const double* x, const Vec6& tau_attached, double* xdot) override;
   void Jacobian(double t, const double* x, const Vec6& tau_attached, MatX* J) override;
-  void LoadSensitivity(const double* x, Eigen::Matrix<double, Eigen::Dynamic, 6>* S) override;
+  void LoadSensitivity(const double* x, const Vec6& tau_attached,
+                       Eigen::Matrix<double, Eigen::Dynamic, 6>* S) override;
   PointKinematics PointMotion(double t, const double* x, const Vec3& r_body,
                               PointMotionJacobian* J) override;
   Vec6 PointLoad(const double* x, const Vec3& r_body, const Vec3& F, PointLoadJacobian* J) override;
@@ -92,12 +113,17 @@ class VesselPlant final : public BodyPlant {
   Vec6 TotalPose(double t, const double* x);
 
  private:
+  // The attachment point r_fixed (body frame, turret angle 0) where the turret angle in x
+  // puts it; `arm` = its offset from the turret centre (body frame).
+  Vec3 OnTurret(const double* x, const Vec3& r_fixed, Vec3* arm) const;
   void UpdateSea(double t, const double* x);
   void UpdateRotation(const double* x);
   Vec6 PreloadCorrection(const double* x);
 
   VesselModel model_;
   std::vector<ThrusterSpec> thrusters_;
+  TurretParameters turret_;
+  int turret_states_[2] = {0, 0};
   Eigen::Matrix<double, 6, Eigen::Dynamic> thrust_columns_;  // per thruster, body load of 1 N
   Eigen::VectorXd command_;
   const SeaResponse* sea_ = nullptr;

@@ -76,6 +76,7 @@ vessel:
   initial_pose: {x: 2, y: 2, heading_deg: 10}
   hull: {length: 200, beam: 44, draught: 12, displaced_volume: 97961, wetted_surface: 0, cross_flow_drag_coefficient: 0, form_factor: 0.505, kinematic_viscosity: 1.19e-6}
   windage: {frontal_area: 1200, lateral_area: 4500, length: 200, lateral_centroid: 0, air_density: 1.226}
+  turret: {bearing: friction, x: 0, y: 0, radius: 20, inertia: 6.0e8, damping: 1.0e7, friction_coefficient: 0.01, bearing_radius: 18, slip_rate: 1.0e-5}
   thrusters:
     - {name: aft_port, x: -90, y: -8, angle_deg: 0, azimuth: false, max_thrust: 1.0e6, min_thrust: -6.0e5, weight: 1, time_constant: 5, rate_limit: 2.0e5}
     - {name: aft_starboard, x: -90, y: 8, max_thrust: 1.0e6, min_thrust: -6.0e5}
@@ -216,7 +217,7 @@ inline const BadInput kParseErrors[] = {
     // The coupled-simulation sections (issue 3).
     {"VesselUnknownKey", "vessel:", "mass: 1.0041e8", "mas: 1.0041e8", "mas",
      "vessel: unknown key 'mas' (known: centre_of_gravity, damping, hull, hydrodynamics, "
-     "initial_pose, length_scale, mass, radii_of_gyration, thrusters, windage)"},
+     "initial_pose, length_scale, mass, radii_of_gyration, thrusters, turret, windage)"},
     {"HullUnknownKey", "hull:", "beam: 44", "breadth: 44", "breadth",
      "vessel.hull: unknown key 'breadth' (known: beam, cross_flow_drag_coefficient, "
      "displaced_volume, draught, form_factor, kinematic_viscosity, length, wetted_surface)"},
@@ -612,6 +613,27 @@ inline const BadInput kValidationErrors[] = {
      "failure.node: 60 must be in 1..39"},
     {"DetectionSwitchRateNegative", "detection:", "switch_rate: 0.01", "switch_rate: -1",
      "switch_rate: ^-1", "detection.switch_rate: -1 1/s must be >= 0"},
+    {"TurretUnknownBearing", "turret:", "bearing: friction", "bearing: sliding",
+     "bearing: ^sliding",
+     "vessel.turret.bearing: unknown turret bearing 'sliding' (known: free, friction, locked)"},
+    {"TurretOutsideTheHull", "turret:", "x: 0, y: 0", "x: 85, y: 0", "x: ^85",
+     "vessel.turret.x: 85 m puts the turret (radius 20 m) outside the hull: |x| + radius must "
+     "be <= hull.length / 2 = 100 m"},
+    {"TurretBeyondTheBeam", "turret:", "x: 0, y: 0", "x: 0, y: -5", "y: ^-5",
+     "vessel.turret.y: -5 m puts the turret (radius 20 m) outside the hull: |y| + radius must "
+     "be <= hull.beam / 2 = 22 m"},
+    {"TurretRadiusShortOfTheFairleads", "turret:", "radius: 20", "radius: 15", "radius: ^15",
+     "vessel.turret.radius: 15 m does not reach the fairlead of mooring.lines[1], 20 m from "
+     "the turret centre (the fairleads are on the turret)"},
+    {"TurretRadiusNegative", "turret:", "radius: 20", "radius: -20", "radius: ^-20",
+     "vessel.turret.radius: -20 m must be > 0"},
+    {"TurretInertiaNegative", "turret:", "inertia: 6.0e8", "inertia: -6.0e8", "inertia: ^-6.0e8",
+     "vessel.turret.inertia: -6e+08 kg m^2 must be > 0"},
+    {"TurretFrictionNegative", "turret:", "friction_coefficient: 0.01",
+     "friction_coefficient: -0.01", "friction_coefficient: ^-0.01",
+     "vessel.turret.friction_coefficient: -0.01 must be >= 0"},
+    {"TurretSlipRateZero", "turret:", "slip_rate: 1.0e-5", "slip_rate: 0", "slip_rate: ^0",
+     "vessel.turret.slip_rate: 0 rad/s must be > 0"},
     {"DetectionTrainingSeedNegative", "detection:", "training_seed: 3", "training_seed: -3",
      "training_seed: ^-3", "detection.training_seed: -3 must be a non-negative integer"},
     {"DetectionSwitchRateHuge", "observer: ekf", "switch_rate: 0.01", "switch_rate: 2000",

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "tests/simulation/test_scenarios.h"
@@ -57,12 +58,10 @@ void CheckJacobian(Simulation& sim, std::vector<double> x, double t) {
   EXPECT_EQ(failures, 0);
 }
 
-TEST(CoupledJacobian, MatchesFiniteDifferencesAwayFromRest) {
-  scenarios::Scenario scenario = testing::SeedVesselScenario();
-  for (auto& line : scenario.mooring.lines) line.segments = 10;  // a small system, same blocks
-  Simulation sim(scenario, 1);
+// A state away from rest in all six DOFs, with body velocities, thrust, node velocities and
+// (with a turning turret) a turret angle and a relative rate `turret_rate`.
+std::vector<double> AwayFromRest(Simulation& sim, double turret_rate = 0.0) {
   std::vector<double> x = sim.state();
-  // A pose away from rest in all six DOFs, body velocities, thrust and node velocities.
   const double offset[6] = {3.0, -2.0, 0.2, 0.01, -0.008, 0.05};
   const double velocity[6] = {0.3, -0.2, 0.05, 0.004, -0.003, 0.002};
   for (int i = 0; i < 6; ++i) {
@@ -70,11 +69,63 @@ TEST(CoupledJacobian, MatchesFiniteDifferencesAwayFromRest) {
     x[6 + i] = velocity[i];
   }
   for (int k = 12; k < 15; ++k) x[k] = 2e5 * (k - 11);
-  for (std::size_t i = 15; i < x.size(); i += 6) {
+  if (sim.plant().turret_turns()) {
+    const int a = sim.plant().turret_state();
+    x[a] = 0.1;
+    x[a + 1] = velocity[5] + turret_rate;
+  }
+  const std::size_t nodes = static_cast<std::size_t>(sim.plant().StateSize());
+  for (std::size_t i = nodes; i < x.size(); i += 6) {
     for (int c = 3; c < 6; ++c) x[i + c] = 0.05 * std::sin(0.37 * i + c);
   }
-  CheckJacobian(sim, x, 10.0);
+  return x;
 }
+
+TEST(CoupledJacobian, MatchesFiniteDifferencesAwayFromRest) {
+  scenarios::Scenario scenario = testing::SeedVesselScenario();
+  for (auto& line : scenario.mooring.lines) line.segments = 10;  // a small system, same blocks
+  Simulation sim(scenario, 1);
+  CheckJacobian(sim, AwayFromRest(sim), 10.0);
+}
+
+// A turret on its bearing adds two states (angle, rate) after the thrust; the fairleads
+// turn with it. Free with damping, and friction both slipping (relative rate twice the
+// regularisation rate) and nearly stuck (a tenth of it); the turret off the reference point.
+struct TurretCase {
+  const char* name;
+  const char* turret;
+  double relative_rate;  // Omega - r [rad/s]
+};
+
+class TurretJacobian : public ::testing::TestWithParam<TurretCase> {};
+
+TEST_P(TurretJacobian, MatchesFiniteDifferences) {
+  scenarios::Scenario scenario =
+      testing::SeedVesselScenario("", std::string("  turret: ") + GetParam().turret + "\n");
+  for (auto& line : scenario.mooring.lines) {
+    line.segments = 10;
+    line.fairlead_body.x() += 30.0;
+    line.fairlead_body.y() += 2.0;
+  }
+  scenario.vessel->turret.x = 30.0;
+  scenario.vessel->turret.y = 2.0;
+  Simulation sim(scenario, 1);
+  ASSERT_TRUE(sim.plant().turret_turns());
+  CheckJacobian(sim, AwayFromRest(sim, GetParam().relative_rate), 10.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Bearings, TurretJacobian,
+    ::testing::Values(TurretCase{"Free", "{bearing: free, damping: 1.0e9}", 0.003},
+                      TurretCase{"FrictionSlipping",
+                                 "{bearing: friction, friction_coefficient: 0.02, "
+                                 "slip_rate: 1.0e-3}",
+                                 2.0e-3},
+                      TurretCase{"FrictionNearlyStuck",
+                                 "{bearing: friction, friction_coefficient: 0.02, "
+                                 "slip_rate: 1.0e-3}",
+                                 1.0e-4}),
+    [](const ::testing::TestParamInfo<TurretCase>& info) { return std::string(info.param.name); });
 
 }  // namespace
 }  // namespace moorsim::simulation

@@ -272,6 +272,20 @@ mooring_fem::LineFailure ToLineFailure(const scenarios::Scenario& scenario) {
   return failure;
 }
 
+vessel::TurretParameters ToTurretParameters(const scenarios::Scenario& scenario) {
+  const scenarios::TurretSpec& t = scenario.vessel->turret;
+  vessel::TurretParameters p;
+  p.bearing = vessel::ParseTurretBearing(t.bearing);
+  p.x = t.x;
+  p.y = t.y;
+  p.inertia = t.inertia;
+  p.friction_coefficient = t.friction_coefficient;
+  p.bearing_radius = t.bearing_radius.value_or(scenarios::TurretRadius(scenario));
+  p.damping = t.damping;
+  p.slip_rate = t.slip_rate;
+  return p;
+}
+
 vessel::HullGeometry ToHullGeometry(const scenarios::VesselSpec& spec, double water_density) {
   const scenarios::HullSpec& h = spec.hull;
   vessel::HullGeometry hull;
@@ -365,6 +379,7 @@ Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed)
       controller_clock_(scenario.controller.rate, "controller.rate_hz") {
   const scenarios::VesselSpec& v = *scenario_.vessel;
   plant_ = std::make_unique<vessel::VesselPlant>(VesselParameters(v, *hydro_), Thrusters(v));
+  plant_->SetTurret(ToTurretParameters(scenario_));
   plant_->AddLoad(&parts_->external);
   const scenarios::EnvironmentSpec& env = scenario_.environment;
   if (env.hull_viscous_drag) {
@@ -563,13 +578,18 @@ void Simulation::StartIntegrator() {
   IntegratorOptions options = mooring_fem::MakeIntegratorOptions(solver, mooring_);
   const int nb = plant_->StateSize();
   // Body tolerances: positions like the nodes; angles so that 20 m from the turret centre
-  // the fairlead moves by atol_position; thrust to 10 N (out of ~1e5-1e6).
+  // the fairlead moves by atol_position; thrust to 10 N (out of ~1e5-1e6); the turret's
+  // angle and rate like the hull's.
   const double angle = solver.atol_position / 20.0;
   const double rate = solver.atol_velocity / 20.0;
   std::vector<double> body_atol = {
       solver.atol_position, solver.atol_position, solver.atol_position, angle, angle, angle,
       solver.atol_velocity, solver.atol_velocity, solver.atol_velocity, rate,  rate,  rate};
-  body_atol.resize(nb, 10.0);
+  body_atol.resize(12 + plant_->num_thrusters(), 10.0);
+  if (plant_->turret_turns()) {
+    body_atol.push_back(angle);
+    body_atol.push_back(rate);
+  }
   options.atol.insert(options.atol.begin(), body_atol.begin(), body_atol.end());
   // Error weights relative to each position's displacement since this start.
   const std::vector<char> kinds = mooring_.StateKinds();
@@ -721,7 +741,13 @@ double Simulation::MechanicalEnergy() {
   const Eigen::Map<const Vec6> eta(x_.data()), nu(x_.data() + 6);
   const int nb = plant_->StateSize();
   const std::vector<PointKinematics> points = Points();
-  return plant_->model().Energy(eta, nu) + mooring_.MechanicalEnergy(x_.data() + nb, points);
+  double turret = 0.0;  // the turret's own kinetic energy of turning
+  if (plant_->turret_turns()) {
+    const double omega = x_[plant_->turret_state() + 1];
+    turret = 0.5 * plant_->turret().inertia * omega * omega;
+  }
+  return plant_->model().Energy(eta, nu) + turret +
+         mooring_.MechanicalEnergy(x_.data() + nb, points);
 }
 
 IntegratorStats Simulation::stats() const {

@@ -1,0 +1,165 @@
+// The turret on its bearing (vessel/turret.h) in the coupled plant: with the turret free at
+// the reference point the mooring has no yaw stiffness (the hull's yaw follows its own
+// inertia and damping, checked against the closed-form response); a turret forward of the
+// reference point weathervanes into the current while the lines stay put; friction holds
+// below the breakaway moment (creeping at the regularisation's closed-form rate) and slips
+// above it; energy never grows; `locked` is today's plant to the bit.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "tests/simulation/test_scenarios.h"
+#include "tools/simulation/simulation.h"
+#include "vessel/turret.h"
+
+namespace moorsim::simulation {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+/// The seed FPSO on the seed mooring in calm water, no controller, no hull drag (so that
+/// the hull's yaw damping is the linear B66 alone), with `turret` as the vessel.turret map.
+scenarios::Scenario TurretScenario(const std::string& turret, const std::string& vessel = "") {
+  return testing::SeedVesselScenario("environment: {hull_viscous_drag: false}\n",
+                                     "  turret: " + turret + "\n" + vessel);
+}
+
+double TurretAngle(Simulation& sim) { return sim.state()[sim.plant().turret_state()]; }
+double Heading(Simulation& sim) { return sim.state()[5]; }
+
+TEST(Turret, LockedIsTheTurretlessPlantToTheBit) {
+  Simulation plain(testing::SeedVesselScenario("", "  initial_pose: {x: 2, heading_deg: 3}\n"), 1);
+  Simulation locked(
+      testing::SeedVesselScenario(
+          "", "  initial_pose: {x: 2, heading_deg: 3}\n  turret: {bearing: locked}\n"),
+      1);
+  ASSERT_EQ(plain.state().size(), locked.state().size());
+  plain.AdvanceTo(60.0);
+  locked.AdvanceTo(60.0);
+  EXPECT_EQ(plain.state(), locked.state());
+  EXPECT_EQ(plain.stats().steps, locked.stats().steps);
+}
+
+TEST(Turret, FreeAtTheReferencePointLeavesYawWithoutMooringStiffness) {
+  // A constant moment N on the hull: with the turret free at the reference point nothing
+  // resists yaw but the hull's linear damping B66, so (I66 + A66) r' = N - B66 r from rest:
+  //   psi(t) = (N / B66) (t - T (1 - exp(-t / T))),  T = (I66 + A66) / B66 (= yaw_time).
+  // The lines hold the turret where it was: the turret's own heading psi + alpha stays ~0.
+  constexpr double kMoment = 2.0e7;  // [N m], ~2 deg of a locked turret's yaw offset
+  Simulation sim(TurretScenario("{bearing: free}"), 1);
+  sim.SetExternalLoad(Vec3(0.0, 0.0, kMoment));
+  const vessel::VesselParameters& p = sim.plant().model().parameters();
+  const double inertia = p.rigid_body_mass(5, 5) + p.added_mass(5, 5);
+  const double damping = p.linear_damping(5, 5);
+  const double T = inertia / damping;
+  for (double t : {100.0, 200.0, 300.0}) {
+    sim.AdvanceTo(t);
+    const double expected = kMoment / damping * (t - T * (1.0 - std::exp(-t / T)));
+    // 2 %: the mass matrix's sway-yaw coupling and the lines' drag on the turning turret
+    // (through the free bearing, none) are all that separate the plant from the formula.
+    EXPECT_NEAR(Heading(sim), expected, 0.02 * expected) << "t = " << t;
+    EXPECT_LT(std::abs(Heading(sim) + TurretAngle(sim)), 0.2 * kDeg) << "t = " << t;
+  }
+  EXPECT_GT(Heading(sim), 10.0 * kDeg);
+
+  // The same moment on a locked turret: the mooring's yaw stiffness holds the hull near
+  // N / K_yaw (5.7e8 N m/rad: 2 deg).
+  Simulation locked(TurretScenario("{bearing: locked}"), 1);
+  locked.SetExternalLoad(Vec3(0.0, 0.0, kMoment));
+  locked.AdvanceTo(300.0);
+  EXPECT_LT(std::abs(Heading(locked)), 3.0 * kDeg);
+}
+
+TEST(Turret, ForwardOfTheReferencePointWeathervanesIntoTheCurrent) {
+  // The turret 80 m forward of midship, over the middle of the spread (the vessel starts
+  // 80 m aft of the origin), 1.5 m/s of current from 30 deg off the bow, no thrusters. The
+  // current's sway force acts behind the turret, so the hull turns until it heads into the
+  // current (heading 30 deg) while the turret keeps its orientation and the lines theirs.
+  // The hull's cross-flow drag goes as sin(beta) |sin(beta)| of the relative angle beta, so
+  // near alignment the restoring moment is quadratic in the error e and the overdamped yaw
+  // (B66 e' = -k e^2) closes it as 1 / t: doubling the time halves the error. The yaw
+  // damping time is 100 s here (the library's 20 s only slows the same approach 5-fold).
+  scenarios::Scenario s = TurretScenario("{bearing: free}",
+                                         "  initial_pose: {x: -80, y: 0, heading_deg: 0}\n"
+                                         "  damping: {yaw_time: 100}\n");
+  for (scenarios::LineSpec& line : s.mooring.lines) line.fairlead_body.x() += 80.0;
+  s.vessel->turret.x = 80.0;
+  s.mooring.current.depth = {0.0, 2000.0};
+  s.mooring.current.speed = {1.5, 1.5};
+  s.mooring.current.direction = 210.0 * kDeg;  // toward 210 deg: from 30 deg
+  s.environment.hull_viscous_drag = true;      // the current's load on the hull
+  Simulation sim(s, 1);
+  std::vector<double> error;  // at 1000, 2000, ..., 6000 s
+  for (double t = 1000.0; t <= 6000.0; t += 1000.0) {
+    sim.AdvanceTo(t);
+    error.push_back(std::abs(Heading(sim) - 30.0 * kDeg));
+    // The turret's own heading psi + alpha stays where the lines hold it.
+    EXPECT_LT(std::abs(Heading(sim) + TurretAngle(sim)), 0.1 * kDeg) << "t = " << t;
+  }
+  for (std::size_t k = 1; k < error.size(); ++k) EXPECT_LT(error[k], error[k - 1]);
+  // 1 / t: e(6000 s) / e(3000 s) = 1/2, within 20 % (the approach is not yet asymptotic).
+  EXPECT_NEAR(error[2] / error[5], 2.0, 0.4);
+  EXPECT_LT(error.back(), 1.0 * kDeg);
+  RecordProperty("heading_error_deg_at_6000s", std::to_string(error.back() / kDeg));
+}
+
+/// The bearing's breakaway moment at the start: mu r_b (|F_z| + |F_h|) of the lines' load.
+double Breakaway(Simulation& sim) {
+  std::vector<double> xdot(sim.state().size());
+  sim.system().Derivatives(0.0, sim.state().data(), xdot.data());
+  const vessel::TurretParameters& t = sim.plant().turret();
+  const Vec3 F = sim.system().attachment_load().head<3>();
+  return t.friction_coefficient * t.bearing_radius * (std::abs(F.z()) + F.head<2>().norm());
+}
+
+TEST(Turret, FrictionHoldsBelowTheBreakawayMomentAndSlipsAbove) {
+  const std::string turret = "{bearing: friction, friction_coefficient: 0.01, slip_rate: 1.0e-5}";
+  Simulation probe(TurretScenario(turret), 1);
+  const double breakaway = Breakaway(probe);  // 0.01 x 20 m x ~40 MN of line weight
+  ASSERT_GT(breakaway, 5e6);
+  ASSERT_LT(breakaway, 1.2e7);
+
+  // Half the breakaway moment: the bearing holds. The regularised Coulomb moment creeps at
+  // the rate where it balances the load, w_s atanh(N_bearing / N_breakaway); with the hull
+  // held by the lines' yaw stiffness nearly all of N passes through the bearing.
+  Simulation hold(TurretScenario(turret), 1);
+  hold.SetExternalLoad(Vec3(0.0, 0.0, 0.5 * breakaway));
+  hold.AdvanceTo(100.0);
+  const double alpha100 = TurretAngle(hold);
+  hold.AdvanceTo(300.0);
+  const double creep = (TurretAngle(hold) - alpha100) / 200.0;
+  const double expected_creep = -1.0e-5 * std::atanh(0.5);  // the turret lags the hull
+  EXPECT_NEAR(creep, expected_creep, 0.3 * std::abs(expected_creep));
+  EXPECT_LT(std::abs(TurretAngle(hold)), 0.2 * kDeg);
+  EXPECT_LT(std::abs(Heading(hold)), 1.5 * kDeg);  // ~N / K_yaw, as if locked
+
+  // Twice the breakaway moment: the bearing slips and the hull turns away.
+  Simulation slip(TurretScenario(turret), 1);
+  slip.SetExternalLoad(Vec3(0.0, 0.0, 2.0 * breakaway));
+  slip.AdvanceTo(300.0);
+  EXPECT_GT(Heading(slip), 5.0 * kDeg);
+  EXPECT_GT(std::abs(TurretAngle(slip)), 5.0 * kDeg);
+}
+
+TEST(Turret, EnergyNeverGrowsWithoutInput) {
+  // Free, undamped bearing; the hull starts 10 deg off the lines' rest heading, so the lines
+  // swing the turret back (it turns relative to the hull) and their drag takes the energy.
+  Simulation sim(TurretScenario("{bearing: free}", "  initial_pose: {heading_deg: 10}\n"), 1);
+  double energy = sim.MechanicalEnergy();
+  for (double t = 1.0; t <= 200.0; t += 1.0) {
+    sim.AdvanceTo(t);
+    const double e = sim.MechanicalEnergy();
+    // 1 kJ per second of integration error, as for the moored vessel's surge decay.
+    EXPECT_LE(e, energy + 1e3) << "t = " << t;
+    energy = e;
+  }
+  // The turret came back to the lines' orientation: the turret's heading psi + alpha ~ 0.
+  EXPECT_LT(std::abs(Heading(sim) + TurretAngle(sim)), 0.5 * kDeg);
+  EXPECT_NEAR(Heading(sim), 10.0 * kDeg, 0.5 * kDeg);  // no yaw stiffness on the hull
+}
+
+}  // namespace
+}  // namespace moorsim::simulation
