@@ -181,8 +181,12 @@ double LineForceTable::VerticalTension(double span, double* d_dspan) const {
 // ---------------------------------------------------------------------------------------
 // QuasiStaticMooring
 
-QuasiStaticMooring::QuasiStaticMooring(std::vector<std::shared_ptr<const LineForceTable>> lines)
-    : lines_(std::move(lines)) {
+QuasiStaticMooring::QuasiStaticMooring(std::vector<std::shared_ptr<const LineForceTable>> lines,
+                                       std::optional<TurretModel> turret)
+    : lines_(std::move(lines)), turret_(turret) {
+  if (turret_ && !(turret_->centre.allFinite() && std::isfinite(turret_->heading))) {
+    throw InputError("hypothesis_bank.turret: centre and heading must be finite");
+  }
   for (const auto& line : lines_) {
     if (line == nullptr) throw Error("QuasiStaticMooring: null line table");
   }
@@ -193,8 +197,21 @@ Vec3 QuasiStaticMooring::LineLoad(int index, const Vec3& eta, Mat3* J_load_eta) 
   const double c = std::cos(eta.z());
   const double s = std::sin(eta.z());
   const Eigen::Vector2d& rb = table.fairlead_body().head<2>();
-  const Eigen::Vector2d r(c * rb.x() - s * rb.y(), s * rb.x() + c * rb.y());  // R rb
-  const Eigen::Vector2d dr_dpsi(-r.y(), r.x());
+  // The fairlead's offset r from (x, y) and the lever of its force about (x, y): the fairlead
+  // itself on a locked turret; on a turning one, the turret centre (R c), about which the
+  // fairlead holds its absolute direction.
+  Eigen::Vector2d r, lever;
+  if (turret_) {
+    const Eigen::Vector2d& centre = turret_->centre;
+    lever = Eigen::Vector2d(c * centre.x() - s * centre.y(), s * centre.x() + c * centre.y());
+    const double ct = std::cos(turret_->heading), st = std::sin(turret_->heading);
+    const Eigen::Vector2d arm = rb - centre;
+    r = lever + Eigen::Vector2d(ct * arm.x() - st * arm.y(), st * arm.x() + ct * arm.y());
+  } else {
+    r = Eigen::Vector2d(c * rb.x() - s * rb.y(), s * rb.x() + c * rb.y());  // R rb
+    lever = r;
+  }
+  const Eigen::Vector2d dr_dpsi(-lever.y(), lever.x());                    // = d lever / d psi
   const Eigen::Vector2d d = table.anchor().head<2>() - eta.head<2>() - r;  // fairlead->anchor
   const double span = d.norm();
   if (J_load_eta != nullptr) J_load_eta->setZero();
@@ -203,7 +220,7 @@ Vec3 QuasiStaticMooring::LineLoad(int index, const Vec3& eta, Mat3* J_load_eta) 
   double dh = 0.0;
   const double h = table.HorizontalTension(span, J_load_eta != nullptr ? &dh : nullptr);
   const Eigen::Vector2d force = h * u;
-  const double moment = r.x() * force.y() - r.y() * force.x();
+  const double moment = lever.x() * force.y() - lever.y() * force.x();
   if (J_load_eta != nullptr) {
     // dF/dp with p the fairlead; dp/d(x, y) = I, dp/dpsi = dr_dpsi.
     const Eigen::Matrix2d uu = u * u.transpose();
@@ -212,10 +229,11 @@ Vec3 QuasiStaticMooring::LineLoad(int index, const Vec3& eta, Mat3* J_load_eta) 
     J.topLeftCorner<2, 2>() = dF_dp;
     const Eigen::Vector2d dF_dpsi = dF_dp * dr_dpsi;
     J.block<2, 1>(0, 2) = dF_dpsi;
-    // Mz = r x F: d/d(x, y) = r x dF/d(x, y); d/dpsi = dr/dpsi x F + r x dF/dpsi.
-    for (int k = 0; k < 2; ++k) J(2, k) = r.x() * dF_dp(1, k) - r.y() * dF_dp(0, k);
-    J(2, 2) = dr_dpsi.x() * force.y() - dr_dpsi.y() * force.x() + r.x() * dF_dpsi.y() -
-              r.y() * dF_dpsi.x();
+    // Mz = lever x F: d/d(x, y) = lever x dF/d(x, y); d/dpsi = dlever/dpsi x F + lever x
+    // dF/dpsi.
+    for (int k = 0; k < 2; ++k) J(2, k) = lever.x() * dF_dp(1, k) - lever.y() * dF_dp(0, k);
+    J(2, 2) = dr_dpsi.x() * force.y() - dr_dpsi.y() * force.x() + lever.x() * dF_dpsi.y() -
+              lever.y() * dF_dpsi.x();
   }
   return Vec3(force.x(), force.y(), moment);
 }
@@ -294,6 +312,7 @@ HypothesisBank::HypothesisBank(const mooring_fem::MooringParameters& spec,
     throw InputError("hypothesis_bank.reference_pose: must be finite");
   }
   reference_pose_ = options.reference_pose;
+  turret_ = options.turret;
   for (const mooring_fem::LineParameters& line_spec : spec.lines) {
     const mooring_fem::LineProperties p = mooring_fem::MakeLineProperties(spec, line_spec);
     const mooring_fem::CatenaryLineProperties line{p.length, p.weight_per_length,
@@ -321,7 +340,7 @@ void HypothesisBank::Add(std::vector<int> failed) {
   }
   Hypothesis hypothesis;
   hypothesis.failed = std::move(failed);
-  hypothesis.mooring = QuasiStaticMooring(std::move(intact));
+  hypothesis.mooring = QuasiStaticMooring(std::move(intact), turret_);
   Mat3 J;
   hypothesis.mooring.Load(reference_pose_, &J);
   hypothesis.stiffness = -J;

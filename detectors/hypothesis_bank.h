@@ -17,6 +17,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -106,6 +107,16 @@ class LineForceTable {
   std::vector<double> h_, dh_, v_, dv_;  // per node: H, dH/dspan, V, dV/dspan
 };
 
+/// A turret that turns on its bearing (vessel/turret.h: free or friction), as the
+/// quasi-static mooring sees it: the lines hold the turret at a fixed absolute heading
+/// `heading` (its heading at the start) while the hull turns about the turret centre
+/// `centre` (body x, y) [m]. Friction is left out: the observers cannot know whether the
+/// bearing slips.
+struct TurretModel {
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  double heading = 0.0;  ///< [rad]
+};
+
 /// Net horizontal load of a set of intact lines on the vessel (TAPM thesis eq. 3.15-3.16 with
 /// the fairleads' true positions): line i's fairlead is at
 ///   p_i = (x, y) + Rz(psi) fairlead_body_i.xy,
@@ -114,12 +125,17 @@ class LineForceTable {
 /// u_i = (a_i - p_i) / |a_i - p_i|. The Jacobian is analytic:
 ///   dF_i/dp = -H' u u^T - (H/s) (I - u u^T),   dp/dpsi = S r_i,  r_i = R fairlead_body.xy.
 /// A span of exactly 0 (fairlead over the anchor) contributes no force and no Jacobian.
-/// Allocates nothing per call.
+/// With a turning turret (TurretModel: centre c, heading psi_t) the fairleads sit at
+///   p_i = (x, y) + Rz(psi) c + Rz(psi_t) (fairlead_body_i.xy - c)
+/// and the hull feels the lines' net force at the turret centre: Mz = sum_i (R c) x F_i
+/// (dp/dpsi = S R c). Allocates nothing per call.
 class QuasiStaticMooring {
  public:
   /// No lines: zero load.
   QuasiStaticMooring() = default;
-  explicit QuasiStaticMooring(std::vector<std::shared_ptr<const LineForceTable>> lines);
+  /// `turret`: unset = the fairleads fixed to the hull (a locked turret).
+  explicit QuasiStaticMooring(std::vector<std::shared_ptr<const LineForceTable>> lines,
+                              std::optional<TurretModel> turret = std::nullopt);
 
   int num_lines() const { return static_cast<int>(lines_.size()); }
   const LineForceTable& line(int index) const { return *lines_[index]; }
@@ -132,8 +148,11 @@ class QuasiStaticMooring {
   /// Load of the line with list index `index` alone (Earth frame), with its Jacobian.
   Vec3 LineLoad(int index, const Vec3& eta, Mat3* J_load_eta = nullptr) const;
 
+  const std::optional<TurretModel>& turret() const { return turret_; }
+
  private:
   std::vector<std::shared_ptr<const LineForceTable>> lines_;
+  std::optional<TurretModel> turret_;
 };
 
 /// The low-frequency manoeuvring model of the vessel in surge, sway and yaw (TAPM thesis eq.
@@ -164,6 +183,8 @@ struct HypothesisBankOptions {
   /// the station-keeping setpoint where that differs (the thesis cases hold heading
   /// -135 deg, with the turret's fairleads turned to match).
   Vec3 reference_pose = Vec3::Zero();
+  /// The turret on its bearing; unset = locked to the hull.
+  std::optional<TurretModel> turret;
   LineForceTableOptions table;
 };
 
@@ -210,6 +231,7 @@ class HypothesisBank {
   void Add(std::vector<int> failed);
 
   Vec3 reference_pose_ = Vec3::Zero();
+  std::optional<TurretModel> turret_;
   std::vector<std::shared_ptr<const LineForceTable>> tables_;
   std::vector<Hypothesis> hypotheses_;
 };

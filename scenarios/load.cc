@@ -267,7 +267,8 @@ void ParseEnvironment(const Reader& r, Scenario& scenario) {
 }
 
 void ParseController(const Reader& r, Scenario& scenario) {
-  r.CheckKeys({"damping_ratio", "kd", "ki", "kp", "natural_period", "rate_hz", "setpoint", "type"});
+  r.CheckKeys({"damping_ratio", "heading", "kd", "ki", "kp", "natural_period", "rate_hz",
+               "setpoint", "type"});
   ControllerSpec& c = scenario.controller;
   c.type = r.Required<std::string>("type");
   r.Optional("rate_hz", c.rate);
@@ -281,6 +282,11 @@ void ParseController(const Reader& r, Scenario& scenario) {
   r.Optional("kd", c.kd);
   r.Optional("natural_period", c.natural_period);
   r.Optional("damping_ratio", c.damping_ratio);
+  if (std::optional<Reader> h = r.Find("heading")) {
+    h->CheckKeys({"damping_ratio", "natural_period"});
+    c.heading = ControllerSpec::HeadingLoop{h->Required<double>("natural_period"),
+                                            h->Required<double>("damping_ratio")};
+  }
 }
 
 void ParseNoise(const Reader& r, ChannelNoiseSpec& n) {
@@ -970,6 +976,16 @@ void CheckController(const Checker& check, const ControllerSpec& c) {
   check.AtMost("controller.natural_period", c.natural_period, 10000.0, "s");
   check.NonNegative("controller.damping_ratio", c.damping_ratio, "");
   check.AtMost("controller.damping_ratio", c.damping_ratio, 10.0, "");
+  if (c.heading) {
+    if (c.type != "pi") {
+      check.Fail("controller.heading",
+                 "sizes the pi controller's heading loop; controller.type is '" + c.type + "'");
+    }
+    check.Positive("controller.heading.natural_period", c.heading->natural_period, "s");
+    check.AtMost("controller.heading.natural_period", c.heading->natural_period, 10000.0, "s");
+    check.Positive("controller.heading.damping_ratio", c.heading->damping_ratio, "");
+    check.AtMost("controller.heading.damping_ratio", c.heading->damping_ratio, 10.0, "");
+  }
 }
 
 // One noise channel; `unit` of its values and `scale` their largest sensible size (for

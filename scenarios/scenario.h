@@ -185,6 +185,14 @@ struct ControllerSpec {
   Vec3 kd = Vec3::Zero();         ///< pi: [N s/m, N s/m, N m s/rad]
   double natural_period = 0.0;    ///< observer_pid: 2 pi / omega_n [s]; 0 = its default
   double damping_ratio = 0.0;     ///< observer_pid: zeta [-]; 0 = its default
+  /// pi: the heading loop's gains sized from a closed-loop natural period [s] and damping
+  /// ratio (vessel::SizeAxisGains with the yaw inertia and damping); they replace kp[3],
+  /// ki[3] and kd[3]. Unset = the given gains.
+  struct HeadingLoop {
+    double natural_period = 0.0;
+    double damping_ratio = 0.0;
+  };
+  std::optional<HeadingLoop> heading;
 };
 
 struct ChannelNoiseSpec {

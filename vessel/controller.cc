@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include "core/error.h"
 
@@ -164,6 +165,25 @@ Vec3 PiController::Update(const PoseMeasurementInput& measurement) {
   const Vec3 force_ned = options_.kp.cwiseProduct(error) + options_.ki.cwiseProduct(integral_) +
                          options_.kd.cwiseProduct(rate);
   return NedToBody(-force_ned, held_pose_[2]);
+}
+
+AxisGains SizeAxisGains(double mass, double damping, double stiffness, double natural_period,
+                        double damping_ratio) {
+  Require(std::isfinite(mass) && mass > 0.0, "gains.mass", mass, "must be finite and > 0");
+  Require(std::isfinite(damping) && damping >= 0.0, "gains.damping", damping,
+          "must be finite and >= 0");
+  Require(std::isfinite(stiffness) && stiffness >= 0.0, "gains.stiffness", stiffness,
+          "must be finite and >= 0");
+  Require(std::isfinite(natural_period) && natural_period > 0.0, "gains.natural_period",
+          natural_period, "must be finite and > 0 s");
+  Require(std::isfinite(damping_ratio) && damping_ratio > 0.0, "gains.damping_ratio", damping_ratio,
+          "must be finite and > 0");
+  const double wn = 2.0 * std::numbers::pi / natural_period;
+  AxisGains g;
+  g.kp = std::max(0.0, mass * wn * wn - stiffness);
+  g.kd = std::max(0.0, 2.0 * damping_ratio * wn * mass - damping);
+  g.ki = g.kp * wn / 10.0;
+  return g;
 }
 
 Vec3 PiController::EstimatedPose() const { return Vec3::Constant(std::nan("")); }

@@ -99,6 +99,23 @@ class PositionController {
 };
 
 // ---------------------------------------------------------------------------------------
+// Gains from a closed-loop bandwidth.
+
+/// Gains of one degree of freedom m x'' + d x' + k x = tau under tau = -(kp x + kd x' + ki
+/// int x), placed so that the closed loop's dominant poles have natural frequency omega_n =
+/// 2 pi / natural_period and relative damping zeta, with the integral action a decade below
+/// (the usual DP rule, Fossen 2011 section 12.2):
+///   kp = max(0, m omega_n^2 - k),  kd = max(0, 2 zeta omega_n m - d),  ki = kp omega_n / 10.
+/// A plant whose own damping d exceeds 2 zeta omega_n m needs no kd and ends more damped
+/// than zeta; one whose stiffness exceeds m omega_n^2 needs no kp. Throws moorsim::InputError
+/// on a non-positive mass, period or zeta, or a negative damping or stiffness.
+struct AxisGains {
+  double kp = 0.0, kd = 0.0, ki = 0.0;
+};
+AxisGains SizeAxisGains(double mass, double damping, double stiffness, double natural_period,
+                        double damping_ratio);
+
+// ---------------------------------------------------------------------------------------
 // PI (PID) on the measured pose: the TAPM thesis's controller.
 
 struct PiControllerOptions {

@@ -236,6 +236,72 @@ TEST_F(HypothesisBankTest, JacobianMatchesCentralDifferences) {
   }
 }
 
+// A turret on its bearing: the fairleads hold their absolute direction about the turret
+// centre while the hull turns; the hull feels the net force at the centre. Against
+// SolveLineCatenary with the fairleads placed by hand, the analytic Jacobian against central
+// differences, and with the centre at the reference point no yaw stiffness at all.
+Vec3 DirectTurretLoad(const mooring_fem::MooringParameters& spec, const Vec3& eta,
+                      const TurretModel& turret) {
+  const double c = std::cos(eta.z()), s = std::sin(eta.z());
+  const double ct = std::cos(turret.heading), st = std::sin(turret.heading);
+  const Eigen::Vector2d& k = turret.centre;
+  const Vec3 centre(eta.x() + c * k.x() - s * k.y(), eta.y() + s * k.x() + c * k.y(), 0.0);
+  Vec3 load = Vec3::Zero();
+  for (std::size_t i = 0; i < spec.lines.size(); ++i) {
+    const Vec3& fb = spec.lines[i].fairlead_body;
+    const Eigen::Vector2d arm = fb.head<2>() - k;
+    const Vec3 fairlead(centre.x() + ct * arm.x() - st * arm.y(),
+                        centre.y() + st * arm.x() + ct * arm.y(), fb.z());
+    const Vec3 f = mooring_fem::SolveLineCatenary(CatenaryOf(spec, static_cast<int>(i)),
+                                                  spec.lines[i].anchor, fairlead)
+                       .fairlead_force;
+    const Vec3 lever = centre - Vec3(eta.x(), eta.y(), 0.0);
+    load += Vec3(f.x(), f.y(), lever.x() * f.y() - lever.y() * f.x());
+  }
+  return load;
+}
+
+TEST_F(HypothesisBankTest, TurningTurretLoadJacobianAndNoYawStiffnessAtTheCentre) {
+  HypothesisBankOptions options;
+  options.turret = TurretModel{Eigen::Vector2d(30.0, 2.0), 0.2};
+  const HypothesisBank bank(*spec_, options);
+  const QuasiStaticMooring& mooring = bank.mooring(0);
+  for (const Vec3& eta : {Vec3(0.0, 0.0, 0.2), Vec3(12.0, -7.0, 0.5), Vec3(-40.0, 25.0, -0.4)}) {
+    const Vec3 expected = DirectTurretLoad(*spec_, eta, *options.turret);
+    const Vec3 got = mooring.Load(eta);
+    EXPECT_NEAR(got.x(), expected.x(), 100.0) << eta.transpose();
+    EXPECT_NEAR(got.y(), expected.y(), 100.0) << eta.transpose();
+    EXPECT_NEAR(got.z(), expected.z(), 2000.0) << eta.transpose();
+    Mat3 J;
+    mooring.Load(eta, &J);
+    const Vec3 steps(1e-3, 1e-3, 1e-6);
+    for (int k = 0; k < 3; ++k) {
+      Vec3 plus = eta, minus = eta;
+      plus(k) += steps(k);
+      minus(k) -= steps(k);
+      const Vec3 fd = (mooring.Load(plus) - mooring.Load(minus)) / (2.0 * steps(k));
+      const double scale = (k < 2 ? 1e5 : 1e7);
+      for (int r = 0; r < 3; ++r) {
+        EXPECT_NEAR(J(r, k), fd(r), 1e-6 * (r < 2 ? scale : 30.0 * scale))
+            << eta.transpose() << " J(" << r << "," << k << ")";
+      }
+    }
+  }
+  // The centre at the reference point: the hull can turn without moving a line.
+  HypothesisBankOptions centred;
+  centred.turret = TurretModel{Eigen::Vector2d::Zero(), 0.0};
+  const HypothesisBank free_bank(*spec_, centred);
+  const Vec3 at_rest = free_bank.mooring(0).Load(Vec3::Zero());
+  for (const double psi : {0.3, -1.0, 2.5}) {
+    const Vec3 turned = free_bank.mooring(0).Load(Vec3(0.0, 0.0, psi));
+    EXPECT_NEAR((turned - at_rest).head<2>().norm(), 0.0, 1e-6);
+    EXPECT_EQ(turned.z(), 0.0);
+  }
+  EXPECT_EQ(free_bank.stiffness(0)(2, 2), 0.0);
+  // The locked bank's yaw stiffness is the seed's 5.7e8 N m/rad.
+  EXPECT_GT(bank_->stiffness(0)(2, 2), 5e8);
+}
+
 TEST_F(HypothesisBankTest, SizesAndLabels) {
   EXPECT_EQ(bank_->num_lines(), 8);
   EXPECT_EQ(bank_->size(), 9);

@@ -94,6 +94,7 @@ controller:
   kd: [0, 0, 0]
   natural_period: 120
   damping_ratio: 0.8
+  heading: {natural_period: 200, damping_ratio: 0.8}
 sensors:
   gnss:
     rate_hz: 1
@@ -597,7 +598,7 @@ inline const BadInput kValidationErrors[] = {
      "sensors.gnss.north.outlier_std_dev: 2000 m must be <= 1000"},
     {"GnssDropoutDurationHuge", "gnss:", "dropout_mean_duration: 5", "dropout_mean_duration: 1e8",
      "1e8", "sensors.gnss.dropout_mean_duration: 1e+08 s must be <= 1e+07"},
-    {"GyroStdDevAboveHalfATurn", "heading:", "std_dev: 0.07", "std_dev: 4", "4",
+    {"GyroStdDevAboveHalfATurn", "heading: {std_dev", "std_dev: 0.07", "std_dev: 4", "4",
      "sensors.gyro.heading.std_dev: 4 rad must be <= 3.141592653589793"},
     {"TensionNoiseHuge", "tension_cells:", "std_dev: 1.0e4", "std_dev: 1.0e9", "1.0e9",
      "sensors.tension_cells.noise.std_dev: 1e+09 N must be <= 1e+08"},
@@ -634,6 +635,14 @@ inline const BadInput kValidationErrors[] = {
      "vessel.turret.friction_coefficient: -0.01 must be >= 0"},
     {"TurretSlipRateZero", "turret:", "slip_rate: 1.0e-5", "slip_rate: 0", "slip_rate: ^0",
      "vessel.turret.slip_rate: 0 rad/s must be > 0"},
+    {"HeadingLoopPeriodZero", "heading:", "natural_period: 200", "natural_period: 0",
+     "natural_period: ^0", "controller.heading.natural_period: 0 s must be > 0"},
+    {"HeadingLoopDampingNegative", "heading:", "damping_ratio: 0.8", "damping_ratio: -0.8",
+     "damping_ratio: ^-0.8", "controller.heading.damping_ratio: -0.8 must be > 0"},
+    {"HeadingLoopOnAnotherController", "controller:", "type: pi", "type: observer_pid",
+     "heading: ^{",
+     "controller.heading: sizes the pi controller's heading loop; "
+     "controller.type is 'observer_pid'"},
     {"DetectionTrainingSeedNegative", "detection:", "training_seed: 3", "training_seed: -3",
      "training_seed: ^-3", "detection.training_seed: -3 must be a non-negative integer"},
     {"DetectionSwitchRateHuge", "observer: ekf", "switch_rate: 0.01", "switch_rate: 2000",

@@ -573,5 +573,28 @@ TEST(ObserverPidController, BandwidthGainsFollowTheMssRule) {
   EXPECT_NEAR(controller.kp().x(), 2.97e5, 0.01e5);
 }
 
+// SizeAxisGains: with its kp and kd the loop m s^2 + (d + kd) s + (k + kp) has the asked
+// natural frequency and damping (the integral a decade below moves them by ~1 %); a plant
+// damped beyond zeta gets kd = 0, a stiffer one kp = 0.
+TEST(SizeAxisGains, PlacesTheClosedLoopAtThePeriodAndDamping) {
+  const double m = 4.38e11, d = m / 20.0;  // the seed FPSO's yaw, MSS damping rule
+  const double period = 120.0, zeta = 0.9;
+  const AxisGains g = SizeAxisGains(m, d, 0.0, period, zeta);
+  const double wn = 2.0 * M_PI / period;
+  EXPECT_NEAR(std::sqrt(g.kp / m), wn, 1e-12 * wn);
+  EXPECT_NEAR((d + g.kd) / (2.0 * m * wn), zeta, 1e-12);
+  EXPECT_NEAR(g.ki, g.kp * wn / 10.0, 1e-9 * g.ki);
+  // 200 s at 0.8: the hull's own damping 1 / (2 x 20 s x omega_n) = 0.796 is nearly all.
+  const AxisGains slow = SizeAxisGains(m, d, 0.0, 200.0, 0.5);
+  EXPECT_EQ(slow.kd, 0.0);
+  EXPECT_GT(slow.kp, 0.0);
+  const AxisGains stiff = SizeAxisGains(m, d, 1e12, 200.0, 0.8);
+  EXPECT_EQ(stiff.kp, 0.0);
+  EXPECT_EQ(stiff.ki, 0.0);
+  EXPECT_THROW(SizeAxisGains(m, d, 0.0, 0.0, 0.8), InputError);
+  EXPECT_THROW(SizeAxisGains(m, d, 0.0, 200.0, -1.0), InputError);
+  EXPECT_THROW(SizeAxisGains(-m, d, 0.0, 200.0, 0.8), InputError);
+}
+
 }  // namespace
 }  // namespace moorsim::vessel

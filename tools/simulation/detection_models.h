@@ -13,8 +13,9 @@
 namespace moorsim::simulation {
 
 struct DetectionModels {
-  /// Pairs from detection.pairs, the moored heave of the static start, and the reference
-  /// pose eta_ref = the controller's setpoint (default: the vessel's initial pose).
+  /// Pairs from detection.pairs, the moored heave of the static start, the reference
+  /// pose eta_ref = the controller's setpoint (default: the vessel's initial pose), and a
+  /// turret on its bearing (vessel.turret free or friction) held at the initial heading.
   detectors::HypothesisBankOptions bank;
   /// The vessel's own mass (with A(0)) and linear damping in surge, sway and yaw.
   detectors::LowFrequencyModel model;

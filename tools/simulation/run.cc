@@ -57,6 +57,10 @@ class RunWriter {
     velocity_ = file_.CreateTable("/vessel/velocity_true", 6, "m/s,m/s,m/s,rad/s,rad/s,rad/s",
                                   {"u", "v", "w", "p", "q", "r"});
     measured_ = file_.CreateTable("/vessel/pose_measured", 3, "m,m,rad", {"x", "y", "psi"});
+    if (sim.plant().turret_turns()) {
+      turret_ = file_.CreateTable("/vessel/turret", 4, "rad,rad/s,N m,N m",
+                                  {"angle", "rate", "moment_lines", "moment_bearing"});
+    }
     const int lines = sim.num_lines();
     std::vector<std::string> line_names;
     for (int i = 1; i <= lines; ++i) line_names.push_back("line " + std::to_string(i));
@@ -107,6 +111,7 @@ class RunWriter {
     Row(pose_lf_, s.pose_low_frequency);
     Row(velocity_, s.velocity);
     Row(measured_, s.pose_measured);
+    if (turret_ && s.turret) Row(*turret_, *s.turret);
     file_.Append(tension_, s.fairlead_tension);
     if (tension_measured_) {
       std::vector<double> row = s.tension_measured;
@@ -141,6 +146,7 @@ class RunWriter {
   output::TableId time_, pose_true_, pose_lf_, velocity_, measured_, tension_, commanded_,
       delivered_, mooring_, drift_, current_, wind_, thrust_;
   std::optional<output::TableId> tension_measured_;
+  std::optional<output::TableId> turret_;
   struct Tables {
     output::TableId score, decision, alarm;
   };

@@ -169,13 +169,24 @@ vessel::PoseSensorSpec PoseSensorSpec(const scenarios::SensorsSpec& s) {
   return spec;
 }
 
-vessel::ControllerSpec ControllerSpec(const scenarios::ControllerSpec& c, const Vec3& initial) {
+vessel::ControllerSpec ControllerSpec(const scenarios::ControllerSpec& c, const Vec3& initial,
+                                      const vessel::VesselModel& vessel) {
   vessel::ControllerSpec spec;
   spec.type = c.type;
   spec.setpoint = c.setpoint.value_or(initial);
   spec.pi.kp = c.kp;
   spec.pi.ki = c.ki;
   spec.pi.kd = c.kd;
+  if (c.heading) {
+    // The hull's yaw inertia with A66(0) and its linear yaw damping; no mooring stiffness
+    // (none about a turret on its bearing; a locked turret's only shortens the period).
+    const vessel::AxisGains yaw =
+        vessel::SizeAxisGains(vessel.mass()(5, 5), vessel.parameters().linear_damping(5, 5), 0.0,
+                              c.heading->natural_period, c.heading->damping_ratio);
+    spec.pi.kp(2) = yaw.kp;
+    spec.pi.kd(2) = yaw.kd;
+    spec.pi.ki(2) = yaw.ki;
+  }
   if (c.natural_period > 0.0) spec.observer_pid.natural_frequency = 2 * M_PI / c.natural_period;
   if (c.damping_ratio > 0.0) spec.observer_pid.relative_damping = c.damping_ratio;
   return spec;
@@ -397,8 +408,9 @@ Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed)
     plant_->AddLoad(&*parts_->wind);
   }
   parts_->sensors.emplace(PoseSensorSpec(scenario_.sensors), seed_);
-  parts_->controller = vessel::MakeController(ControllerSpec(scenario_.controller, v.initial_pose),
-                                              1.0 / scenario_.controller.rate);
+  parts_->controller =
+      vessel::MakeController(ControllerSpec(scenario_.controller, v.initial_pose, plant_->model()),
+                             1.0 / scenario_.controller.rate);
   parts_->allocator.emplace(plant_->thrusters());
   parts_->thruster_dynamics.emplace(plant_->thrusters());
   parts_->directions.resize(plant_->num_thrusters());
@@ -717,6 +729,13 @@ Sample Simulation::Record() {
   s.pose_measured = last_measurement_;
   s.fairlead_tension = FairleadTensions();  // also leaves the mooring load in system_
   s.load_mooring = system_->attachment_load();
+  if (plant_->turret_turns()) {
+    double lines = 0.0, bearing = 0.0;
+    plant_->TurretMoments(x_.data(), s.load_mooring, &lines, &bearing);
+    const int a = plant_->turret_state();
+    s.turret = Eigen::Vector4d(x_[a], x_[a + 1] - nu(5), lines, bearing);
+    s.load_mooring(5) += bearing - lines;
+  }
   s.load_thrust = plant_->ThrustLoad(x_.data());
   s.thrust_delivered = Vec3(s.load_thrust(0), s.load_thrust(1), s.load_thrust(5));
   s.thrust_commanded = tau_command_;

@@ -53,7 +53,14 @@ struct Sample {
   std::vector<double> fairlead_tension;  ///< per line [N]
   Vec3 thrust_commanded = Vec3::Zero();  ///< controller output X, Y, N (body)
   Vec3 thrust_delivered = Vec3::Zero();  ///< from the delivered thrust states
-  Vec6 load_mooring = Vec6::Zero();      ///< body-frame loads
+  /// With the turret on a bearing: its angle to the hull [rad], its rate relative to the
+  /// hull [rad/s], the lines' moment about its axis and the bearing's moment on the hull
+  /// [N m]; unset for a locked turret.
+  std::optional<Eigen::Vector4d> turret;
+  /// Body-frame loads on the hull about its origin (the mooring's as the hull feels it:
+  /// with a turret on a bearing, its yaw moment is the net force's at the turret centre
+  /// plus the bearing's).
+  Vec6 load_mooring = Vec6::Zero();
   Vec6 load_wave_drift = Vec6::Zero();
   Vec6 load_current = Vec6::Zero();
   Vec6 load_wind = Vec6::Zero();
