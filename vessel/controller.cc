@@ -140,15 +140,7 @@ Vec3 PiController::Update(const PoseMeasurementInput& measurement) {
     }
   }
 
-  Vec3 error = held_pose_ - setpoint_;
-  error[2] = WrapToPi(error[2]);
-  for (int i = 0; i < 3; ++i) {
-    if (!fresh[static_cast<std::size_t>(i)]) continue;  // no integration on held data
-    integral_[i] += dt_ * error[i];
-    ClampIntegral(options_.ki, options_.integral_limit, i, &integral_);
-  }
-
-  // Derivative of the low-passed measurement (exact discrete first-order lag).
+  // The low-passed measurement (exact discrete first-order lag) and its derivative.
   Vec3 rate = Vec3::Zero();
   if (!started_) {
     filtered_pose_ = held_pose_;
@@ -160,6 +152,18 @@ Vec3 PiController::Update(const PoseMeasurementInput& measurement) {
     filtered_pose_ += step;
     filtered_pose_[2] = WrapToPi(filtered_pose_[2]);
     rate = step / dt_;
+  }
+
+  Vec3 error = held_pose_ - setpoint_;
+  for (int i = 0; i < 3; ++i) {
+    if (options_.filtered_error[static_cast<std::size_t>(i)])
+      error[i] = filtered_pose_[i] - setpoint_[i];
+  }
+  error[2] = WrapToPi(error[2]);
+  for (int i = 0; i < 3; ++i) {
+    if (!fresh[static_cast<std::size_t>(i)]) continue;  // no integration on held data
+    integral_[i] += dt_ * error[i];
+    ClampIntegral(options_.ki, options_.integral_limit, i, &integral_);
   }
 
   const Vec3 force_ned = options_.kp.cwiseProduct(error) + options_.ki.cwiseProduct(integral_) +

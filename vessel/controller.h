@@ -129,8 +129,12 @@ struct PiControllerOptions {
   /// [N, N, N m]; 0 = no limit.
   Vec3 integral_limit = Vec3::Zero();
   /// Time constant [s] of the first-order low-pass on the measured pose that the derivative
-  /// term differentiates (backward difference); 0 = raw samples. Only used if kd != 0.
+  /// term differentiates (backward difference); 0 = raw samples.
   double derivative_filter_time = 10.0;
+  /// Per DOF: the P and I terms act on the low-passed pose instead of the raw sample (a
+  /// heading loop with gains large enough to hold a free turret's hull would otherwise
+  /// pass the gyro's noise straight to the thrusters). Default: raw, as the TAPM thesis.
+  std::array<bool, 3> filtered_error = {false, false, false};
 };
 
 /// The TAPM controller of the TAPM thesis (section 4.3, the MSS PID block, eq. 4.1-4.2), in the

@@ -219,10 +219,21 @@ PointKinematics VesselPlant::PointMotion(double t, const double* x, const Vec3& 
   const Vec3 r_body = turns ? OnTurret(x, r_fixed, &arm) : r_fixed;
   const Vec3 d_alpha(-arm.y(), arm.x(), 0.0);  // d r_body / d alpha = e_z x arm
   const double relative_rate = turns ? x[turret_state() + 1] - x[11] : 0.0;
-  // Wave-frequency displacement and velocity of the point in body axes.
-  const Vec3 r_rel = r_body + xi_.head<3>() + xi_.tail<3>().cross(r_body);
-  Vec3 v_body = v_lin + omega.cross(r_body) + xi_dot_.head<3>() + xi_dot_.tail<3>().cross(r_body);
-  if (turns) v_body += relative_rate * d_alpha;
+  // Wave-frequency displacement and velocity of the point in body axes. On a turning turret
+  // the hull's wave-frequency yaw does not turn the fairleads: the bearing leaves the
+  // turret's rotation about its axis to the lines; its centre and its roll and pitch follow
+  // the hull.
+  const Vec3 xi_r_arm(xi_(3), xi_(4), 0.0), xi_dot_r_arm(xi_dot_(3), xi_dot_(4), 0.0);
+  Vec3 r_rel, v_body;
+  if (turns) {
+    const Vec3 centre = r_body - arm;
+    r_rel = r_body + xi_.head<3>() + xi_.tail<3>().cross(centre) + xi_r_arm.cross(arm);
+    v_body = v_lin + omega.cross(r_body) + xi_dot_.head<3>() + xi_dot_.tail<3>().cross(centre) +
+             xi_dot_r_arm.cross(arm) + relative_rate * d_alpha;
+  } else {
+    r_rel = r_body + xi_.head<3>() + xi_.tail<3>().cross(r_body);
+    v_body = v_lin + omega.cross(r_body) + xi_dot_.head<3>() + xi_dot_.tail<3>().cross(r_body);
+  }
   PointKinematics k;
   k.position = Vec3(x[0], x[1], x[2]) + R * r_rel;
   k.velocity = R * v_body;
@@ -240,10 +251,10 @@ PointKinematics VesselPlant::PointMotion(double t, const double* x, const Vec3& 
     if (turns) {
       J->J_vel_nu.col(5) -= R * d_alpha;             // the relative rate is Omega - r
       const Vec3 dd_alpha(-arm.x(), -arm.y(), 0.0);  // d (e_z x arm) / d alpha
-      J->J_pos_extra.col(0) = R * (d_alpha + xi_.tail<3>().cross(d_alpha));
+      J->J_pos_extra.col(0) = R * (d_alpha + xi_r_arm.cross(d_alpha));
       J->J_pos_extra.col(1).setZero();
       J->J_vel_extra.col(0) =
-          R * (omega.cross(d_alpha) + xi_dot_.tail<3>().cross(d_alpha) + relative_rate * dd_alpha);
+          R * (omega.cross(d_alpha) + xi_dot_r_arm.cross(d_alpha) + relative_rate * dd_alpha);
       J->J_vel_extra.col(1) = R * d_alpha;
     }
   }

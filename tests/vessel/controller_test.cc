@@ -289,6 +289,28 @@ TEST(PiController, DerivativeOfARampIsItsSlopeAfterTheFilterSettles) {
   EXPECT_NEAR(tau.x(), -1e6 * 0.1, 1e-3);
 }
 
+TEST(PiController, FilteredErrorFollowsAHeadingStepThroughTheFirstOrderLag) {
+  // A 0.1 rad heading step at sample 1: with filtered_error on yaw the P term follows the
+  // 10 s lag, 1 - exp(-k dt / T) of the step after k samples; raw, it takes the whole step
+  // at once.
+  PiControllerOptions options;
+  options.kp = Vec3(0.0, 0.0, 1e8);
+  options.ki.setZero();
+  options.filtered_error = {false, false, true};
+  PiController filtered(options, Vec3::Zero(), 1.0);
+  options.filtered_error = {false, false, false};
+  PiController raw(options, Vec3::Zero(), 1.0);
+  PoseMeasurementInput m;
+  filtered.Update(m);
+  raw.Update(m);
+  m.pose = Vec3(0.0, 0.0, 0.1);
+  for (int k = 1; k <= 5; ++k) {
+    const double expected = -1e8 * 0.1 * (1.0 - std::exp(-k / 10.0));
+    EXPECT_NEAR(filtered.Update(m).z(), expected, 1e-6 * std::abs(expected)) << "k = " << k;
+    EXPECT_NEAR(raw.Update(m).z(), -1e7, 1e-6);
+  }
+}
+
 TEST(ObserverPidController, DropoutOfAChannelKeepsTheLoopOnTheModel) {
   // 30 s without x at t = 1500 s, closed loop with waves and noise: the estimate coasts on
   // the model and the command stays finite and bounded. What limits the coasting: b_hat

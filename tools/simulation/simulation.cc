@@ -186,6 +186,7 @@ vessel::ControllerSpec ControllerSpec(const scenarios::ControllerSpec& c, const 
     spec.pi.kp(2) = yaw.kp;
     spec.pi.kd(2) = yaw.kd;
     spec.pi.ki(2) = yaw.ki;
+    spec.pi.filtered_error[2] = true;
   }
   if (c.natural_period > 0.0) spec.observer_pid.natural_frequency = 2 * M_PI / c.natural_period;
   if (c.damping_ratio > 0.0) spec.observer_pid.relative_damping = c.damping_ratio;
