@@ -977,10 +977,6 @@ void CheckController(const Checker& check, const ControllerSpec& c) {
   check.NonNegative("controller.damping_ratio", c.damping_ratio, "");
   check.AtMost("controller.damping_ratio", c.damping_ratio, 10.0, "");
   if (c.heading) {
-    if (c.type != "pi") {
-      check.Fail("controller.heading",
-                 "sizes the pi controller's heading loop; controller.type is '" + c.type + "'");
-    }
     check.Positive("controller.heading.natural_period", c.heading->natural_period, "s");
     check.AtMost("controller.heading.natural_period", c.heading->natural_period, 10000.0, "s");
     check.Positive("controller.heading.damping_ratio", c.heading->damping_ratio, "");

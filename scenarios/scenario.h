@@ -187,7 +187,7 @@ struct ControllerSpec {
   double damping_ratio = 0.0;     ///< observer_pid: zeta [-]; 0 = its default
   /// pi: the heading loop's gains sized from a closed-loop natural period [s] and damping
   /// ratio (vessel::SizeAxisGains with the yaw inertia and damping); they replace kp[3],
-  /// ki[3] and kd[3]. Unset = the given gains.
+  /// ki[3] and kd[3]. Unset = the given gains. The other controllers do not read it.
   struct HeadingLoop {
     double natural_period = 0.0;
     double damping_ratio = 0.0;

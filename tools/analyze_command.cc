@@ -67,6 +67,16 @@ int Analyze(const AnalyzeOptions& o) {
                      ": vessel: the section is missing; analyze needs the vessel's mass and "
                      "damping for the observers' model");
   }
+  if (scenario.vessel->turret.bearing != "locked") {
+    // Each model must hold its pose on its own (Hassani et al. 2018, Theorem 2's stationary
+    // filters); on its bearing the turret leaves the heading to the controller, which the
+    // analysis does not model.
+    throw InputError(scenario.source_path + ": vessel.turret.bearing: '" +
+                     scenario.vessel->turret.bearing +
+                     "': analyze needs the mooring to hold the heading (a locked turret); with "
+                     "the turret on its bearing the controller holds it, which the analysis "
+                     "does not model (use --set vessel.turret.bearing=locked)");
+  }
   const auto start = std::chrono::steady_clock::now();
   // The simulation's static start gives the moored heave the bank's fairleads sit at, and
   // its plant the observers' mass and damping: the same models a run would detect with.

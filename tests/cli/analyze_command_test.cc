@@ -91,6 +91,9 @@ TEST_F(AnalyzeCommandTest, BadInputIsOneLineAndExitCodeTwo) {
   ExpectOneLineInputError(Run({"analyze", kThesis, "--set", "sensors.gnss.rate_hz=0"}),
                           {"sensors.gnss.rate_hz"});
   ExpectOneLineInputError(Run({"analyze", "/nonexistent/scenario.yaml"}), {"scenario.yaml"});
+  // The analysis needs the mooring to hold the heading.
+  ExpectOneLineInputError(Run({"analyze", kThesis, "--set", "vessel.turret.bearing=free"}),
+                          {"vessel.turret.bearing", "free", "locked"});
 }
 
 }  // namespace

@@ -639,10 +639,6 @@ inline const BadInput kValidationErrors[] = {
      "natural_period: ^0", "controller.heading.natural_period: 0 s must be > 0"},
     {"HeadingLoopDampingNegative", "heading:", "damping_ratio: 0.8", "damping_ratio: -0.8",
      "damping_ratio: ^-0.8", "controller.heading.damping_ratio: -0.8 must be > 0"},
-    {"HeadingLoopOnAnotherController", "controller:", "type: pi", "type: observer_pid",
-     "heading: ^{",
-     "controller.heading: sizes the pi controller's heading loop; "
-     "controller.type is 'observer_pid'"},
     {"DetectionTrainingSeedNegative", "detection:", "training_seed: 3", "training_seed: -3",
      "training_seed: ^-3", "detection.training_seed: -3 must be a non-negative integer"},
     {"DetectionSwitchRateHuge", "observer: ekf", "switch_rate: 0.01", "switch_rate: 2000",

@@ -174,7 +174,7 @@ TEST(ParseScenario, ReadsTheHullAndWindage) {
   EXPECT_EQ(p.vessel->windage.lateral_area, 5000.0);
 }
 
-// The library's scenarios give no hull or windage: theirs are the seed FPSO's, the defaults.
+// The library's scenarios give the seed FPSO's hull and windage: the defaults' values.
 TEST(ParseScenario, HullAndWindageDefaultToTheSeedFpso) {
   const Scenario s = LoadScenario(kSeedPath);
   ASSERT_TRUE(s.vessel.has_value());
