@@ -254,7 +254,10 @@ struct PreBreak {
   LinearGaussianModel model;
   SteadyStateFilter filter;
   double log_det_s = 0.0;
-  Eigen::LLT<MatX> s_llt;
+  // Computed before use (after the stationary pass). Constructed from an empty matrix so
+  // that moving a PreBreak never copies Eigen's uninitialised ComputationInfo (UBSan flags
+  // the load of an invalid enum value).
+  Eigen::LLT<MatX> s_llt{MatX()};
   VecX mean;
   MatX covariance;
 };
