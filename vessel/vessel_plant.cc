@@ -40,9 +40,15 @@ std::span<const int> VesselPlant::ExtraKinematicStates() const {
   return {turret_states_, 2};
 }
 
-Vec3 VesselPlant::OnTurret(const double* x, const Vec3& r_fixed, Vec3* arm) const {
+Vec3 VesselPlant::OnTurret(const double* x, const Vec3& r_fixed, Vec3* arm) {
+  // Every attachment point asks twice per right-hand side (motion, load) at the same angle.
   const double alpha = x[turret_state()];
-  const double c = std::cos(alpha), s = std::sin(alpha);
+  if (alpha != turret_angle_) {
+    turret_cos_ = std::cos(alpha);
+    turret_sin_ = std::sin(alpha);
+    turret_angle_ = alpha;
+  }
+  const double c = turret_cos_, s = turret_sin_;
   const double dx = r_fixed.x() - turret_.x, dy = r_fixed.y() - turret_.y;
   *arm = Vec3(c * dx - s * dy, s * dx + c * dy, r_fixed.z());
   return Vec3(turret_.x + arm->x(), turret_.y + arm->y(), r_fixed.z());

@@ -115,7 +115,7 @@ class VesselPlant final : public BodyPlant {
  private:
   // The attachment point r_fixed (body frame, turret angle 0) where the turret angle in x
   // puts it; `arm` = its offset from the turret centre (body frame).
-  Vec3 OnTurret(const double* x, const Vec3& r_fixed, Vec3* arm) const;
+  Vec3 OnTurret(const double* x, const Vec3& r_fixed, Vec3* arm);
   void UpdateSea(double t, const double* x);
   void UpdateRotation(const double* x);
   Vec6 PreloadCorrection(const double* x);
@@ -124,6 +124,8 @@ class VesselPlant final : public BodyPlant {
   std::vector<ThrusterSpec> thrusters_;
   TurretParameters turret_;
   int turret_states_[2] = {0, 0};
+  // cos and sin of the turret angle last asked for.
+  double turret_angle_ = 0.0, turret_cos_ = 1.0, turret_sin_ = 0.0;
   Eigen::Matrix<double, 6, Eigen::Dynamic> thrust_columns_;  // per thruster, body load of 1 N
   Eigen::VectorXd command_;
   const SeaResponse* sea_ = nullptr;
