@@ -23,8 +23,10 @@ struct Observation {
   double t = 0.0;                                  ///< [s]
   Vec3 pose = Vec3::Zero();                        ///< measured x, y [m] (NED), psi [rad]
   std::array<bool, 3> valid = {true, true, true};  ///< channels delivered at this sample
-  Vec3 tau_command = Vec3::Zero();                 ///< commanded thrust X, Y, N, body frame
-  std::optional<VecX> tensions;                    ///< fairlead tension cells [N], if fitted
+  /// Commanded thrust X, Y, N [N, N, N m], body frame, issued at this sample and held until
+  /// the next: the observers predict the coming interval with it.
+  Vec3 tau_command = Vec3::Zero();
+  std::optional<VecX> tensions;  ///< fairlead tension cells [N], if fitted
 };
 
 /// What one hypothesis's observer makes of a sample: its innovation (measurement minus

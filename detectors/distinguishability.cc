@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <sstream>
 #include <string>
 
@@ -31,12 +32,78 @@ Mat3 Rotation(double psi) {
   return r;
 }
 
-/// The augmented system of the file comment on z = [x; eps]: z_{t+1} = F z_t + c + noise
-/// of covariance W, innovation e_t = H z_t + v_t. With observation matrices C_i of the
-/// truth and C_j of the filter (equal for the hypotheses, not in general),
-///   e_t = (C_i - C_j) x_t + C_j eps_t + v_t,
-///   eps_{t+1} = (Phi_i - Phi_j - Phi_j K (C_i - C_j)) x_t + Phi_j (I - K C_j) eps_t
-///               + w_t - Phi_j K v_t + c_i - c_j.
+/// The controller closed around the truth, linearised about its setpoint (file comment,
+/// "Closed loop"), on its own state c (low-passed pose and integral, deviations, SI):
+///   c_t = A c_{t-1} + B y_t,   du_t = K c_{t-1} + D y_t   (y_t the measured deviation).
+/// Without feedback it has no state and du = 0: the thrust is held.
+struct Loop {
+  MatX A = MatX::Zero(0, 0);
+  MatX B = MatX::Zero(0, 3);
+  MatX K = MatX::Zero(3, 0);
+  MatX D = MatX::Zero(3, 3);
+};
+
+/// dR(psi)^T / dpsi.
+Mat3 RotationTransposeDerivative(double psi) {
+  const double c = std::cos(psi), s = std::sin(psi);
+  Mat3 d;
+  d << -s, c, 0.0, -c, -s, 0.0, 0.0, 0.0, 0.0;
+  return d;
+}
+
+/// The pi controller of vessel/controller.h at sample time dt, linearised about eta_ref =
+/// (.., psi) where the integral holds the rest thrust `tau_rest` (body):
+///   f_t = f_{t-1} + a (y_t - f_{t-1}),  a = 1 - exp(-dt / T_f) (1 without the filter),
+///   e_t = f_t where the error is filtered, y_t otherwise,   z_t = z_{t-1} + dt e_t,
+///   F_t = Kp e_t + Ki z_t + Kd a (y_t - f_{t-1}) / dt   (NED),   u_t = -R(psi_m)^T F_t,
+/// so du_t = -R^T dF_t + dR^T/dpsi R tau_rest dpsi_m: the measured heading also turns the
+/// standing force.
+Loop MakeLoop(const std::optional<PoseFeedback>& feedback, double dt, double psi,
+              const Vec3& tau_rest) {
+  Loop loop;
+  if (!feedback) return loop;
+  const PoseFeedback& fb = *feedback;
+  const double a =
+      fb.derivative_filter_time > 0.0 ? -std::expm1(-dt / fb.derivative_filter_time) : 1.0;
+  Mat3 S = Mat3::Zero();
+  for (int i = 0; i < 3; ++i) S(i, i) = fb.filtered_error[static_cast<std::size_t>(i)] ? 1.0 : 0.0;
+  const Mat3 I = Mat3::Identity();
+  const Mat3 error_of_f = (1.0 - a) * S;  // e_t = error_of_f f_{t-1} + error_of_y y_t
+  const Mat3 error_of_y = a * S + (I - S);
+  const Mat3 P = (fb.kp + dt * fb.ki).asDiagonal();  // Kp e_t + Ki (z_{t-1} + dt e_t)
+  const Mat3 Kd = (fb.kd * (a / dt)).asDiagonal();
+  const Mat3 Rt = Rotation(psi).transpose();
+  loop.A = MatX::Zero(6, 6);
+  loop.A.topLeftCorner(3, 3) = (1.0 - a) * I;
+  loop.A.bottomLeftCorner(3, 3) = dt * error_of_f;
+  loop.A.bottomRightCorner(3, 3) = I;
+  loop.B = MatX::Zero(6, 3);
+  loop.B.topRows(3) = a * I;
+  loop.B.bottomRows(3) = dt * error_of_y;
+  loop.K = MatX::Zero(3, 6);
+  loop.K.leftCols(3) = -Rt * (P * error_of_f - Kd);
+  loop.K.rightCols(3) = -Rt * Mat3(fb.ki.asDiagonal());
+  Mat3 D = -Rt * (P * error_of_y + Kd);
+  D.col(2) += RotationTransposeDerivative(psi) * Rotation(psi) * tau_rest;
+  loop.D = D;
+  return loop;
+}
+
+MatX InputMatrixOrZero(const LinearGaussianModel& m) {
+  return m.input_matrix.size() > 0 ? m.input_matrix : MatX::Zero(m.transition.rows(), 3);
+}
+
+/// The augmented system of the file comment on z = [x; c; eps]: z_{t+1} = F z_t + c + noise
+/// of covariance W, innovation e_t = H z_t + v_t, with x the truth, c the controller (none
+/// without feedback) and eps = x - x^- the filter's prediction error. With observation
+/// matrices C_i of the truth and C_j of the filter (equal for the hypotheses, not in
+/// general), input matrices G_i, G_j and the loop's du_t = K c + D (C_i x_t + v_t):
+///   x_{t+1}   = Phi_i x_t + G_i du_t + c_i + w_t,
+///   c_{t+1}   = A c_t + B (C_i x_t + v_t),
+///   eps_{t+1} = (Phi_i - Phi_j - Phi_j K_f (C_i - C_j)) x_t + Phi_j (I - K_f C_j) eps_t
+///               + (G_i - G_j) du_t + w_t - Phi_j K_f v_t + c_i - c_j,
+///   e_t       = (C_i - C_j) x_t + C_j eps_t + v_t,
+/// where v_t enters the next state through the controller too (correlated noise terms).
 struct Augmented {
   MatX F;
   VecX c;
@@ -44,29 +111,53 @@ struct Augmented {
   MatX H;
 };
 
-Augmented Augment(const LinearGaussianModel& truth, const LinearGaussianModel& filter_model,
-                  const SteadyStateFilter& filter) {
-  const int n = static_cast<int>(truth.transition.rows());
-  const MatX& C = filter_model.observation;
-  const MatX C_difference = truth.observation - C;
+/// `truth_transition` and `filter_transition` stand in for the models' own transitions (the
+/// transient takes them along its trajectories).
+Augmented Augment(const LinearGaussianModel& truth, const MatX& truth_transition,
+                  const LinearGaussianModel& filter_model, const MatX& filter_transition,
+                  const SteadyStateFilter& filter, const Loop& loop) {
+  const int n = static_cast<int>(truth_transition.rows());
+  const int nc = static_cast<int>(loop.A.rows());
+  const int N = 2 * n + nc;
+  const MatX& Cj = filter_model.observation;
+  const MatX& Ci = truth.observation;
+  const MatX C_difference = Ci - Cj;
+  const MatX Gi = InputMatrixOrZero(truth);
+  const MatX G_difference = Gi - InputMatrixOrZero(filter_model);
   const MatX identity = MatX::Identity(n, n);
-  const MatX PK = filter_model.transition * filter.gain;
+  const MatX PK = filter_transition * filter.gain;
   Augmented a;
-  a.F = MatX::Zero(2 * n, 2 * n);
-  a.F.topLeftCorner(n, n) = truth.transition;
-  a.F.bottomLeftCorner(n, n) = truth.transition - filter_model.transition - PK * C_difference;
-  a.F.bottomRightCorner(n, n) = filter_model.transition * (identity - filter.gain * C);
-  a.H.resize(C.rows(), 2 * n);
-  a.H << C_difference, C;
-  a.c.resize(2 * n);
+  a.F = MatX::Zero(N, N);
+  a.F.block(0, 0, n, n) = truth_transition + Gi * loop.D * Ci;
+  a.F.block(0, n, n, nc) = Gi * loop.K;
+  a.F.block(n, 0, nc, n) = loop.B * Ci;
+  a.F.block(n, n, nc, nc) = loop.A;
+  a.F.block(n + nc, 0, n, n) =
+      truth_transition - filter_transition - PK * C_difference + G_difference * loop.D * Ci;
+  a.F.block(n + nc, n, n, nc) = G_difference * loop.K;
+  a.F.block(n + nc, n + nc, n, n) = filter_transition * (identity - filter.gain * Cj);
+  a.H = MatX::Zero(Cj.rows(), N);
+  a.H.leftCols(n) = C_difference;
+  a.H.rightCols(n) = Cj;
+  a.c = VecX::Zero(N);
   a.c.head(n) = truth.input;
   a.c.tail(n) = truth.input - filter_model.input;
-  a.W.resize(2 * n, 2 * n);
-  a.W.topLeftCorner(n, n) = truth.process_noise;
-  a.W.topRightCorner(n, n) = truth.process_noise;
-  a.W.bottomLeftCorner(n, n) = truth.process_noise;
-  a.W.bottomRightCorner(n, n) = truth.process_noise + PK * truth.measurement_noise * PK.transpose();
+  MatX process = MatX::Zero(N, n);  // how w_t enters
+  process.topRows(n) = identity;
+  process.bottomRows(n) = identity;
+  MatX measurement(N, Cj.rows());  // how v_t enters
+  measurement.topRows(n) = Gi * loop.D;
+  measurement.middleRows(n, nc) = loop.B;
+  measurement.bottomRows(n) = G_difference * loop.D - PK;
+  a.W = process * truth.process_noise * process.transpose() +
+        measurement * truth.measurement_noise * measurement.transpose();
+  a.W = 0.5 * (a.W + a.W.transpose()).eval();
   return a;
+}
+
+Augmented Augment(const LinearGaussianModel& truth, const LinearGaussianModel& filter_model,
+                  const SteadyStateFilter& filter, const Loop& loop = Loop()) {
+  return Augment(truth, truth.transition, filter_model, filter_model.transition, filter, loop);
 }
 
 /// Sigma = F Sigma F^T + W by doubling (Smith's method): after k steps Sigma holds the sum
@@ -122,6 +213,8 @@ class LinearisedBank {
     }
     const Eigen::LLT<Mat3> mass(0.5 * (model.mass + model.mass.transpose()));
     const Mat3 mass_inverse = mass.solve(Mat3::Identity());
+    thrust_input_ = MatX::Zero(kStates, 3);
+    thrust_input_.block<3, 3>(kVelocity, 0) = mass_inverse;
     scale_.resize(kStates);
     auto or_one = [](double v) { return v > 0.0 ? v : 1.0; };
     for (int i = 0; i < 3; ++i) {
@@ -166,7 +259,9 @@ class LinearisedBank {
   LinearGaussianModel Filter(int h, const Vec3& tau) const {
     const Vec3 tau_filter = ekf_.use_thrust_command ? tau : Vec3::Zero();
     const Vec3 rest_bias = -load_[h] - rotation_ * tau_filter;
-    return Linearise(h, rest_bias, tau_filter);
+    LinearGaussianModel m = Linearise(h, rest_bias, tau_filter);
+    if (!ekf_.use_thrust_command) m.input_matrix.setZero();  // it does not see the thrust
+    return m;
   }
 
   /// The scaled 15-state transition over dt of `model` from the low-frequency state `*x`
@@ -225,11 +320,13 @@ class LinearisedBank {
     m.transition = e.bottomRightCorner(n, n).transpose();
     const MatX q = m.transition * e.topRightCorner(n, n);
     m.process_noise = 0.5 * (q + q.transpose());
-    MatX hold = MatX::Zero(n + 1, n + 1);
+    MatX hold = MatX::Zero(n + 4, n + 4);
     hold.topLeftCorner(n, n) = A * dt_;
-    hold.topRightCorner(n, 1) = u * dt_;
+    hold.block(0, n, n, 1) = u * dt_;
+    hold.block(0, n + 1, n, 3) = scale_.cwiseInverse().asDiagonal() * thrust_input_ * dt_;
     const MatX held = hold.exp();
-    m.input = held.topRightCorner(n, 1);
+    m.input = held.block(0, n, n, 1);
+    m.input_matrix = held.block(0, n + 1, n, 3);
     m.observation = observation_;
     m.measurement_noise = measurement_noise_;
     return m;
@@ -246,6 +343,7 @@ class LinearisedBank {
   MatX observation_;
   MatX measurement_noise_;
   MatX wave_transition_;
+  MatX thrust_input_;  // d(x')/d(tau), unscaled
 };
 
 /// Filter h's view of the intact truth before the break: its model, steady state and the
@@ -367,6 +465,15 @@ Distinguishability AnalyseDistinguishability(const HypothesisBank& bank,
   const double dt = options.sample_interval;
   const LinearisedBank models(bank, model, ekf, pose, dt);
   const int n = models.size();
+  if (options.feedback) {
+    const PoseFeedback& fb = *options.feedback;
+    for (int i = 0; i < 3; ++i) {
+      CheckOption("feedback.kp", fb.kp(i), true);
+      CheckOption("feedback.ki", fb.ki(i), true);
+      CheckOption("feedback.kd", fb.kd(i), true);
+    }
+    CheckOption("feedback.derivative_filter_time", fb.derivative_filter_time, true);
+  }
 
   Distinguishability result;
   result.sample_interval = dt;
@@ -376,12 +483,13 @@ Distinguishability AnalyseDistinguishability(const HypothesisBank& bank,
   for (int i = 0; i < n; ++i) {
     const Vec3 tau = models.StationKeepingThrust(i);
     const LinearGaussianModel truth = models.Data(i, tau);
+    const Loop loop = MakeLoop(options.feedback, dt, pose.z(), tau);
     bool stationary = true;
     for (int j = 0; j < n && stationary; ++j) {
       PreBreak p;
       p.model = models.Filter(j, tau);
       p.filter = SolveSteadyStateFilter(p.model);
-      const Augmented a = Augment(truth, p.model, p.filter);
+      const Augmented a = Augment(truth, p.model, p.filter, loop);
       const std::optional<std::pair<VecX, MatX>> z = AugmentedStationary(a);
       if (!z) {
         stationary = false;
@@ -396,8 +504,11 @@ Distinguishability AnalyseDistinguishability(const HypothesisBank& bank,
     }
     if (!stationary) {
       if (i == 0) {
-        throw SolverError(
-            "distinguishability: the intact model is not stable about the reference pose");
+        throw SolverError(options.feedback
+                              ? "distinguishability: the intact model under the controller is "
+                                "not stable about the reference pose"
+                              : "distinguishability: the intact model is not stable about the "
+                                "reference pose (without the controller)");
       }
       continue;
     }
@@ -411,18 +522,25 @@ Distinguishability AnalyseDistinguishability(const HypothesisBank& bank,
     }
   }
 
-  // Transient after a break. Mean: the EKFs on noise-free data of the nonlinear models.
-  // Covariance: the augmented system from its stationary state under the intact truth,
-  // linearised along those noise-free trajectories (the truth's, and each filter's estimate
-  // where the EKF takes its Jacobian), with each filter's steady-state gain. A frozen
-  // Jacobian would not do: the drifting vessel's velocity turns the rotated-load coupling
-  // of the rest state into a spurious growth of the cross-drift innovation variance.
+  // Transient after a break. Mean: the EKFs on noise-free data of the nonlinear models
+  // (under the linearised controller, if closed). Covariance: the augmented system from its
+  // stationary state under the intact truth, linearised along those noise-free trajectories
+  // (the truth's, and each filter's estimate where the EKF takes its Jacobian), with each
+  // filter's steady-state gain. A frozen Jacobian would not do: the drifting vessel's
+  // velocity turns the rotated-load coupling of the rest state into a spurious growth of the
+  // cross-drift innovation variance.
   const int samples = std::max(1, static_cast<int>(std::lround(options.transient_duration / dt)));
   result.transient_samples = samples;
   const Vec3 tau0 = models.StationKeepingThrust(0);
+  const Loop loop = MakeLoop(options.feedback, dt, pose.z(), tau0);
+  const int nc = static_cast<int>(loop.A.rows());
+  std::vector<Eigen::LLT<MatX>> position_llt;  // S restricted to x, y, per filter
+  std::vector<double> position_log_det;
   for (PreBreak& p : pre) {
     p.s_llt.compute(p.filter.innovation_covariance);
     p.log_det_s = LogDet(p.s_llt);
+    position_llt.emplace_back(MatX(p.filter.innovation_covariance.topLeftCorner(2, 2)));
+    position_log_det.push_back(LogDet(position_llt.back()));
   }
   // Settle the filters on the intact truth at rest until their slowest closed-loop mode has
   // decayed to 1e-6, then copy them for every break.
@@ -447,50 +565,54 @@ Distinguishability AnalyseDistinguishability(const HypothesisBank& bank,
   }
   const double t_break = t - dt;
   const Vec3 tau_filter = ekf.use_thrust_command ? tau0 : Vec3::Zero();
-  const double m = 3.0;  // channels
-  const MatX& C = pre[0].model.observation;
-  const MatX& R = pre[0].model.measurement_noise;
-  const MatX identity = MatX::Identity(kStates, kStates);
-  MatX H = MatX::Zero(3, 2 * kStates);
-  H.rightCols(kStates) = C;
   for (int k = 1; k <= bank.num_lines(); ++k) {
-    const MatX truth_noise = models.Data(k, tau0).process_noise;
+    LinearGaussianModel truth = models.Data(k, tau0);
     const HypothesisEkf& truth_model = models.ekf(k);
     std::vector<HypothesisEkf> filters = settled;
     std::vector<MatX> covariance(n);
     for (int h = 0; h < n; ++h) covariance[h] = pre[h].covariance;
-    std::vector<double> total(n, 0.0);  // sum_t E[log p_h(y_t | Y_{t-1})]
+    std::vector<double> total(n, 0.0);     // sum_t E[log p_h(y_t | Y_{t-1})]
+    std::vector<double> position(n, 0.0);  // the same for the x, y channels alone
     HypothesisEkf::LfState x;
     x << pose, Vec3::Zero(), Vec3::Zero();
+    VecX controller = VecX::Zero(nc);  // noise-free controller state (deviations)
+    Vec3 du = Vec3::Zero();            // the thrust deviation held over the coming step
     double time = t_break;
     for (int s = 1; s <= samples; ++s) {
-      const MatX truth_transition = models.Transition(truth_model, &x, tau0);
+      const MatX truth_transition = models.Transition(truth_model, &x, tau0 + du);
       time += dt;
       observation.t = time;
       observation.pose = x.segment<3>(0);
+      // The controller on the noise-free measurement; the filters predict the coming
+      // interval with the thrust it issues (Observation::tau_command).
+      Vec3 y = x.segment<3>(0) - pose;
+      y.z() = std::remainder(y.z(), 2.0 * std::numbers::pi);
+      const Vec3 du_previous = du;
+      du = loop.K * controller + loop.D * y;
+      controller = (loop.A * controller + loop.B * y).eval();
+      observation.tau_command = tau0 + du;
       for (int h = 0; h < n; ++h) {
         // The filter's prediction to this sample, linearised where the EKF linearises it:
         // at its estimate after the previous sample.
         HypothesisEkf::LfState estimate = filters[h].state().segment<9>(kPose);
-        const MatX filter_transition = models.Transition(filters[h], &estimate, tau_filter);
+        const Vec3 tau_known = ekf.use_thrust_command ? Vec3(tau_filter + du_previous) : tau_filter;
+        const MatX filter_transition = models.Transition(filters[h], &estimate, tau_known);
         const VecX innovation = filters[h].Update(observation).innovation;
         const PreBreak& p = pre[h];
-        MatX F = MatX::Zero(2 * kStates, 2 * kStates);
-        F.topLeftCorner(kStates, kStates) = truth_transition;
-        F.bottomLeftCorner(kStates, kStates) = truth_transition - filter_transition;
-        F.bottomRightCorner(kStates, kStates) = filter_transition * (identity - p.filter.gain * C);
-        const MatX PK = filter_transition * p.filter.gain;
-        MatX W(2 * kStates, 2 * kStates);
-        W << truth_noise, truth_noise, truth_noise, truth_noise + PK * R * PK.transpose();
-        covariance[h] = F * covariance[h] * F.transpose() + W;
-        const MatX second =
-            H * covariance[h] * H.transpose() + R + innovation * innovation.transpose();
-        total[h] += -0.5 * (m * kLogTwoPi + p.log_det_s + p.s_llt.solve(second).trace());
+        const Augmented a =
+            Augment(truth, truth_transition, p.model, filter_transition, p.filter, loop);
+        covariance[h] = a.F * covariance[h] * a.F.transpose() + a.W;
+        const MatX second = a.H * covariance[h] * a.H.transpose() + p.model.measurement_noise +
+                            innovation * innovation.transpose();
+        total[h] += -0.5 * (3.0 * kLogTwoPi + p.log_det_s + p.s_llt.solve(second).trace());
+        position[h] += -0.5 * (2.0 * kLogTwoPi + position_log_det[h] +
+                               position_llt[h].solve(second.topLeftCorner(2, 2)).trace());
       }
     }
     TransientEvidence evidence;
     evidence.hypothesis = k;
     evidence.against_intact = total[k] - total[0];
+    evidence.against_intact_heading = evidence.against_intact - (position[k] - position[0]);
     for (int h = 1; h < n; ++h) {
       if (h == k) continue;
       const double against = total[k] - total[h];

@@ -45,6 +45,20 @@
 // A_i, A_j share the rotated-load term d(R^T)/dpsi (g + b) = d(R^T)/dpsi g_i, since both
 // hold the same total load at rest.
 //
+// Closed loop. Where the mooring alone does not hold the pose (a hull on a turret bearing
+// has no mooring yaw stiffness about the turret, so the heading is a free integrator) the
+// truth only has a stationary law under its controller. With DistinguishabilityOptions::
+// feedback the analysis closes the pi controller of vessel/controller.h around the truth,
+// sampled with the observations and linearised about the setpoint, its integral holding
+// tau_i: on its state c (low-passed pose, integral) c_t = A c_{t-1} + B y_t and the thrust
+// deviation du_t = K c_{t-1} + D y_t, D including the measured heading's rotation of the
+// standing force. The thrust is known to every filter (it predicts the coming interval with
+// it, Observation::tau_command), so du enters the truth and the filter alike and leaves,
+// for filter j, only (G_i - G_j) du_t, G the models' discretised input matrices (they
+// differ through the mooring's stiffness within the step); but the measurement noise now
+// also moves the truth, through the controller. The transient's mean runs the same
+// linearised controller on the noise-free measurement.
+//
 // Stationary moments. Filter j runs its steady-state Kalman filter (Hassani et al. 2018, eq. 48-50;
 // DARE eq. 49 by structured doubling). On z = [x; eps], x the truth and eps = x - x^-_j
 // filter j's prediction error,
@@ -52,16 +66,17 @@
 //   eps_{t+1} = (Phi_i - Phi_j) x_t + Phi_j (I - K_j C) eps_t + w_t - Phi_j K_j v_t
 //               + c_i - c_j,
 //   e_t       = C eps_t + v_t,
-// whose stationary mean solves (I - F) mu = c and covariance the discrete Lyapunov equation
+// (with the controller, z = [x; c; eps] as distinguishability.cc writes out), whose
+// stationary mean solves (I - F) mu = c and covariance the discrete Lyapunov equation
 // Sigma = F Sigma F^T + W (by doubling); m_ij = C mu_eps, C_ij = C Sigma_eps C^T + R.
 // Model i must be stable (a moored vessel is); if it is not, its rates are NaN.
 //
 // Transient. What matters more for the detection delay is the evidence gathered right
 // after a line parts. Before t = 0 the truth is the intact model at rest under tau_0 and
 // every filter has converged on it (its stationary mean and covariance); at t = 0 line k
-// parts: the truth follows model k under the same thrust tau_0 (no controller reaction), so
-// it drifts away from line k's anchor. The expected evidence for k over h in the first n =
-// round(T / dt) samples is
+// parts: the truth follows model k under the same thrust tau_0 (plus, with feedback, the
+// controller's reaction), so it drifts away from line k's anchor. The expected evidence for k over
+// h in the first n = round(T / dt) samples is
 //   Lambda_kh = sum_{t=1..n} (E[log p_k(y_t | Y_{t-1})] - E[log p_h(y_t | Y_{t-1})]),
 // each term the expression above with the time-varying innovation moments of filter h.
 // Their mean comes from the real HypothesisEkf on noise-free data of the nonlinear model
@@ -87,6 +102,7 @@
 // intact estimate while intact holds, which is not modelled here.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -100,8 +116,11 @@ namespace moorsim::detectors {
 /// A discrete-time linear Gaussian model x_{t+1} = Phi x_t + c + w_t, y_t = C x_t + v_t,
 /// with w ~ N(0, Q) and v ~ N(0, R) white and independent.
 struct LinearGaussianModel {
-  MatX transition;         ///< Phi
-  VecX input;              ///< c, added at every step
+  MatX transition;  ///< Phi
+  VecX input;       ///< c, added at every step
+  /// Gamma: what a thrust deviation du [N, N, N m] (body), held over the step, adds to
+  /// x_{t+1}; empty where the model has no thrust input.
+  MatX input_matrix;
   MatX process_noise;      ///< Q
   MatX observation;        ///< C
   MatX measurement_noise;  ///< R (positive definite)
@@ -137,19 +156,37 @@ std::optional<InnovationMoments> StationaryInnovation(const LinearGaussianModel&
 /// E[log N(e; 0, S)] [nats] for an innovation e with the given moments.
 double ExpectedLogLikelihood(const MatX& innovation_covariance, const InnovationMoments& moments);
 
+/// The position controller the analysis closes around the truth (file comment, "Closed
+/// loop"): the pi controller of vessel/controller.h (PiControllerOptions, same meanings and
+/// units), sampled with the observations, linearised about its setpoint eta_ref.
+struct PoseFeedback {
+  Vec3 kp = Vec3::Zero();                                      ///< [N/m, N/m, N m/rad], NED axes
+  Vec3 ki = Vec3::Zero();                                      ///< [N/(m s), N/(m s), N m/(rad s)]
+  Vec3 kd = Vec3::Zero();                                      ///< [N s/m, N s/m, N m s/rad]
+  double derivative_filter_time = 0.0;                         ///< low-pass time constant [s]
+  std::array<bool, 3> filtered_error = {false, false, false};  ///< P and I on the low-pass
+};
+
 struct DistinguishabilityOptions {
   double sample_interval = 1.0;      ///< dt between observations [s]
   double transient_duration = 60.0;  ///< window T after a break [s]
   /// A pair is hard to tell apart when D is below this both ways [nats/sample].
   double min_rate = 0.01;
+  /// The controller, if the analysis is to close it (needed where the mooring alone does
+  /// not hold the pose, e.g. the heading of a hull on a turret bearing); without it the
+  /// thrust is held at each model's station-keeping value.
+  std::optional<PoseFeedback> feedback;
 };
 
 /// The expected evidence in the first `transient_duration` after line `hypothesis` parts.
 struct TransientEvidence {
   int hypothesis = 0;           ///< k: the single-line hypothesis that became true
   double against_intact = 0.0;  ///< Lambda_k0 [nats]
-  int rival = -1;               ///< the other failure hypothesis with the least evidence
-  double against_rival = 0.0;   ///< Lambda_k,rival [nats]
+  /// The part of Lambda_k0 the heading channel adds to what the position channels give
+  /// (chain rule: log p(y) = log p(x, y) + log p(psi | x, y) for each filter) [nats].
+  double against_intact_heading = 0.0;
+  int rival = -1;              ///< the other failure hypothesis with the least evidence
+  double against_rival = 0.0;  ///< Lambda_k,rival [nats]
 };
 
 struct Distinguishability {

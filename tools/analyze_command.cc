@@ -67,16 +67,6 @@ int Analyze(const AnalyzeOptions& o) {
                      ": vessel: the section is missing; analyze needs the vessel's mass and "
                      "damping for the observers' model");
   }
-  if (scenario.vessel->turret.bearing != "locked") {
-    // Each model must hold its pose on its own (Hassani et al. 2018, Theorem 2's stationary
-    // filters); on its bearing the turret leaves the heading to the controller, which the
-    // analysis does not model.
-    throw InputError(scenario.source_path + ": vessel.turret.bearing: '" +
-                     scenario.vessel->turret.bearing +
-                     "': analyze needs the mooring to hold the heading (a locked turret); with "
-                     "the turret on its bearing the controller holds it, which the analysis "
-                     "does not model (use --set vessel.turret.bearing=locked)");
-  }
   const auto start = std::chrono::steady_clock::now();
   // The simulation's static start gives the moored heave the bank's fairleads sit at, and
   // its plant the observers' mass and damping: the same models a run would detect with.
@@ -90,6 +80,34 @@ int Analyze(const AnalyzeOptions& o) {
                                        models.bank);
   options.sample_interval = 1.0 / scenario.sensors.gnss_rate;
   const Vec3& pose = models.bank.reference_pose;
+  const scenarios::ControllerSpec& controller = scenario.controller;
+  if (controller.type == "pi") {
+    // The analysis closes the controller the run has, sampled with the observations.
+    if (std::abs(controller.rate - scenario.sensors.gnss_rate) >
+        1e-12 * scenario.sensors.gnss_rate) {
+      throw InputError(scenario.source_path + ": controller.rate_hz: '" +
+                       FormatNumber(controller.rate) +
+                       "': analyze closes the pi controller at the position sensors' rate (" +
+                       FormatNumber(scenario.sensors.gnss_rate) + " Hz); they must be equal");
+    }
+    const vessel::ControllerSpec spec =
+        simulation::ToControllerSpec(controller, pose, sim.plant().model());
+    options.feedback =
+        detectors::PoseFeedback{.kp = spec.pi.kp,
+                                .ki = spec.pi.ki,
+                                .kd = spec.pi.kd,
+                                .derivative_filter_time = spec.pi.derivative_filter_time,
+                                .filtered_error = spec.pi.filtered_error};
+  } else if (scenario.vessel->turret.bearing != "locked") {
+    // Each model must hold its pose (Hassani et al. 2018, Theorem 2's stationary filters);
+    // on its bearing the turret leaves the heading to the controller, and the analysis
+    // models the pi controller only.
+    throw InputError(scenario.source_path + ": controller.type: '" + controller.type +
+                     "': with the turret on its bearing (vessel.turret.bearing '" +
+                     scenario.vessel->turret.bearing +
+                     "') the controller holds the heading, and analyze models only the 'pi' "
+                     "controller");
+  }
   const detectors::Distinguishability d =
       detectors::AnalyseDistinguishability(bank, models.model, models.ekf, pose, options);
   const double wall =
@@ -145,7 +163,8 @@ int Analyze(const AnalyzeOptions& o) {
     for (const detectors::TransientEvidence& t : d.transient) {
       nlohmann::json line = {{"line", bank.failed_lines(t.hypothesis).front()},
                              {"hypothesis", labels[t.hypothesis]},
-                             {"against_intact", t.against_intact}};
+                             {"against_intact", t.against_intact},
+                             {"against_intact_heading", t.against_intact_heading}};
       line["rival"] = t.rival >= 0 ? nlohmann::json(labels[t.rival]) : nlohmann::json(nullptr);
       line["against_rival"] = t.rival >= 0 ? NumberOrNull(t.against_rival) : nullptr;
       lines.push_back(line);
@@ -155,6 +174,7 @@ int Analyze(const AnalyzeOptions& o) {
                         {"units", "nats"},
                         {"lines", lines}};
     out["filters"] = "independent";
+    out["controller"] = options.feedback ? "pi (closed, linearised)" : "thrust held";
     out["scenario_switch_rate"] = switch_rate;
     out["notes"] = notes;
     out["wall_time"] = wall;
@@ -202,18 +222,21 @@ int Analyze(const AnalyzeOptions& o) {
   }
   std::printf(
       "\nExpected evidence in the first %g s after a line parts [nats] (filters converged on "
-      "the intact\nvessel at rest, thrust held; for the line's hypothesis over the other):\n\n",
-      d.transient_samples * d.sample_interval);
-  std::printf("%-*s%*s   %-*s%*s\n", w, "line", 12, "vs intact", w, "closest rival", 12,
-              "vs rival");
+      "the intact\nvessel at rest, %s; for the line's hypothesis over the other; "
+      "'heading': what the\nheading channel adds to the position channels' evidence against "
+      "intact):\n\n",
+      d.transient_samples * d.sample_interval,
+      options.feedback ? "the pi controller closed" : "thrust held");
+  std::printf("%-*s%*s%*s   %-*s%*s\n", w, "line", 12, "vs intact", 10, "heading", w,
+              "closest rival", 12, "vs rival");
   for (const detectors::TransientEvidence& t : d.transient) {
+    std::printf("%-*s%*.4g%*.4g   ", w, labels[t.hypothesis].c_str(), 12, t.against_intact, 10,
+                t.against_intact_heading);
     if (t.rival < 0) {
-      std::printf("%-*s%*.4g   %-*s%*s\n", w, labels[t.hypothesis].c_str(), 12, t.against_intact, w,
-                  "-", 12, "-");
+      std::printf("%-*s%*s\n", w, "-", 12, "-");
       continue;
     }
-    std::printf("%-*s%*.4g   %-*s%*.4g\n", w, labels[t.hypothesis].c_str(), 12, t.against_intact, w,
-                labels[t.rival].c_str(), 12, t.against_rival);
+    std::printf("%-*s%*.4g\n", w, labels[t.rival].c_str(), 12, t.against_rival);
   }
   for (const std::string& note : notes)
     std::printf("\n%s", Wrap("Note: " + note + ".", 92).c_str());
@@ -240,8 +263,10 @@ Command AddAnalyzeCommand(CLI::App& app) {
       "delay (a parted line is, to a wrong filter, mostly a constant force its bias absorbs, so\n"
       "the steady rates are small and the evidence comes from the transient).\n"
       "Assumptions: independent filters (Hassani et al. 2018; detection.switch_rate 0), the\n"
-      "thrust holding each model at rest at the setpoint, noise as detection.model and\n"
-      "detection.measurement_variance state (wave motion, bias, force noise).");
+      "thrust holding each model at rest at the setpoint (a 'pi' controller is closed around\n"
+      "each model, linearised, at the GNSS rate; any other keeps the thrust held, which needs a\n"
+      "locked turret), noise as detection.model and detection.measurement_variance state\n"
+      "(wave motion, bias, force noise).");
   sub->add_option("scenario", o->scenario, "scenario YAML file")->required();
   sub->add_option("--set", o->sets, "override a scenario value: key.path=value (repeatable)");
   sub->add_option("--min-rate", o->min_rate,

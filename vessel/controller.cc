@@ -171,6 +171,13 @@ Vec3 PiController::Update(const PoseMeasurementInput& measurement) {
   return NedToBody(-force_ned, held_pose_[2]);
 }
 
+void PiController::SetIntegral(const Vec3& z) {
+  for (int i = 0; i < 3; ++i) {
+    Require(std::isfinite(z[i]), Indexed("controller.pi.integral", i), z[i], "must be finite");
+  }
+  integral_ = z;
+}
+
 AxisGains SizeAxisGains(double mass, double damping, double stiffness, double natural_period,
                         double damping_ratio) {
   Require(std::isfinite(mass) && mass > 0.0, "gains.mass", mass, "must be finite and > 0");

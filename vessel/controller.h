@@ -164,6 +164,9 @@ class PiController final : public PositionController {
 
   /// Integral state z [m s, m s, rad s] (NED).
   const Vec3& integral() const { return integral_; }
+  /// Sets the integral state (a bumpless start: the integral that makes Ki z the standing
+  /// NED force already being delivered). Throws moorsim::InputError on a non-finite value.
+  void SetIntegral(const Vec3& z);
 
  private:
   PiControllerOptions options_;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -71,7 +72,24 @@ TEST_F(AnalyzeCommandTest, JsonOnTheThesisScenario) {
     const nlohmann::json& line = transient["lines"][k - 1];
     EXPECT_EQ(line["line"], k);
     EXPECT_GT(line["against_intact"].get<double>(), 0.0);
+    EXPECT_LT(std::abs(line["against_intact_heading"].get<double>()),
+              line["against_intact"].get<double>());
     EXPECT_TRUE(line["rival"].is_string());
+  }
+  EXPECT_EQ(out["controller"], "pi (closed, linearised)");
+}
+
+// With the turret on its bearing the heading loop holds the hull; the analysis closes it
+// and every line's break still gives evidence.
+TEST_F(AnalyzeCommandTest, AFreeTurretUnderTheHeadingLoop) {
+  const CliResult r = Run({"analyze", kThesis, "--json", "--set", "vessel.turret.bearing=free",
+                           "--set", "controller.heading.natural_period=200", "--set",
+                           "controller.heading.damping_ratio=0.8"});
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  const nlohmann::json out = nlohmann::json::parse(r.out);
+  ASSERT_EQ(out["transient"]["lines"].size(), 8u);
+  for (const nlohmann::json& line : out["transient"]["lines"]) {
+    EXPECT_GT(line["against_intact"].get<double>(), 0.0) << line.dump();
   }
 }
 
@@ -91,9 +109,13 @@ TEST_F(AnalyzeCommandTest, BadInputIsOneLineAndExitCodeTwo) {
   ExpectOneLineInputError(Run({"analyze", kThesis, "--set", "sensors.gnss.rate_hz=0"}),
                           {"sensors.gnss.rate_hz"});
   ExpectOneLineInputError(Run({"analyze", "/nonexistent/scenario.yaml"}), {"scenario.yaml"});
-  // The analysis needs the mooring to hold the heading.
-  ExpectOneLineInputError(Run({"analyze", kThesis, "--set", "vessel.turret.bearing=free"}),
-                          {"vessel.turret.bearing", "free", "locked"});
+  // On its bearing the turret leaves the heading to the controller, which the analysis
+  // models only for 'pi', and only at the sensors' rate.
+  ExpectOneLineInputError(Run({"analyze", kThesis, "--set", "vessel.turret.bearing=free", "--set",
+                               "controller.type=none"}),
+                          {"controller.type", "none", "pi"});
+  ExpectOneLineInputError(Run({"analyze", kThesis, "--set", "controller.rate_hz=2"}),
+                          {"controller.rate_hz", "2", "1 Hz"});
 }
 
 }  // namespace

@@ -169,30 +169,6 @@ vessel::PoseSensorSpec PoseSensorSpec(const scenarios::SensorsSpec& s) {
   return spec;
 }
 
-vessel::ControllerSpec ControllerSpec(const scenarios::ControllerSpec& c, const Vec3& initial,
-                                      const vessel::VesselModel& vessel) {
-  vessel::ControllerSpec spec;
-  spec.type = c.type;
-  spec.setpoint = c.setpoint.value_or(initial);
-  spec.pi.kp = c.kp;
-  spec.pi.ki = c.ki;
-  spec.pi.kd = c.kd;
-  if (c.heading) {
-    // The hull's yaw inertia with A66(0) and its linear yaw damping; no mooring stiffness
-    // (none about a turret on its bearing; a locked turret's only shortens the period).
-    const vessel::AxisGains yaw =
-        vessel::SizeAxisGains(vessel.mass()(5, 5), vessel.parameters().linear_damping(5, 5), 0.0,
-                              c.heading->natural_period, c.heading->damping_ratio);
-    spec.pi.kp(2) = yaw.kp;
-    spec.pi.kd(2) = yaw.kd;
-    spec.pi.ki(2) = yaw.ki;
-    spec.pi.filtered_error[2] = true;
-  }
-  if (c.natural_period > 0.0) spec.observer_pid.natural_frequency = 2 * M_PI / c.natural_period;
-  if (c.damping_ratio > 0.0) spec.observer_pid.relative_damping = c.damping_ratio;
-  return spec;
-}
-
 std::vector<vessel::ThrusterSpec> Thrusters(const scenarios::VesselSpec& v) {
   if (v.thrusters.empty()) return vessel::SeedThrusters();
   std::vector<vessel::ThrusterSpec> out;
@@ -237,6 +213,30 @@ const scenarios::VesselSpec& RequireVessel(const scenarios::Scenario& scenario) 
 }
 
 }  // namespace
+
+vessel::ControllerSpec ToControllerSpec(const scenarios::ControllerSpec& c, const Vec3& initial,
+                                        const vessel::VesselModel& vessel) {
+  vessel::ControllerSpec spec;
+  spec.type = c.type;
+  spec.setpoint = c.setpoint.value_or(initial);
+  spec.pi.kp = c.kp;
+  spec.pi.ki = c.ki;
+  spec.pi.kd = c.kd;
+  if (c.heading) {
+    // The hull's yaw inertia with A66(0) and its linear yaw damping; no mooring stiffness
+    // (none about a turret on its bearing; a locked turret's only shortens the period).
+    const vessel::AxisGains yaw =
+        vessel::SizeAxisGains(vessel.mass()(5, 5), vessel.parameters().linear_damping(5, 5), 0.0,
+                              c.heading->natural_period, c.heading->damping_ratio);
+    spec.pi.kp(2) = yaw.kp;
+    spec.pi.kd(2) = yaw.kd;
+    spec.pi.ki(2) = yaw.ki;
+    spec.pi.filtered_error[2] = true;
+  }
+  if (c.natural_period > 0.0) spec.observer_pid.natural_frequency = 2 * M_PI / c.natural_period;
+  if (c.damping_ratio > 0.0) spec.observer_pid.relative_damping = c.damping_ratio;
+  return spec;
+}
 
 namespace {
 
@@ -409,9 +409,9 @@ Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed)
     plant_->AddLoad(&*parts_->wind);
   }
   parts_->sensors.emplace(PoseSensorSpec(scenario_.sensors), seed_);
-  parts_->controller =
-      vessel::MakeController(ControllerSpec(scenario_.controller, v.initial_pose, plant_->model()),
-                             1.0 / scenario_.controller.rate);
+  parts_->controller = vessel::MakeController(
+      ToControllerSpec(scenario_.controller, v.initial_pose, plant_->model()),
+      1.0 / scenario_.controller.rate);
   parts_->allocator.emplace(plant_->thrusters());
   parts_->thruster_dynamics.emplace(plant_->thrusters());
   parts_->directions.resize(plant_->num_thrusters());
@@ -627,8 +627,11 @@ double Simulation::NextEventTime() const {
 }
 
 void Simulation::DiscreteEvents() {
-  // Sensors first (they see the state at this instant), then the controller acts on them.
+  // Sensors first (they see the state at this instant), then the controller acts on them,
+  // then the detectors take the sample with the thrust just issued, which holds until the
+  // next sample (Observation::tau_command), and the tension cells' sample of this instant.
   std::array<bool, 3> fresh = {false, false, false};
+  std::optional<vessel::PoseMeasurement> sampled;
   if (parts_->sensors->Due(t_) && t_ > last_sensor_time_) {
     const Vec6 pose = plant_->TotalPose(t_, x_.data());
     const vessel::PoseMeasurement m = parts_->sensors->Sample(t_, Vec3(pose(0), pose(1), pose(5)));
@@ -637,40 +640,7 @@ void Simulation::DiscreteEvents() {
       fresh[i] = m.valid[i];
     }
     last_sensor_time_ = t_;
-    if (parts_->observers || parts_->passive) {
-      // The detectors see what a real system has: the measured pose and the thrust the
-      // allocation sent to the thrusters (after its saturation handling).
-      const auto start = std::chrono::steady_clock::now();
-      detectors::Observation observation;
-      observation.t = t_;
-      observation.pose = m.value;
-      observation.valid = m.valid;
-      observation.tau_command = parts_->thrust_issued;
-      if (!parts_->measured_tensions.empty()) {
-        observation.tensions = Eigen::Map<const VecX>(parts_->measured_tensions.data(),
-                                                      parts_->measured_tensions.size());
-      }
-      const detectors::Evidence& evidence = parts_->observers
-                                                ? parts_->observers->Update(observation)
-                                                : parts_->passive->Update(observation);
-      const bool failed = scenario_.failure.line > 0;
-      for (std::size_t i = 0; i < parts_->detectors.size(); ++i) {
-        const detectors::Verdict& v = parts_->verdicts[i] = parts_->detectors[i]->Update(evidence);
-        DetectorRecord& r = detector_records_[i];
-        if (v.alarm && !r.alarm) {  // an onset
-          const bool before_failure = !failed || t_ < scenario_.failure.time;
-          if (before_failure) ++r.false_alarms;
-          if (!r.alarm_time && (!failed || !before_failure)) {
-            r.alarm_time = t_;
-            r.isolated = v.hypothesis;
-          }
-        }
-        r.alarm = v.alarm;
-      }
-      detection_.update_seconds +=
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      ++detection_.samples;
-    }
+    sampled = m;
   }
   if (parts_->tension_cells && parts_->tension_cells->Due(t_) && t_ > last_tension_time_) {
     parts_->measured_tensions = parts_->tension_cells->Sample(t_, FairleadTensions());
@@ -689,6 +659,40 @@ void Simulation::DiscreteEvents() {
     parts_->thruster_dynamics->Step(a.thrust, dt);
     parts_->directions = a.direction;
     plant_->SetThrustCommand(parts_->thruster_dynamics->command(), parts_->directions);
+  }
+  if (sampled && (parts_->observers || parts_->passive)) {
+    const vessel::PoseMeasurement& m = *sampled;
+    // The detectors see what a real system has: the measured pose and the thrust the
+    // allocation sent to the thrusters (after its saturation handling) from now on.
+    const auto start = std::chrono::steady_clock::now();
+    detectors::Observation observation;
+    observation.t = t_;
+    observation.pose = m.value;
+    observation.valid = m.valid;
+    observation.tau_command = parts_->thrust_issued;
+    if (!parts_->measured_tensions.empty()) {
+      observation.tensions = Eigen::Map<const VecX>(parts_->measured_tensions.data(),
+                                                    parts_->measured_tensions.size());
+    }
+    const detectors::Evidence& evidence = parts_->observers ? parts_->observers->Update(observation)
+                                                            : parts_->passive->Update(observation);
+    const bool failed = scenario_.failure.line > 0;
+    for (std::size_t i = 0; i < parts_->detectors.size(); ++i) {
+      const detectors::Verdict& v = parts_->verdicts[i] = parts_->detectors[i]->Update(evidence);
+      DetectorRecord& r = detector_records_[i];
+      if (v.alarm && !r.alarm) {  // an onset
+        const bool before_failure = !failed || t_ < scenario_.failure.time;
+        if (before_failure) ++r.false_alarms;
+        if (!r.alarm_time && (!failed || !before_failure)) {
+          r.alarm_time = t_;
+          r.isolated = v.hypothesis;
+        }
+      }
+      r.alarm = v.alarm;
+    }
+    detection_.update_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ++detection_.samples;
   }
   if (failure_pending_ && t_ >= scenario_.failure.time) {
     failure_pending_ = false;

@@ -27,6 +27,7 @@
 #include "mooring_fem/mooring_attachment.h"
 #include "mooring_fem/mooring_system.h"
 #include "scenarios/scenario.h"
+#include "vessel/controller.h"
 #include "vessel/hull_loads.h"
 #include "vessel/hydro_data.h"
 #include "vessel/vessel_plant.h"
@@ -109,6 +110,12 @@ vessel::HullGeometry ToHullGeometry(const scenarios::VesselSpec& spec, double wa
 /// vessel.hull.length) with Blendermann's loaded-tanker coefficients. The defaults give
 /// vessel::SeedFpsoWind().
 vessel::WindParameters ToWindParameters(const scenarios::VesselSpec& spec);
+
+/// The controller of the scenario's `controller` section (setpoint defaulting to `initial`),
+/// with the heading loop's gains sized on `vessel`'s yaw inertia and damping when
+/// controller.heading is given.
+vessel::ControllerSpec ToControllerSpec(const scenarios::ControllerSpec& c, const Vec3& initial,
+                                        const vessel::VesselModel& vessel);
 
 class Simulation {
  public:
