@@ -249,6 +249,15 @@ Integrator::Integrator(OdeSystem& system, double t0, const double* x0,
   m.LS->ops->solve = &Impl::TimedSolve;
   Check(CVodeSetLinearSolver(m.cvode, m.LS, m.A), "CVodeSetLinearSolver");
   Check(CVodeSetJacFn(m.cvode, &Impl::Jac), "CVodeSetJacFn");
+  // No row scaling and no input check in KLU (Davis & Palamadai Natarajan 2010, KLU's
+  // Common.scale = -1). Both passes run over every entry at each numerical refactorisation
+  // (checked: ~7 % of a coupled run's wall time, in klu_scale). The check guards against
+  // malformed column pointers and indices, which the fixed pattern built and tested here
+  // never has; the scaling serves pivoting, which KLU does only in the first factorisation:
+  // the Newton matrices I - gamma J have a unit diagonal in every row whatever the state's
+  // unit, since J holds rates. Measured on the thesis line-6 case: the same step count
+  // within 0.4 %, 8 % faster (benchmarks/README.md).
+  SUNLinSol_KLUGetCommon(m.LS)->scale = -1;
 }
 
 Integrator::~Integrator() = default;
