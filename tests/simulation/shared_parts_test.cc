@@ -71,7 +71,7 @@ TEST(SharedPart, RunsOfOneSetUpShareTheDetectorsPartsWhateverTheirSeed) {
   EXPECT_EQ(first.initial_pose(), second.initial_pose());
 
   std::vector<std::string> other = passive;
-  other.push_back("detection.measurement_variance=0.006");
+  other.insert(other.end(), {"detection.measurement_variance=0.006"});
   const Simulation third(scenarios::LoadScenario(library + "thesis_line6_current.yaml", other),
                          101);
   EXPECT_GT(SharedPartCount(), entries);
