@@ -122,19 +122,12 @@ Augmented Augment(const LinearGaussianModel& truth, const MatX& truth_transition
   const MatX& Cj = filter_model.observation;
   const MatX& Ci = truth.observation;
   const MatX C_difference = Ci - Cj;
-  const MatX Gi = InputMatrixOrZero(truth);
-  const MatX G_difference = Gi - InputMatrixOrZero(filter_model);
   const MatX identity = MatX::Identity(n, n);
   const MatX PK = filter_transition * filter.gain;
   Augmented a;
   a.F = MatX::Zero(N, N);
-  a.F.block(0, 0, n, n) = truth_transition + Gi * loop.D * Ci;
-  a.F.block(0, n, n, nc) = Gi * loop.K;
-  a.F.block(n, 0, nc, n) = loop.B * Ci;
-  a.F.block(n, n, nc, nc) = loop.A;
-  a.F.block(n + nc, 0, n, n) =
-      truth_transition - filter_transition - PK * C_difference + G_difference * loop.D * Ci;
-  a.F.block(n + nc, n, n, nc) = G_difference * loop.K;
+  a.F.block(0, 0, n, n) = truth_transition;
+  a.F.block(n + nc, 0, n, n) = truth_transition - filter_transition - PK * C_difference;
   a.F.block(n + nc, n + nc, n, n) = filter_transition * (identity - filter.gain * Cj);
   a.H = MatX::Zero(Cj.rows(), N);
   a.H.leftCols(n) = C_difference;
@@ -145,10 +138,24 @@ Augmented Augment(const LinearGaussianModel& truth, const MatX& truth_transition
   MatX process = MatX::Zero(N, n);  // how w_t enters
   process.topRows(n) = identity;
   process.bottomRows(n) = identity;
-  MatX measurement(N, Cj.rows());  // how v_t enters
-  measurement.topRows(n) = Gi * loop.D;
-  measurement.middleRows(n, nc) = loop.B;
-  measurement.bottomRows(n) = G_difference * loop.D - PK;
+  MatX measurement = MatX::Zero(N, Cj.rows());  // how v_t enters
+  measurement.bottomRows(n) = -PK;
+  if (nc > 0) {  // the controller, on the measured pose
+    if (Ci.rows() != loop.B.cols()) {
+      throw ContractError("distinguishability: the controller needs the 3 pose outputs");
+    }
+    const MatX Gi = InputMatrixOrZero(truth);
+    const MatX G_difference = Gi - InputMatrixOrZero(filter_model);
+    a.F.block(0, 0, n, n) += Gi * loop.D * Ci;
+    a.F.block(0, n, n, nc) = Gi * loop.K;
+    a.F.block(n, 0, nc, n) = loop.B * Ci;
+    a.F.block(n, n, nc, nc) = loop.A;
+    a.F.block(n + nc, 0, n, n) += G_difference * loop.D * Ci;
+    a.F.block(n + nc, n, n, nc) = G_difference * loop.K;
+    measurement.topRows(n) = Gi * loop.D;
+    measurement.middleRows(n, nc) = loop.B;
+    measurement.bottomRows(n) += G_difference * loop.D;
+  }
   a.W = process * truth.process_noise * process.transpose() +
         measurement * truth.measurement_noise * measurement.transpose();
   a.W = 0.5 * (a.W + a.W.transpose()).eval();

@@ -51,6 +51,10 @@ RUN_COLUMNS = {"run": int, "block": str, "seed": int, "status": str, "error": st
                "wall_time": float}
 DETECTOR_COLUMNS = {"alarm_time": float, "isolated_line": int, "delay": float,
                     "false_alarms": int, "max_before_failure": float}
+# The verdict as it evolved (campaigns from 2026-11-24 on; older ones lack them and the
+# report leaves their section out).
+VERDICT_COLUMNS = {"isolation_delay": float, "final_line": int,
+                   "alarm_seconds_before_failure": float}
 
 
 class CampaignError(Exception):
@@ -144,6 +148,9 @@ def read_campaign(path: Path) -> Campaign:
         for label in [d for d in attrs.get("detectors", "").split("\n") if d]:
             columns = {name: read_column(h5, f"runs/{label}.{name}", kind, rows)
                        for name, kind in DETECTOR_COLUMNS.items()}
+            if all(f"runs/{label}.{name}" in h5 for name in VERDICT_COLUMNS):
+                columns.update({name: read_column(h5, f"runs/{label}.{name}", kind, rows)
+                                for name, kind in VERDICT_COLUMNS.items()})
             group = h5.get(f"detectors/{label}")
             grid = crossings = first = None
             kind = statistic = ""
@@ -317,7 +324,26 @@ def analyse_detector(c: Campaign, d: Detector) -> dict:
             "pre_failure": poisson_rate(int(fa[c.fail_ok].sum()), pre_hours,
                                         int(c.fail_ok.sum()))},
         "roc": None,
+        "verdict": None,
     }
+    if all(name in col for name in VERDICT_COLUMNS):
+        # Named after the break: by an onset, a revision of a standing alarm, or an alarm
+        # already standing on the line; still named at the end of the run; alarm-on time.
+        named_after = c.fail_ok & np.isfinite(col["isolation_delay"])
+        kept = c.fail_ok & (col["final_line"] == r["failure_line"])
+        on = col["alarm_seconds_before_failure"]
+        intact_seconds = float(r["simulated_time"][c.intact_ok].sum())
+        pre_seconds = float(r["failure_time"][c.fail_ok].sum())
+        n = int(c.fail_ok.sum())
+        result["verdict"] = {
+            "named_after_break": proportion(int(named_after.sum()), n),
+            "naming_delay": delay_summary(col["isolation_delay"][named_after]),
+            "named_at_end": proportion(int(kept.sum()), n),
+            "alarm_on_share": {
+                "intact": float(np.nansum(on[c.intact_ok])) / intact_seconds
+                if intact_seconds > 0 else None,
+                "pre_failure": float(np.nansum(on[c.fail_ok])) / pre_seconds
+                if pre_seconds > 0 else None}}
     monitored = c.intact_ok | c.fail_ok
     hours = intact_hours + pre_hours
     if d.grid is not None and d.grid.size and hours > 0:
@@ -777,6 +803,28 @@ def false_alarm_section(p: Page) -> list:
     return out
 
 
+def verdict_section(p: Page) -> list:
+    verdicts = {l: r["verdict"] for l, r in p.results.items() if r.get("verdict")}
+    if not verdicts:
+        return []
+
+    def share(x):
+        return "-" if x is None else f"{100 * x:.2f} %"
+
+    out = [f"<h2>The verdict over time</h2><p class='note'>From {p.fail_note}. Named after the "
+           f"break: the verdict named the failed line at some time after the failure, by an "
+           f"alarm onset, by revising an alarm that already stood, or because an alarm on it "
+           f"already stood (the first-onset columns above miss the last two). Still named at "
+           f"the end: the run ended with the alarm on, naming the failed line. Alarm on: the "
+           f"share of the time an alarm stood, on intact runs and before the failure.</p>"]
+    out.append(table(["detector", "named after the break", "delay median / p95 / max",
+                      "still named at the end", "alarm on, intact", "alarm on, before failure"],
+                     [[l, rate_text(v["named_after_break"]), delay_text(v["naming_delay"]),
+                       rate_text(v["named_at_end"]), share(v["alarm_on_share"]["intact"]),
+                       share(v["alarm_on_share"]["pre_failure"])] for l, v in verdicts.items()]))
+    return out
+
+
 def roc_section(p: Page) -> list:
     out = ["<h2>ROC</h2><p class='note'>For each threshold of a detector's grid: false alarms "
            "per hour = upcrossings of the threshold by the statistic (without the hold time) on "
@@ -828,8 +876,8 @@ def write_html(p: Page) -> None:
     out = header_section(p) + runs_section(p)
     if not p.labels:
         out.append("<p>The campaign has no detectors: nothing more to report.</p>")
-    for section in (rates_section, confusion_section, delay_section, false_alarm_section,
-                    roc_section, worst_section) if p.labels else ():
+    for section in (rates_section, confusion_section, delay_section, verdict_section,
+                    false_alarm_section, roc_section, worst_section) if p.labels else ():
         out += section(p)
     out.append("</body></html>\n")
     (p.out_dir / "report.html").write_text("".join(out), encoding="utf-8")

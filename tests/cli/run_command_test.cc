@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -190,6 +191,59 @@ TEST(RunCommand, ThesisCaseLine6PartsAtItsTime) {
       EXPECT_EQ(t6, 0.0) << "t = " << time[k];
     }
   }
+}
+
+// The alarm history in summary.json against the alarm and decision tables of run.h5, read
+// here without the library: line 6 parts at 60 s of the thesis case under a GLR with a
+// threshold low enough to raise, revise and end alarms before and after the break.
+TEST(RunCommand, TheAlarmHistoryIsTheAlarmTableSummarised) {
+  TempDirectory dir(::testing::TempDir());
+  const std::string out = (dir.path() / "h").string();
+  const CliResult r =
+      RunCli({"run", MOORSIM_SOURCE_DIR "/scenarios/library/thesis_line6_current.yaml", "--out",
+              out, "--duration", "150", "--quiet", "--set", "failure.time=60", "--set",
+              "detectors=[{type: glr, threshold: 12, hold: 0}]"},
+             dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  const hid_t file = H5Fopen((out + "/run.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const std::vector<double> time = Read(file, "/time");
+  const std::vector<double> alarm = Read(file, "/detectors/glr/alarm");
+  const std::vector<double> decision = Read(file, "/detectors/glr/decision");
+  H5Fclose(file);
+  ASSERT_EQ(alarm.size(), time.size());
+  const nlohmann::json summary = nlohmann::json::parse(ReadWholeFile(out + "/summary.json"));
+  const nlohmann::json& glr = summary["detectors"]["glr"];
+  const nlohmann::json& history = glr["history"];
+
+  // Events from the tables: the output is at 1 Hz like the sensors, so every verdict is a row.
+  std::vector<std::pair<double, std::string>> expected;
+  std::optional<double> named;  // first row at or after 60 s naming line 6
+  double on_before = 0.0, on_after = 0.0;
+  bool was = false;
+  int named_before = 0;
+  for (std::size_t k = 0; k < time.size(); ++k) {
+    const bool on = alarm[k] != 0.0;
+    const int h = static_cast<int>(decision[k]);
+    if (on && !was) expected.emplace_back(time[k], "onset");
+    if (on && was && h != named_before) expected.emplace_back(time[k], "revision");
+    if (!on && was) expected.emplace_back(time[k], "end");
+    if (!named && on && h == 6 && time[k] >= 60.0) named = time[k];
+    if (was && k > 0) (time[k] <= 60.0 ? on_before : on_after) += time[k] - time[k - 1];
+    was = on;
+    named_before = on ? h : 0;
+  }
+  ASSERT_GE(expected.size(), 3u) << "the threshold should give several events";
+  ASSERT_EQ(history.size(), expected.size()) << history.dump();
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(history[i]["time"].get<double>(), expected[i].first) << i;
+    EXPECT_EQ(history[i]["event"], expected[i].second) << i;
+  }
+  ASSERT_TRUE(named.has_value());
+  EXPECT_EQ(glr["isolation_time"].get<double>(), *named);
+  EXPECT_EQ(glr["isolation_delay"].get<double>(), *named - 60.0);
+  EXPECT_EQ(glr["final_alarm"].get<bool>(), alarm.back() != 0.0);
+  EXPECT_NEAR(glr["alarm_seconds_before_failure"].get<double>(), on_before, 1e-9);
+  EXPECT_NEAR(glr["alarm_seconds_after_failure"].get<double>(), on_after, 1e-9);
 }
 
 TEST(RunCommand, DetectorsWriteScoresDecisionsAlarmsAndASummary) {

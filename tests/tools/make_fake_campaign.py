@@ -11,8 +11,11 @@ Standard case: 4 mooring lines; lines 1 and 2 fail in 5 seeds each (block "failu
 factors environment.current.profile[1].speed in {0, 0.1} and failure.time uniform in
 300-900 s), 3 intact runs (block "intact"), run 3 failed. Detectors: dht (misses one run,
 false alarms on some), mle (names a wrong line once), glr (never reaches its threshold).
-Other cases, for the report's edge cases: no-intact, no-failure, no-detectors,
-all-failed, single, no-factors.
+The verdict columns (isolation_delay, final_line, alarm_seconds_before_failure) follow the
+first onset, except that every fifth failure run's verdict is revised to the failed line 20 s
+later and every third one ends without naming it. Other cases, for the report's edge cases:
+no-intact, no-failure, no-detectors, all-failed, single, no-factors, no-verdict (a campaign
+written before the verdict columns existed).
 """
 
 import argparse
@@ -23,7 +26,7 @@ import h5py
 import numpy as np
 
 CASES = ("standard", "no-intact", "no-failure", "no-detectors", "all-failed", "single",
-         "no-factors")
+         "no-factors", "no-verdict")
 DURATION = 1200.0
 NUM_LINES = 4
 # label: (type, statistic text, threshold, grid)
@@ -101,7 +104,9 @@ def write(directory: Path, case: str) -> Path:
                                "failure_line", "failure_time", "failure_mode", "duration",
                                "simulated_time", "wall_time", "speed", "ftime")}
     per = {label: {k: [] for k in ("alarm_time", "isolated_line", "delay", "false_alarms",
-                                   "max_before_failure", "crossings", "first")}
+                                   "max_before_failure", "crossings", "first",
+                                   "isolation_delay", "final_line",
+                                   "alarm_seconds_before_failure")}
            for label in detectors}
     for index, spec in enumerate(runs):
         line = spec["line"]
@@ -139,6 +144,15 @@ def write(directory: Path, case: str) -> Path:
             out["delay"].append(alarm - failure_time if line else np.nan)
             out["false_alarms"].append(false_alarms)
             out["max_before_failure"].append(peak)
+            delay = alarm - failure_time if line else np.nan
+            if line and named != line and index % 5 == 0 and np.isfinite(alarm):
+                delay += 20.0  # revised to the failed line later
+            elif line and named != line:
+                delay = np.nan
+            out["isolation_delay"].append(delay)
+            out["final_line"].append(0 if (index % 3 == 0 or not np.isfinite(alarm)) else
+                                     (line if np.isfinite(delay) else named))
+            out["alarm_seconds_before_failure"].append(10.0 * false_alarms + 0.5 * index)
             out["crossings"].append(crossings)
             out["first"].append(first)
 
@@ -174,6 +188,11 @@ def write(directory: Path, case: str) -> Path:
                 g.create_dataset(f"{label}.{key}", data=np.array(out[key], dtype=np.float64))
             for key in ("isolated_line", "false_alarms"):
                 g.create_dataset(f"{label}.{key}", data=np.array(out[key], dtype=np.int64))
+            if case != "no-verdict":
+                for key in ("isolation_delay", "alarm_seconds_before_failure"):
+                    g.create_dataset(f"{label}.{key}", data=np.array(out[key], dtype=np.float64))
+                g.create_dataset(f"{label}.final_line",
+                                 data=np.array(out["final_line"], dtype=np.int64))
             d = h5.create_group(f"detectors/{label}")
             d.attrs["type"], d.attrs["statistic"] = kind, text
             d.attrs["threshold"] = np.float64(threshold)

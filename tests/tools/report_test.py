@@ -70,6 +70,11 @@ def check(directory: Path) -> list[str]:
         columns = {label: {key: list(runs[f"{label}.{key}"][()]) for key in
                            ("alarm_time", "isolated_line", "delay", "false_alarms")}
                    for label in labels}
+        verdict_keys = ("isolation_delay", "final_line", "alarm_seconds_before_failure")
+        for label in labels:
+            if all(f"{label}.{key}" in runs for key in verdict_keys):
+                columns[label].update({key: list(runs[f"{label}.{key}"][()])
+                                       for key in verdict_keys})
 
     counts = {}
     for s in status:
@@ -120,6 +125,22 @@ def check(directory: Path) -> list[str]:
                 expect(f"{label} intact lower bound", 1 - poisson_cdf(count - 1, low), 0.025, 1e-7)
             else:
                 expect(f"{label} intact lower bound", low, 0.0)
+
+        verdict = got.get("verdict")
+        if "final_line" not in col:
+            expect(f"{label} verdict without its columns", verdict, None)
+        elif failure_runs or intact_runs:
+            named = [i for i in failure_runs if math.isfinite(col["isolation_delay"][i])]
+            kept = [i for i in failure_runs if col["final_line"][i] == line[i]]
+            verdict = verdict or {}
+            for what, k in (("named_after_break", len(named)), ("named_at_end", len(kept))):
+                expect(f"{label} {what} k", verdict.get(what, {}).get("k"), k)
+                expect(f"{label} {what} n", verdict.get(what, {}).get("n"), len(failure_runs))
+            seconds = sum(simulated[i] for i in intact_runs)
+            on = sum(float(col["alarm_seconds_before_failure"][i]) for i in intact_runs)
+            expect(f"{label} alarm-on share, intact",
+                   verdict.get("alarm_on_share", {}).get("intact"),
+                   on / seconds if seconds else None, 1e-9)
 
         delays = sorted(float(col["delay"][i]) for i in detected)
         median = None

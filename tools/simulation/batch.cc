@@ -215,6 +215,10 @@ std::vector<Column> TableColumns(const std::vector<std::string>& factor_keys,
     c.push_back({d + ".delay", K::kFloat, of("delay", nlohmann::json())});
     c.push_back({d + ".false_alarms", K::kInt, of("false_alarms", 0)});
     c.push_back({d + ".max_before_failure", K::kFloat, of("max_before_failure", nlohmann::json())});
+    c.push_back({d + ".isolation_delay", K::kFloat, of("isolation_delay", nlohmann::json())});
+    c.push_back({d + ".final_line", K::kInt, of("final_line", 0)});
+    c.push_back({d + ".alarm_seconds_before_failure", K::kFloat,
+                 of("alarm_seconds_before_failure", nlohmann::json())});
   }
   c.push_back({"error", K::kText, field("error")});
   c.push_back({"command", K::kText, field("command")});

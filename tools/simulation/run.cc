@@ -210,6 +210,35 @@ void AddDetection(const scenarios::Scenario& scenario, const Simulation& sim,
                      ? nlohmann::json(*d.alarm_time - scenario.failure.time)
                      : nlohmann::json(nullptr);
     j["false_alarms"] = d.false_alarms;
+    // The verdict as it evolved (detectors::AlarmHistory): when it first named the failed
+    // line after the break, by an onset, a revision or an alarm already standing on it;
+    // what it said at the end; how long an alarm stood before and after the break.
+    const double end = sim.time();
+    const bool failed = scenario.failure.line > 0 && scenario.failure.time <= end;
+    const double t_failure = failed ? scenario.failure.time : end;
+    const std::optional<double> named =
+        failed ? d.history.FirstNamed(scenario.failure.line, t_failure) : std::nullopt;
+    j["isolation_time"] = named ? nlohmann::json(*named) : nlohmann::json(nullptr);
+    j["isolation_delay"] = named ? nlohmann::json(*named - t_failure) : nlohmann::json(nullptr);
+    j["final_alarm"] = d.history.alarm();
+    j["final_hypothesis"] = d.history.alarm() ? nlohmann::json(labels.at(d.history.hypothesis()))
+                                              : nlohmann::json(nullptr);
+    const int final_hypothesis = d.history.hypothesis();
+    j["final_line"] = final_hypothesis >= 1 && final_hypothesis <= lines
+                          ? nlohmann::json(final_hypothesis)
+                          : nlohmann::json(nullptr);
+    j["alarm_seconds_before_failure"] = d.history.AlarmSeconds(0.0, t_failure);
+    j["alarm_seconds_after_failure"] =
+        failed ? nlohmann::json(d.history.AlarmSeconds(t_failure, end)) : nlohmann::json(nullptr);
+    nlohmann::json history = nlohmann::json::array();
+    for (const detectors::AlarmEvent& e : d.history.events()) {
+      history.push_back({{"time", e.time},
+                         {"event", detectors::AlarmEventName(e.kind)},
+                         {"hypothesis", e.kind == detectors::AlarmEvent::Kind::kEnd
+                                            ? nlohmann::json(nullptr)
+                                            : nlohmann::json(labels.at(e.hypothesis))}});
+    }
+    j["history"] = history;
     detectors[d.label] = j;
   }
   summary["detectors"] = detectors;

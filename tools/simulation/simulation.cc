@@ -680,6 +680,7 @@ void Simulation::DiscreteEvents() {
     for (std::size_t i = 0; i < parts_->detectors.size(); ++i) {
       const detectors::Verdict& v = parts_->verdicts[i] = parts_->detectors[i]->Update(evidence);
       DetectorRecord& r = detector_records_[i];
+      r.history.Update(t_, v.alarm, v.hypothesis);
       if (v.alarm && !r.alarm) {  // an onset
         const bool before_failure = !failed || t_ < scenario_.failure.time;
         if (before_failure) ++r.false_alarms;

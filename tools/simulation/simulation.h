@@ -23,6 +23,7 @@
 #include "core/coupled_system.h"
 #include "core/integrator.h"
 #include "core/sample_clock.h"
+#include "detectors/alarm_history.h"
 #include "detectors/detector.h"
 #include "mooring_fem/mooring_attachment.h"
 #include "mooring_fem/mooring_system.h"
@@ -84,6 +85,8 @@ struct DetectorRecord {
   int isolated = 0;
   int false_alarms = 0;
   bool alarm = false;  // at the latest sample
+  /// Every onset, revision of the named hypothesis and end of its alarm.
+  detectors::AlarmHistory history;
 };
 
 /// Wall time spent on detection (steady clock).
