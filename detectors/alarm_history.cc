@@ -45,6 +45,14 @@ int AlarmHistory::OnsetsBefore(double t) const {
   }));
 }
 
+std::optional<AlarmEvent> AlarmHistory::FirstOnset(double t) const {
+  const auto e = std::find_if(events_.begin(), events_.end(), [t](const AlarmEvent& e) {
+    return e.kind == AlarmEvent::Kind::kOnset && e.time >= t;
+  });
+  if (e == events_.end()) return std::nullopt;
+  return *e;
+}
+
 std::optional<double> AlarmHistory::FirstNamed(int hypothesis, double t) const {
   if (hypothesis == 0) return std::nullopt;
   // The verdict standing at t is that of the last event at or before t.

@@ -41,6 +41,8 @@ class AlarmHistory {
 
   /// Alarm onsets strictly before `t`.
   int OnsetsBefore(double t) const;
+  /// The first alarm onset at or after `t`, if any.
+  std::optional<AlarmEvent> FirstOnset(double t) const;
   /// The first time at or after `t` at which the verdict is an alarm naming `hypothesis`:
   /// `t` itself if such an alarm already stands at `t`, else the onset or revision that
   /// names it. Empty if it never does (up to the latest update).

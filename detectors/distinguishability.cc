@@ -573,7 +573,7 @@ Distinguishability AnalyseDistinguishability(const HypothesisBank& bank,
   const double t_break = t - dt;
   const Vec3 tau_filter = ekf.use_thrust_command ? tau0 : Vec3::Zero();
   for (int k = 1; k <= bank.num_lines(); ++k) {
-    LinearGaussianModel truth = models.Data(k, tau0);
+    const LinearGaussianModel truth = models.Data(k, tau0);
     const HypothesisEkf& truth_model = models.ekf(k);
     std::vector<HypothesisEkf> filters = settled;
     std::vector<MatX> covariance(n);

@@ -44,6 +44,10 @@ TEST(AlarmHistory, RecordsOnsetsRevisionsAndEndsOnly) {
   EXPECT_EQ(h.hypothesis(), 6);
   EXPECT_EQ(h.OnsetsBefore(7.0), 1);
   EXPECT_EQ(h.OnsetsBefore(7.5), 2);
+  EXPECT_EQ(h.FirstOnset(0.0)->time, 2.0);
+  EXPECT_EQ(h.FirstOnset(3.0)->time, 7.0);
+  EXPECT_EQ(h.FirstOnset(3.0)->hypothesis, 6);
+  EXPECT_FALSE(h.FirstOnset(7.5).has_value());
   EXPECT_EQ(AlarmEventName(Kind::kRevision), "revision");
 }
 

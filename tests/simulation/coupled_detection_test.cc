@@ -29,11 +29,11 @@ constexpr double kAllowedDelay = 180.0;
 void ExpectEveryDetectorFinds(const Simulation& sim, int line) {
   for (const DetectorRecord& r : sim.detector_records()) {
     SCOPED_TRACE(r.label);
-    EXPECT_EQ(r.false_alarms, 0);
-    ASSERT_TRUE(r.alarm_time.has_value());
-    EXPECT_GE(*r.alarm_time, kFailureTime);
-    EXPECT_LE(*r.alarm_time - kFailureTime, kAllowedDelay);
-    EXPECT_EQ(r.isolated, line);
+    EXPECT_EQ(r.FalseAlarms(), 0);
+    ASSERT_TRUE(r.FirstAlarm().has_value());
+    EXPECT_GE(r.FirstAlarm()->time, kFailureTime);
+    EXPECT_LE(r.FirstAlarm()->time - kFailureTime, kAllowedDelay);
+    EXPECT_EQ(r.FirstAlarm()->hypothesis, line);
   }
 }
 
@@ -76,8 +76,8 @@ TEST(CoupledDetection, NoAlarmInAnHourWithoutFailure) {
   sim.AdvanceTo(3600.0);
   for (const DetectorRecord& r : sim.detector_records()) {
     SCOPED_TRACE(r.label);
-    EXPECT_EQ(r.false_alarms, 0);
-    EXPECT_FALSE(r.alarm_time.has_value());
+    EXPECT_EQ(r.FalseAlarms(), 0);
+    EXPECT_FALSE(r.FirstAlarm().has_value());
   }
 }
 

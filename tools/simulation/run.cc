@@ -196,20 +196,20 @@ void AddDetection(const scenarios::Scenario& scenario, const Simulation& sim,
     nlohmann::json j;
     j["type"] = d.type;
     if (d.threshold) j["threshold"] = *d.threshold;
-    j["alarm_time"] = d.alarm_time ? nlohmann::json(*d.alarm_time) : nlohmann::json(nullptr);
+    const std::optional<detectors::AlarmEvent> first = d.FirstAlarm();
+    j["alarm_time"] = first ? nlohmann::json(first->time) : nlohmann::json(nullptr);
     // Hypothesis k <= number of lines is "line k failed"; pairs are named by their label.
-    if (!d.alarm_time) {
+    if (!first) {
       j["isolated_line"] = nullptr;
-    } else if (d.isolated >= 1 && d.isolated <= lines) {
-      j["isolated_line"] = d.isolated;
+    } else if (first->hypothesis >= 1 && first->hypothesis <= lines) {
+      j["isolated_line"] = first->hypothesis;
     } else {
       j["isolated_line"] = nullptr;
-      j["isolated_hypothesis"] = labels.at(d.isolated);
+      j["isolated_hypothesis"] = labels.at(first->hypothesis);
     }
-    j["delay"] = (d.alarm_time && scenario.failure.line > 0)
-                     ? nlohmann::json(*d.alarm_time - scenario.failure.time)
-                     : nlohmann::json(nullptr);
-    j["false_alarms"] = d.false_alarms;
+    j["delay"] = (first && d.failure_time) ? nlohmann::json(first->time - *d.failure_time)
+                                           : nlohmann::json(nullptr);
+    j["false_alarms"] = d.FalseAlarms();
     // The verdict as it evolved (detectors::AlarmHistory): when it first named the failed
     // line after the break, by an onset, a revision or an alarm already standing on it;
     // what it said at the end; how long an alarm stood before and after the break.

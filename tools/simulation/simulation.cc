@@ -481,6 +481,7 @@ void Simulation::StartDetection() {
     DetectorRecord record;
     record.label = scenario_.detectors[i].label;
     record.type = scenario_.detectors[i].type;
+    if (scenario_.failure.line > 0) record.failure_time = scenario_.failure.time;
     if (const auto* glr = dynamic_cast<const detectors::Glr*>(p.detectors.back().get())) {
       record.threshold = glr->threshold();
     } else if (const auto* dht = dynamic_cast<const detectors::Dht*>(p.detectors.back().get())) {
@@ -676,20 +677,9 @@ void Simulation::DiscreteEvents() {
     }
     const detectors::Evidence& evidence = parts_->observers ? parts_->observers->Update(observation)
                                                             : parts_->passive->Update(observation);
-    const bool failed = scenario_.failure.line > 0;
     for (std::size_t i = 0; i < parts_->detectors.size(); ++i) {
       const detectors::Verdict& v = parts_->verdicts[i] = parts_->detectors[i]->Update(evidence);
-      DetectorRecord& r = detector_records_[i];
-      r.history.Update(t_, v.alarm, v.hypothesis);
-      if (v.alarm && !r.alarm) {  // an onset
-        const bool before_failure = !failed || t_ < scenario_.failure.time;
-        if (before_failure) ++r.false_alarms;
-        if (!r.alarm_time && (!failed || !before_failure)) {
-          r.alarm_time = t_;
-          r.isolated = v.hypothesis;
-        }
-      }
-      r.alarm = v.alarm;
+      detector_records_[i].history.Update(t_, v.alarm, v.hypothesis);
     }
     detection_.update_seconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -81,12 +81,20 @@ struct DetectorRecord {
   /// The threshold the detector's alarm rule compares its score with (GLR: h on g; DHT:
   /// the posterior), for plots; unset for detectors without one (MLE: a margin on gaps).
   std::optional<double> threshold;
-  std::optional<double> alarm_time;
-  int isolated = 0;
-  int false_alarms = 0;
-  bool alarm = false;  // at the latest sample
+  /// The scenario's failure time; unset without a failure.
+  std::optional<double> failure_time;
   /// Every onset, revision of the named hypothesis and end of its alarm.
   detectors::AlarmHistory history;
+
+  /// The first alarm onset at or after the failure (without a failure, the first onset):
+  /// its time is the alarm time, its hypothesis the isolated one.
+  std::optional<detectors::AlarmEvent> FirstAlarm() const {
+    return history.FirstOnset(failure_time.value_or(-std::numeric_limits<double>::infinity()));
+  }
+  /// Alarm onsets before the failure (all of them without a failure).
+  int FalseAlarms() const {
+    return history.OnsetsBefore(failure_time.value_or(std::numeric_limits<double>::infinity()));
+  }
 };
 
 /// Wall time spent on detection (steady clock).
