@@ -39,6 +39,23 @@ struct HypothesisEvidence {
   int dimension = 3;  ///< number of valid channels used
 };
 
+/// The load picture of the intact model, for detectors that test persistent changes of
+/// force rather than residuals: the slowly varying load that the intact filter estimates
+/// (its bias state) and, per hypothesis, the load of the lines that hypothesis says have
+/// failed. The intact model keeps every line; if hypothesis h is true it over-predicts
+/// the restoring load by line_load[h], so its bias settles line_load[h] lower than the
+/// environment alone would put it (a parted line is, to the intact filter, a steady force).
+struct LoadEvidence {
+  Vec3 bias = Vec3::Zero();  ///< b [N, N, N m], Earth frame
+  Mat3 bias_covariance = Mat3::Identity();
+  /// line_load[h]: Earth-frame load [N, N, N m] at the filter's pose estimate of the lines
+  /// failed under hypothesis h (line_load[0] = 0).
+  std::vector<Vec3> line_load;
+  /// The filter's wave-frequency motion estimate C_w xi [m, m, rad], Earth frame: its
+  /// envelope drives the slowly varying wave drift, which moves the bias too.
+  Vec3 wave_motion = Vec3::Zero();
+};
+
 /// The evidence of every hypothesis at one sample; hypotheses[0] is "all intact".
 struct Evidence {
   double t = 0.0;
@@ -47,6 +64,9 @@ struct Evidence {
   /// (an IMM bank mixes hypotheses[0] with the others; see ObserverBank). Detectors that
   /// test the nominal model's residuals (GLR) use it when present, else hypotheses[0].
   std::optional<HypothesisEvidence> nominal;
+  /// From the same filter as `nominal` (the intact filter where the bank does not mix);
+  /// unset where the observers estimate no load (the passive observers).
+  std::optional<LoadEvidence> load;
 };
 
 /// A detector's state after a sample.
@@ -65,6 +85,8 @@ class Detector {
   /// Starts over for `hypotheses` hypotheses (hypothesis 0 intact).
   virtual void Reset(int hypotheses) = 0;
   virtual Verdict Update(const Evidence& evidence) = 0;
+  /// Whether the detector reads Evidence::load (which only the EKF observer bank gives).
+  virtual bool NeedsLoadEvidence() const { return false; }
 };
 
 /// A detector as the scenario names it: its type, a unique label (default: the type) and

@@ -356,6 +356,14 @@ ObserverBank::ObserverBank(const HypothesisBank& bank, const LowFrequencyModel& 
         internal::MooringDampingFor(bank, 0, model.mass, options.mooring_damping_ratio), options);
   }
   const std::size_t n = filters_.size();
+  if (bank.size() > 0) {
+    intact_mooring_ = bank.mooring(0);
+    failed_.resize(n);
+    for (int h = 0; h < bank.size(); ++h) {
+      for (int id : bank.failed_lines(h)) failed_[h].push_back(id - 1);
+    }
+    line_load_.resize(static_cast<std::size_t>(bank.num_lines()));
+  }
   evidence_.hypotheses.resize(n);
   log_probability_.resize(n);
   probability_.resize(n);
@@ -373,6 +381,7 @@ void ObserverBank::Reset() {
   evidence_.t = 0.0;
   for (HypothesisEvidence& e : evidence_.hypotheses) e = HypothesisEvidence();
   evidence_.nominal.reset();
+  evidence_.load.reset();
   const double uniform = 1.0 / static_cast<double>(filters_.size());
   std::fill(probability_.begin(), probability_.end(), uniform);
   std::fill(log_probability_.begin(), log_probability_.end(), std::log(uniform));
@@ -439,6 +448,7 @@ const Evidence& ObserverBank::Update(const Observation& observation) {
     log_probability_[h] = std::log(predicted_[h]) + e.log_likelihood;
     best = std::max(best, log_probability_[h]);
   }
+  UpdateLoadEvidence(nominal_ ? *nominal_ : filters_[0]);
   if (!informative) {
     std::copy(predicted_.begin(), predicted_.end(), probability_.begin());
     for (int h = 0; h < n; ++h) log_probability_[h] = std::log(probability_[h]);
@@ -452,6 +462,31 @@ const Evidence& ObserverBank::Update(const Observation& observation) {
     probability_[h] = std::exp(log_probability_[h]);
   }
   return evidence_;
+}
+
+void ObserverBank::UpdateLoadEvidence(const HypothesisEkf& intact) {
+  if (!intact.initialised() || failed_.empty()) {
+    evidence_.load.reset();
+    return;
+  }
+  if (!evidence_.load) {
+    evidence_.load.emplace();
+    evidence_.load->line_load.resize(failed_.size());
+  }
+  LoadEvidence& load = *evidence_.load;
+  load.bias = intact.bias();
+  load.wave_motion = intact.wave_motion();
+  load.bias_covariance =
+      intact.covariance().block<3, 3>(HypothesisEkf::kBias, HypothesisEkf::kBias);
+  const Vec3 pose = intact.pose();
+  for (std::size_t i = 0; i < line_load_.size(); ++i) {
+    line_load_[i] = intact_mooring_.LineLoad(static_cast<int>(i), pose);
+  }
+  for (std::size_t h = 0; h < failed_.size(); ++h) {
+    Vec3 sum = Vec3::Zero();
+    for (int index : failed_[h]) sum += line_load_[static_cast<std::size_t>(index)];
+    load.line_load[h] = sum;
+  }
 }
 
 }  // namespace moorsim::detectors

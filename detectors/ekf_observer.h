@@ -237,6 +237,9 @@ void Validate(const ObserverBankOptions& options);
 /// Weights below 1e-12 are skipped (and the rest renormalised). A mixing bank also runs
 /// one more intact filter that is never mixed and reports it as Evidence::nominal: the
 /// residuals of the nominal model alone, which is what a GLR tests.
+///
+/// Evidence::load is that nominal filter's bias estimate (the first filter's where the bank
+/// does not mix) with the load of each hypothesis's failed lines at its pose estimate.
 class ObserverBank {
  public:
   ObserverBank(const HypothesisBank& bank, const LowFrequencyModel& model,
@@ -245,7 +248,7 @@ class ObserverBank {
   int size() const { return static_cast<int>(filters_.size()); }
   void Reset();
   /// Runs every filter on `observation`; the result stays valid until the next call.
-  /// Allocates nothing.
+  /// Allocates nothing, except the load evidence's table once after each Reset().
   const Evidence& Update(const Observation& observation);
   const Evidence& evidence() const { return evidence_; }
   const HypothesisEkf& filter(int h) const { return filters_.at(h); }
@@ -255,6 +258,7 @@ class ObserverBank {
 
  private:
   void Mix(double dt);
+  void UpdateLoadEvidence(const HypothesisEkf& intact);
 
   ObserverBankOptions options_;
   std::vector<HypothesisEkf> filters_;
@@ -268,6 +272,11 @@ class ObserverBank {
   std::vector<HypothesisEkf::Covariance> mixed_covariance_;
   std::vector<HypothesisEkf::State> difference_;  // x_i - x_j, heading wrapped
   std::vector<double> weight_;
+  // The load evidence: the intact mooring, each hypothesis's failed lines (0-based) and
+  // the per-line load scratch.
+  QuasiStaticMooring intact_mooring_;
+  std::vector<std::vector<int>> failed_;
+  std::vector<Vec3> line_load_;
 };
 
 }  // namespace moorsim::detectors

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "detectors/deficit.h"
 #include "detectors/dht.h"
 #include "detectors/glr.h"
 #include "detectors/mle.h"
@@ -42,6 +43,31 @@ std::string FormatNumber(double value) {
 // and gave 2 false alarms, the chi-square 38.7 held 0 s gave dozens (benchmarks/README.md).
 constexpr double kGlrThreshold = 120.0;
 constexpr double kGlrHold = 15.0;
+constexpr ParameterRange kCount{1.0, 10000.0, false, false, true};  // [1, 10000]
+constexpr ParameterRange kDelay{0.0, 10000.0, false, false, true};  // [0, 10000]
+constexpr ParameterRange kSwitch{0.0, 1.0, false, false, true};     // 0 or 1
+
+constexpr std::array<DetectorParameter, 8> kDeficitParameters = {{
+    {"baseline_time", DeficitOptions{}.baseline_time, "", kPositive, "s",
+     "time constant of the learned baseline and disturbance of the intact filter's bias"},
+    {"drift", 1.0, "", kSwitch, "",
+     "1: the baseline follows the estimated wave motion's energy (slowly varying drift); 0: "
+     "constant"},
+    {"floor", DeficitOptions{}.floor, "", kPositive, "N",
+     "least disturbance standard deviation, added to the learned one"},
+    {"learn_delay", DeficitOptions{}.learn_delay, "", kDelay, "samples",
+     "age at which a bias sample is learned (dropped if an alarm is raised first)"},
+    {"release", DeficitOptions{}.release, "", kPositive, "nats",
+     "cumulative evidence for no change over the named line that ends the alarm"},
+    {"threshold", DeficitOptions{}.threshold, "", kPositive, "nats",
+     "cumulative evidence for a line's missing load over no change (over the named line: "
+     "revision)"},
+    {"warmup", DeficitOptions{}.warmup, "", kNonNegative, "s",
+     "load evidence learned before any alarm"},
+    {"window", DeficitOptions{}.window, "", kCount, "samples",
+     "samples of the bias averaged before the test"},
+}};
+
 constexpr std::array<DetectorParameter, 4> kDhtParameters = {{
     {"floor", DhtOptions{}.floor, "", kProbability, "",
      "probability floor p_min (TAPM thesis: 1e-9); hypotheses x floor must be < 1"},
@@ -74,6 +100,19 @@ constexpr std::array<DetectorParameter, 3> kMleParameters = {{
     {"margin", MleOptions{}.margin, "", kNonNegative, "nats",
      "lead J_0 - J_k the failure hypothesis needs over the intact one for the alarm"},
 }};
+
+std::unique_ptr<Detector> MakeDeficit(const DetectorParameters& p) {
+  DeficitOptions options;
+  options.baseline_time = p.Get("baseline_time");
+  options.drift = p.Get("drift") != 0.0;
+  options.floor = p.Get("floor");
+  options.learn_delay = static_cast<int>(p.Get("learn_delay"));
+  options.release = p.Get("release");
+  options.threshold = p.Get("threshold");
+  options.warmup = p.Get("warmup");
+  options.window = static_cast<int>(p.Get("window"));
+  return std::make_unique<Deficit>(options);
+}
 
 std::unique_ptr<Detector> MakeDht(const DetectorParameters& p) {
   DhtOptions options;
@@ -108,7 +147,10 @@ std::unique_ptr<Detector> MakeMle(const DetectorParameters& p) {
 }
 
 // The registry, sorted by name.
-constexpr std::array<DetectorType, 3> kDetectors = {{
+constexpr std::array<DetectorType, 4> kDetectors = {{
+    {"deficit", MakeDeficit, kDeficitParameters,
+     "force deficit: CUSUM of the intact filter's bias shift against each line's missing "
+     "load, over a learned disturbance; latched until the evidence reverses"},
     {"dht", MakeDht, kDhtParameters,
      "dynamic hypothesis testing: floored Bayesian posterior of every hypothesis (Hassani et al. "
      "2018, eq. 47/51)"},

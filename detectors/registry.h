@@ -78,12 +78,12 @@ struct DetectorType {
 /// The registry, sorted by name.
 std::span<const DetectorType> DetectorTable();
 
-/// The registered type names, sorted: dht, glr, mle.
+/// The registered type names, sorted: deficit, dht, glr, mle.
 std::vector<std::string_view> DetectorTypes();
 
 /// Builds the detector a scenario entry names. `key_path` locates the entry in the
 /// scenario for the messages ("detectors[2]"). Throws InputError:
-///   "<key_path>.type: unknown detector 'x' (known: dht, glr, mle)"
+///   "<key_path>.type: unknown detector 'x' (known: deficit, dht, glr, mle)"
 ///   "<key_path>: unknown parameter 'y' for dht (known: floor, hold, prior_intact, threshold)"
 ///   "<key_path>.floor: 2 must be in (0, 1)"
 std::unique_ptr<Detector> MakeDetector(const DetectorSpec& spec, std::string_view key_path);

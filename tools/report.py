@@ -344,6 +344,7 @@ def analyse_detector(c: Campaign, d: Detector) -> dict:
                 if intact_seconds > 0 else None,
                 "pre_failure": float(np.nansum(on[c.fail_ok])) / pre_seconds
                 if pre_seconds > 0 else None}}
+    result["per_block"] = per_block(c, d)
     monitored = c.intact_ok | c.fail_ok
     hours = intact_hours + pre_hours
     if d.grid is not None and d.grid.size and hours > 0:
@@ -364,6 +365,40 @@ def analyse_detector(c: Campaign, d: Detector) -> dict:
                 if c.fail_ok.any() else None}
         result["roc"] = roc
     return result
+
+
+def per_block(c: Campaign, d: Detector) -> dict:
+    """Per block (a campaign's sea state, failure mode, ...): the verdict on its failure runs
+    (named after the break, with its delay, and still named at the end; the first alarm's
+    detection and isolation where the verdict columns are missing) and the false alarms
+    and alarm-on share of its intact runs."""
+    r, col = c.runs, d.columns
+    verdict = all(name in col for name in VERDICT_COLUMNS)
+    out = {}
+    for b in sorted(set(r["block"])):
+        in_block = r["block"] == b
+        fail, intact = c.fail_ok & in_block, c.intact_ok & in_block
+        n = int(fail.sum())
+        entry = {"failure_runs": n, "intact_runs": int(intact.sum())}
+        if n:
+            entry["detection"] = proportion(int((fail & np.isfinite(col["alarm_time"])).sum()), n)
+            entry["isolation"] = proportion(int((fail & (col["isolated_line"] ==
+                                                         r["failure_line"])).sum()), n)
+            if verdict:
+                named = fail & np.isfinite(col["isolation_delay"])
+                entry["named_after_break"] = proportion(int(named.sum()), n)
+                entry["naming_delay"] = delay_summary(col["isolation_delay"][named])
+                entry["named_at_end"] = proportion(int((fail & (col["final_line"] ==
+                                                               r["failure_line"])).sum()), n)
+        if intact.any():
+            seconds = float(r["simulated_time"][intact].sum())
+            entry["false_alarms_per_hour"] = poisson_rate(int(col["false_alarms"][intact].sum()),
+                                                          seconds / 3600, int(intact.sum()))
+            if verdict:
+                entry["alarm_on_share"] = float(np.nansum(
+                    col["alarm_seconds_before_failure"][intact])) / seconds
+        out[str(b)] = entry
+    return out
 
 
 def truth(c: Campaign, i: int) -> str:
@@ -825,6 +860,35 @@ def verdict_section(p: Page) -> list:
     return out
 
 
+def block_section(p: Page) -> list:
+    blocks = sorted({b for r in p.results.values() for b in r.get("per_block", {})})
+    if len(blocks) < 2:
+        return []
+    out = ["<h2>By block</h2><p class='note'>Each block of the campaign (a sea state, a "
+           "failure mode, ...) on its own. Failure runs: the verdict named the failed line "
+           "after the break (delay median / p95), and still named it at the end (first-alarm "
+           "isolation where the campaign predates the verdict columns). Intact runs: false "
+           "alarms per hour (onsets) and the share of the time an alarm stood.</p>"]
+    rows = []
+    for label, result in p.results.items():
+        for b in blocks:
+            e = result.get("per_block", {}).get(b)
+            if e is None:
+                continue
+            named = e.get("named_after_break", e.get("isolation"))
+            on = e.get("alarm_on_share")
+            rows.append([label, b, rate_text(named) if named else "-",
+                         delay_text(e["naming_delay"]) if "naming_delay" in e else "-",
+                         rate_text(e["named_at_end"]) if "named_at_end" in e else "-",
+                         poisson_text(e["false_alarms_per_hour"])
+                         if "false_alarms_per_hour" in e else "-",
+                         "-" if on is None else f"{100 * on:.2f} %"])
+    out.append(table(["detector", "block", "named after the break", "delay median / p95 / max",
+                      "still named at the end", "false alarms per intact hour", "alarm on"],
+                     rows))
+    return out
+
+
 def roc_section(p: Page) -> list:
     out = ["<h2>ROC</h2><p class='note'>For each threshold of a detector's grid: false alarms "
            "per hour = upcrossings of the threshold by the statistic (without the hold time) on "
@@ -877,7 +941,8 @@ def write_html(p: Page) -> None:
     if not p.labels:
         out.append("<p>The campaign has no detectors: nothing more to report.</p>")
     for section in (rates_section, confusion_section, delay_section, verdict_section,
-                    false_alarm_section, roc_section, worst_section) if p.labels else ():
+                    block_section, false_alarm_section, roc_section,
+                    worst_section) if p.labels else ():
         out += section(p)
     out.append("</body></html>\n")
     (p.out_dir / "report.html").write_text("".join(out), encoding="utf-8")

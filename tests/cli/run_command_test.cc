@@ -300,7 +300,7 @@ TEST(ValidateDetectors, BadConfigurationIsOneLineWithExitCode2) {
     std::string entry, message;
   };
   const Case cases[] = {
-      {"{type: dhx}", "detectors[1].type: unknown detector 'dhx' (known: dht, glr, mle)"},
+      {"{type: dhx}", "detectors[1].type: unknown detector 'dhx' (known: deficit, dht, glr, mle)"},
       {"{type: dht, floor: 0}", "detectors[1].floor: 0 must be in (0, 1)"},
       {"{type: dht, floor: 1}", "detectors[1].floor: 1 must be in (0, 1)"},
       {"{type: mle, forgetting_factor: 1.5}",
@@ -309,11 +309,19 @@ TEST(ValidateDetectors, BadConfigurationIsOneLineWithExitCode2) {
       {"{type: glr, threshold: }", "detectors[1].threshold: an empty value must be a number"},
       {"{type: glr, threshold: 50, false_alarm_probability: 0.001}",
        "detectors[1]: give threshold or false_alarm_probability, not both"},
+      {"{type: deficit}",
+       "detectors[1].type: deficit reads the EKF observers' load estimate, which "
+       "detection.observer: passive does not give (use ekf)"},
   };
+  // The force-deficit detector reads the EKF bank's load estimate, which the passive
+  // observers do not make.
+  const std::string passive = "detection: {observer: passive}\n";
   for (const Case& c : cases) {
     SCOPED_TRACE(c.entry);
     const std::filesystem::path file = dir.path() / "bad.yaml";
-    WriteWholeFile(file, base + "\ndetectors:\n  - " + c.entry + "\n");
+    const bool needs_ekf = c.entry == "{type: deficit}";
+    WriteWholeFile(file,
+                   base + "\n" + (needs_ekf ? passive : "") + "detectors:\n  - " + c.entry + "\n");
     const CliResult r = RunCli({"validate", file.string()}, dir.path());
     EXPECT_EQ(r.exit_code, 2) << r.Describe();
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;

@@ -65,6 +65,7 @@ def check(directory: Path) -> list[str]:
         line = [int(v) for v in runs["failure_line"][()]]
         failure_time = [float(v) for v in runs["failure_time"][()]]
         simulated = [float(v) for v in runs["simulated_time"][()]]
+        block = strings(runs["block"])
         lines = int(h5.attrs["num_lines"])
         labels = [d for d in str(h5.attrs.get("detectors", "")).split("\n") if d]
         columns = {label: {key: list(runs[f"{label}.{key}"][()]) for key in
@@ -141,6 +142,21 @@ def check(directory: Path) -> list[str]:
             expect(f"{label} alarm-on share, intact",
                    verdict.get("alarm_on_share", {}).get("intact"),
                    on / seconds if seconds else None, 1e-9)
+
+        blocks = got.get("per_block", {})
+        expect(f"{label} blocks", sorted(blocks), sorted(set(block)))
+        for b, entry in blocks.items():
+            fail = [i for i in failure_runs if block[i] == b]
+            quiet = [i for i in intact_runs if block[i] == b]
+            expect(f"{label} {b} failure runs", entry.get("failure_runs"), len(fail))
+            if fail and "final_line" in col:
+                named = [i for i in fail if math.isfinite(col["isolation_delay"][i])]
+                expect(f"{label} {b} named after the break",
+                       entry.get("named_after_break", {}).get("k"), len(named))
+            if quiet:
+                count = sum(int(col["false_alarms"][i]) for i in quiet)
+                expect(f"{label} {b} false alarms",
+                       entry.get("false_alarms_per_hour", {}).get("count"), count)
 
         delays = sorted(float(col["delay"][i]) for i in detected)
         median = None

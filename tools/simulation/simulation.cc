@@ -250,7 +250,15 @@ std::unique_ptr<detectors::Detector> BuildDetector(const scenarios::Scenario& sc
                                                    std::size_t i) {
   const std::string path = "detectors[" + std::to_string(i + 1) + "]";
   try {
-    return detectors::MakeDetector(Spec(scenario.detectors[i]), path);
+    std::unique_ptr<detectors::Detector> detector =
+        detectors::MakeDetector(Spec(scenario.detectors[i]), path);
+    if (detector->NeedsLoadEvidence() && scenario.detection.observer == "passive") {
+      scenarios::FailAt(scenario, path + ".type",
+                        scenario.detectors[i].type +
+                            " reads the EKF observers' load estimate, which "
+                            "detection.observer: passive does not give (use ekf)");
+    }
+    return detector;
   } catch (const InputError& e) {
     const std::string message = e.what();
     const std::size_t colon = message.find(": ");

@@ -1,0 +1,210 @@
+#include "detectors/deficit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/error.h"
+#include "detectors/registry.h"
+
+namespace moorsim::detectors {
+
+namespace {
+
+constexpr double kMaxSamplesPerValue = 1000.0;
+
+}  // namespace
+
+Deficit::Deficit(const DeficitOptions& options) : options_(options) {
+  internal::Require(options.window >= 1, "deficit", "window >= 1");
+  internal::Require(options.baseline_time > 0.0, "deficit", "baseline_time > 0");
+  internal::Require(options.floor > 0.0, "deficit", "floor > 0");
+  internal::Require(options.threshold > 0.0, "deficit", "threshold > 0");
+  internal::Require(options.release > 0.0, "deficit", "release > 0");
+  internal::Require(options.warmup >= 0.0, "deficit", "warmup >= 0");
+  internal::Require(options.learn_delay >= 0, "deficit", "learn_delay >= 0");
+}
+
+void Deficit::Reset(int hypotheses) {
+  internal::Require(hypotheses >= 1, "deficit", "at least one hypothesis");
+  hypotheses_ = hypotheses;
+  ring_.assign(static_cast<std::size_t>(options_.window), Vec2::Zero());
+  energies_.assign(static_cast<std::size_t>(options_.window), 0.0);
+  newest_ = -1;
+  filled_ = 0;
+  first_time_ = last_time_ = 0.0;
+  samples_ = 0;
+  learned_ = 0.0;
+  learned_samples_ = 0;
+  baseline_.setZero();
+  energy_mean_ = energy_variance_ = 0.0;
+  cross_.setZero();
+  gain_.setZero();
+  disturbance_.setZero();
+  raw_covariance_.setZero();
+  lag_covariance_ = 0.0;
+  previous_raw_.setZero();
+  delay_.assign(static_cast<std::size_t>(options_.learn_delay) + 1, Pending{});
+  delay_oldest_ = delay_count_ = 0;
+  z_.assign(static_cast<std::size_t>(hypotheses), 0.0);
+  rival_.assign(static_cast<std::size_t>(hypotheses), 0.0);
+  verdict_.score.assign(static_cast<std::size_t>(hypotheses), 0.0);
+  Restart();
+}
+
+void Deficit::Restart() {
+  alarm_ = false;
+  named_ = 0;
+  std::fill(rival_.begin(), rival_.end(), 0.0);
+  reversal_ = 0.0;
+  std::fill(verdict_.score.begin(), verdict_.score.end(), 0.0);
+  verdict_.hypothesis = 0;
+  verdict_.alarm = false;
+}
+
+double Deficit::samples_per_value() const {
+  const double raw = raw_covariance_.trace();
+  const double mean = disturbance_.trace();
+  if (!(raw > 0.0) || !(mean > 0.0)) return 1.0;
+  const double rho = std::clamp(lag_covariance_ / raw, 0.0, 1.0);
+  const double inflation = rho >= 1.0 ? kMaxSamplesPerValue : (1.0 + rho) / (1.0 - rho);
+  return std::clamp(inflation * raw / mean, 1.0, kMaxSamplesPerValue);
+}
+
+Verdict Deficit::Update(const Evidence& evidence) { return Step(evidence); }
+
+Deficit::Vec2 Deficit::Predict(double energy) const {
+  return baseline_ + gain_ * (energy - energy_mean_);
+}
+
+// Exponentially weighted moments (West's update for the variance and covariance of s and
+// e), the residual covariance C, and the raw bias's covariance and lag-1 covariance: the
+// first learned sample sets the means, then a running mean until baseline_time has been
+// learned, then weight dt / baseline_time per sample.
+void Deficit::Learn(const Pending& sample) {
+  const double alpha =
+      learned_samples_ == 0
+          ? 1.0
+          : std::min(1.0, sample.dt / std::min(learned_ + sample.dt, options_.baseline_time));
+  const Vec2 ds = sample.mean - baseline_;
+  const double de = sample.energy - energy_mean_;
+  baseline_ += alpha * ds;
+  energy_mean_ += alpha * de;
+  energy_variance_ = (1.0 - alpha) * (energy_variance_ + alpha * de * de);
+  cross_ = (1.0 - alpha) * (cross_ + alpha * ds * de);
+  // The gain once e has varied measurably (1e-12 m^4: a millimetre of wave motion).
+  gain_ =
+      options_.drift && energy_variance_ > 1e-12 ? Vec2(cross_ / energy_variance_) : Vec2::Zero();
+  const Vec2 e = sample.mean - Predict(sample.energy);
+  disturbance_ += alpha * (e * e.transpose() - disturbance_);
+  const Vec2 r = sample.raw - Predict(sample.energy);
+  raw_covariance_ += alpha * (r * r.transpose() - raw_covariance_);
+  if (learned_samples_ > 0) {
+    lag_covariance_ += alpha * (r.dot(previous_raw_) - lag_covariance_);
+    learned_ += sample.dt;
+  }
+  previous_raw_ = r;
+  ++learned_samples_;
+}
+
+const Verdict& Deficit::Step(const Evidence& evidence) {
+  internal::CheckEvidence("deficit", evidence, hypotheses_);
+  if (!evidence.load) return verdict_;
+  const LoadEvidence& load = *evidence.load;
+  internal::Require(static_cast<int>(load.line_load.size()) == hypotheses_, "deficit",
+                    "one line load per hypothesis");
+  const double t = evidence.t;
+  if (!load.bias.allFinite() || !load.wave_motion.allFinite()) {
+    std::ostringstream message;
+    message << "deficit: non-finite bias or wave-motion estimate at t = " << t << " s";
+    throw SolverError(message.str());
+  }
+
+  // The short mean s of the horizontal bias.
+  newest_ = (newest_ + 1) % options_.window;
+  filled_ = std::min(filled_ + 1, options_.window);
+  ring_[static_cast<std::size_t>(newest_)] = load.bias.head<2>();
+  energies_[static_cast<std::size_t>(newest_)] = load.wave_motion.head<2>().squaredNorm();
+  Vec2 mean = Vec2::Zero();
+  double energy = 0.0;
+  for (int i = 0; i < filled_; ++i) {
+    mean += ring_[static_cast<std::size_t>(i)];
+    energy += energies_[static_cast<std::size_t>(i)];
+  }
+  mean /= filled_;
+  energy /= filled_;
+  const double dt = samples_ == 0 ? 0.0 : t - last_time_;
+  if (samples_ == 0) first_time_ = t;
+  ++samples_;
+  last_time_ = t;
+  if (filled_ < options_.window) return verdict_;
+
+  // The delay line: learn the oldest sample once it is learn_delay samples old; an alarm
+  // drops everything still waiting.
+  std::vector<double>& sums = verdict_.score;
+  if (alarm_) {
+    delay_count_ = 0;
+  } else {
+    const int capacity = static_cast<int>(delay_.size());
+    delay_[static_cast<std::size_t>((delay_oldest_ + delay_count_) % capacity)] =
+        Pending{mean, load.bias.head<2>(), energy, dt};
+    if (++delay_count_ > options_.learn_delay) {
+      Learn(delay_[static_cast<std::size_t>(delay_oldest_)]);
+      delay_oldest_ = (delay_oldest_ + 1) % capacity;
+      --delay_count_;
+    }
+  }
+  if (t - first_time_ < options_.warmup || learned_samples_ == 0) return verdict_;
+
+  // z_h against the learned disturbance, per independent value.
+  const Eigen::Matrix2d information =
+      (disturbance_ + options_.floor * options_.floor * Eigen::Matrix2d::Identity()).inverse();
+  const Vec2 shift = mean - Predict(energy);
+  const double m = samples_per_value();
+  for (int h = 1; h < hypotheses_; ++h) {
+    const Vec2 d = -load.line_load[static_cast<std::size_t>(h)].head<2>();
+    const Vec2 weighted = information * d;
+    z_[static_cast<std::size_t>(h)] = (weighted.dot(shift) - 0.5 * weighted.dot(d)) / m;
+  }
+
+  if (!alarm_) {
+    int best = 0;
+    for (int h = 1; h < hypotheses_; ++h) {
+      double& sum = sums[static_cast<std::size_t>(h)];
+      sum = std::max(0.0, sum + z_[static_cast<std::size_t>(h)]);
+      if (sum > options_.threshold && (best == 0 || sum > sums[static_cast<std::size_t>(best)])) {
+        best = h;
+      }
+    }
+    if (best != 0) {
+      alarm_ = true;
+      named_ = best;
+    }
+  } else {
+    for (int h = 1; h < hypotheses_; ++h) {
+      double& sum = sums[static_cast<std::size_t>(h)];
+      sum = std::max(0.0, sum + z_[static_cast<std::size_t>(h)]);
+    }
+    const double named_z = z_[static_cast<std::size_t>(named_)];
+    int rival = 0;
+    for (int j = 1; j < hypotheses_; ++j) {
+      double& r = rival_[static_cast<std::size_t>(j)];
+      r = j == named_ ? 0.0 : std::max(0.0, r + z_[static_cast<std::size_t>(j)] - named_z);
+      if (r > options_.threshold && (rival == 0 || r > rival_[static_cast<std::size_t>(rival)])) {
+        rival = j;
+      }
+    }
+    if (rival != 0) {
+      named_ = rival;
+      std::fill(rival_.begin(), rival_.end(), 0.0);
+      reversal_ = 0.0;
+    }
+    reversal_ = std::max(0.0, reversal_ - z_[static_cast<std::size_t>(named_)]);
+    if (reversal_ > options_.release) Restart();
+  }
+  verdict_.alarm = alarm_;
+  verdict_.hypothesis = alarm_ ? named_ : 0;
+  return verdict_;
+}
+
+}  // namespace moorsim::detectors
