@@ -17,6 +17,7 @@
 #include <benchmark/benchmark.h>
 
 #include "core/random.h"
+#include "detectors/deficit.h"
 #include "detectors/dht.h"
 #include "detectors/ekf_observer.h"
 #include "detectors/glr.h"
@@ -149,5 +150,13 @@ void BM_Glr(benchmark::State& state) {
   RunDetector(state, glr);
 }
 BENCHMARK(BM_Glr)->Unit(benchmark::kNanosecond);
+
+// The evidence carries the bank's load evidence (bias, wave motion, failed-line loads), so
+// the force-deficit test runs on it as in a simulation.
+void BM_Deficit(benchmark::State& state) {
+  Deficit deficit;
+  RunDetector(state, deficit);
+}
+BENCHMARK(BM_Deficit)->Unit(benchmark::kNanosecond);
 
 }  // namespace

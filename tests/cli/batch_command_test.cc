@@ -3,12 +3,16 @@
 // table by tests/tools/report_test.py), a SIGTERM that stops the batch with exit 143.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tests/cli/run_cli.h"
@@ -142,6 +146,111 @@ TEST(BatchCommand, SigtermStopsTheBatchWithExit143AndKeepsTheFinishedRows) {
   ASSERT_TRUE(WIFEXITED(status)) << "signal " << WTERMSIG(status);
   EXPECT_EQ(WEXITSTATUS(status), 143);
   EXPECT_TRUE(std::filesystem::exists(out / "runs.csv"));  // the table of what finished
+}
+
+}  // namespace
+}  // namespace moorsim::testing
+
+namespace moorsim::testing {
+namespace {
+
+// One detector's results in a campaign's rows (rows/*.json, one per run).
+struct CampaignRow {
+  std::string block, status;
+  int failure_line = 0;
+  double simulated_time = 0.0;
+  double isolation_delay = 0.0;  // NaN: never named after the break
+  int final_line = 0;            // 0: no alarm at the end
+  int false_alarms = 0;
+  double alarm_seconds_before_failure = 0.0;
+};
+
+std::vector<CampaignRow> ReadRows(const std::filesystem::path& out, const std::string& label) {
+  std::vector<CampaignRow> rows;
+  for (const auto& entry : std::filesystem::directory_iterator(out / "rows")) {
+    const nlohmann::json j = nlohmann::json::parse(ReadWholeFile(entry.path()));
+    CampaignRow row;
+    row.block = j.at("block").get<std::string>();
+    row.status = j.at("status").get<std::string>();
+    if (j.contains("failure") && j.at("failure").is_object()) {
+      row.failure_line = j.at("failure").at("line").get<int>();
+    }
+    row.simulated_time = j.at("simulated_time").get<double>();
+    const nlohmann::json& d = j.at("detectors").at(label);
+    const nlohmann::json& delay = d.at("isolation_delay");
+    row.isolation_delay = delay.is_null() ? std::nan("") : delay.get<double>();
+    row.final_line = d.at("final_line").is_null() ? 0 : d.at("final_line").get<int>();
+    row.false_alarms = d.at("false_alarms").get<int>();
+    row.alarm_seconds_before_failure = d.at("alarm_seconds_before_failure").get<double>();
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// Wilson (1927) 95 % score interval of k successes in n.
+std::pair<double, double> Wilson(int k, int n) {
+  const double z = 1.959963984540054, p = static_cast<double>(k) / n, z2 = z * z;
+  const double centre = (p + z2 / (2.0 * n)) / (1.0 + z2 / n);
+  const double half = z / (1.0 + z2 / n) * std::sqrt(p * (1.0 - p) / n + z2 / (4.0 * n * n));
+  return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
+}
+
+// The detection acceptance test: not one seed's run but a small held-out campaign
+// (scenarios/campaigns/detection_acceptance.yaml: two sea states, wave and current
+// directions and seeds that no detector was tuned on; 32 breaks and 6 intact hours), judged
+// by its statistics. The force-deficit detector, measured on the training campaign at
+// 96.5 % (thesis sea) and 74 % (Hs 4 m) named after the break, no false alarm in 36 intact
+// hours, must here: name the failed line after the break in at least 75 % of the 32 runs
+// (the Wilson interval is printed), in at least 14 of the 16 in the thesis sea; keep naming
+// it to the end of the run in at least 95 % of those it named (the verdict persists); name
+// a wrong line at the end of at most 2 runs; and raise at most 1 false alarm in the 6
+// intact hours, with an alarm on at most 1 % of their time.
+TEST(HeldOutAcceptance, TheDeficitDetectorOnASmallHeldOutCampaign) {
+  TempDirectory dir(::testing::TempDir());
+  const std::string out = (dir.path() / "acceptance").string();
+  const CliResult r =
+      RunCli({"batch", MOORSIM_SOURCE_DIR "/scenarios/campaigns/detection_acceptance.yaml", "--out",
+              out, "--quiet"},
+             dir.path(), std::chrono::seconds(900));
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  const std::vector<CampaignRow> rows = ReadRows(std::filesystem::path(out), "deficit");
+  int breaks = 0, named = 0, kept = 0, wrong = 0, thesis = 0, thesis_named = 0;
+  int false_alarms = 0;
+  double intact_seconds = 0.0, alarm_seconds = 0.0;
+  for (const CampaignRow& row : rows) {
+    ASSERT_EQ(row.status, "ok") << row.block;
+    if (row.failure_line == 0) {
+      false_alarms += row.false_alarms;
+      intact_seconds += row.simulated_time;
+      alarm_seconds += row.alarm_seconds_before_failure;
+      continue;
+    }
+    ++breaks;
+    const bool in_thesis_sea = row.block.rfind("thesis", 0) == 0;
+    thesis += in_thesis_sea ? 1 : 0;
+    if (std::isfinite(row.isolation_delay)) {
+      ++named;
+      thesis_named += in_thesis_sea ? 1 : 0;
+      kept += row.final_line == row.failure_line ? 1 : 0;
+    }
+    wrong += row.final_line != 0 && row.final_line != row.failure_line ? 1 : 0;
+  }
+  ASSERT_EQ(breaks, 32);
+  ASSERT_EQ(thesis, 16);
+  ASSERT_EQ(intact_seconds, 6 * 3600.0);
+  const auto [low, high] = Wilson(named, breaks);
+  std::printf(
+      "deficit: named after the break %d/%d (95 %% interval %.2f-%.2f), %d/16 in the "
+      "thesis sea; kept %d/%d; wrong at the end %d; %d false alarms in 6 h, alarm on "
+      "%.2f %%\n",
+      named, breaks, low, high, thesis_named, kept, named, wrong, false_alarms,
+      100.0 * alarm_seconds / intact_seconds);
+  EXPECT_GE(named, 24);
+  EXPECT_GE(thesis_named, 14);
+  EXPECT_GE(kept, 0.95 * named);
+  EXPECT_LE(wrong, 2);
+  EXPECT_LE(false_alarms, 1);
+  EXPECT_LE(alarm_seconds, 0.01 * intact_seconds);
 }
 
 }  // namespace
