@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include <Eigen/LU>
+
 #include "core/error.h"
 #include "detectors/registry.h"
 
@@ -23,6 +25,7 @@ Deficit::Deficit(const DeficitOptions& options) : options_(options) {
   internal::Require(options.release > 0.0, "deficit", "release > 0");
   internal::Require(options.warmup >= 0.0, "deficit", "warmup >= 0");
   internal::Require(options.learn_delay >= 0, "deficit", "learn_delay >= 0");
+  internal::Require(options.small_sample >= 0.0, "deficit", "small_sample >= 0");
 }
 
 void Deficit::Reset(int hypotheses) {
@@ -69,6 +72,17 @@ double Deficit::samples_per_value() const {
   const double rho = std::clamp(lag_covariance_ / raw, 0.0, 1.0);
   const double inflation = rho >= 1.0 ? kMaxSamplesPerValue : (1.0 + rho) / (1.0 - rho);
   return std::clamp(inflation * raw / mean, 1.0, kMaxSamplesPerValue);
+}
+
+double Deficit::DisturbanceInflation(double samples_per_value) const {
+  // The learned samples, counted up to the baseline time (the weights' memory), per
+  // independent value.
+  const double dt =
+      learned_samples_ > 1 ? learned_ / static_cast<double>(learned_samples_ - 1) : 1.0;
+  const double span =
+      std::min(static_cast<double>(learned_samples_), options_.baseline_time / std::max(dt, 1e-9));
+  const double values = std::max(span / samples_per_value, 1e-3);
+  return 1.0 + options_.small_sample / values;
 }
 
 Verdict Deficit::Update(const Evidence& evidence) { return Step(evidence); }
@@ -156,11 +170,14 @@ const Verdict& Deficit::Step(const Evidence& evidence) {
   }
   if (t - first_time_ < options_.warmup || learned_samples_ == 0) return verdict_;
 
-  // z_h against the learned disturbance, per independent value.
-  const Eigen::Matrix2d information =
-      (disturbance_ + options_.floor * options_.floor * Eigen::Matrix2d::Identity()).inverse();
-  const Vec2 shift = mean - Predict(energy);
+  // z_h against the learned disturbance, per independent value; C inflated while it rests
+  // on few independent values.
   const double m = samples_per_value();
+  const Eigen::Matrix2d information =
+      (DisturbanceInflation(m) * disturbance_ +
+       options_.floor * options_.floor * Eigen::Matrix2d::Identity())
+          .inverse();
+  const Vec2 shift = mean - Predict(energy);
   for (int h = 1; h < hypotheses_; ++h) {
     const Vec2 d = -load.line_load[static_cast<std::size_t>(h)].head<2>();
     const Vec2 weighted = information * d;

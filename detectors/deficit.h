@@ -32,6 +32,10 @@
 //            Godjevac & Negenborn 2021);
 //   d_h      the shift of the bias that hypothesis h predicts: -line_load[h] (the load of
 //            its failed lines at the pose estimate);
+//   n        the independent values C rests on: the learned samples (at most
+//            `baseline_time` of them, the weights' memory) over m (below). While n is small
+//            C is likely too small (the first minutes of a run in a rough sea learn one or
+//            two drift groups), so the test uses C (1 + small_sample / n);
 //   z_h      = d_h^T C^-1 D - d_h^T C^-1 d_h / 2,  D = s_n - B(e_n): the log-likelihood ratio
 //            [nats] of "the bias moved by d_h" against "the bias did not move", for D
 //            Gaussian with covariance C. The amplitude is known (the line's whole load), so a
@@ -101,6 +105,8 @@ struct DeficitOptions {
   int learn_delay = 120;
   /// Whether B follows the wave-motion energy (the drift regression above).
   bool drift = true;
+  /// c in C's small-sample inflation 1 + c / n (n: independent values learned), >= 0.
+  double small_sample = 0.0;
 };
 
 class Deficit final : public Detector {
@@ -132,6 +138,7 @@ class Deficit final : public Detector {
     double dt = 0.0;
   };
   Vec2 Predict(double energy) const;  // B(e)
+  double DisturbanceInflation(double samples_per_value) const;
   void Learn(const Pending& sample);
   void Restart();
 

@@ -47,7 +47,7 @@ constexpr ParameterRange kCount{1.0, 10000.0, false, false, true};  // [1, 10000
 constexpr ParameterRange kDelay{0.0, 10000.0, false, false, true};  // [0, 10000]
 constexpr ParameterRange kSwitch{0.0, 1.0, false, false, true};     // 0 or 1
 
-constexpr std::array<DetectorParameter, 8> kDeficitParameters = {{
+constexpr std::array<DetectorParameter, 9> kDeficitParameters = {{
     {"baseline_time", DeficitOptions{}.baseline_time, "", kPositive, "s",
      "time constant of the learned baseline and disturbance of the intact filter's bias"},
     {"drift", 1.0, "", kSwitch, "",
@@ -59,6 +59,8 @@ constexpr std::array<DetectorParameter, 8> kDeficitParameters = {{
      "age at which a bias sample is learned (dropped if an alarm is raised first)"},
     {"release", DeficitOptions{}.release, "", kPositive, "nats",
      "cumulative evidence for no change over the named line that ends the alarm"},
+    {"small_sample", DeficitOptions{}.small_sample, "", kNonNegative, "",
+     "c: the learned disturbance is used as C (1 + c / n), n the independent values learned"},
     {"threshold", DeficitOptions{}.threshold, "", kPositive, "nats",
      "cumulative evidence for a line's missing load over no change (over the named line: "
      "revision)"},
@@ -108,6 +110,7 @@ std::unique_ptr<Detector> MakeDeficit(const DetectorParameters& p) {
   options.floor = p.Get("floor");
   options.learn_delay = static_cast<int>(p.Get("learn_delay"));
   options.release = p.Get("release");
+  options.small_sample = p.Get("small_sample");
   options.threshold = p.Get("threshold");
   options.warmup = p.Get("warmup");
   options.window = static_cast<int>(p.Get("window"));
