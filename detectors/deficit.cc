@@ -26,6 +26,7 @@ Deficit::Deficit(const DeficitOptions& options) : options_(options) {
   internal::Require(options.warmup >= 0.0, "deficit", "warmup >= 0");
   internal::Require(options.learn_delay >= 0, "deficit", "learn_delay >= 0");
   internal::Require(options.small_sample >= 0.0, "deficit", "small_sample >= 0");
+  internal::Require(options.lead >= 0.0, "deficit", "lead >= 0");
 }
 
 void Deficit::Reset(int hypotheses) {
@@ -33,6 +34,7 @@ void Deficit::Reset(int hypotheses) {
   hypotheses_ = hypotheses;
   ring_.assign(static_cast<std::size_t>(options_.window), Vec2::Zero());
   energies_.assign(static_cast<std::size_t>(options_.window), 0.0);
+  previous_bias_.setZero();
   newest_ = -1;
   filled_ = 0;
   first_time_ = last_time_ = 0.0;
@@ -134,10 +136,15 @@ const Verdict& Deficit::Step(const Evidence& evidence) {
     throw SolverError(message.str());
   }
 
-  // The short mean s of the horizontal bias.
+  // The short mean s of the horizontal bias, lead-compensated.
+  const double dt = samples_ == 0 ? 0.0 : t - last_time_;
+  const Vec2 bias = load.bias.head<2>();
+  const Vec2 compensated =
+      dt > 0.0 ? Vec2(bias + options_.lead / dt * (bias - previous_bias_)) : bias;
+  previous_bias_ = bias;
   newest_ = (newest_ + 1) % options_.window;
   filled_ = std::min(filled_ + 1, options_.window);
-  ring_[static_cast<std::size_t>(newest_)] = load.bias.head<2>();
+  ring_[static_cast<std::size_t>(newest_)] = compensated;
   energies_[static_cast<std::size_t>(newest_)] = load.wave_motion.head<2>().squaredNorm();
   Vec2 mean = Vec2::Zero();
   double energy = 0.0;
@@ -147,7 +154,6 @@ const Verdict& Deficit::Step(const Evidence& evidence) {
   }
   mean /= filled_;
   energy /= filled_;
-  const double dt = samples_ == 0 ? 0.0 : t - last_time_;
   if (samples_ == 0) first_time_ = t;
   ++samples_;
   last_time_ = t;
@@ -161,7 +167,7 @@ const Verdict& Deficit::Step(const Evidence& evidence) {
   } else {
     const int capacity = static_cast<int>(delay_.size());
     delay_[static_cast<std::size_t>((delay_oldest_ + delay_count_) % capacity)] =
-        Pending{mean, load.bias.head<2>(), energy, dt};
+        Pending{mean, compensated, energy, dt};
     if (++delay_count_ > options_.learn_delay) {
       Learn(delay_[static_cast<std::size_t>(delay_oldest_)]);
       delay_oldest_ = (delay_oldest_ + 1) % capacity;

@@ -15,7 +15,13 @@
 // waves' yaw moments.
 //
 // Statistics, per sample t_n (all on the 2-vector of horizontal force):
-//   s_n      mean of the bias over the last `window` samples (averages the wave-frequency
+//   x_n      the bias with its lag undone: b_n + T (b_n - b_{n-1}) / (t_n - t_{n-1}), T =
+//            `lead`. The filter's bias approaches a new load roughly as a first-order lag, which
+//            x inverts for a lag of time constant T; the price is the bias's increments, times
+//            T, added to the noise (T = 0: x = b). On the training campaign (benchmarks/
+//            README.md) T = 10 s with a 5-sample window halved the median delay in the thesis
+//            sea (41 -> 25 s) and raised 5 false alarms an hour, hence the default 0;
+//   s_n      mean of x over the last `window` samples (averages the wave-frequency
 //            leakage and the filter's noise);
 //   e_n      mean over the same window of the wave-frequency motion's energy |C_w xi|^2
 //            (horizontal, Evidence::load.wave_motion): the slowly varying wave drift goes
@@ -42,11 +48,15 @@
 //            drift group that pushes the other way or twice as hard does not fit;
 //   m        the samples per independent value of D: D follows a slowly varying load, so
 //            successive values repeat each other. With rho the lag-1 correlation of the raw
-//            bias about B and C_r its covariance (learned like C), the raw bias's variance
+//            sample x about B and C_r its covariance (learned like C), the raw sample's variance
 //            inflation is (1 + rho) / (1 - rho) (that of a first-order autoregressive
 //            sequence), its long-run covariance ~ that times C_r, which the window mean
 //            shares; m = (1 + rho) / (1 - rho) tr C_r / tr C, clamped to [1, 1000] (white
-//            bias: m = window). Each sample adds z_h / m nats.
+//            bias: m = window). Each sample adds z_h / m nats. With a lead these are x's rho and
+//            C_r. Taking b's instead (x and b share the long-run covariance, as the lead's
+//            sum over n samples is T (b_n - b_0) / dt, bounded) doubled the training
+//            campaign's false alarms at T = 10 s: over the short spans a CUSUM crosses its
+//            threshold in, that bounded term is not small.
 //   delay    B, C, C_r and rho learn from the samples `learn_delay` samples old, nothing
 //            while an alarm stands, and an alarm drops the samples still waiting: a break
 //            that is named within the delay enters neither its own baseline nor the
@@ -107,6 +117,8 @@ struct DeficitOptions {
   bool drift = true;
   /// c in C's small-sample inflation 1 + c / n (n: independent values learned), >= 0.
   double small_sample = 0.0;
+  /// [s] Lead T of the bias compensation b + T db/dt (0: the bias as it is), >= 0.
+  double lead = 0.0;
 };
 
 class Deficit final : public Detector {
@@ -144,7 +156,8 @@ class Deficit final : public Detector {
 
   DeficitOptions options_;
   int hypotheses_ = 0;
-  std::vector<Vec2> ring_;        // the last `window` horizontal biases
+  std::vector<Vec2> ring_;  // the last `window` lead-compensated horizontal biases
+  Vec2 previous_bias_ = Vec2::Zero();
   std::vector<double> energies_;  // and wave-motion energies
   int newest_ = -1;
   int filled_ = 0;

@@ -47,7 +47,7 @@ constexpr ParameterRange kCount{1.0, 10000.0, false, false, true};  // [1, 10000
 constexpr ParameterRange kDelay{0.0, 10000.0, false, false, true};  // [0, 10000]
 constexpr ParameterRange kSwitch{0.0, 1.0, false, false, true};     // 0 or 1
 
-constexpr std::array<DetectorParameter, 9> kDeficitParameters = {{
+constexpr std::array<DetectorParameter, 10> kDeficitParameters = {{
     {"baseline_time", DeficitOptions{}.baseline_time, "", kPositive, "s",
      "time constant of the learned baseline and disturbance of the intact filter's bias"},
     {"drift", 1.0, "", kSwitch, "",
@@ -55,6 +55,8 @@ constexpr std::array<DetectorParameter, 9> kDeficitParameters = {{
      "constant"},
     {"floor", DeficitOptions{}.floor, "", kPositive, "N",
      "least disturbance standard deviation, added to the learned one"},
+    {"lead", DeficitOptions{}.lead, "", kNonNegative, "s",
+     "T of the lead compensation b + T db/dt that undoes the intact filter's bias lag"},
     {"learn_delay", DeficitOptions{}.learn_delay, "", kDelay, "samples",
      "age at which a bias sample is learned (dropped if an alarm is raised first)"},
     {"release", DeficitOptions{}.release, "", kPositive, "nats",
@@ -108,6 +110,7 @@ std::unique_ptr<Detector> MakeDeficit(const DetectorParameters& p) {
   options.baseline_time = p.Get("baseline_time");
   options.drift = p.Get("drift") != 0.0;
   options.floor = p.Get("floor");
+  options.lead = p.Get("lead");
   options.learn_delay = static_cast<int>(p.Get("learn_delay"));
   options.release = p.Get("release");
   options.small_sample = p.Get("small_sample");
