@@ -34,7 +34,7 @@ fs::path FreshDirectory(const std::string& name) {
   return dir;
 }
 
-// Seven short runs of the thesis plant with its three detectors: lines 2 and 6 parting at
+// Seven short runs of the thesis plant with its four detectors: lines 2 and 6 parting at
 // a drawn time, two seeds each; two intact runs; one run with a step limit CVODE cannot
 // meet within its step budget (it fails at once with CV_TOO_MUCH_WORK).
 std::string CampaignText() {

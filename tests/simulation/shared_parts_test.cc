@@ -58,8 +58,8 @@ TEST(SharedPart, ThreadsAskingAtOnceAllGetTheFirstStored) {
 // on the run seed: a second seed with waves adds no entry, another set-up does.
 TEST(SharedPart, RunsOfOneSetUpShareTheDetectorsPartsWhateverTheirSeed) {
   const std::string library = MOORSIM_SOURCE_DIR "/scenarios/library/";
-  const std::vector<std::string> passive = {"detection.observer=passive",
-                                            "simulation.duration=500"};
+  const std::vector<std::string> passive = {"detection.observer=passive", "simulation.duration=500",
+                                            "detectors=[{type: dht}, {type: mle}, {type: glr}]"};
   const scenarios::Scenario scenario =
       scenarios::LoadScenario(library + "thesis_line6_current.yaml", passive);
   ASSERT_TRUE(scenario.environment.waves.enabled);

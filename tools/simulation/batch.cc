@@ -29,7 +29,7 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// The thesis plant with three detectors runs at about this many times real time on one
+// The thesis plant with its detectors runs at about this many times real time on one
 // core of the reference machine (benchmarks/README.md, "Campaigns"): the dry run's estimate.
 constexpr double kEstimatedRealTimeFactor = 600.0;
 
@@ -532,7 +532,7 @@ std::string DescribeCampaign(const PreparedCampaign& p, int threads) {
   out << "total " << Shortest(p.simulated_seconds) << " simulated s; estimated wall time "
       << Duration(wall) << " on " << n << " thread" << (n > 1 ? "s" : "") << " (at about "
       << Shortest(kEstimatedRealTimeFactor)
-      << "x real time per thread, the thesis plant with three detectors)\n";
+      << "x real time per thread, the thesis plant with its detectors)\n";
   return out.str();
 }
 
