@@ -27,6 +27,17 @@ Deficit::Deficit(const DeficitOptions& options) : options_(options) {
   internal::Require(options.learn_delay >= 0, "deficit", "learn_delay >= 0");
   internal::Require(options.small_sample >= 0.0, "deficit", "small_sample >= 0");
   internal::Require(options.lead >= 0.0, "deficit", "lead >= 0");
+  internal::Require(options.confirm >= 0.0, "deficit", "confirm >= 0");
+  internal::Require(options.fast_window >= 1, "deficit", "fast_window >= 1");
+  internal::Require(options.fast_lead >= 0.0, "deficit", "fast_lead >= 0");
+  internal::Require(options.confirm_time > 0.0, "deficit", "confirm_time > 0");
+  if (options.confirm > 0.0) {
+    DeficitOptions fast = options;
+    fast.confirm = 0.0;
+    fast.window = options.fast_window;
+    fast.lead = options.fast_lead;
+    fast_ = std::make_unique<Deficit>(fast);
+  }
 }
 
 void Deficit::Reset(int hypotheses) {
@@ -51,10 +62,15 @@ void Deficit::Reset(int hypotheses) {
   previous_raw_.setZero();
   delay_.assign(static_cast<std::size_t>(options_.learn_delay) + 1, Pending{});
   delay_oldest_ = delay_count_ = 0;
+  held_.clear();
+  held_.reserve(static_cast<std::size_t>(options_.learn_delay) + 1 +
+                static_cast<std::size_t>(std::ceil(options_.baseline_time)));
   z_.assign(static_cast<std::size_t>(hypotheses), 0.0);
   rival_.assign(static_cast<std::size_t>(hypotheses), 0.0);
   verdict_.score.assign(static_cast<std::size_t>(hypotheses), 0.0);
   Restart();
+  if (fast_) fast_->Reset(hypotheses);
+  fast_taken_ = fast_pending_ = 0;
 }
 
 void Deficit::Restart() {
@@ -88,6 +104,71 @@ double Deficit::DisturbanceInflation(double samples_per_value) const {
 }
 
 Verdict Deficit::Update(const Evidence& evidence) { return Step(evidence); }
+
+const Verdict& Deficit::Step(const Evidence& evidence) {
+  if (!fast_) return StepSlow(evidence);
+  const bool was_alarmed = alarm_;
+  const Verdict& fast = fast_->StepSlow(evidence);
+  StepSlow(evidence);
+  if (was_alarmed && !alarm_) {  // the evidence reversed: both tests start over
+    fast_->EndFalseAlarm();
+    fast_taken_ = fast_pending_ = 0;
+    return verdict_;
+  }
+  const int line = fast.alarm ? fast.hypothesis : 0;
+  if (line == 0) {
+    fast_taken_ = fast_pending_ = 0;
+  } else if (line != fast_taken_) {
+    if (line != fast_pending_) {
+      fast_pending_ = line;
+      fast_onset_ = evidence.t;
+    }
+    // Raised once this test's sum for the line has reached `confirm`; revised once its
+    // evidence for the line over the named one has.
+    const std::size_t i = static_cast<std::size_t>(line);
+    if (alarm_ && named_ == line) {
+      fast_taken_ = line;
+      fast_pending_ = 0;
+    } else if ((alarm_ ? rival_[i] : verdict_.score[i]) >= options_.confirm) {
+      Raise(line);
+      fast_taken_ = line;
+      fast_pending_ = 0;
+    } else if (!alarm_ && evidence.t - fast_onset_ > options_.confirm_time) {
+      fast_->EndFalseAlarm();
+      fast_pending_ = 0;
+    }
+  }
+  return verdict_;
+}
+
+void Deficit::Hold(const Pending& sample) {
+  if (options_.relearn && held_.size() < held_.capacity()) held_.push_back(sample);
+}
+
+void Deficit::EndFalseAlarm() {
+  // The newest learn_delay samples go back to the delay line rather than into the
+  // baseline: a break among them is still tested before it could be learned.
+  const std::size_t waiting =
+      std::min(held_.size(), static_cast<std::size_t>(options_.learn_delay));
+  for (std::size_t i = 0; i + waiting < held_.size(); ++i) Learn(held_[i]);
+  const int capacity = static_cast<int>(delay_.size());
+  delay_oldest_ = 0;
+  delay_count_ = 0;
+  for (std::size_t i = held_.size() - waiting; i < held_.size(); ++i) {
+    delay_[static_cast<std::size_t>(delay_count_++ % capacity)] = held_[i];
+  }
+  held_.clear();
+  Restart();
+}
+
+void Deficit::Raise(int hypothesis) {
+  alarm_ = true;
+  named_ = hypothesis;
+  std::fill(rival_.begin(), rival_.end(), 0.0);
+  reversal_ = 0.0;
+  verdict_.alarm = true;
+  verdict_.hypothesis = hypothesis;
+}
 
 Deficit::Vec2 Deficit::Predict(double energy) const {
   return baseline_ + gain_ * (energy - energy_mean_);
@@ -123,7 +204,7 @@ void Deficit::Learn(const Pending& sample) {
   ++learned_samples_;
 }
 
-const Verdict& Deficit::Step(const Evidence& evidence) {
+const Verdict& Deficit::StepSlow(const Evidence& evidence) {
   internal::CheckEvidence("deficit", evidence, hypotheses_);
   if (!evidence.load) return verdict_;
   const LoadEvidence& load = *evidence.load;
@@ -163,7 +244,13 @@ const Verdict& Deficit::Step(const Evidence& evidence) {
   // drops everything still waiting.
   std::vector<double>& sums = verdict_.score;
   if (alarm_) {
-    delay_count_ = 0;
+    // Held while the alarm stands: learned if the evidence reverses (EndFalseAlarm()).
+    const int capacity = static_cast<int>(delay_.size());
+    for (; delay_count_ > 0; --delay_count_) {
+      Hold(delay_[static_cast<std::size_t>(delay_oldest_)]);
+      delay_oldest_ = (delay_oldest_ + 1) % capacity;
+    }
+    Hold(Pending{mean, compensated, energy, dt});
   } else {
     const int capacity = static_cast<int>(delay_.size());
     delay_[static_cast<std::size_t>((delay_oldest_ + delay_count_) % capacity)] =
@@ -199,10 +286,7 @@ const Verdict& Deficit::Step(const Evidence& evidence) {
         best = h;
       }
     }
-    if (best != 0) {
-      alarm_ = true;
-      named_ = best;
-    }
+    if (best != 0) Raise(best);
   } else {
     for (int h = 1; h < hypotheses_; ++h) {
       double& sum = sums[static_cast<std::size_t>(h)];
@@ -223,7 +307,7 @@ const Verdict& Deficit::Step(const Evidence& evidence) {
       reversal_ = 0.0;
     }
     reversal_ = std::max(0.0, reversal_ - z_[static_cast<std::size_t>(named_)]);
-    if (reversal_ > options_.release) Restart();
+    if (reversal_ > options_.release) EndFalseAlarm();
   }
   verdict_.alarm = alarm_;
   verdict_.hypothesis = alarm_ ? named_ : 0;

@@ -58,9 +58,10 @@
 //            campaign's false alarms at T = 10 s: over the short spans a CUSUM crosses its
 //            threshold in, that bounded term is not small.
 //   delay    B, C, C_r and rho learn from the samples `learn_delay` samples old, nothing
-//            while an alarm stands, and an alarm drops the samples still waiting: a break
-//            that is named within the delay enters neither its own baseline nor the
-//            disturbance it is judged against. (Dropping on mere suspicion, a sum above half
+//            while an alarm stands, and an alarm holds back the samples still waiting
+//            (learned only if it turns out false: `relearn` below): a break that is named
+//            within the delay enters neither its own baseline nor the disturbance it is
+//            judged against. (Dropping on mere suspicion, a sum above half
 //            the threshold, was tried: it cut the disturbance's tails out of C and, on a
 //            synthetic 1.5 MN disturbance, raised 5-50 times the false alarms.)
 //
@@ -77,15 +78,34 @@
 //    nats): the evidence has reversed with stated confidence; the alarm ends, the sums
 //    restart at 0 and learning resumes. A parted line's deficit does not pass, so its alarm
 //    stays until the operator resets the detector (Reset());
-//  - nothing before `warmup` seconds of load evidence (the baseline learns).
+//  - nothing before `warmup` seconds of load evidence (the baseline learns);
+//  - two stages (`confirm` > 0, the default): a second, fast copy of the test (window
+//    `fast_window`, lead `fast_lead`, the other options the same) runs beside it, learning
+//    and latching on its own. Its alarm on line h raises this test's alarm on h as soon as
+//    this test's own sum S_h has reached `confirm` nats, far below the threshold, and its
+//    revision to h revises this test's alarm once R_h (h over the named line, above) has
+//    reached `confirm`; a fast alarm that waits longer than `confirm_time` unconfirmed
+//    ends as a false one (below) and the fast test starts over. The fast test sees a break
+//    sooner (its short window and lead undo the averaging and the filter's lag) but also
+//    many drift groups; the slow sums reject those whose direction and persistence do not
+//    fit a parted line. Once raised, the alarm is this test's (revision, end and latch as
+//    above);
+//  - false alarms teach (`relearn`): the samples that arrive while an alarm stands, and
+//    those still waiting in the delay at its onset, are held; when the alarm ends on
+//    reversed evidence they were disturbance after all and are learned, except the newest
+//    `learn_delay`, which go back to the delay (a break among them is still tested before
+//    it could be learned). Without it, every false alarm hides its own cause from C, and
+//    the next group like it raises the alarm again. A parted line's alarm does not end, so
+//    its samples are never learned.
 // score[h] = S_h [nats] (score[0] = 0); hypothesis = the named one while the alarm stands,
 // else 0.
 //
 // Needs the load evidence of the EKF observer bank (NeedsLoadEvidence()); a sample without
-// it leaves the state as it was. Cost O(N + window) per sample; Step() allocates nothing
-// after Reset().
+// it leaves the state as it was. Cost O(N + window) per sample (twice that in two stages);
+// Step() allocates nothing after Reset().
 #pragma once
 
+#include <memory>
 #include <string_view>
 #include <vector>
 
@@ -119,6 +139,17 @@ struct DeficitOptions {
   double small_sample = 0.0;
   /// [s] Lead T of the bias compensation b + T db/dt (0: the bias as it is), >= 0.
   double lead = 0.0;
+  /// When an alarm ends on reversed evidence, learn the samples held while it stood (and
+  /// those still waiting at its onset) as the disturbance they turned out to be.
+  bool relearn = true;
+  /// [nats] Two stages (0: off), >= 0: a fast test (window `fast_window`, lead `fast_lead`,
+  /// the other options these) raises the alarm on the line it names once this test's sum
+  /// S_h for that line has reached `confirm` (see the verdict above).
+  double confirm = 2.0;
+  /// [s] How long a fast alarm may wait for `confirm` before the fast test starts over, > 0.
+  double confirm_time = 60.0;
+  int fast_window = 5;
+  double fast_lead = 10.0;
 };
 
 class Deficit final : public Detector {
@@ -149,6 +180,11 @@ class Deficit final : public Detector {
     double energy = 0.0;
     double dt = 0.0;
   };
+  const Verdict& StepSlow(const Evidence& evidence);
+  void Raise(int hypothesis);
+  void Hold(const Pending& sample);  // keeps a sample that arrives while an alarm stands
+  void EndFalseAlarm();  // learns the held samples, then Restart()         // the alarm names
+                         // `hypothesis`; revision and end start over
   Vec2 Predict(double energy) const;  // B(e)
   double DisturbanceInflation(double samples_per_value) const;
   void Learn(const Pending& sample);
@@ -176,14 +212,19 @@ class Deficit final : public Detector {
   double lag_covariance_ = 0.0;  // tr E[r_n r_{n-1}^T], r = raw bias - B
   Vec2 previous_raw_ = Vec2::Zero();
   std::vector<Pending> delay_;  // ring of the samples waiting to be learned
+  std::vector<Pending> held_;   // the samples held since the alarm began (relearn)
   int delay_oldest_ = 0;
   int delay_count_ = 0;
   bool alarm_ = false;
   int named_ = 0;
-  std::vector<double> z_;      // this sample's z_h
-  std::vector<double> rival_;  // R_j
-  double reversal_ = 0.0;      // E
-  Verdict verdict_;            // score = S_h
+  std::vector<double> z_;          // this sample's z_h
+  std::vector<double> rival_;      // R_j
+  double reversal_ = 0.0;          // E
+  Verdict verdict_;                // score = S_h
+  std::unique_ptr<Deficit> fast_;  // the two-stage verdict's fast test
+  int fast_taken_ = 0;             // the fast test's line this test has taken (0: none)
+  int fast_pending_ = 0;           // the fast test's line waiting for confirmation (0: none)
+  double fast_onset_ = 0.0;        // [s] since when it waits
 };
 
 }  // namespace moorsim::detectors

@@ -47,18 +47,30 @@ constexpr ParameterRange kCount{1.0, 10000.0, false, false, true};  // [1, 10000
 constexpr ParameterRange kDelay{0.0, 10000.0, false, false, true};  // [0, 10000]
 constexpr ParameterRange kSwitch{0.0, 1.0, false, false, true};     // 0 or 1
 
-constexpr std::array<DetectorParameter, 10> kDeficitParameters = {{
+constexpr std::array<DetectorParameter, 15> kDeficitParameters = {{
     {"baseline_time", DeficitOptions{}.baseline_time, "", kPositive, "s",
      "time constant of the learned baseline and disturbance of the intact filter's bias"},
+    {"confirm", DeficitOptions{}.confirm, "", kNonNegative, "nats",
+     "two-stage verdict (0: off): a fast test's alarm stands once this test's evidence for "
+     "its line reaches this"},
+    {"confirm_time", DeficitOptions{}.confirm_time, "", kPositive, "s",
+     "how long a fast alarm waits for confirmation before the fast test starts over"},
     {"drift", 1.0, "", kSwitch, "",
      "1: the baseline follows the estimated wave motion's energy (slowly varying drift); 0: "
      "constant"},
+    {"fast_lead", DeficitOptions{}.fast_lead, "", kNonNegative, "s",
+     "the fast test's lead (with confirm > 0)"},
+    {"fast_window", DeficitOptions{}.fast_window, "", kCount, "samples",
+     "the fast test's window (with confirm > 0)"},
     {"floor", DeficitOptions{}.floor, "", kPositive, "N",
      "least disturbance standard deviation, added to the learned one"},
     {"lead", DeficitOptions{}.lead, "", kNonNegative, "s",
      "T of the lead compensation b + T db/dt that undoes the intact filter's bias lag"},
     {"learn_delay", DeficitOptions{}.learn_delay, "", kDelay, "samples",
      "age at which a bias sample is learned (dropped if an alarm is raised first)"},
+    {"relearn", 1.0, "", kSwitch, "",
+     "1: an alarm that ends on reversed evidence hands the samples held while it stood to the "
+     "learned disturbance; 0: they are dropped"},
     {"release", DeficitOptions{}.release, "", kPositive, "nats",
      "cumulative evidence for no change over the named line that ends the alarm"},
     {"small_sample", DeficitOptions{}.small_sample, "", kNonNegative, "",
@@ -108,10 +120,15 @@ constexpr std::array<DetectorParameter, 3> kMleParameters = {{
 std::unique_ptr<Detector> MakeDeficit(const DetectorParameters& p) {
   DeficitOptions options;
   options.baseline_time = p.Get("baseline_time");
+  options.confirm = p.Get("confirm");
+  options.confirm_time = p.Get("confirm_time");
   options.drift = p.Get("drift") != 0.0;
+  options.fast_lead = p.Get("fast_lead");
+  options.fast_window = static_cast<int>(p.Get("fast_window"));
   options.floor = p.Get("floor");
   options.lead = p.Get("lead");
   options.learn_delay = static_cast<int>(p.Get("learn_delay"));
+  options.relearn = p.Get("relearn") != 0.0;
   options.release = p.Get("release");
   options.small_sample = p.Get("small_sample");
   options.threshold = p.Get("threshold");

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -199,12 +200,17 @@ std::pair<double, double> Wilson(int k, int n) {
 // (scenarios/campaigns/detection_acceptance.yaml: two sea states, wave and current
 // directions and seeds that no detector was tuned on; 32 breaks and 6 intact hours), judged
 // by its statistics. The force-deficit detector, measured on the training campaign at
-// 96.5 % (thesis sea) and 74 % (Hs 4 m) named after the break, no false alarm in 36 intact
-// hours, must here: name the failed line after the break in at least 75 % of the 32 runs
-// (the Wilson interval is printed), in at least 14 of the 16 in the thesis sea; keep naming
+// 97.9 % (thesis sea) and 87.5 % (Hs 4 m) named after the break, 2 false alarms in 36
+// intact hours, must here: name the failed line after the break in at least 75 % of the 32
+// runs (the Wilson interval is printed), in at least 14 of the 16 in the thesis sea; keep naming
 // it to the end of the run in at least 95 % of those it named (the verdict persists); name
-// a wrong line at the end of at most 2 runs; and raise at most 1 false alarm in the 6
-// intact hours, with an alarm on at most 1 % of their time.
+// a wrong line at the end of at most 2 runs; raise at most 1 false alarm in the 6 intact
+// hours, with an alarm on at most 1 % of their time; and name the thesis-sea breaks within
+// kThesisMedianDelay of them (median). Measured: 32/32 named and kept, no false alarm,
+// thesis-sea median 30.5 s (the one-stage test, `confirm: 0`, takes 50-56 s on the
+// held-out and fresh campaigns).
+constexpr double kThesisMedianDelay = 45.0;  // [s]
+
 TEST(HeldOutAcceptance, TheDeficitDetectorOnASmallHeldOutCampaign) {
   TempDirectory dir(::testing::TempDir());
   const std::string out = (dir.path() / "acceptance").string();
@@ -217,6 +223,7 @@ TEST(HeldOutAcceptance, TheDeficitDetectorOnASmallHeldOutCampaign) {
   int breaks = 0, named = 0, kept = 0, wrong = 0, thesis = 0, thesis_named = 0;
   int false_alarms = 0;
   double intact_seconds = 0.0, alarm_seconds = 0.0;
+  std::vector<double> thesis_delays;
   for (const CampaignRow& row : rows) {
     ASSERT_EQ(row.status, "ok") << row.block;
     if (row.failure_line == 0) {
@@ -231,6 +238,7 @@ TEST(HeldOutAcceptance, TheDeficitDetectorOnASmallHeldOutCampaign) {
     if (std::isfinite(row.isolation_delay)) {
       ++named;
       thesis_named += in_thesis_sea ? 1 : 0;
+      if (in_thesis_sea) thesis_delays.push_back(row.isolation_delay);
       kept += row.final_line == row.failure_line ? 1 : 0;
     }
     wrong += row.final_line != 0 && row.final_line != row.failure_line ? 1 : 0;
@@ -239,14 +247,19 @@ TEST(HeldOutAcceptance, TheDeficitDetectorOnASmallHeldOutCampaign) {
   ASSERT_EQ(thesis, 16);
   ASSERT_EQ(intact_seconds, 6 * 3600.0);
   const auto [low, high] = Wilson(named, breaks);
+  // The median of the 16 thesis-sea delays, a break never named counting as the longest.
+  thesis_delays.resize(16, std::numeric_limits<double>::infinity());
+  std::sort(thesis_delays.begin(), thesis_delays.end());
+  const double thesis_median = 0.5 * (thesis_delays[7] + thesis_delays[8]);
   std::printf(
       "deficit: named after the break %d/%d (95 %% interval %.2f-%.2f), %d/16 in the "
-      "thesis sea; kept %d/%d; wrong at the end %d; %d false alarms in 6 h, alarm on "
-      "%.2f %%\n",
-      named, breaks, low, high, thesis_named, kept, named, wrong, false_alarms,
+      "thesis sea, median delay there %.1f s; kept %d/%d; wrong at the end %d; %d false "
+      "alarms in 6 h, alarm on %.2f %%\n",
+      named, breaks, low, high, thesis_named, thesis_median, kept, named, wrong, false_alarms,
       100.0 * alarm_seconds / intact_seconds);
   EXPECT_GE(named, 24);
   EXPECT_GE(thesis_named, 14);
+  EXPECT_LE(thesis_median, kThesisMedianDelay);
   EXPECT_GE(kept, 0.95 * named);
   EXPECT_LE(wrong, 2);
   EXPECT_LE(false_alarms, 1);

@@ -9,7 +9,7 @@
 // an alarm within 180 s, names the parted line at its first alarm, and raises none before
 // the break; in 3600 s without a failure no detector raises an alarm. Measured at seed 1
 // (benchmarks/README.md has the table and the other seeds): DHT 57-93 s, MLE 59-71 s, GLR
-// 27-29 s, force deficit 31-48 s after the break; no false alarm.
+// 27-29 s, force deficit 25-32 s after the break; no false alarm.
 #include <gtest/gtest.h>
 
 #include <string>
