@@ -27,6 +27,8 @@ Deficit::Deficit(const DeficitOptions& options) : options_(options) {
   internal::Require(options.learn_delay >= 0, "deficit", "learn_delay >= 0");
   internal::Require(options.small_sample >= 0.0, "deficit", "small_sample >= 0");
   internal::Require(options.lead >= 0.0, "deficit", "lead >= 0");
+  internal::Require(options.min_fraction > 0.0 && options.min_fraction <= 1.0, "deficit",
+                    "0 < min_fraction <= 1");
   internal::Require(options.confirm >= 0.0, "deficit", "confirm >= 0");
   internal::Require(options.fast_window >= 1, "deficit", "fast_window >= 1");
   internal::Require(options.fast_lead >= 0.0, "deficit", "fast_lead >= 0");
@@ -274,7 +276,14 @@ const Verdict& Deficit::StepSlow(const Evidence& evidence) {
   for (int h = 1; h < hypotheses_; ++h) {
     const Vec2 d = -load.line_load[static_cast<std::size_t>(h)].head<2>();
     const Vec2 weighted = information * d;
-    z_[static_cast<std::size_t>(h)] = (weighted.dot(shift) - 0.5 * weighted.dot(d)) / m;
+    const double along = weighted.dot(shift);  // d' C^-1 D
+    const double power = weighted.dot(d);      // d' C^-1 d
+    // The share a of the line's load that is missing: 1, or its maximum-likelihood value
+    // within [min_fraction, 1].
+    const double a = options_.min_fraction < 1.0 && power > 0.0
+                         ? std::clamp(along / power, options_.min_fraction, 1.0)
+                         : 1.0;
+    z_[static_cast<std::size_t>(h)] = (a * along - 0.5 * a * a * power) / m;
   }
 
   if (!alarm_) {

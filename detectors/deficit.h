@@ -45,7 +45,11 @@
 //   z_h      = d_h^T C^-1 D - d_h^T C^-1 d_h / 2,  D = s_n - B(e_n): the log-likelihood ratio
 //            [nats] of "the bias moved by d_h" against "the bias did not move", for D
 //            Gaussian with covariance C. The amplitude is known (the line's whole load), so a
-//            drift group that pushes the other way or twice as hard does not fit;
+//            drift group that pushes the other way or twice as hard does not fit. With
+//            `min_fraction` a_0 < 1 the shift tested is a d_h, a the maximum-likelihood share
+//            d_h^T C^-1 D / d_h^T C^-1 d_h clamped to [a_0, 1] (z_h = a d_h^T C^-1 D -
+//            a^2 d_h^T C^-1 d_h / 2): an anchor release, whose chain still hangs from the
+//            fairlead, first removes only a share of the load;
 //   m        the samples per independent value of D: D follows a slowly varying load, so
 //            successive values repeat each other. With rho the lag-1 correlation of the raw
 //            sample x about B and C_r its covariance (learned like C), the raw sample's variance
@@ -139,6 +143,9 @@ struct DeficitOptions {
   double small_sample = 0.0;
   /// [s] Lead T of the bias compensation b + T db/dt (0: the bias as it is), >= 0.
   double lead = 0.0;
+  /// Least share of a line's load whose loss is tested, in (0, 1]: 1 tests the whole load;
+  /// below 1 the share is estimated (maximum likelihood, clamped to [min_fraction, 1]).
+  double min_fraction = 1.0;
   /// When an alarm ends on reversed evidence, learn the samples held while it stood (and
   /// those still waiting at its onset) as the disturbance they turned out to be.
   bool relearn = true;

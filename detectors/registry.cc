@@ -47,7 +47,7 @@ constexpr ParameterRange kCount{1.0, 10000.0, false, false, true};  // [1, 10000
 constexpr ParameterRange kDelay{0.0, 10000.0, false, false, true};  // [0, 10000]
 constexpr ParameterRange kSwitch{0.0, 1.0, false, false, true};     // 0 or 1
 
-constexpr std::array<DetectorParameter, 15> kDeficitParameters = {{
+constexpr std::array<DetectorParameter, 16> kDeficitParameters = {{
     {"baseline_time", DeficitOptions{}.baseline_time, "", kPositive, "s",
      "time constant of the learned baseline and disturbance of the intact filter's bias"},
     {"confirm", DeficitOptions{}.confirm, "", kNonNegative, "nats",
@@ -67,7 +67,10 @@ constexpr std::array<DetectorParameter, 15> kDeficitParameters = {{
     {"lead", DeficitOptions{}.lead, "", kNonNegative, "s",
      "T of the lead compensation b + T db/dt that undoes the intact filter's bias lag"},
     {"learn_delay", DeficitOptions{}.learn_delay, "", kDelay, "samples",
-     "age at which a bias sample is learned (dropped if an alarm is raised first)"},
+     "age at which a bias sample is learned (held if an alarm is raised first; see relearn)"},
+    {"min_fraction", DeficitOptions{}.min_fraction, "", kUpToOne, "",
+     "least share of a line's load whose loss is tested (1: the whole load; below, the share "
+     "is estimated)"},
     {"relearn", 1.0, "", kSwitch, "",
      "1: an alarm that ends on reversed evidence hands the samples held while it stood to the "
      "learned disturbance; 0: they are dropped"},
@@ -128,6 +131,7 @@ std::unique_ptr<Detector> MakeDeficit(const DetectorParameters& p) {
   options.floor = p.Get("floor");
   options.lead = p.Get("lead");
   options.learn_delay = static_cast<int>(p.Get("learn_delay"));
+  options.min_fraction = p.Get("min_fraction");
   options.relearn = p.Get("relearn") != 0.0;
   options.release = p.Get("release");
   options.small_sample = p.Get("small_sample");

@@ -376,6 +376,32 @@ TEST(Deficit, TheTwoStageVerdictTakesTheFastOnsetThatThisTestConfirms) {
   EXPECT_LE(delay[2], 0.5 * delay[0]);
 }
 
+TEST(Deficit, AShareOfTheLoadIsFoundWithMinFraction) {
+  // An anchor release leaves the chain hanging from the fairlead: the vessel first loses
+  // only a share of the line's load. A lasting loss of 40 % of line 3's load: tested as the
+  // whole load, the shift fits "no change" better (z = 0.4 q - q / 2 < 0) and nothing is
+  // raised in 1000 s; with min_fraction 0.3 the share is estimated and line 3 is named.
+  for (const double min_fraction : {1.0, 0.3}) {
+    SCOPED_TRACE("min_fraction " + std::to_string(min_fraction));
+    DeficitOptions options;
+    options.min_fraction = min_fraction;
+    Deficit deficit(options);
+    BiasStream stream(21, 2e5, 60.0);
+    const AlarmHistory history = RunDetector(deficit, stream, 1400, [&](int t) {
+      return t >= 400 ? Vec3(-0.4 * LineLoad(3)) : Vec3::Zero();
+    });
+    EXPECT_EQ(history.OnsetsBefore(400.0), 0);
+    if (min_fraction == 1.0) {
+      EXPECT_FALSE(history.FirstNamed(3, 400.0).has_value());
+    } else {
+      const std::optional<double> named = history.FirstNamed(3, 400.0);
+      ASSERT_TRUE(named.has_value());
+      EXPECT_LT(*named, 520.0);
+      EXPECT_EQ(history.hypothesis(), 3);
+    }
+  }
+}
+
 TEST(Deficit, ResetIsTheOperatorsReset) {
   Deficit deficit;
   BiasStream stream(3, 3e5, 60.0);
