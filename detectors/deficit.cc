@@ -310,11 +310,7 @@ const Verdict& Deficit::StepSlow(const Evidence& evidence) {
         rival = j;
       }
     }
-    if (rival != 0) {
-      named_ = rival;
-      std::fill(rival_.begin(), rival_.end(), 0.0);
-      reversal_ = 0.0;
-    }
+    if (rival != 0) Raise(rival);
     reversal_ = std::max(0.0, reversal_ - z_[static_cast<std::size_t>(named_)]);
     if (reversal_ > options_.release) EndFalseAlarm();
   }
