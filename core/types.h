@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 
 namespace moorsim {
 
@@ -12,6 +13,9 @@ using VecX = Eigen::VectorXd;
 using MatX = Eigen::MatrixXd;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
+
+/// Quiet NaN: the value of a quantity that is not defined (yet), e.g. a delay with no alarm.
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// Rigid-body kinematics of one attachment point in the Earth frame: position [m],
 /// velocity [m/s] and acceleration [m/s^2]. This is what the mooring takes in from

@@ -13,12 +13,12 @@
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "core/error.h"
+#include "detectors/observer_support.h"
 
 namespace moorsim::detectors {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kLogTwoPi = 1.8378770664093453;  // log(2 pi)
+using internal::kLogTwoPi;
 constexpr int kStates = HypothesisEkf::kStates;
 constexpr int kWave = HypothesisEkf::kWave;
 constexpr int kPose = HypothesisEkf::kPose;

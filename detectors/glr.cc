@@ -5,14 +5,13 @@
 #include <sstream>
 #include <utility>
 
+#include "core/angles.h"
 #include "core/error.h"
 #include "detectors/registry.h"
 
 namespace moorsim::detectors {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 [[noreturn]] void ThrowBadSample(double t, std::string_view what) {
   std::ostringstream message;

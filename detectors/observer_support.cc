@@ -10,14 +10,6 @@
 
 namespace moorsim::detectors::internal {
 
-double WrapAngle(double angle) {
-  constexpr double kPi = std::numbers::pi;
-  constexpr double kTwoPi = 2.0 * std::numbers::pi;
-  double wrapped = std::remainder(angle, kTwoPi);
-  if (wrapped <= -kPi) wrapped += kTwoPi;
-  return wrapped;
-}
-
 Mat3 Rotation(double c, double s) {
   Mat3 r;
   r << c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0;

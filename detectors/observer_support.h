@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/angles.h"
 #include "core/types.h"
 #include "detectors/detector.h"
 #include "detectors/hypothesis_bank.h"
@@ -15,8 +16,7 @@ namespace moorsim::detectors::internal {
 
 inline constexpr double kLogTwoPi = 1.8378770664093453;  // log(2 pi)
 
-/// `angle` wrapped to (-pi, pi].
-double WrapAngle(double angle);
+using ::moorsim::WrapAngle;  // (-pi, pi]
 
 /// Yaw rotation R(psi) of a [force, force, moment] vector (the moment is unchanged), from
 /// c = cos psi and s = sin psi.

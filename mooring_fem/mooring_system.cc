@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "core/angles.h"
 #include "core/error.h"
 #include "mooring_fem/catenary.h"
 
@@ -17,7 +18,6 @@ namespace moorsim::mooring_fem {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 const Vec3 kDown(0.0, 0.0, 1.0);  // NED: gravity along +z
 
 // Index in NodeJacobian arrays: neighbour below, the node itself, neighbour above.

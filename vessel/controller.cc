@@ -7,13 +7,12 @@
 #include <cstdio>
 #include <numbers>
 
+#include "core/angles.h"
 #include "core/error.h"
 
 namespace moorsim::vessel {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Angle in (-pi, pi].
 double WrapToPi(double angle) {

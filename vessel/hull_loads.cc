@@ -8,14 +8,12 @@
 #include <string>
 #include <string_view>
 
+#include "core/angles.h"
 #include "core/error.h"
 #include "vessel/checks.h"
 
 namespace moorsim::vessel {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 // The ITTC-57 line is held below this Reynolds number (see IttcFrictionCoefficient).
 constexpr double kMinFrictionReynolds = 1e5;
@@ -50,7 +48,6 @@ constexpr double kTankerCrossForce = 0.40;         // delta
 constexpr double kCentreOfEffortSlope = 0.18;
 
 using internal::ThrowBadValue;
-std::string Format(double value) { return internal::FormatValue(value); }
 
 void RequirePositive(std::string_view field, double value, std::string_view unit) {
   if (!(value > 0.0) || !std::isfinite(value)) {
@@ -73,13 +70,6 @@ std::string Index(std::size_t i) {
   index += std::to_string(i);
   index += ']';
   return index;
-}
-
-/// Maps an angle to (-pi, pi].
-double WrapAngle(double angle) {
-  double wrapped = std::remainder(angle, kTwoPi);
-  if (wrapped <= -kPi) wrapped += kTwoPi;
-  return wrapped;
 }
 
 /// ITTC-57 C_F and its logarithmic derivative dC_F / d(ln Re) (0 where the line is held).
@@ -132,7 +122,7 @@ void ValidateTable(const WindCoefficientTable& table) {
     }
     if (i > 0 && !(table.angle[i] > table.angle[i - 1])) {
       ThrowBadValue("wind.coefficients.angle" + row, table.angle[i], "rad",
-                    "must be > the previous angle " + Format(table.angle[i - 1]) +
+                    "must be > the previous angle " + internal::FormatValue(table.angle[i - 1]) +
                         " rad (strictly increasing)");
     }
     if (!std::isfinite(table.surge[i])) {
@@ -460,9 +450,9 @@ WindGust::WindGust(const WindGustOptions& options, RandomStream& stream)
   }
   RequirePositive("wind.gust.frequency_min", options.frequency_min, "Hz");
   if (!(options.frequency_max > options.frequency_min) || !std::isfinite(options.frequency_max)) {
-    ThrowBadValue(
-        "wind.gust.frequency_max", options.frequency_max, "Hz",
-        "must be finite and > wind.gust.frequency_min = " + Format(options.frequency_min) + " Hz");
+    ThrowBadValue("wind.gust.frequency_max", options.frequency_max, "Hz",
+                  "must be finite and > wind.gust.frequency_min = " +
+                      internal::FormatValue(options.frequency_min) + " Hz");
   }
   mean_speed_ = spectrum_.MeanSpeedAtHeight();
   frequency_min_ = options.frequency_min;

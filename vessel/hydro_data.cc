@@ -18,13 +18,11 @@
 #include <type_traits>
 #include <utility>
 
+#include "core/angles.h"
 #include "core/error.h"
 
 namespace moorsim::vessel {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-constexpr double kDegree = kPi / 180.0;
 
 // WAMIT writes every period and heading with the same format in all files of a run, so
 // equal values compare equal; the tolerances only forgive a file re-written with fewer

@@ -9,15 +9,12 @@
 #include <string>
 #include <utility>
 
+#include "core/angles.h"
 #include "core/error.h"
 #include "vessel/checks.h"
 
 namespace moorsim::vessel {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 [[noreturn]] void ThrowBadValue(std::string_view key, double value, std::string_view constraint) {
   internal::ThrowBadValue(key, value, "", constraint);
@@ -44,13 +41,6 @@ void RequireNonNegative(std::string_view key, double value) {
 void RequireProbability(std::string_view key, double value) {
   // Written so NaN fails too.
   if (!(value >= 0.0 && value <= 1.0)) ThrowBadValue(key, value, "must be in [0, 1]");
-}
-
-/// Maps an angle to (-pi, pi].
-double WrapAngle(double angle) {
-  double wrapped = std::remainder(angle, kTwoPi);
-  if (wrapped <= -kPi) wrapped += kTwoPi;
-  return wrapped;
 }
 
 const PoseSensorSpec& Validated(const PoseSensorSpec& spec) {

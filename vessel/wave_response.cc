@@ -8,14 +8,12 @@
 #include <sstream>
 #include <string>
 
+#include "core/angles.h"
 #include "core/error.h"
+#include "vessel/checks.h"
 
 namespace moorsim::vessel {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-constexpr double kDegree = kPi / 180.0;
 
 // Heading grid limits. Above 45° the grid would blur HydroData's 10° table; below 0.1° the
 // table of 200 components outgrows 80 MB and gains nothing over data tabulated every 10°.
@@ -25,23 +23,17 @@ constexpr double kMinHeadingStep = 0.1 * kDegree;
 // Drift modes kept by default: surge, sway, yaw (WaveResponseOptions::drift_all_modes).
 constexpr int kHorizontalModes[] = {0, 1, 5};
 
-std::string Format(double value) {
-  std::ostringstream out;
-  out.precision(6);
-  out << value;
-  return out.str();
-}
-
 void CheckOptions(const WaveResponseOptions& options) {
   const double step = options.heading_step;
   // The relative slack lets 45 * pi / 180 through whichever way it was rounded.
   if (!std::isfinite(step) || step < kMinHeadingStep * (1.0 - 1e-12) ||
       step > kMaxHeadingStep * (1.0 + 1e-12)) {
-    throw InputError("WaveResponseOptions.heading_step = " + Format(step) + " rad (" +
-                     Format(step / kDegree) + " deg): must be finite and in [0.1, 45] deg");
+    throw InputError("WaveResponseOptions.heading_step = " + internal::FormatValue(step) +
+                     " rad (" + internal::FormatValue(step / kDegree) +
+                     " deg): must be finite and in [0.1, 45] deg");
   }
   if (!std::isfinite(options.gravity) || !(options.gravity > 0.0)) {
-    throw InputError("WaveResponseOptions.gravity = " + Format(options.gravity) +
+    throw InputError("WaveResponseOptions.gravity = " + internal::FormatValue(options.gravity) +
                      " m/s^2: must be finite and > 0");
   }
 }

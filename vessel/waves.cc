@@ -7,14 +7,12 @@
 #include <string>
 #include <string_view>
 
+#include "core/angles.h"
 #include "core/error.h"
 #include "vessel/checks.h"
 
 namespace moorsim::vessel {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 // DNV-RP-C205 (2010) 3.5.5: the range of gamma over which A_gamma was fitted.
 constexpr double kMinPeakEnhancement = 1.0;
@@ -36,14 +34,6 @@ constexpr double kSpreadingTailRatio = 1e-16;
 constexpr int kSeriesReanchorSamples = 512;
 
 using internal::ThrowBadValue;
-std::string Format(double value) { return internal::FormatValue(value); }
-
-/// Maps an angle to (-pi, pi].
-double WrapAngle(double angle) {
-  double wrapped = std::remainder(angle, kTwoPi);
-  if (wrapped <= -kPi) wrapped += kTwoPi;
-  return wrapped;
-}
 
 /// Composite Simpson's rule of f over [a, b] on an even number of panels >= 2.
 template <typename Integrand>
@@ -105,8 +95,9 @@ double SpectralMoment(const WaveSpectrum& spectrum, int order, double omega_min,
                   "must be > 0 for a negative order " + std::to_string(order));
   }
   if (!(omega_max > omega_min) || !std::isfinite(omega_max)) {
-    ThrowBadValue("spectral moment omega_max", omega_max, "rad/s",
-                  "must be finite and > omega_min = " + Format(omega_min) + " rad/s");
+    ThrowBadValue(
+        "spectral moment omega_max", omega_max, "rad/s",
+        "must be finite and > omega_min = " + internal::FormatValue(omega_min) + " rad/s");
   }
   if (intervals < 2) {
     ThrowBadValue("spectral moment intervals", intervals, "", "must be >= 2");
@@ -202,8 +193,9 @@ WaveRealisation::WaveRealisation(const WaveSpectrum& spectrum,
     ThrowBadValue("waves.omega_min", omega_min_, "rad/s", "must be > 0 and finite");
   }
   if (!(omega_max_ > omega_min_) || !std::isfinite(omega_max_)) {
-    ThrowBadValue("waves.omega_max", omega_max_, "rad/s",
-                  "must be finite and > waves.omega_min = " + Format(omega_min_) + " rad/s");
+    ThrowBadValue(
+        "waves.omega_max", omega_max_, "rad/s",
+        "must be finite and > waves.omega_min = " + internal::FormatValue(omega_min_) + " rad/s");
   }
   std::optional<CosineSpreading> spreading;
   if (options.spreading_exponent) {

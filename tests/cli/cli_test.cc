@@ -32,8 +32,6 @@ namespace {
 
 using nlohmann::json;
 
-const std::string kSeed = MOORSIM_SOURCE_DIR "/scenarios/library/seed_tapm.yaml";
-
 // ---------------------------------------------------------------------------------------
 // Helpers.
 

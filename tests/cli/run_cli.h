@@ -70,6 +70,9 @@ class TempDirectory {
   std::filesystem::path path_;
 };
 
+/// The library's seed case: the turret-moored FPSO on eight chain lines in 1000 m of water.
+inline const std::string kSeed = MOORSIM_SOURCE_DIR "/scenarios/library/seed_tapm.yaml";
+
 inline std::string ReadWholeFile(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream text;

@@ -23,7 +23,6 @@
 namespace moorsim::testing {
 namespace {
 
-const std::string kSeed = MOORSIM_SOURCE_DIR "/scenarios/library/seed_tapm.yaml";
 const std::string kThesisNoFailure = MOORSIM_SOURCE_DIR "/scenarios/library/thesis_no_failure.yaml";
 
 /// Shape of a dataset (empty if it does not exist).

@@ -3,6 +3,7 @@
 // minus its load (approached with the intact filter's ~10 s time constant) and a slowly
 // varying disturbance on top.
 #include "detectors/deficit.h"
+#include "core/angles.h"
 
 #include <gtest/gtest.h>
 
@@ -21,9 +22,8 @@
 namespace moorsim::detectors {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kLineLoad = 3.5e6;  // [N]
-constexpr int kHypotheses = 9;       // intact + 8 lines
+constexpr int kBankSize = 9;         // intact + 8 lines
 
 // Anchor bearings of the seed mooring (line 1 north, 2 east, 3 south, 4 west, 5-8 between).
 constexpr double kBearingDeg[8] = {0, 90, 180, 270, 45, 135, 225, 315};
@@ -43,10 +43,10 @@ class BiasStream {
         y_(RandomStream::Derive(seed, "deficit.y")),
         std_(std),
         decay_(std::exp(-1.0 / correlation)) {
-    evidence_.hypotheses.resize(kHypotheses);
+    evidence_.hypotheses.resize(kBankSize);
     evidence_.load.emplace();
-    evidence_.load->line_load.assign(kHypotheses, Vec3::Zero());
-    for (int k = 1; k < kHypotheses; ++k) evidence_.load->line_load[k] = LineLoad(k);
+    evidence_.load->line_load.assign(kBankSize, Vec3::Zero());
+    for (int k = 1; k < kBankSize; ++k) evidence_.load->line_load[k] = LineLoad(k);
     disturbance_ = std * Vec3(x_.Normal(), y_.Normal(), 0.0);
   }
 
@@ -97,7 +97,7 @@ class BiasStream {
 // load to add at that sample.
 template <typename At>
 AlarmHistory RunDetector(Deficit& deficit, BiasStream& stream, int seconds, At at) {
-  deficit.Reset(kHypotheses);
+  deficit.Reset(kBankSize);
   AlarmHistory history;
   for (int t = 0; t <= seconds; ++t) {
     const Verdict& v = deficit.Step(stream.Sample(t, at(t)));
@@ -410,7 +410,7 @@ TEST(Deficit, ResetIsTheOperatorsReset) {
     return Vec3::Zero();
   });
   ASSERT_TRUE(history.alarm());
-  deficit.Reset(kHypotheses);
+  deficit.Reset(kBankSize);
   const Verdict& v = deficit.Step(stream.Sample(601));
   EXPECT_FALSE(v.alarm);
   EXPECT_EQ(v.hypothesis, 0);
@@ -419,9 +419,9 @@ TEST(Deficit, ResetIsTheOperatorsReset) {
 TEST(Deficit, EvidenceWithoutLoadChangesNothingAndABadBiasThrows) {
   Deficit deficit;
   EXPECT_TRUE(deficit.NeedsLoadEvidence());
-  deficit.Reset(kHypotheses);
+  deficit.Reset(kBankSize);
   Evidence bare;
-  bare.hypotheses.resize(kHypotheses);
+  bare.hypotheses.resize(kBankSize);
   bare.t = 1.0;
   const Verdict& v = deficit.Step(bare);
   EXPECT_FALSE(v.alarm);

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "core/angles.h"
 #include "core/random.h"
 #include "detectors/dht.h"
 #include "detectors/glr.h"
@@ -72,7 +73,6 @@ namespace {
 // for); MleOptions' defaults are tuned for the coupled plant instead (detectors/mle.h).
 constexpr MleOptions kSeedMle{.forgetting_factor = 0.999, .hold = 30.0, .margin = 10.0};
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kHypotheses = 9;
 constexpr double kDt = 0.1;  // [s] detector sample period in these tests (10 Hz)
 

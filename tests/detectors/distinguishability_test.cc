@@ -12,6 +12,7 @@
 // Then the invariants: D(i||i) = 0, D >= 0, and the relations the thesis mooring's
 // mirror symmetries impose.
 #include "detectors/distinguishability.h"
+#include "core/angles.h"
 
 #include <gtest/gtest.h>
 
@@ -37,7 +38,6 @@
 namespace moorsim::detectors {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 using Complex = std::complex<double>;
 using MatC = Eigen::MatrixXcd;
 

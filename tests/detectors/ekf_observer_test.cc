@@ -9,6 +9,7 @@
 // symmetrically, so the injected covariance is right to O(h^2)), not the filter's exact
 // wave discretisation and tangent-linear transition.
 #include "detectors/ekf_observer.h"
+#include "core/angles.h"
 
 #include <gtest/gtest.h>
 
@@ -29,7 +30,6 @@
 namespace moorsim::detectors {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 using Vec15 = Eigen::Matrix<double, 15, 1>;
 using testing::SeedBank;
 

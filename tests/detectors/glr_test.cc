@@ -5,6 +5,7 @@
 // sqrt(p (1 - p) / N); every bound below is 4.5 standard errors, so a correct detector
 // fails a check with probability about 7e-6. The seeds are fixed, so passes repeat.
 #include "detectors/glr.h"
+#include "core/angles.h"
 
 #include <gtest/gtest.h>
 
@@ -22,7 +23,6 @@
 namespace moorsim::detectors {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kSigmas = 4.5;
 
 // Innovations of the intact model alone (a bank of one hypothesis): r = L (z + mean_w),

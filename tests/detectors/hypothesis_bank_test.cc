@@ -4,6 +4,7 @@
 // Earth coordinates, the analytic Jacobian against central differences, and the bank's
 // bookkeeping.
 #include "detectors/hypothesis_bank.h"
+#include "core/angles.h"
 
 #include <gtest/gtest.h>
 
@@ -20,8 +21,6 @@
 
 namespace moorsim::detectors {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 mooring_fem::MooringParameters SeedMooring() {
   return scenarios::ToMooringParameters(

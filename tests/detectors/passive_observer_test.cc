@@ -4,6 +4,7 @@
 // the bank and bad input. The statistical checks with the offline covariance are in
 // innovation_covariance_test.cc.
 #include "detectors/passive_observer.h"
+#include "core/angles.h"
 
 #include <gtest/gtest.h>
 
@@ -24,7 +25,6 @@
 namespace moorsim::detectors {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 using State = HypothesisPassiveObserver::State;
 using testing::SeedBank;
 

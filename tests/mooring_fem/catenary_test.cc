@@ -6,6 +6,7 @@
 // direction over arc length, the classic inextensible catenary, and a hand check of the
 // seed case.
 #include "mooring_fem/catenary.h"
+#include "core/angles.h"
 
 #include <gtest/gtest.h>
 
@@ -23,8 +24,6 @@
 
 namespace moorsim::mooring_fem {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 // Seed case: 80 mm chain-like line, 275 kg/m dry, steel E = 4.5757e10 Pa on 0.005 m^2.
 CatenaryLineProperties SeedLine() {

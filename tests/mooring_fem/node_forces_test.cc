@@ -8,12 +8,12 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/angles.h"
 #include "mooring_fem/mooring_system.h"
 
 namespace moorsim::mooring_fem {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kRho = 1025.0, kG = 9.81, kD = 0.08, kMass = 275.0;
 constexpr double kCdn = 0.3, kCdt = 1.0, kCmn = 1.5;
 constexpr int kSegments = 4;

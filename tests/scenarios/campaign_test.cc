@@ -39,7 +39,7 @@ blocks:
     seeds: {from: 5, to: 7}
 )";
 
-std::string ErrorOf(const std::string& text) {
+std::string CampaignErrorOf(const std::string& text) {
   try {
     ParseCampaign(text, kSource);
   } catch (const InputError& error) {
@@ -254,7 +254,7 @@ std::vector<CampaignError> Errors() {
 TEST(Campaign, EveryRuleIsOneLocatedLine) {
   for (const CampaignError& e : Errors()) {
     SCOPED_TRACE(e.name);
-    const std::string error = ErrorOf(e.text);
+    const std::string error = CampaignErrorOf(e.text);
     if (e.message.empty()) {  // only that it is located in the file
       EXPECT_EQ(error.rfind(kSource + ":", 0), 0u) << error;
       continue;
@@ -276,7 +276,8 @@ TEST(Campaign, MissingFileAndNotUtf8) {
         "/nonexistent/campaign.yaml: cannot open the campaign file: No such file or directory");
   }
   const std::string bad = Replace(kCampaign, "name: test", "name: t\xE9st");
-  EXPECT_EQ(ErrorOf(bad), kSource + ":1:8: not valid UTF-8 (byte 0xE9); save the file as UTF-8");
+  EXPECT_EQ(CampaignErrorOf(bad),
+            kSource + ":1:8: not valid UTF-8 (byte 0xE9); save the file as UTF-8");
 }
 
 }  // namespace

@@ -20,19 +20,14 @@
 #include <string>
 
 #include "core/error.h"
+#include "tests/support/scratch_directory.h"
 
 namespace moorsim::simulation {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path FreshDirectory(const std::string& name) {
-  const fs::path dir =
-      fs::path(::testing::TempDir()) / ("moorsim_batch_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using moorsim::testing::FreshDirectory;
 
 // Seven short runs of the thesis plant with its four detectors: lines 2 and 6 parting at
 // a drawn time, two seeds each; two intact runs; one run with a step limit CVODE cannot
@@ -95,7 +90,7 @@ BatchOptions Options(const fs::path& campaign, const fs::path& out, int threads)
 class BatchTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    root_ = new fs::path(FreshDirectory("suite"));
+    root_ = new fs::path(FreshDirectory("batch_suite"));
     campaign_ = new fs::path(WriteCampaign(*root_, CampaignText()));
   }
   // The reference, built by the tests that compare with it (each test runs in a process of
@@ -221,7 +216,7 @@ TEST_F(BatchTest, ShardsMergeToTheWholeCampaign) {
   EXPECT_EQ(RowsOf(*root_ / "merged"), RowsOf(*root_ / "sequential"));
   EXPECT_TRUE(fs::exists(*root_ / "merged" / "campaign.h5"));
   // Shards of another campaign do not merge.
-  const fs::path other = FreshDirectory("other");
+  const fs::path other = FreshDirectory("batch_other");
   const fs::path other_campaign =
       WriteCampaign(other, CampaignText() + "  - name: more\n    seeds: 1\n");
   BatchOptions o = Options(other_campaign, other / "out", 1);
@@ -245,7 +240,7 @@ TEST_F(BatchTest, ALockedOrForeignDirectoryIsRefused) {
             std::string::npos)
       << locked.message;
 
-  const fs::path foreign = FreshDirectory("foreign");
+  const fs::path foreign = FreshDirectory("batch_foreign");
   const fs::path campaign = WriteCampaign(foreign, CampaignText() + "# another text\n");
   const fs::path recorded = *root_ / "recorded";  // a directory of this suite's campaign
   fs::create_directories(recorded);
@@ -271,7 +266,7 @@ TEST_F(BatchTest, ARunPastItsWallClockLimitIsATimeoutRow) {
 }
 
 TEST_F(BatchTest, BadInputNamesTheRun) {
-  const fs::path dir = FreshDirectory("bad");
+  const fs::path dir = FreshDirectory("batch_bad");
   const fs::path campaign =
       WriteCampaign(dir, "scenario: " MOORSIM_SOURCE_DIR
                          "/scenarios/library/thesis_no_failure.yaml\n"

@@ -23,6 +23,7 @@
 #include "core/error.h"
 #include "core/sample_clock.h"
 #include "scenarios/load.h"
+#include "tests/support/scratch_directory.h"
 
 namespace moorsim::simulation {
 namespace {
@@ -31,14 +32,7 @@ namespace fs = std::filesystem;
 
 const std::string kThesis = MOORSIM_SOURCE_DIR "/scenarios/library/thesis_no_failure.yaml";
 
-/// A fresh directory under the test's temporary directory.
-fs::path FreshDirectory(const std::string& name) {
-  const fs::path dir =
-      fs::path(::testing::TempDir()) / ("moorsim_run_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using moorsim::testing::FreshDirectory;
 
 nlohmann::json ReadJson(const fs::path& path) {
   std::ifstream in(path);
@@ -98,7 +92,7 @@ TEST_F(RunTest, EveryControllerRateReachesEveryInstant) {
 
 TEST_F(RunTest, ClocksWithNoCommonPeriodAllKeepTheirInstants) {
   // Sensors 1 Hz, controller 3 Hz, output 7 Hz.
-  const fs::path dir = FreshDirectory("clocks");
+  const fs::path dir = FreshDirectory("run_clocks");
   const RunResult r = RunScenario(Request(
       dir, {"controller.rate_hz=3", "simulation.output_rate_hz=7", "simulation.duration=20"}));
   ASSERT_EQ(r.status, RunStatus::kOk) << r.message;
@@ -113,7 +107,7 @@ TEST_F(RunTest, ClocksWithNoCommonPeriodAllKeepTheirInstants) {
 }
 
 TEST_F(RunTest, AStopRequestEndsTheRunWithEveryRowSoFarAndSaysSo) {
-  const fs::path dir = FreshDirectory("stop");
+  const fs::path dir = FreshDirectory("run_stop");
   RunRequest request = Request(dir, {"simulation.duration=1000"});
   int rows = 0;
   request.stop_requested = [&rows] { return ++rows == 6 ? SIGTERM : 0; };
@@ -131,7 +125,7 @@ TEST_F(RunTest, AStopRequestEndsTheRunWithEveryRowSoFarAndSaysSo) {
 }
 
 TEST_F(RunTest, ACrashMidRunLeavesTheOldResultWholeAndTheFlushedRowsReadable) {
-  const fs::path dir = FreshDirectory("crash");
+  const fs::path dir = FreshDirectory("run_crash");
   // A complete earlier result in the directory.
   ASSERT_EQ(RunScenario(Request(dir, {"simulation.duration=5"})).status, RunStatus::kOk);
   // A longer run into the same directory dies without closing anything at row 300: after
@@ -163,7 +157,7 @@ TEST_F(RunTest, ACrashMidRunLeavesTheOldResultWholeAndTheFlushedRowsReadable) {
 }
 
 TEST_F(RunTest, AFullDiskFailsTheRunWithoutACrashAndTheSummarySaysWhy) {
-  const fs::path dir = FreshDirectory("full");
+  const fs::path dir = FreshDirectory("run_full");
   // Writes beyond 200 kB fail with EFBIG, as they would with ENOSPC on a full disk; the
   // child also exits through HDF5's exit handlers, where a failed close once crashed.
   const pid_t child = fork();
@@ -189,7 +183,7 @@ TEST_F(RunTest, AFullDiskFailsTheRunWithoutACrashAndTheSummarySaysWhy) {
 }
 
 TEST_F(RunTest, AFileThatDoesNotFitIsAnErrorNotAnEmptyFile) {
-  const fs::path dir = FreshDirectory("write");
+  const fs::path dir = FreshDirectory("run_write");
   std::signal(SIGXFSZ, SIG_IGN);
   rlimit saved{};
   getrlimit(RLIMIT_FSIZE, &saved);
@@ -213,7 +207,7 @@ TEST_F(RunTest, AFileThatDoesNotFitIsAnErrorNotAnEmptyFile) {
 TEST_F(RunTest, AMooredEquilibriumThatDoesNotConvergeFailsLoudly) {
   // A hull scaled to a fifth cannot carry the lines' 40 MN: the heave/roll/pitch iteration
   // diverges, and the run says so instead of starting from an unbalanced pose.
-  const fs::path dir = FreshDirectory("equilibrium");
+  const fs::path dir = FreshDirectory("run_equilibrium");
   const RunResult r = RunScenario(Request(dir, {"vessel.length_scale=0.2"}));
   EXPECT_EQ(r.status, RunStatus::kFailed);
   EXPECT_EQ(r.ExitCode(), 1);
@@ -226,7 +220,7 @@ TEST_F(RunTest, AMooredEquilibriumThatDoesNotConvergeFailsLoudly) {
 }
 
 TEST_F(RunTest, BadInputIsRejectedBeforeAnythingIsWritten) {
-  const fs::path dir = FreshDirectory("rejected");
+  const fs::path dir = FreshDirectory("run_rejected");
   const RunResult r = RunScenario(Request(dir / "out", {"controller.rate_hz=-1"}));
   EXPECT_EQ(r.status, RunStatus::kRejected);
   EXPECT_EQ(r.ExitCode(), 2);

@@ -12,14 +12,13 @@
 #include <string>
 #include <vector>
 
+#include "core/angles.h"
 #include "tests/simulation/test_scenarios.h"
 #include "tools/simulation/simulation.h"
 #include "vessel/turret.h"
 
 namespace moorsim::simulation {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 /// The seed FPSO on the seed mooring in calm water, no controller, no hull drag (so that
 /// the hull's yaw damping is the linear B66 alone), with `turret` as the vessel.turret map.
@@ -62,16 +61,16 @@ TEST(Turret, FreeAtTheReferencePointLeavesYawWithoutMooringStiffness) {
     // 2 %: the mass matrix's sway-yaw coupling and the lines' drag on the turning turret
     // (through the free bearing, none) are all that separate the plant from the formula.
     EXPECT_NEAR(Heading(sim), expected, 0.02 * expected) << "t = " << t;
-    EXPECT_LT(std::abs(Heading(sim) + TurretAngle(sim)), 0.2 * kDeg) << "t = " << t;
+    EXPECT_LT(std::abs(Heading(sim) + TurretAngle(sim)), 0.2 * kDegree) << "t = " << t;
   }
-  EXPECT_GT(Heading(sim), 10.0 * kDeg);
+  EXPECT_GT(Heading(sim), 10.0 * kDegree);
 
   // The same moment on a locked turret: the mooring's yaw stiffness holds the hull near
   // N / K_yaw (5.7e8 N m/rad: 2 deg).
   Simulation locked(TurretScenario("{bearing: locked}"), 1);
   locked.SetExternalLoad(Vec3(0.0, 0.0, kMoment));
   locked.AdvanceTo(300.0);
-  EXPECT_LT(std::abs(Heading(locked)), 3.0 * kDeg);
+  EXPECT_LT(std::abs(Heading(locked)), 3.0 * kDegree);
 }
 
 TEST(Turret, ForwardOfTheReferencePointWeathervanesIntoTheCurrent) {
@@ -90,21 +89,21 @@ TEST(Turret, ForwardOfTheReferencePointWeathervanesIntoTheCurrent) {
   s.vessel->turret.x = 80.0;
   s.mooring.current.depth = {0.0, 2000.0};
   s.mooring.current.speed = {1.5, 1.5};
-  s.mooring.current.direction = 210.0 * kDeg;  // toward 210 deg: from 30 deg
-  s.environment.hull_viscous_drag = true;      // the current's load on the hull
+  s.mooring.current.direction = 210.0 * kDegree;  // toward 210 deg: from 30 deg
+  s.environment.hull_viscous_drag = true;         // the current's load on the hull
   Simulation sim(s, 1);
   std::vector<double> error;  // at 1000, 2000, ..., 6000 s
   for (double t = 1000.0; t <= 6000.0; t += 1000.0) {
     sim.AdvanceTo(t);
-    error.push_back(std::abs(Heading(sim) - 30.0 * kDeg));
+    error.push_back(std::abs(Heading(sim) - 30.0 * kDegree));
     // The turret's own heading psi + alpha stays where the lines hold it.
-    EXPECT_LT(std::abs(Heading(sim) + TurretAngle(sim)), 0.1 * kDeg) << "t = " << t;
+    EXPECT_LT(std::abs(Heading(sim) + TurretAngle(sim)), 0.1 * kDegree) << "t = " << t;
   }
   for (std::size_t k = 1; k < error.size(); ++k) EXPECT_LT(error[k], error[k - 1]);
   // 1 / t: e(6000 s) / e(3000 s) = 1/2, within 20 % (the approach is not yet asymptotic).
   EXPECT_NEAR(error[2] / error[5], 2.0, 0.4);
-  EXPECT_LT(error.back(), 1.0 * kDeg);
-  RecordProperty("heading_error_deg_at_6000s", std::to_string(error.back() / kDeg));
+  EXPECT_LT(error.back(), 1.0 * kDegree);
+  RecordProperty("heading_error_deg_at_6000s", std::to_string(error.back() / kDegree));
 }
 
 /// The bearing's breakaway moment at the start: mu r_b (|F_z| + |F_h|) of the lines' load.
@@ -134,15 +133,15 @@ TEST(Turret, FrictionHoldsBelowTheBreakawayMomentAndSlipsAbove) {
   const double creep = (TurretAngle(hold) - alpha100) / 200.0;
   const double expected_creep = -1.0e-5 * std::atanh(0.5);  // the turret lags the hull
   EXPECT_NEAR(creep, expected_creep, 0.3 * std::abs(expected_creep));
-  EXPECT_LT(std::abs(TurretAngle(hold)), 0.2 * kDeg);
-  EXPECT_LT(std::abs(Heading(hold)), 1.5 * kDeg);  // ~N / K_yaw, as if locked
+  EXPECT_LT(std::abs(TurretAngle(hold)), 0.2 * kDegree);
+  EXPECT_LT(std::abs(Heading(hold)), 1.5 * kDegree);  // ~N / K_yaw, as if locked
 
   // Twice the breakaway moment: the bearing slips and the hull turns away.
   Simulation slip(TurretScenario(turret), 1);
   slip.SetExternalLoad(Vec3(0.0, 0.0, 2.0 * breakaway));
   slip.AdvanceTo(300.0);
-  EXPECT_GT(Heading(slip), 5.0 * kDeg);
-  EXPECT_GT(std::abs(TurretAngle(slip)), 5.0 * kDeg);
+  EXPECT_GT(Heading(slip), 5.0 * kDegree);
+  EXPECT_GT(std::abs(TurretAngle(slip)), 5.0 * kDegree);
 }
 
 TEST(Turret, EnergyNeverGrowsWithoutInput) {
@@ -158,8 +157,8 @@ TEST(Turret, EnergyNeverGrowsWithoutInput) {
     energy = e;
   }
   // The turret came back to the lines' orientation: the turret's heading psi + alpha ~ 0.
-  EXPECT_LT(std::abs(Heading(sim) + TurretAngle(sim)), 0.5 * kDeg);
-  EXPECT_NEAR(Heading(sim), 10.0 * kDeg, 0.5 * kDeg);  // no yaw stiffness on the hull
+  EXPECT_LT(std::abs(Heading(sim) + TurretAngle(sim)), 0.5 * kDegree);
+  EXPECT_NEAR(Heading(sim), 10.0 * kDegree, 0.5 * kDegree);  // no yaw stiffness on the hull
 }
 
 // The thesis sea state (Hs 2.5 m, Tp 7 s) with the turret free, as the library has it: the
@@ -185,8 +184,8 @@ TEST_P(FreeTurretHeading, StaysWithinItsBandForAnHour) {
         std::max(worst, std::abs(std::remainder(Heading(sim) - setpoint, 2 * std::numbers::pi)));
     ASSERT_LT(std::hypot(sim.state()[0], sim.state()[1]), 25.0) << "t = " << t;
   }
-  EXPECT_LT(worst, 1.5 * kDeg);
-  RecordProperty("worst_heading_error_deg", std::to_string(worst / kDeg));
+  EXPECT_LT(worst, 1.5 * kDegree);
+  RecordProperty("worst_heading_error_deg", std::to_string(worst / kDegree));
 }
 
 INSTANTIATE_TEST_SUITE_P(ThesisSea, FreeTurretHeading,

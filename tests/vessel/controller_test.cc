@@ -3,6 +3,7 @@
 // D, the seed mooring's 81.6 kN/m in surge and sway and no yaw stiffness (a turret that
 // lets the hull weathervane), and a constant NED load d.
 #include "vessel/controller.h"
+#include "core/angles.h"
 
 #include <gtest/gtest.h>
 
@@ -18,8 +19,6 @@
 namespace moorsim::vessel {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;
 const double kWavePeriod = 7.0;  // [s], TAPM thesis table 4.3
 
 Vec3 BodyToNed(const Vec3& v, double psi) {
@@ -145,7 +144,7 @@ TEST(PiController, SettlesAtTheSetpointUnderAConstantNedLoad) {
   // The integral removes it; its slowest pole is Ki / (Kp + G) = 1e3 / 1.08e6 -> ~1080 s
   // in the east channel, so 10 000 s leaves e^-8 of the 0.09 m. Settling criterion: the
   // position stays within 1 cm of the setpoint over the last 1000 s.
-  const Vec3 eta_d(0.0, 0.0, -135 * kDeg);
+  const Vec3 eta_d(0.0, 0.0, -135 * kDegree);
   Sensor ideal;
   for (const bool integral : {false, true}) {
     PiControllerOptions options;
@@ -184,7 +183,7 @@ TEST(PiController, SettlesAtTheSetpointUnderAConstantNedLoad) {
 
 TEST(PositionControllers, DisplacedNorthGetsASouthwardForceAtAnyHeading) {
   for (const double psi_deg : {0.0, 45.0, 90.0, 179.0, -90.0, -135.0}) {
-    const double psi = psi_deg * kDeg;
+    const double psi = psi_deg * kDegree;
     for (const std::string type : {"pi", "observer_pid"}) {
       ControllerSpec spec;
       spec.type = type;
@@ -216,17 +215,17 @@ TEST(PositionControllers, HeadingErrorWrapsAcrossPlusMinus180Degrees) {
   for (const std::string type : {"pi", "observer_pid"}) {
     ControllerSpec spec;
     spec.type = type;
-    spec.setpoint = Vec3(0.0, 0.0, 179 * kDeg);
+    spec.setpoint = Vec3(0.0, 0.0, 179 * kDegree);
     const auto controller = MakeController(spec, 1.0);
     PoseMeasurementInput m;
-    m.pose = Vec3(0.0, 0.0, -179 * kDeg);
+    m.pose = Vec3(0.0, 0.0, -179 * kDegree);
     const Vec3 tau = controller->Update(m);
     double gains = 1e3 + 1e2;  // thesis Kp + Ki dt
     if (const auto* pid = dynamic_cast<const ObserverPidController*>(controller.get())) {
       gains = pid->kp().z() + pid->ki().z();
     }
     EXPECT_LT(tau.z(), 0.0) << type;
-    EXPECT_NEAR(tau.z(), -gains * 2 * kDeg, 1e-9 * gains) << type;
+    EXPECT_NEAR(tau.z(), -gains * 2 * kDegree, 1e-9 * gains) << type;
     EXPECT_NEAR(tau.x(), 0.0, 1e-9) << type;
     EXPECT_NEAR(tau.y(), 0.0, 1e-9) << type;
   }
@@ -319,14 +318,14 @@ TEST(ObserverPidController, DropoutOfAChannelKeepsTheLoopOnTheModel) {
   // on 1.08e8 kg drifts the estimate by up to 0.5 a t^2 ~ 0.3 m. Asserted: 0.5 m.
   ObserverPidOptions options;
   options.model = TestModel();
-  ObserverPidController controller(options, Vec3(0, 0, -135 * kDeg), 1.0);
+  ObserverPidController controller(options, Vec3(0, 0, -135 * kDegree), 1.0);
   Plant plant;
   plant.eta = controller.setpoint();
   plant.disturbance_ned = Vec3(1.5e5, -1e5, 1e6);
   Sensor sensor;
   sensor.wave_amplitude = 1.0;
   sensor.noise_position = std::sqrt(0.005);
-  sensor.noise_heading = 0.1 * kDeg;
+  sensor.noise_heading = 0.1 * kDegree;
   const ClosedLoopRecord r = RunClosedLoop(controller, plant, sensor, 1600.0, 1500.0, 1530.0);
   double worst_estimate = 0.0, worst_command = 0.0;
   for (std::size_t k = 1500; k < 1530; ++k) {
@@ -348,15 +347,15 @@ TEST(PassiveObserver, TracksTheLowFrequencyPoseAndTheNedBias) {
   // 1 deg in yaw, and white noise (sigma^2 = 0.005 m^2 as in the TAPM thesis; 0.1 deg).
   const ManoeuvringModel model = TestModel();
   PassiveObserver observer(model, PassiveObserverOptions{}, 1.0);
-  observer.Reset(Vec3(0, 0, -135 * kDeg));
+  observer.Reset(Vec3(0, 0, -135 * kDegree));
   Plant plant;
-  plant.eta = Vec3(0, 0, -135 * kDeg);
+  plant.eta = Vec3(0, 0, -135 * kDegree);
   plant.disturbance_ned = Vec3(1.5e5, -1e5, 1e6);
   Sensor sensor;
   sensor.wave_amplitude = 1.0;
-  sensor.wave_yaw_amplitude = 1.0 * kDeg;
+  sensor.wave_yaw_amplitude = 1.0 * kDegree;
   sensor.noise_position = std::sqrt(0.005);
-  sensor.noise_heading = 0.1 * kDeg;
+  sensor.noise_heading = 0.1 * kDegree;
 
   const double duration = 3100.0;
   std::vector<Vec3> error, bias;
@@ -382,15 +381,15 @@ TEST(PassiveObserver, TracksTheLowFrequencyPoseAndTheNedBias) {
     min_heading = std::min(min_heading, heading[k]);
     max_heading = std::max(max_heading, heading[k]);
   }
-  std::printf("heading over the record: %.1f .. %.1f deg\n", min_heading / kDeg,
-              max_heading / kDeg);
+  std::printf("heading over the record: %.1f .. %.1f deg\n", min_heading / kDegree,
+              max_heading / kDegree);
   for (int i = 0; i < 3; ++i) {
     const std::vector<double> e = Channel(error, i, from);
     double square = 0.0;
     for (double v : e) square += v * v;
     const double rms = std::sqrt(square / e.size());
     const double wave = Amplitude(e, 1.0, kWavePeriod);
-    const double input = i < 2 ? 1.0 : 1.0 * kDeg;
+    const double input = i < 2 ? 1.0 : 1.0 * kDegree;
     std::printf("DOF %d: rms(eta_hat - eta) %.4f, 7 s part %.4f = %.1f %% of the input\n", i, rms,
                 wave, 100 * wave / input);
     // The notch (depth lambda / zeta_n = 0.1) in series with the omega_c low-pass gives
@@ -463,15 +462,15 @@ TEST(ObserverPidController, SettlesWithTheWaveMotionFilteredOutOfTheCommand) {
     ObserverPidOptions options;
     options.model = TestModel();
     options.observer.wave_filter = wave_filter;
-    ObserverPidController controller(options, Vec3(0, 0, -135 * kDeg), 1.0);
+    ObserverPidController controller(options, Vec3(0, 0, -135 * kDegree), 1.0);
     Plant plant;
-    plant.eta = Vec3(2, 2, -135 * kDeg);
+    plant.eta = Vec3(2, 2, -135 * kDegree);
     plant.disturbance_ned = Vec3(1.5e5, -1e5, 1e6);
     Sensor sensor;
     sensor.wave_amplitude = 1.0;
-    sensor.wave_yaw_amplitude = 1.0 * kDeg;
+    sensor.wave_yaw_amplitude = 1.0 * kDegree;
     sensor.noise_position = std::sqrt(0.005);
-    sensor.noise_heading = 0.1 * kDeg;
+    sensor.noise_heading = 0.1 * kDegree;
     const ClosedLoopRecord r = RunClosedLoop(controller, plant, sensor, 3100.0);
     const std::size_t from = r.tau.size() - 2100;  // 300 wave periods after 1000 s
     const double wave_x = Amplitude(Channel(r.tau, 0, from), 1.0, kWavePeriod);
@@ -487,7 +486,7 @@ TEST(ObserverPidController, SettlesWithTheWaveMotionFilteredOutOfTheCommand) {
     std::printf(
         "wave_filter %d: mean offset [%.4f m, %.4f m, %.4f deg], worst %.3f m, "
         "7 s command %.0f N (X), %.0f N (Y)\n",
-        wave_filter, mean.x(), mean.y(), mean.z() / kDeg, worst, wave_x, wave_y);
+        wave_filter, mean.x(), mean.y(), mean.z() / kDegree, worst, wave_x, wave_y);
     std::printf("  from 2.83 m off: within 0.1 m from t = %.0f s on\n",
                 SettlingTime(r.eta, controller.setpoint(), 0.1, 1.0));
     if (wave_filter) {
@@ -495,7 +494,7 @@ TEST(ObserverPidController, SettlesWithTheWaveMotionFilteredOutOfTheCommand) {
       // Settled: no mean offset (integral action) beyond 5 cm / 0.2 deg, and the
       // low-frequency pose stays within 0.5 m (noise through the loop) once settled.
       EXPECT_LT(mean.head<2>().norm(), 0.05);
-      EXPECT_LT(std::abs(mean.z()), 0.2 * kDeg);
+      EXPECT_LT(std::abs(mean.z()), 0.2 * kDegree);
       EXPECT_LT(worst, 0.5);
     }
   }

@@ -9,15 +9,12 @@
 #include <numbers>
 
 #include "free_vessel.h"
+#include "tests/vessel/fpso_hydro.h"
 
 namespace moorsim::vessel {
 namespace {
 
-const HydroData& Fpso() {
-  static const HydroData data =
-      ReadWamit(std::string(MOORSIM_SOURCE_DIR) + "/data/fpso_wamit/fpso");
-  return data;
-}
+using test_data::Fpso;
 
 TEST(FpsoModel, FreeDecayPeriodsMatchTheDiagonalEstimate) {
   const VesselParameters p = LowFrequencyVessel(Fpso(), SeedFpsoMass());

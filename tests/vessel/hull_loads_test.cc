@@ -6,6 +6,7 @@
 // central finite differences for the Jacobian, and the random-phase model's own
 // statistics for the gusts. The random seeds are fixed so a pass repeats.
 #include "vessel/hull_loads.h"
+#include "core/angles.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -22,9 +23,8 @@
 namespace moorsim::vessel {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kRho = 1025.0;
-constexpr double kRhoAir = 1.226;
+constexpr double kWaterDensity = 1025.0;
+constexpr double kAirDensity = 1.226;
 
 /// Runs `action` and checks that it throws InputError whose message contains every
 /// fragment (the field name and the offending value).
@@ -162,7 +162,7 @@ TEST(CurrentLoadTest, BeamCurrentSwayDragMatchesClosedForm) {
   // The midpoint sum of 20 equal terms only rounds: 1e-12 relative.
   const CurrentLoad load(SeedFpsoHull());
   const Vec6 tau = load.Load(Pose(0.0), Vec6::Zero(), Vec3(0.0, -0.1, 0.0));
-  const double expected = -0.5 * kRho * SeedCrossFlowDrag() * 200.0 * 12.0 * 0.1 * 0.1;
+  const double expected = -0.5 * kWaterDensity * SeedCrossFlowDrag() * 200.0 * 12.0 * 0.1 * 0.1;
   EXPECT_NEAR(tau[1], expected, 1e-12 * std::abs(expected));
   EXPECT_NEAR(tau[1], -8133.0, 1.0);
   EXPECT_EQ(tau[0], 0.0);
@@ -176,7 +176,8 @@ TEST(CurrentLoadTest, PureYawMomentMatchesClosedForm) {
   const CurrentLoad load(SeedFpsoHull());
   const double r = 0.004;
   const Vec6 tau = load.Load(Pose(0.0), Velocity(0.0, 0.0, r), Vec3::Zero());
-  const double exact = -0.5 * kRho * 12.0 * SeedCrossFlowDrag() * r * r * std::pow(200.0, 4) / 32.0;
+  const double exact =
+      -0.5 * kWaterDensity * 12.0 * SeedCrossFlowDrag() * r * r * std::pow(200.0, 4) / 32.0;
   EXPECT_NEAR(tau[5] / exact, 0.995, 1e-12);
   EXPECT_LT(std::abs(tau[1]), 1e-12 * std::abs(tau[5]));
 }
@@ -273,7 +274,7 @@ TEST(CurrentLoadTest, RejectsBadGeometry) {
 // --- wind load -----------------------------------------------------------------------
 
 /// 1/2 rho_a U^2 at U = 20 m/s: 245.2 Pa.
-constexpr double kQ20 = 0.5 * kRhoAir * 20.0 * 20.0;
+constexpr double kQ20 = 0.5 * kAirDensity * 20.0 * 20.0;
 
 TEST(WindLoadTest, HeadWindPushesTheVesselAft) {
   // Blendermann's loaded tanker: C_X(0) = -0.90, so X = -0.90 * 245.2 Pa * 1200 m^2 =
@@ -347,7 +348,7 @@ TEST(WindLoadTest, UsesTheWindRelativeToTheMovingHull) {
   const WindLoad wind(SeedFpsoWind());
   // Still air, vessel moving ahead at 5 m/s: a 5 m/s head wind.
   const Vec6 moving = wind.Load(Pose(0.4), Velocity(5.0, 0.0, 0.0), 0.0, 0.0);
-  EXPECT_NEAR(moving[0], -0.90 * 0.5 * kRhoAir * 25.0 * 1200.0, 1e-9);
+  EXPECT_NEAR(moving[0], -0.90 * 0.5 * kAirDensity * 25.0 * 1200.0, 1e-9);
   // Drifting downwind at the wind's own velocity: no relative wind, no load.
   // Wind 10 m/s from the north moves south; the vessel heads east, so south is to
   // starboard: v = +10 m/s.

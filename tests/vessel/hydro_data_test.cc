@@ -4,6 +4,8 @@
 // independent of WAMIT's), the interpolation rules, and one test per kind of bad input on
 // small synthetic files.
 #include "vessel/hydro_data.h"
+#include "core/angles.h"
+#include "tests/vessel/fpso_hydro.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -25,17 +27,11 @@
 namespace moorsim::vessel {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kRho = 1025.0;
 constexpr double kG = 9.81;
 constexpr std::complex<double> kI(0.0, 1.0);
 
-const HydroData& Fpso() {
-  static const HydroData data = ReadWamit(MOORSIM_SOURCE_DIR "/data/fpso_wamit/fpso");
-  return data;
-}
-
-double Degrees(double degrees) { return degrees * kPi / 180.0; }
+using test_data::Fpso;
 
 /// Index of the tabulated frequency nearest to the period `period` [s].
 std::size_t FrequencyIndex(double period) {
@@ -60,7 +56,7 @@ TEST(WamitFpso, ReadsEveryTableOnTheRunsGrid) {
   // 19 headings 0°…180° in WAMIT's convention = −180°…0° in the project's.
   ASSERT_EQ(d.headings.size(), 19u);
   for (std::size_t h = 0; h < 19; ++h) {
-    EXPECT_NEAR(d.headings[h], Degrees(-180.0 + 10.0 * static_cast<double>(h)), 1e-15);
+    EXPECT_NEAR(d.headings[h], (-180.0 + 10.0 * static_cast<double>(h)) * kDegree, 1e-15);
   }
   EXPECT_EQ(d.added_mass.size(), 58u);
   EXPECT_EQ(d.damping.size(), 58u);
@@ -150,7 +146,7 @@ TEST(WamitFpso, LongWavesCarryTheHullWithTheSurface) {
   const double omega = d.frequencies.front();
   const double k = omega * omega / kG;
   for (double degrees = -180.0; degrees <= 180.0; degrees += 30.0) {
-    const double beta = Degrees(degrees);
+    const double beta = degrees * kDegree;
     const ComplexVec6 rao = d.Rao(omega, beta);
     ComplexVec6 expected;
     expected << -kI * std::cos(beta), -kI * std::sin(beta), -1.0, kI * k * std::sin(beta),
@@ -183,13 +179,13 @@ TEST(WamitFpso, BeamSeaDriftNearsTheWallLimitAndPushesTheHullDownwave) {
     if (period < 3.0 || period > 6.0) continue;
     ++checked;
     // β = −90°: waves travel toward −y (port), so the drift is along −y; mirrored at +90°.
-    const Vec6 to_port = d.Drift(d.frequencies[f], Degrees(-90));
-    const Vec6 to_starboard = d.Drift(d.frequencies[f], Degrees(90));
+    const Vec6 to_port = d.Drift(d.frequencies[f], -90 * kDegree);
+    const Vec6 to_starboard = d.Drift(d.frequencies[f], 90 * kDegree);
     EXPECT_LT(to_port[1], 0.0) << "T = " << period << " s";
     EXPECT_NEAR(std::abs(to_port[1]), wall_limit, 0.15 * wall_limit) << "T = " << period << " s";
     EXPECT_EQ(to_starboard[1], -to_port[1]);
     // Head seas push the hull aft, following seas forward.
-    EXPECT_LT(d.Drift(d.frequencies[f], Degrees(180))[0], 0.0) << "T = " << period << " s";
+    EXPECT_LT(d.Drift(d.frequencies[f], 180 * kDegree)[0], 0.0) << "T = " << period << " s";
     EXPECT_GT(d.Drift(d.frequencies[f], 0.0)[0], 0.0) << "T = " << period << " s";
   }
   EXPECT_EQ(checked, 8);
@@ -292,7 +288,7 @@ TEST(WamitFpso, BetweenPointsRealAndImaginaryPartsBlendLinearly) {
   const std::size_t beam = 9;  // β = −90°
   const std::complex<double> r0 = d.motion_rao[d.WaveIndex(f, beam)][3];
   const std::complex<double> r1 = d.motion_rao[d.WaveIndex(f + 1, beam)][3];
-  ASSERT_GT(std::abs(std::arg(r1 / r0)), Degrees(150));
+  ASSERT_GT(std::abs(std::arg(r1 / r0)), 150 * kDegree);
   const double mid = 0.5 * (d.frequencies[f] + d.frequencies[f + 1]);
   const std::complex<double> roll = d.Rao(mid, d.headings[beam])[3];
   EXPECT_LT(std::abs(roll - (0.5 * r0 + 0.5 * r1)), 1e-12 * std::abs(r0));
@@ -305,7 +301,7 @@ TEST(WamitFpso, MirroredHeadingsFlipSwayRollAndYaw) {
   const HydroData& d = Fpso();
   const double omega = 0.7;  // between tabulated frequencies
   for (double degrees : {10.0, 45.0, 90.0, 135.0, 173.0}) {
-    const double beta = Degrees(degrees);
+    const double beta = degrees * kDegree;
     const ComplexVec6 rao = d.Rao(omega, beta), rao_mirror = d.Rao(omega, -beta);
     const ComplexVec6 x = d.Exciting(omega, beta), x_mirror = d.Exciting(omega, -beta);
     const Vec6 drift = d.Drift(omega, beta), drift_mirror = d.Drift(omega, -beta);
@@ -330,8 +326,8 @@ TEST(WamitFpso, FrequenciesOutsideTheTableAreClamped) {
   EXPECT_EQ(d.AddedMass(0.0), d.added_mass.front());
   EXPECT_EQ(d.AddedMass(-1.0), d.added_mass.front());
   EXPECT_EQ(d.Damping(100.0), d.damping.back());
-  EXPECT_EQ(d.Rao(1e-3, Degrees(-90)), d.motion_rao[d.WaveIndex(0, 9)]);
-  EXPECT_EQ(d.Exciting(50.0, Degrees(-90)), d.exciting_force[d.WaveIndex(57, 9)]);
+  EXPECT_EQ(d.Rao(1e-3, -90 * kDegree), d.motion_rao[d.WaveIndex(0, 9)]);
+  EXPECT_EQ(d.Exciting(50.0, -90 * kDegree), d.exciting_force[d.WaveIndex(57, 9)]);
 }
 
 TEST(WamitFpso, NonFiniteArgumentsThrow) {

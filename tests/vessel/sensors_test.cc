@@ -11,6 +11,7 @@
 // Gauss-Markov step: variance 33 % off; q dt for q sqrt(dt): a factor 4) miss by tens or
 // hundreds of SE. The seeds are fixed, so a pass repeats.
 #include "vessel/sensors.h"
+#include "core/angles.h"
 
 #include <gtest/gtest.h>
 
@@ -36,7 +37,6 @@ using moorsim::testing::Correlation;
 using moorsim::testing::Mean;
 using moorsim::testing::Variance;
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kSigmas = 4.5;
 constexpr double kThreeHours = 3.0 * 3600.0;
 
@@ -77,16 +77,17 @@ PoseSensorSpec FullSpec() {
 }
 
 /// One channel's record: value and validity per instant.
-struct Channel {
+struct ChannelRecord {
   std::vector<double> value;
   std::vector<bool> valid;
 };
 
 /// x, y and psi of `samples` consecutive instants of equal-rate sensors at a fixed true
 /// pose.
-std::array<Channel, 3> Record(PoseSensors& sensors, int samples, const Vec3& pose = Vec3::Zero()) {
-  std::array<Channel, 3> record;
-  for (Channel& c : record) {
+std::array<ChannelRecord, 3> Record(PoseSensors& sensors, int samples,
+                                    const Vec3& pose = Vec3::Zero()) {
+  std::array<ChannelRecord, 3> record;
+  for (ChannelRecord& c : record) {
     c.value.reserve(samples);
     c.valid.reserve(samples);
   }
@@ -100,8 +101,8 @@ std::array<Channel, 3> Record(PoseSensors& sensors, int samples, const Vec3& pos
   return record;
 }
 
-std::array<Channel, 3> Record(const PoseSensorSpec& spec, std::uint64_t seed, int samples,
-                              const Vec3& pose = Vec3::Zero()) {
+std::array<ChannelRecord, 3> Record(const PoseSensorSpec& spec, std::uint64_t seed, int samples,
+                                    const Vec3& pose = Vec3::Zero()) {
   PoseSensors sensors(spec, seed);
   return Record(sensors, samples, pose);
 }
@@ -233,7 +234,7 @@ TEST(PoseSensorsTest, NoiseIsIndependentAcrossDegreesOfFreedom) {
   // sqrt(N) fails by chance with probability ~7e-6 per pair.
   constexpr int kSamples = 100'000;
   const PoseSensorSpec spec = SeedPoseSensors();
-  const std::array<Channel, 3> r = Record(spec, 7, kSamples);
+  const std::array<ChannelRecord, 3> r = Record(spec, 7, kSamples);
   const double bound = kSigmas / std::sqrt(static_cast<double>(kSamples));
   const double rho_xy = Correlation(r[0].value, r[1].value);
   const double rho_xpsi = Correlation(r[0].value, r[2].value);
@@ -281,8 +282,8 @@ TEST(PoseSensorsTest, SameSeedGivesBitIdenticalSequences) {
 }
 
 TEST(PoseSensorsTest, DifferentSeedsDiffer) {
-  const std::array<Channel, 3> a = Record(FullSpec(), 1, 1000);
-  const std::array<Channel, 3> b = Record(FullSpec(), 2, 1000);
+  const std::array<ChannelRecord, 3> a = Record(FullSpec(), 1, 1000);
+  const std::array<ChannelRecord, 3> b = Record(FullSpec(), 2, 1000);
   for (int i = 0; i < 3; ++i) {
     int equal = 0;
     for (int k = 0; k < 1000; ++k) equal += a[i].value[k] == b[i].value[k];
@@ -295,9 +296,9 @@ TEST(PoseSensorsTest, InstrumentNameSelectsTheStreams) {
   PoseSensors reference(spec, 5);
   PoseSensors other_gnss(spec, 5, "gnss_aft");
   PoseSensors other_gyro(spec, 5, "gnss", "gyro_2");
-  const std::array<Channel, 3> r = Record(reference, 1000);
-  const std::array<Channel, 3> g = Record(other_gnss, 1000);
-  const std::array<Channel, 3> h = Record(other_gyro, 1000);
+  const std::array<ChannelRecord, 3> r = Record(reference, 1000);
+  const std::array<ChannelRecord, 3> g = Record(other_gnss, 1000);
+  const std::array<ChannelRecord, 3> h = Record(other_gyro, 1000);
   int north_equal = 0;
   int heading_equal = 0;
   for (int k = 0; k < 1000; ++k) {
@@ -327,8 +328,8 @@ TEST(PoseSensorsTest, OutliersLeaveTheWhiteNoiseUnchanged) {
   spiky.east.outlier_std_dev = 2.0;
   spiky.heading.outlier_probability = 0.02;
   spiky.heading.outlier_std_dev = 0.3;
-  const std::array<Channel, 3> a = Record(clean, 11, kSamples);
-  const std::array<Channel, 3> b = Record(spiky, 11, kSamples);
+  const std::array<ChannelRecord, 3> a = Record(clean, 11, kSamples);
+  const std::array<ChannelRecord, 3> b = Record(spiky, 11, kSamples);
   const ChannelNoise* channels[] = {&spiky.north, &spiky.east, &spiky.heading};
   for (int i = 0; i < 3; ++i) {
     std::vector<double> outliers;
@@ -359,8 +360,8 @@ TEST(PoseSensorsTest, DropoutsLeaveDeliveredSamplesUnchanged) {
   lossy.gnss_dropout_probability = 0.1;
   lossy.gnss_dropout_mean_duration = 3.0;
   lossy.gyro_dropout_probability = 0.2;
-  const std::array<Channel, 3> a = Record(base, 3, kSamples);
-  const std::array<Channel, 3> b = Record(lossy, 3, kSamples);
+  const std::array<ChannelRecord, 3> a = Record(base, 3, kSamples);
+  const std::array<ChannelRecord, 3> b = Record(lossy, 3, kSamples);
   int lost[3] = {0, 0, 0};
   for (int k = 0; k < kSamples; ++k) {
     ASSERT_EQ(b[0].valid[k], b[1].valid[k]) << "GNSS lost x and y separately at sample " << k;
@@ -383,7 +384,7 @@ TEST(PoseSensorsTest, DropoutFractionMatchesProbability) {
   PoseSensorSpec spec = WhiteNoiseSpec();
   spec.gnss_dropout_probability = 0.1;
   spec.gyro_dropout_probability = 0.25;
-  const std::array<Channel, 3> r = Record(spec, 13, kSamples);
+  const std::array<ChannelRecord, 3> r = Record(spec, 13, kSamples);
   int gnss_lost = 0;
   int gyro_lost = 0;
   int both_lost = 0;
@@ -416,7 +417,7 @@ TEST(PoseSensorsTest, DropoutDurationsAreGeometricInSamples) {
   PoseSensorSpec spec = WhiteNoiseSpec();
   spec.gnss_dropout_probability = p;
   spec.gnss_dropout_mean_duration = mean_duration;
-  const std::array<Channel, 3> r = Record(spec, 17, kSamples);
+  const std::array<ChannelRecord, 3> r = Record(spec, 17, kSamples);
   std::vector<double> lost_runs;
   std::vector<double> delivered_runs;
   int run = 1;
@@ -621,7 +622,7 @@ TEST(PoseSensorsTest, CoincidingInstantsGiveOneMeasurement) {
 TEST(PoseSensorsTest, SkippedInstantsAreDrawnAndDiscarded) {
   PoseSensorSpec spec = FullSpec();
   spec.gyro_rate = spec.gnss_rate;
-  const std::array<Channel, 3> every = Record(spec, 31, 400);
+  const std::array<ChannelRecord, 3> every = Record(spec, 31, 400);
   PoseSensors sparse(spec, 31);
   for (int k = 0; k < 400; k += 7) {
     const PoseMeasurement m = sparse.Sample(sparse.gnss_clock().Instant(k), Vec3::Zero());

@@ -3,6 +3,8 @@
 // (phase convention), Newman's drift against its mean and the spectrum, the seed FPSO's
 // drift directions, the statistics of a long heave record, and bad options.
 #include "vessel/wave_response.h"
+#include "core/angles.h"
+#include "tests/vessel/fpso_hydro.h"
 
 #include <gtest/gtest.h>
 
@@ -24,17 +26,10 @@
 namespace moorsim::vessel {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kG = 9.81;
 constexpr std::complex<double> kI(0.0, 1.0);
 
-const HydroData& Fpso() {
-  static const HydroData data =
-      ReadWamit(std::string(MOORSIM_SOURCE_DIR) + "/data/fpso_wamit/fpso");
-  return data;
-}
-
-double Degrees(double degrees) { return degrees * kPi / 180.0; }
+using test_data::Fpso;
 
 /// A white spectrum: every component gets the same amplitude. Lets a test choose a
 /// single component's frequency and amplitude exactly.
@@ -137,7 +132,8 @@ TEST(WaveResponse, OneComponentMotionIsTheRaoTimesTheWave) {
 
   const double x = 120.0;
   const double y = -45.0;
-  for (const double psi : {0.0, 0.3, -2.1, 0.7 - kPi, 0.7 + kPi, Degrees(53.37), 3.0, 7.5, -13.0}) {
+  for (const double psi :
+       {0.0, 0.3, -2.1, 0.7 - kPi, 0.7 + kPi, 53.37 * kDegree, 3.0, 7.5, -13.0}) {
     const ComplexVec6 rao = hydro.Rao(omega, direction - psi);
     for (const double t : {0.0, 1.7, 33.3, 401.0}) {
       const std::complex<double> wave = amplitude * std::exp(kI * Phase(c, t, x, y));
@@ -170,7 +166,7 @@ TEST(WaveResponse, CoarseHeadingGridStaysWithinItsInterpolationBound) {
   const WaveRealisation sea = OneComponentSea(omega, amplitude, direction, 9);
   const WaveComponent& c = sea.components().front();
   WaveResponseOptions options;
-  options.heading_step = Degrees(7.0);
+  options.heading_step = 7.0 * kDegree;
   const WaveResponse response(hydro, sea, options);
   ASSERT_EQ(response.heading_cells(), 52);
   const double h = response.heading_step();
@@ -179,8 +175,9 @@ TEST(WaveResponse, CoarseHeadingGridStaysWithinItsInterpolationBound) {
   std::array<double, 6> slope_jump{};
   std::vector<ComplexVec6> slopes;
   for (int p = 0; p < 36; ++p) {
-    const double b0 = Degrees(-180.0 + 10.0 * p);
-    slopes.push_back((hydro.Rao(omega, b0 + Degrees(10.0)) - hydro.Rao(omega, b0)) / Degrees(10.0));
+    const double b0 = (-180.0 + 10.0 * p) * kDegree;
+    slopes.push_back((hydro.Rao(omega, b0 + 10.0 * kDegree) - hydro.Rao(omega, b0)) / 10.0 *
+                     kDegree);
   }
   for (int p = 0; p < 36; ++p) {
     for (int j = 0; j < 6; ++j) {
@@ -190,7 +187,7 @@ TEST(WaveResponse, CoarseHeadingGridStaysWithinItsInterpolationBound) {
 
   std::array<double, 6> worst_error{};
   for (int step = 0; step < 720; ++step) {
-    const double psi = Degrees(0.5 * step) + 0.01;
+    const double psi = (0.5 * step) * kDegree + 0.01;
     const ComplexVec6 rao = hydro.Rao(omega, direction - psi);
     const double t = 3.0;
     const std::complex<double> wave = amplitude * std::exp(kI * Phase(c, t, 10.0, 20.0));
@@ -644,8 +641,8 @@ TEST(WaveResponseSinCos, MatchesTheLibraryToRounding) {
 TEST(WaveResponseOptionsTest, BadHeadingStepIsRejectedByName) {
   const WaveRealisation sea = OneComponentSea(0.8, 1.0, 0.0, 1);
   for (const double step :
-       {0.0, -Degrees(2.0), Degrees(46.0), Degrees(0.05), std::numeric_limits<double>::quiet_NaN(),
-        std::numeric_limits<double>::infinity()}) {
+       {0.0, -2.0 * kDegree, 46.0 * kDegree, 0.05 * kDegree,
+        std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
     WaveResponseOptions options;
     options.heading_step = step;
     try {
@@ -658,7 +655,7 @@ TEST(WaveResponseOptionsTest, BadHeadingStepIsRejectedByName) {
     }
   }
   // The limits themselves are fine.
-  for (const double step : {Degrees(45.0), kPi / 4.0, Degrees(0.1)}) {
+  for (const double step : {45.0 * kDegree, kPi / 4.0, 0.1 * kDegree}) {
     WaveResponseOptions options;
     options.heading_step = step;
     EXPECT_NO_THROW(WaveResponse(Fpso(), sea, options)) << step;

@@ -6,6 +6,7 @@
 // statistics. Monte-Carlo bounds are 4.5 standard errors (two-sided false-failure
 // probability ~7e-6 for a correct implementation); the seeds are fixed so a pass repeats.
 #include "vessel/waves.h"
+#include "core/angles.h"
 
 #include <gtest/gtest.h>
 
@@ -24,7 +25,6 @@
 namespace moorsim::vessel {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kGravity = 9.81;
 constexpr double kSigmas = 4.5;
 

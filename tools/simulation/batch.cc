@@ -27,8 +27,6 @@
 namespace moorsim::simulation {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 // The thesis plant with its detectors runs at about this many times real time on one
 // core of the reference machine (benchmarks/README.md, "Campaigns"): the dry run's estimate.
 constexpr double kEstimatedRealTimeFactor = 600.0;

@@ -38,8 +38,6 @@ namespace moorsim::simulation {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 /// A constant Earth-frame horizontal force and yaw moment, rotated into body axes.
 class ExternalLoad final : public vessel::EnvironmentLoad {
  public:
