@@ -176,8 +176,8 @@ TEST(WaveResponse, CoarseHeadingGridStaysWithinItsInterpolationBound) {
   std::vector<ComplexVec6> slopes;
   for (int p = 0; p < 36; ++p) {
     const double b0 = (-180.0 + 10.0 * p) * kDegree;
-    slopes.push_back((hydro.Rao(omega, b0 + 10.0 * kDegree) - hydro.Rao(omega, b0)) / 10.0 *
-                     kDegree);
+    slopes.push_back((hydro.Rao(omega, b0 + 10.0 * kDegree) - hydro.Rao(omega, b0)) /
+                     (10.0 * kDegree));
   }
   for (int p = 0; p < 36; ++p) {
     for (int j = 0; j < 6; ++j) {
