@@ -23,11 +23,26 @@ using namespace strict_yaml;  // NOLINT(google-build-using-namespace): the share
 constexpr std::int64_t kMaxRuns = 10'000'000;
 constexpr std::int64_t kMaxValuesPerFactor = 100'000;
 
-// A YAML value as `--set` text: a scalar as written, anything else in flow style.
+// `node` and everything in it in flow style. yaml-cpp emits a parsed node in the style it
+// was written in, whatever the emitter is told, so a block list would stay on many lines.
+void SetFlowStyle(YAML::Node node) {
+  if (!node.IsSequence() && !node.IsMap()) return;
+  node.SetStyle(YAML::EmitterStyle::Flow);
+  if (node.IsSequence()) {
+    for (YAML::Node element : node) SetFlowStyle(element);
+  } else {
+    for (auto entry : node) SetFlowStyle(entry.second);
+  }
+}
+
+// A YAML value as `--set` text: a scalar as written, anything else in flow style on one
+// line (runs.csv and the commands it lists hold one run per line).
 std::string SetText(const YAML::Node& node) {
   if (node.IsScalar()) return node.Scalar();
+  const YAML::Node copy = YAML::Clone(node);
+  SetFlowStyle(copy);
   YAML::Emitter out;
-  out << YAML::Flow << node;
+  out << copy;
   return out.c_str();
 }
 

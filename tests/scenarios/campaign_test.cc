@@ -171,6 +171,23 @@ blocks:
                                   " --set 'environment.wind={speed: 15, direction_from_deg: 90}'"
                                   " --seed " +
                                   std::to_string(r.seed));
+  // A list written in block style (a campaign's `detectors:`) still goes on one line.
+  const std::string block_list = R"(scenario: ../library/thesis_no_failure.yaml
+seed: 3
+set:
+  detectors:
+    - {type: glr}
+    - type: deficit
+      label: fast
+      thresholds:
+        - 1
+        - 2
+blocks:
+  - {name: one, seeds: 1}
+)";
+  const Campaign listed = ParseCampaign(block_list, kSource);
+  EXPECT_EQ(MakeCampaignRun(listed, 0).overrides[0],
+            "detectors=[{type: glr}, {type: deficit, label: fast, thresholds: [1, 2]}]");
   EXPECT_EQ(ShellQuote("it's"), "'it'\\''s'");
   EXPECT_EQ(ShellQuote(""), "''");
   EXPECT_EQ(ShellQuote("a/b.yaml"), "a/b.yaml");
