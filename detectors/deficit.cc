@@ -65,8 +65,7 @@ void Deficit::Reset(int hypotheses) {
   delay_.assign(static_cast<std::size_t>(options_.learn_delay) + 1, Pending{});
   delay_oldest_ = delay_count_ = 0;
   held_.clear();
-  held_.reserve(static_cast<std::size_t>(options_.learn_delay) + 1 +
-                static_cast<std::size_t>(std::ceil(options_.baseline_time)));
+  held_.reserve(HeldLimit());
   z_.assign(static_cast<std::size_t>(hypotheses), 0.0);
   rival_.assign(static_cast<std::size_t>(hypotheses), 0.0);
   verdict_.score.assign(static_cast<std::size_t>(hypotheses), 0.0);
@@ -144,7 +143,13 @@ const Verdict& Deficit::Step(const Evidence& evidence) {
 }
 
 void Deficit::Hold(const Pending& sample) {
-  if (options_.relearn && held_.size() < held_.capacity()) held_.push_back(sample);
+  if (options_.relearn && held_.size() < HeldLimit()) held_.push_back(sample);
+}
+
+std::size_t Deficit::HeldLimit() const {
+  // The delay line at the onset and one baseline time of samples after it.
+  return static_cast<std::size_t>(options_.learn_delay) + 1 +
+         static_cast<std::size_t>(std::ceil(options_.baseline_time));
 }
 
 void Deficit::EndFalseAlarm() {

@@ -188,10 +188,10 @@ class Deficit final : public Detector {
     double dt = 0.0;
   };
   const Verdict& StepSlow(const Evidence& evidence);
-  void Raise(int hypothesis);
-  void Hold(const Pending& sample);  // keeps a sample that arrives while an alarm stands
-  void EndFalseAlarm();  // learns the held samples, then Restart()         // the alarm names
-                         // `hypothesis`; revision and end start over
+  void Raise(int hypothesis);         // the alarm names `hypothesis`; revision and end start over
+  void Hold(const Pending& sample);   // keeps a sample that arrives while an alarm stands
+  std::size_t HeldLimit() const;      // the most samples Hold() keeps
+  void EndFalseAlarm();               // learns the held samples, then Restart()
   Vec2 Predict(double energy) const;  // B(e)
   double DisturbanceInflation(double samples_per_value) const;
   void Learn(const Pending& sample);

@@ -71,7 +71,7 @@ constexpr std::array<DetectorParameter, 16> kDeficitParameters = {{
     {"min_fraction", DeficitOptions{}.min_fraction, "", kUpToOne, "",
      "least share of a line's load whose loss is tested (1: the whole load; below, the share "
      "is estimated)"},
-    {"relearn", 1.0, "", kSwitch, "",
+    {"relearn", DeficitOptions{}.relearn ? 1.0 : 0.0, "", kSwitch, "",
      "1: an alarm that ends on reversed evidence hands the samples held while it stood to the "
      "learned disturbance; 0: they are dropped"},
     {"release", DeficitOptions{}.release, "", kPositive, "nats",
