@@ -130,7 +130,7 @@ struct DeficitOptions {
   double floor = 1e5;
   /// [nats] Cumulative evidence for a line over no change that raises the alarm (and for
   /// another line over the named one that revises it), > 0.
-  double threshold = 8.0;
+  double threshold = 12.0;
   /// [nats] Cumulative evidence for no change over the named line that ends an alarm, > 0.
   double release = 8.0;
   /// [s] Load evidence before any alarm, >= 0.
@@ -145,7 +145,7 @@ struct DeficitOptions {
   double lead = 0.0;
   /// Least share of a line's load whose loss is tested, in (0, 1]: 1 tests the whole load;
   /// below 1 the share is estimated (maximum likelihood, clamped to [min_fraction, 1]).
-  double min_fraction = 1.0;
+  double min_fraction = 0.7;
   /// When an alarm ends on reversed evidence, learn the samples held while it stood (and
   /// those still waiting at its onset) as the disturbance they turned out to be.
   bool relearn = true;

