@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <span>
 
 #include "core/error.h"
 #include "core/random.h"
@@ -22,6 +23,23 @@ using namespace strict_yaml;  // NOLINT(google-build-using-namespace): the share
 // enough that a typo (seeds: 1e9) is caught before anything runs.
 constexpr std::int64_t kMaxRuns = 10'000'000;
 constexpr std::int64_t kMaxValuesPerFactor = 100'000;
+
+// A factor's value text as a number, if it is one (all of it).
+std::optional<double> ParseNumber(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  char* end = nullptr;
+  const double x = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size() || !std::isfinite(x)) return std::nullopt;
+  return x;
+}
+
+// The value a run has so far given `key` (factors are made in order).
+const std::string& FactorValue(const CampaignRun& run, const std::string& key) {
+  for (const auto& [k, value] : run.factors) {
+    if (k == key) return value;
+  }
+  throw ContractError("campaign: factor '" + key + "' has no value yet");
+}
 
 // `node` and everything in it in flow style. yaml-cpp emits a parsed node in the style it
 // was written in, whatever the emitter is told, so a block list would stay on many lines.
@@ -92,7 +110,8 @@ std::vector<std::string> ExpandRange(const Reader& r) {
 }
 
 CampaignFactor ParseFactor(const Reader& r, const YAML::Node& node) {
-  r.CheckKeys({"key", "values", "range", "uniform", "normal", "choice"});
+  r.CheckKeys(
+      {"key", "values", "range", "uniform", "normal", "choice", "follows", "add", "modulo"});
   CampaignFactor f;
   f.mark = r.mark();
   f.key = r.Required<std::string>("key");
@@ -101,10 +120,13 @@ CampaignFactor ParseFactor(const Reader& r, const YAML::Node& node) {
     r.Child("key").Fail("'" + f.key + "' is not a key path (e.g. failure.line)");
   }
   int kinds = 0;
-  for (const char* k : {"values", "range", "uniform", "normal", "choice"}) {
+  for (const char* k : {"values", "range", "uniform", "normal", "choice", "follows"}) {
     if (r.Find(k)) ++kinds;
   }
-  if (kinds != 1) r.Fail("give exactly one of values, range, uniform, normal, choice");
+  if (kinds != 1) r.Fail("give exactly one of values, range, uniform, normal, choice, follows");
+  for (const char* k : {"add", "modulo"}) {
+    if (r.Find(k) && !r.Find("follows")) r.Child(k).Fail(std::string(k) + " goes with follows");
+  }
   const auto list = [&](const char* key) {
     const Reader list_reader = r.Child(key);
     const std::vector<Reader> items = list_reader.Items();
@@ -127,6 +149,25 @@ CampaignFactor ParseFactor(const Reader& r, const YAML::Node& node) {
   } else if (const std::optional<Reader> range = r.Find("range")) {
     f.kind = CampaignFactor::Kind::kValues;
     f.values = ExpandRange(*range);
+  } else if (r.Find("follows")) {
+    f.kind = CampaignFactor::Kind::kFollows;
+    f.follows = r.Required<std::string>("follows");
+    if (const std::optional<Reader> add = r.Find("add")) {
+      if (!add->IsList()) {
+        f.low = f.high = add->As<double>();
+      } else {
+        const std::vector<Reader> bounds = add->Items();
+        if (bounds.size() != 2) add->Fail(add->Text() + " must be a number or [low, high]");
+        f.low = bounds[0].As<double>();
+        f.high = bounds[1].As<double>();
+        if (!(f.high > f.low))
+          bounds[1].Fail(Number(f.high) + " must be > low (" + Number(f.low) + ")");
+      }
+    }
+    if (const std::optional<Reader> modulo = r.Find("modulo")) {
+      f.modulo = modulo->As<double>();
+      if (!(f.modulo > 0.0)) modulo->Fail(Number(f.modulo) + " must be > 0");
+    }
   } else if (const std::optional<Reader> uniform = r.Find("uniform")) {
     f.kind = CampaignFactor::Kind::kUniform;
     const std::vector<Reader> bounds = uniform->Items();
@@ -156,6 +197,22 @@ CampaignFactor ParseFactor(const Reader& r, const YAML::Node& node) {
   return f;
 }
 
+// A follows factor takes an earlier factor's value, which must be a number.
+void CheckFollows(const Reader& r, std::span<const CampaignFactor> earlier,
+                  const std::string& followed) {
+  const auto it = std::find_if(earlier.begin(), earlier.end(),
+                               [&](const CampaignFactor& f) { return f.key == followed; });
+  if (it == earlier.end()) {
+    r.Child("follows").Fail("'" + followed + "' is not a factor listed above it in this block");
+  }
+  for (const std::string& value : it->values) {
+    if (!ParseNumber(value)) {
+      r.Child("follows").Fail("'" + followed + "' has the value '" + value +
+                              "', not a number to add to");
+    }
+  }
+}
+
 CampaignBlock ParseBlock(const Reader& r, const YAML::Node& node) {
   r.CheckKeys({"name", "set", "factors", "combine", "seeds"});
   CampaignBlock b;
@@ -173,6 +230,9 @@ CampaignBlock ParseBlock(const Reader& r, const YAML::Node& node) {
         if (b.factors[j].key == b.factors[i].key) {
           items[i].Child("key").Fail("'" + b.factors[i].key + "' is varied twice in this block");
         }
+      }
+      if (b.factors[i].kind == CampaignFactor::Kind::kFollows) {
+        CheckFollows(items[i], std::span(b.factors).first(i), b.factors[i].follows);
       }
     }
   }
@@ -364,6 +424,13 @@ CampaignRun MakeCampaignRun(const Campaign& campaign, std::int64_t index) {
           const auto n = f.values.size();
           const auto k = std::min(n - 1, static_cast<std::size_t>(stream.Uniform() * n));
           value = f.values[k];
+          break;
+        }
+        case CampaignFactor::Kind::kFollows: {
+          double x = *ParseNumber(FactorValue(run, f.follows));
+          x += f.high > f.low ? f.low + (f.high - f.low) * stream.Uniform() : f.low;
+          if (f.modulo > 0.0) x -= f.modulo * std::floor(x / f.modulo + 0.5);
+          value = Number(x);
           break;
         }
         case CampaignFactor::Kind::kValues:

@@ -19,6 +19,9 @@
 //         - {key: failure.time, uniform: [200, 600]}          # a draw per run
 //         - {key: environment.waves.hs, normal: {mean: 2.5, std_dev: 0.3, min: 0.5, max: 6}}
 //         - {key: controller.type, choice: [pi, observer_pid]}  # a draw per run
+//         - {key: controller.setpoint.heading_deg, follows: environment.waves.direction_toward_deg,
+//            add: [165, 195], modulo: 360}   # an earlier factor's value + a constant or a
+//                                            # uniform draw, reduced to [-180, 180)
 //       combine: grid                 # grid (every combination of the listed values,
 //                                     # first factor slowest) or zip (the i-th value of
 //                                     # every list together; the lists equally long)
@@ -44,7 +47,7 @@
 namespace moorsim::scenarios {
 
 struct CampaignFactor {
-  enum class Kind { kValues, kUniform, kNormal, kChoice };
+  enum class Kind { kValues, kUniform, kNormal, kChoice, kFollows };
   std::string key;  ///< a `--set` key path
   Kind kind = Kind::kValues;
   /// kValues (also an expanded range) and kChoice: each value as `--set` text.
@@ -52,8 +55,12 @@ struct CampaignFactor {
   double low = 0.0, high = 0.0;      ///< kUniform: [low, high)
   double mean = 0.0, std_dev = 0.0;  ///< kNormal
   std::optional<double> min, max;    ///< kNormal: draws outside are drawn again
-  SourceMark mark;                   ///< the factor's list entry
-  bool random() const { return kind != Kind::kValues; }
+  /// kFollows: the value of `follows` (an earlier factor of the block, numeric) plus `low`,
+  /// or a uniform draw in [low, high) when high > low; reduced to [-modulo / 2, modulo / 2)
+  /// when modulo > 0.
+  std::string follows;
+  double modulo = 0.0;
+  SourceMark mark;  ///< the factor's list entry
 };
 
 struct CampaignBlock {

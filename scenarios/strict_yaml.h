@@ -98,6 +98,7 @@ class Reader {
 
   SourceMark mark() const { return mark_; }
   bool IsMap() const { return node_.IsMap(); }
+  bool IsList() const { return node_.IsSequence(); }
   std::string Text() const { return Describe(node_); }
   /// The keys of a map, in order; duplicate keys and non-scalar keys are errors.
   std::vector<std::string> Keys() const {

@@ -157,6 +157,52 @@ blocks:
   }
 }
 
+TEST(Campaign, FollowsAddsToAnEarlierFactorsValue) {
+  // The vessel's heading into the waves: the wave direction drawn or listed, the heading
+  // 180 deg from it (plus a uniform offset), reduced to [-180, 180); the initial heading
+  // equal to the setpoint.
+  const std::string text = R"(scenario: ../library/thesis_no_failure.yaml
+seed: 3
+blocks:
+  - name: drawn
+    factors:
+      - {key: environment.waves.direction_toward_deg, uniform: [0, 360]}
+      - {key: controller.setpoint.heading_deg, follows: environment.waves.direction_toward_deg,
+         add: [160, 200], modulo: 360}
+      - {key: vessel.initial_pose.heading_deg, follows: controller.setpoint.heading_deg}
+    seeds: 200
+  - name: listed
+    factors:
+      - {key: environment.waves.direction_toward_deg, values: [10, 350]}
+      - {key: controller.setpoint.heading_deg, follows: environment.waves.direction_toward_deg,
+         add: 180, modulo: 360}
+    seeds: 1
+)";
+  const Campaign c = ParseCampaign(text, kSource);
+  ASSERT_EQ(c.NumRuns(), 202);
+  double least = 180.0, most = -180.0;
+  for (int i = 0; i < 200; ++i) {
+    const CampaignRun r = MakeCampaignRun(c, i);
+    ASSERT_EQ(r.factors.size(), 3u);
+    const double toward = std::stod(r.factors[0].second);
+    const double heading = std::stod(r.factors[1].second);
+    EXPECT_GE(heading, -180.0);
+    EXPECT_LT(heading, 180.0);
+    // The offset from "into the waves" (toward + 180) wrapped to [-180, 180).
+    const double offset = std::remainder(heading - toward - 180.0, 360.0);
+    EXPECT_GE(offset, -20.0 - 1e-9);
+    EXPECT_LT(offset, 20.0 + 1e-9);
+    least = std::min(least, offset);
+    most = std::max(most, offset);
+    EXPECT_EQ(r.factors[2].second, r.factors[1].second);
+    EXPECT_EQ(r.overrides[2], "vessel.initial_pose.heading_deg=" + r.factors[1].second);
+  }
+  EXPECT_LT(least, -15.0);  // a draw per run over the whole interval
+  EXPECT_GT(most, 15.0);
+  EXPECT_EQ(MakeCampaignRun(c, 200).factors[1].second, "-170");
+  EXPECT_EQ(MakeCampaignRun(c, 201).factors[1].second, "170");
+}
+
 TEST(Campaign, CommandRepeatsTheRunWithQuotedValues) {
   const std::string text = R"(scenario: ../library/thesis_no_failure.yaml
 seed: 3
@@ -221,10 +267,42 @@ std::vector<CampaignError> Errors() {
        "blocks[2].name: 'no good' must be letters, digits, '_' or '-'"},
       {"TwoKinds", Replace(b, "values: [1, 2, 3]}", "values: [1, 2, 3], uniform: [1, 2]}"),
        "{key: failure.line",
-       "blocks[1].factors[1]: give exactly one of values, range, uniform, normal, choice"},
+       "blocks[1].factors[1]: give exactly one of values, range, uniform, normal, choice, "
+       "follows"},
       {"NoKind", Replace(b, "{key: failure.line, values: [1, 2, 3]}", "{key: failure.line}"),
        "{key: failure.line}",
-       "blocks[1].factors[1]: give exactly one of values, range, uniform, normal, choice"},
+       "blocks[1].factors[1]: give exactly one of values, range, uniform, normal, choice, "
+       "follows"},
+      {"FollowsNothing",
+       Replace(b, "{key: failure.time, uniform: [100, 200]}",
+               "{key: failure.time, follows: failure.nothing}"),
+       "failure.nothing",
+       "blocks[1].factors[3].follows: 'failure.nothing' is not a factor listed "
+       "above it in this block"},
+      {"FollowsLater",
+       Replace(b, "{key: failure.line, values: [1, 2, 3]}",
+               "{key: failure.line, follows: failure.time}"),
+       "failure.time}",
+       "blocks[1].factors[1].follows: 'failure.time' is not a factor listed "
+       "above it in this block"},
+      {"FollowsText",
+       Replace(b, "{key: environment.waves.hs, normal",
+               "{key: failure.line, follows: controller.type}\n      - {key: environment.waves.hs, "
+               "normal"),
+       "controller.type}",
+       "blocks[2].factors[2].follows: 'controller.type' has the value 'pi', "
+       "not a number to add to"},
+      {"AddAlone", Replace(b, "uniform: [100, 200]}", "uniform: [100, 200], add: 5}"), "5}",
+       "blocks[1].factors[3].add: add goes with follows"},
+      {"AddTriple",
+       Replace(b, "{key: failure.time, uniform: [100, 200]}",
+               "{key: failure.time, follows: failure.line, add: [1, 2, 3]}"),
+       "[1, 2, 3]}\n    seeds",
+       "blocks[1].factors[3].add: [1, 2, 3] must be a number or [low, high]"},
+      {"ModuloZero",
+       Replace(b, "{key: failure.time, uniform: [100, 200]}",
+               "{key: failure.time, follows: failure.line, modulo: 0}"),
+       "0}", "blocks[1].factors[3].modulo: 0 must be > 0"},
       {"EmptyValues", Replace(b, "values: [1, 2, 3]", "values: []"), "[]",
        "blocks[1].factors[1].values: an empty list"},
       {"TwiceVaried", Replace(b, "failure.time, uniform", "failure.line, uniform"),
