@@ -223,7 +223,7 @@ void ParseVessel(const Reader& r, Scenario& scenario) {
   }
   if (std::optional<Reader> t = r.Find("turret")) {
     t->CheckKeys({"bearing", "bearing_radius", "damping", "friction_coefficient", "inertia",
-                  "radius", "slip_rate", "x", "y"});
+                  "initial_heading_deg", "radius", "slip_rate", "x", "y"});
     TurretSpec& turret = v.turret;
     t->Optional("bearing", turret.bearing);
     t->Optional("x", turret.x);
@@ -234,6 +234,9 @@ void ParseVessel(const Reader& r, Scenario& scenario) {
     turret.bearing_radius = t->Maybe<double>("bearing_radius");
     t->Optional("damping", turret.damping);
     t->Optional("slip_rate", turret.slip_rate);
+    if (std::optional<Reader> heading = t->Find("initial_heading_deg")) {
+      turret.initial_heading = AngleDegrees(*heading);
+    }
   }
   scenario.vessel = v;
 }
@@ -727,6 +730,11 @@ void CheckTurret(const Checker& check, const Scenario& scenario) {
   }
   if (t.radius) {
     check.Positive("vessel.turret.radius", *t.radius, "m");
+  }
+  if (t.initial_heading && t.bearing == "locked") {
+    check.Fail("vessel.turret.initial_heading_deg",
+               "a locked turret turns with the hull: give bearing free or friction, or leave "
+               "initial_heading_deg out");
   }
   const double radius = TurretRadius(scenario);
   // The turret's circle within the hull's waterplane rectangle L x B.

@@ -129,6 +129,11 @@ struct TurretSpec {
   std::optional<double> bearing_radius;  ///< friction: lever arm [m]; unset = radius
   double damping = 0.0;                  ///< viscous [N m s/rad]
   double slip_rate = 1.0e-5;             ///< friction: regularisation rate [rad/s]
+  /// free / friction: the turret's heading at the start [rad, NED like the hull's]; its
+  /// angle to the hull starts at this minus the hull's initial heading. Unset = the hull's
+  /// initial heading (angle 0). Lets a scenario start the hull at another heading with the
+  /// fairleads where its lines hold them, instead of the lines swinging the turret round.
+  std::optional<double> initial_heading;
 };
 
 struct VesselSpec {

@@ -626,6 +626,13 @@ inline const BadInput kValidationErrors[] = {
     {"TurretRadiusShortOfTheFairleads", "turret:", "radius: 20", "radius: 15", "radius: ^15",
      "vessel.turret.radius: 15 m does not reach the fairlead of mooring.lines[1], 20 m from "
      "the turret centre (the fairleads are on the turret)"},
+    {"TurretInitialHeadingLocked", "turret:", "bearing: friction",
+     "bearing: locked, initial_heading_deg: 30", "initial_heading_deg: ^30",
+     "vessel.turret.initial_heading_deg: a locked turret turns with the hull: give bearing free "
+     "or friction, or leave initial_heading_deg out"},
+    {"TurretInitialHeadingRange", "turret:", "bearing: friction",
+     "bearing: friction, initial_heading_deg: 400", "initial_heading_deg: ^400",
+     "vessel.turret.initial_heading_deg: 400 deg must be in [-360, 360]"},
     {"TurretRadiusNegative", "turret:", "radius: 20", "radius: -20", "radius: ^-20",
      "vessel.turret.radius: -20 m must be > 0"},
     {"TurretInertiaNegative", "turret:", "inertia: 6.0e8", "inertia: -6.0e8", "inertia: ^-6.0e8",

@@ -144,6 +144,30 @@ TEST(Turret, FrictionHoldsBelowTheBreakawayMomentAndSlipsAbove) {
   EXPECT_GT(std::abs(TurretAngle(slip)), 5.0 * kDegree);
 }
 
+TEST(Turret, StartsAtItsInitialHeadingWhereTheLinesHoldIt) {
+  // The seed mooring's fairleads point at their anchors with the hull (and turret) at
+  // heading 0. A hull started at heading 90 deg with the turret at its own initial heading
+  // 0 (angle -90 deg to the hull) starts with the lines at rest: in calm water the
+  // turret's absolute heading stays put. Started at angle 0 instead, the fairleads are a
+  // quarter turn off their anchors and the lines swing the turret round.
+  const std::string hull = "  initial_pose: {x: 0, y: 0, heading_deg: 90}\n";
+  Simulation held(TurretScenario("{bearing: free, initial_heading_deg: 0}", hull), 1);
+  EXPECT_NEAR(TurretAngle(held), -90.0 * kDegree, 1e-12);
+  Simulation swung(TurretScenario("{bearing: free}", hull), 1);
+  EXPECT_EQ(TurretAngle(swung), 0.0);
+  double held_most = 0.0, swung_most = 0.0;
+  for (int t = 1; t <= 60; ++t) {
+    held.AdvanceTo(t);
+    swung.AdvanceTo(t);
+    held_most = std::max(held_most, std::abs(WrapAngle(Heading(held) + TurretAngle(held))));
+    swung_most =
+        std::max(swung_most, std::abs(WrapAngle(Heading(swung) + TurretAngle(swung) - kPi / 2)));
+  }
+  EXPECT_LT(held_most, 0.01 * kDegree);
+  EXPECT_NEAR(Heading(held), kPi / 2, 0.01 * kDegree);
+  EXPECT_GT(swung_most, 30.0 * kDegree);
+}
+
 TEST(Turret, EnergyNeverGrowsWithoutInput) {
   // Free, undamped bearing; the hull starts 10 deg off the lines' rest heading, so the lines
   // swing the turret back (it turns relative to the hull) and their drag takes the energy.

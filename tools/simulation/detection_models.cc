@@ -15,12 +15,13 @@ DetectionModels MakeDetectionModels(const scenarios::Scenario& scenario,
   m.bank.include_pairs = d.pairs;
   m.bank.moored_heave = moored_pose(2);
   m.bank.reference_pose = scenario.controller.setpoint.value_or(scenario.vessel->initial_pose);
-  // A turret on its bearing starts at angle 0 to the hull, so its absolute heading is the
-  // vessel's initial heading, which the lines then hold.
+  // A turret on its bearing keeps the absolute heading it starts at (the lines hold it):
+  // its initial heading, by default the vessel's (angle 0 to the hull).
   const scenarios::TurretSpec& turret = scenario.vessel->turret;
   if (turret.bearing != "locked") {
-    m.bank.turret = detectors::TurretModel{Eigen::Vector2d(turret.x, turret.y),
-                                           scenario.vessel->initial_pose.z()};
+    m.bank.turret =
+        detectors::TurretModel{Eigen::Vector2d(turret.x, turret.y),
+                               turret.initial_heading.value_or(scenario.vessel->initial_pose.z())};
   }
   const Mat6& M = vessel.mass();
   const Mat6& D = vessel.parameters().linear_damping;
