@@ -33,6 +33,11 @@ std::optional<double> ParseNumber(const std::string& text) {
   return x;
 }
 
+// A uniform draw in the factor's [low, high).
+double Draw(const CampaignFactor& f, RandomStream& stream) {
+  return f.low + (f.high - f.low) * stream.Uniform();
+}
+
 // The value a run has so far given `key` (factors are made in order).
 const std::string& FactorValue(const CampaignRun& run, const std::string& key) {
   for (const auto& [k, value] : run.factors) {
@@ -109,6 +114,15 @@ std::vector<std::string> ExpandRange(const Reader& r) {
   return values;
 }
 
+// [low, high] with low < high into f.low, f.high; `shape` names what r must be.
+void ReadInterval(const Reader& r, const std::string& shape, CampaignFactor& f) {
+  const std::vector<Reader> bounds = r.Items();
+  if (bounds.size() != 2) r.Fail(r.Text() + " must be " + shape);
+  f.low = bounds[0].As<double>();
+  f.high = bounds[1].As<double>();
+  if (!(f.high > f.low)) bounds[1].Fail(Number(f.high) + " must be > low (" + Number(f.low) + ")");
+}
+
 CampaignFactor ParseFactor(const Reader& r, const YAML::Node& node) {
   r.CheckKeys(
       {"key", "values", "range", "uniform", "normal", "choice", "follows", "add", "modulo"});
@@ -156,12 +170,7 @@ CampaignFactor ParseFactor(const Reader& r, const YAML::Node& node) {
       if (!add->IsList()) {
         f.low = f.high = add->As<double>();
       } else {
-        const std::vector<Reader> bounds = add->Items();
-        if (bounds.size() != 2) add->Fail(add->Text() + " must be a number or [low, high]");
-        f.low = bounds[0].As<double>();
-        f.high = bounds[1].As<double>();
-        if (!(f.high > f.low))
-          bounds[1].Fail(Number(f.high) + " must be > low (" + Number(f.low) + ")");
+        ReadInterval(*add, "a number or [low, high]", f);
       }
     }
     if (const std::optional<Reader> modulo = r.Find("modulo")) {
@@ -170,12 +179,7 @@ CampaignFactor ParseFactor(const Reader& r, const YAML::Node& node) {
     }
   } else if (const std::optional<Reader> uniform = r.Find("uniform")) {
     f.kind = CampaignFactor::Kind::kUniform;
-    const std::vector<Reader> bounds = uniform->Items();
-    if (bounds.size() != 2) uniform->Fail(uniform->Text() + " must be [low, high]");
-    f.low = bounds[0].As<double>();
-    f.high = bounds[1].As<double>();
-    if (!(f.high > f.low))
-      bounds[1].Fail(Number(f.high) + " must be > low (" + Number(f.low) + ")");
+    ReadInterval(*uniform, "[low, high]", f);
   } else {
     const Reader normal = *r.Find("normal");
     normal.CheckKeys({"mean", "std_dev", "min", "max"});
@@ -408,7 +412,7 @@ CampaignRun MakeCampaignRun(const Campaign& campaign, std::int64_t index) {
           campaign.seed, "campaign run " + std::to_string(index) + " factor " + f.key);
       switch (f.kind) {
         case CampaignFactor::Kind::kUniform:
-          value = Number(f.low + (f.high - f.low) * stream.Uniform());
+          value = Number(Draw(f, stream));
           break;
         case CampaignFactor::Kind::kNormal: {
           const double low = f.min.value_or(-std::numeric_limits<double>::infinity());
@@ -428,7 +432,7 @@ CampaignRun MakeCampaignRun(const Campaign& campaign, std::int64_t index) {
         }
         case CampaignFactor::Kind::kFollows: {
           double x = *ParseNumber(FactorValue(run, f.follows));
-          x += f.high > f.low ? f.low + (f.high - f.low) * stream.Uniform() : f.low;
+          x += f.high > f.low ? Draw(f, stream) : f.low;
           if (f.modulo > 0.0) x -= f.modulo * std::floor(x / f.modulo + 0.5);
           value = Number(x);
           break;

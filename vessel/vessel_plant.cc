@@ -48,10 +48,19 @@ Vec3 VesselPlant::OnTurret(const double* x, const Vec3& r_fixed, Vec3* arm) {
     turret_sin_ = std::sin(alpha);
     turret_angle_ = alpha;
   }
-  const double c = turret_cos_, s = turret_sin_;
+  return TurnAboutCentre(turret_cos_, turret_sin_, r_fixed, arm);
+}
+
+Vec3 VesselPlant::TurnAboutCentre(double c, double s, const Vec3& r_fixed, Vec3* arm) const {
   const double dx = r_fixed.x() - turret_.x, dy = r_fixed.y() - turret_.y;
   *arm = Vec3(c * dx - s * dy, s * dx + c * dy, r_fixed.z());
   return Vec3(turret_.x + arm->x(), turret_.y + arm->y(), r_fixed.z());
+}
+
+Vec3 VesselPlant::OnTurret(const Vec3& r_fixed, double alpha) const {
+  if (!turret_turns()) return r_fixed;
+  Vec3 arm;
+  return TurnAboutCentre(std::cos(alpha), std::sin(alpha), r_fixed, &arm);
 }
 
 void VesselPlant::TurretMoments(const double* x, const Vec6& tau_attached, double* lines,

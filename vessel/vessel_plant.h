@@ -73,6 +73,9 @@ class VesselPlant final : public BodyPlant {
   bool turret_turns() const { return turret_.bearing != TurretBearing::kLocked; }
   /// Index of the turret angle (the rate follows it); valid if turret_turns().
   int turret_state() const { return 12 + num_thrusters(); }
+  /// Where the attachment point r_fixed (body frame, turret angle 0) is at turret angle
+  /// `alpha` (body frame); r_fixed itself for a locked turret.
+  Vec3 OnTurret(const Vec3& r_fixed, double alpha) const;
   /// The lines' moment about the turret axis and the bearing's moment on the hull [N m]
   /// for the attachment load tau_attached at state x (both 0 for a locked turret).
   void TurretMoments(const double* x, const Vec6& tau_attached, double* lines,
@@ -116,6 +119,8 @@ class VesselPlant final : public BodyPlant {
   // The attachment point r_fixed (body frame, turret angle 0) where the turret angle in x
   // puts it; `arm` = its offset from the turret centre (body frame).
   Vec3 OnTurret(const double* x, const Vec3& r_fixed, Vec3* arm);
+  // r_fixed turned by (cos, sin) about the turret centre; `arm` its offset from the centre.
+  Vec3 TurnAboutCentre(double c, double s, const Vec3& r_fixed, Vec3* arm) const;
   void UpdateSea(double t, const double* x);
   void UpdateRotation(const double* x);
   Vec6 PreloadCorrection(const double* x);

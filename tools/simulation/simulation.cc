@@ -542,14 +542,12 @@ void Simulation::SettleMooredEquilibrium() {
   x_[5] = pose.z();
   // A turret on its bearing starts at its own heading (default: the hull's), its angle to
   // the hull the difference; the fairleads turn with it about the turret centre.
-  const scenarios::TurretSpec& turret = scenario_.vessel->turret;
+  const std::optional<double>& turret_heading = scenario_.vessel->turret.initial_heading;
   double turret_angle = 0.0;
-  if (plant_->turret_turns() && turret.initial_heading) {
-    turret_angle = WrapAngle(*turret.initial_heading - pose.z());
+  if (plant_->turret_turns() && turret_heading) {
+    turret_angle = WrapAngle(*turret_heading - pose.z());
     x_[static_cast<std::size_t>(plant_->turret_state())] = turret_angle;
   }
-  const Vec3 centre(turret.x, turret.y, 0.0);
-  const Mat3 turn = vessel::RotationBodyToNed(0.0, 0.0, turret_angle);
   const int nb = plant_->StateSize();
   double* lines = x_.data() + nb;
   const Eigen::Matrix3d G = plant_->model().parameters().restoring.block<3, 3>(2, 2);
@@ -560,7 +558,8 @@ void Simulation::SettleMooredEquilibrium() {
     const Vec3 origin(x_[0], x_[1], x_[2]);
     const Mat3 R = vessel::RotationBodyToNed(x_[3], x_[4], x_[5]);
     for (int i = 0; i < mooring_.num_lines(); ++i) {
-      calm[i].position = origin + R * (centre + turn * (mooring_.line(i).fairlead_body - centre));
+      calm[i].position =
+          origin + R * plant_->OnTurret(mooring_.line(i).fairlead_body, turret_angle);
       fairleads[i] = calm[i].position;
     }
   };
