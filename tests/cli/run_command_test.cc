@@ -329,6 +329,51 @@ TEST(ValidateDetectors, BadConfigurationIsOneLineWithExitCode2) {
   }
 }
 
+TEST(RunCommand, TheObserverBanksLoadPictureIsRecorded) {
+  // The EKF bank's intact filter: its bias and wave-motion estimate at 1 Hz, Earth frame.
+  // The wave motion it estimates is the vessel's: over the last 100 s of a thesis-sea run
+  // its horizontal RMS lies within a factor of 2 of the true wave-frequency motion's (the
+  // pose less its low-frequency part). The passive bank estimates no load: no tables.
+  TempDirectory dir(::testing::TempDir());
+  const std::string out = (dir.path() / "ekf").string();
+  CliResult r = RunCli({"run", kThesisNoFailure, "--duration", "200", "--out", out, "--quiet"},
+                       dir.path(), std::chrono::seconds(120));
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  hid_t file = H5Fopen((out + "/run.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  const hsize_t n = 201;
+  EXPECT_EQ(Shape(file, "/observer/bias"), std::vector<hsize_t>({n, 3}));
+  EXPECT_EQ(Shape(file, "/observer/wave_motion"), std::vector<hsize_t>({n, 3}));
+  EXPECT_TRUE(HasAttribute(file, "/observer/bias", "units"));
+  const std::vector<double> bias = Read(file, "/observer/bias");
+  const std::vector<double> wave = Read(file, "/observer/wave_motion");
+  const std::vector<double> pose = Read(file, "/vessel/pose_true");
+  const std::vector<double> low = Read(file, "/vessel/pose_low_frequency");
+  H5Fclose(file);
+  double estimated = 0.0, actual = 0.0;
+  for (hsize_t i = n - 100; i < n; ++i) {
+    for (int c = 0; c < 3; ++c) EXPECT_TRUE(std::isfinite(bias[3 * i + c])) << i;
+    for (int c = 0; c < 2; ++c) {
+      estimated += wave[3 * i + c] * wave[3 * i + c];
+      const double w = pose[6 * i + c] - low[6 * i + c];
+      actual += w * w;
+    }
+  }
+  EXPECT_GT(actual, 0.0);
+  EXPECT_GT(estimated, actual / 4.0);
+  EXPECT_LT(estimated, actual * 4.0);
+
+  const std::string passive = (dir.path() / "passive").string();
+  r = RunCli({"run", kThesisNoFailure, "--duration", "10", "--set", "detection.observer=passive",
+              "--set", "detectors=[{type: glr}]", "--out", passive, "--quiet"},
+             dir.path(), std::chrono::seconds(120));
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  file = H5Fopen((passive + "/run.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  EXPECT_LE(H5Lexists(file, "/observer", H5P_DEFAULT), 0);
+  H5Fclose(file);
+}
+
 TEST(RunCommand, ATenHertzControllerFinishes) {
   // Once a hang: the controller's instant k / 10 and its test t >= k * 0.1 disagreed.
   TempDirectory dir(::testing::TempDir());

@@ -79,6 +79,10 @@ class RunWriter {
     current_ = file_.CreateTable("/environment/current", 6, load_units, load);
     wind_ = file_.CreateTable("/environment/wind", 6, load_units, load);
     thrust_ = file_.CreateTable("/environment/thrust", 6, load_units, load);
+    if (sim.estimates_load()) {
+      observer_bias_ = file_.CreateTable("/observer/bias", 3, "N,N,N m", {"X", "Y", "N"});
+      observer_wave_ = file_.CreateTable("/observer/wave_motion", 3, "m,m,rad", {"x", "y", "psi"});
+    }
     file_.CreateGroup("/detectors");
     const std::vector<std::string> hypotheses = sim.HypothesisLabels();
     if (!hypotheses.empty()) {
@@ -123,6 +127,11 @@ class RunWriter {
     Row(current_, s.load_current);
     Row(wind_, s.load_wind);
     Row(thrust_, s.load_thrust);
+    if (observer_bias_) {
+      // NaN until the bank's first sample.
+      Row(*observer_bias_, s.observer_bias.value_or(Vec3::Constant(kNaN)));
+      Row(*observer_wave_, s.observer_wave_motion.value_or(Vec3::Constant(kNaN)));
+    }
     for (std::size_t i = 0; i < detector_tables_.size() && i < s.detectors.size(); ++i) {
       const detectors::Verdict& v = s.detectors[i];
       file_.Append(detector_tables_[i].score, v.score);
@@ -145,6 +154,7 @@ class RunWriter {
       delivered_, mooring_, drift_, current_, wind_, thrust_;
   std::optional<output::TableId> tension_measured_;
   std::optional<output::TableId> turret_;
+  std::optional<output::TableId> observer_bias_, observer_wave_;
   struct Tables {
     output::TableId score, decision, alarm;
   };

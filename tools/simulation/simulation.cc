@@ -382,6 +382,7 @@ struct Simulation::Parts {
   std::optional<detectors::PassiveObserverBank> passive;  // detection.observer: passive
   std::vector<std::unique_ptr<detectors::Detector>> detectors;
   std::vector<detectors::Verdict> verdicts;
+  std::optional<Vec3> observer_bias, observer_wave_motion;  // the latest load picture
   Vec3 thrust_issued = Vec3::Zero();  // what the allocation sent to the thrusters
 };
 
@@ -693,6 +694,10 @@ void Simulation::DiscreteEvents() {
     }
     const detectors::Evidence& evidence = parts_->observers ? parts_->observers->Update(observation)
                                                             : parts_->passive->Update(observation);
+    if (evidence.load) {
+      parts_->observer_bias = evidence.load->bias;
+      parts_->observer_wave_motion = evidence.load->wave_motion;
+    }
     for (std::size_t i = 0; i < parts_->detectors.size(); ++i) {
       const detectors::Verdict& v = parts_->verdicts[i] = parts_->detectors[i]->Update(evidence);
       detector_records_[i].history.Update(t_, v.alarm, v.hypothesis);
@@ -731,6 +736,8 @@ void Simulation::AdvanceTo(double t) {
 
 void Simulation::SetExternalLoad(const Vec3& load) { parts_->external.load_ = load; }
 
+bool Simulation::estimates_load() const { return parts_->observers.has_value(); }
+
 Sample Simulation::Record() {
   Sample s;
   s.time = t_;
@@ -753,6 +760,8 @@ Sample Simulation::Record() {
   s.thrust_commanded = tau_command_;
   s.tension_measured = parts_->measured_tensions;
   s.detectors = parts_->verdicts;
+  s.observer_bias = parts_->observer_bias;
+  s.observer_wave_motion = parts_->observer_wave_motion;
   Vec6 xi, xi_dot;
   plant_->Sea(t_, x_.data(), &xi, &xi_dot, &s.load_wave_drift);
   if (parts_->current) s.load_current = parts_->current->Load(t_, eta, nu);

@@ -69,6 +69,11 @@ struct Sample {
   Vec6 load_thrust = Vec6::Zero();
   /// Every detector's latest verdict (scenario order), empty without detectors.
   std::vector<detectors::Verdict> detectors;
+  /// The intact observer's latest load picture (EKF observer bank only): its bias state b
+  /// [N, N, N m] and wave-frequency motion estimate C_w xi [m, m, rad], Earth frame; what
+  /// the force-deficit test reads. Unset without an EKF bank or before its first sample.
+  std::optional<Vec3> observer_bias;
+  std::optional<Vec3> observer_wave_motion;
 };
 
 /// What a detector did over a run (summary.json). Alarm onsets are the samples where its
@@ -164,6 +169,8 @@ class Simulation {
   int num_hypotheses() const;
   const std::vector<DetectorRecord>& detector_records() const { return detector_records_; }
   std::vector<std::string> HypothesisLabels() const;
+  /// Whether the detection has an EKF observer bank, whose load picture Record() reports.
+  bool estimates_load() const;
   /// Mooring load (body frame) of the static start and the pose found there.
   const Vec6& initial_pose() const { return initial_pose_; }
   std::uint64_t seed() const { return seed_; }
