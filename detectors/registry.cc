@@ -47,7 +47,9 @@ constexpr ParameterRange kCount{1.0, 10000.0, false, false, true};  // [1, 10000
 constexpr ParameterRange kDelay{0.0, 10000.0, false, false, true};  // [0, 10000]
 constexpr ParameterRange kSwitch{0.0, 1.0, false, false, true};     // 0 or 1
 
-constexpr std::array<DetectorParameter, 16> kDeficitParameters = {{
+constexpr ParameterRange kDriftModel{0.0, 2.0, false, false, true};  // 0, 1 or 2
+
+constexpr std::array<DetectorParameter, 17> kDeficitParameters = {{
     {"baseline_time", DeficitOptions{}.baseline_time, "", kPositive, "s",
      "time constant of the learned baseline and disturbance of the intact filter's bias"},
     {"confirm", DeficitOptions{}.confirm, "", kNonNegative, "nats",
@@ -55,9 +57,12 @@ constexpr std::array<DetectorParameter, 16> kDeficitParameters = {{
      "its line reaches this"},
     {"confirm_time", DeficitOptions{}.confirm_time, "", kPositive, "s",
      "how long a fast alarm waits for confirmation before the fast test starts over"},
-    {"drift", 1.0, "", kSwitch, "",
-     "1: the baseline follows the estimated wave motion's energy (slowly varying drift); 0: "
-     "constant"},
+    {"drift", static_cast<int>(DeficitOptions{}.drift) * 1.0, "", kDriftModel, "",
+     "what the baseline follows of the estimated wave motion w (slowly varying drift): 2: the "
+     "products w_x^2, w_y^2, w_x w_y; 1: the energy |w|^2; 0: nothing (constant)"},
+    {"drift_lag", DeficitOptions{}.drift_lag, "", kNonNegative, "s",
+     "the intact filter's lag on a load change, by which the wave motion's products are "
+     "delayed (less the lead)"},
     {"fast_lead", DeficitOptions{}.fast_lead, "", kNonNegative, "s",
      "the fast test's lead (with confirm > 0)"},
     {"fast_window", DeficitOptions{}.fast_window, "", kCount, "samples",
@@ -125,7 +130,8 @@ std::unique_ptr<Detector> MakeDeficit(const DetectorParameters& p) {
   options.baseline_time = p.Get("baseline_time");
   options.confirm = p.Get("confirm");
   options.confirm_time = p.Get("confirm_time");
-  options.drift = p.Get("drift") != 0.0;
+  options.drift = static_cast<DriftModel>(static_cast<int>(p.Get("drift")));
+  options.drift_lag = p.Get("drift_lag");
   options.fast_lead = p.Get("fast_lead");
   options.fast_window = static_cast<int>(p.Get("fast_window"));
   options.floor = p.Get("floor");
