@@ -27,7 +27,6 @@ Deficit::Deficit(const DeficitOptions& options) : options_(options) {
   internal::Require(options.learn_delay >= 0, "deficit", "learn_delay >= 0");
   internal::Require(options.small_sample >= 0.0, "deficit", "small_sample >= 0");
   internal::Require(options.lead >= 0.0, "deficit", "lead >= 0");
-  internal::Require(options.drift_lag >= 0.0, "deficit", "drift_lag >= 0");
   internal::Require(options.min_fraction > 0.0 && options.min_fraction <= 1.0, "deficit",
                     "0 < min_fraction <= 1");
   internal::Require(options.confirm >= 0.0, "deficit", "confirm >= 0");
@@ -47,8 +46,7 @@ void Deficit::Reset(int hypotheses) {
   internal::Require(hypotheses >= 1, "deficit", "at least one hypothesis");
   hypotheses_ = hypotheses;
   ring_.assign(static_cast<std::size_t>(options_.window), Vec2::Zero());
-  features_.assign(static_cast<std::size_t>(options_.window), Features::Zero());
-  lagged_.setZero();
+  energies_.assign(static_cast<std::size_t>(options_.window), 0.0);
   previous_bias_.setZero();
   newest_ = -1;
   filled_ = 0;
@@ -57,8 +55,7 @@ void Deficit::Reset(int hypotheses) {
   learned_ = 0.0;
   learned_samples_ = 0;
   baseline_.setZero();
-  feature_mean_.setZero();
-  feature_covariance_.setZero();
+  energy_mean_ = energy_variance_ = 0.0;
   cross_.setZero();
   gain_.setZero();
   disturbance_.setZero();
@@ -180,65 +177,31 @@ void Deficit::Raise(int hypothesis) {
   verdict_.hypothesis = hypothesis;
 }
 
-Deficit::Vec2 Deficit::Predict(const Features& f) const {
-  return baseline_ + gain_ * (f - feature_mean_);
+Deficit::Vec2 Deficit::Predict(double energy) const {
+  return baseline_ + gain_ * (energy - energy_mean_);
 }
 
-int Deficit::FeatureCount() const {
-  switch (options_.drift) {
-    case DriftModel::kNone:
-      return 0;
-    case DriftModel::kEnergy:
-      return 1;
-    case DriftModel::kDirectional:
-      return 3;
-  }
-  return 0;
-}
-
-Deficit::Features Deficit::DriftFeatures(const Vec3& w) const {
-  switch (options_.drift) {
-    case DriftModel::kNone:
-      return Features::Zero();
-    case DriftModel::kEnergy:
-      return Features(w.head<2>().squaredNorm(), 0.0, 0.0);
-    case DriftModel::kDirectional:
-      return Features(w.x() * w.x(), w.y() * w.y(), w.x() * w.y());
-  }
-  return Features::Zero();
-}
-
-// Exponentially weighted moments (West's update for the covariances of s and f), the
-// residual covariance C, and the raw bias's covariance and lag-1 covariance: the first
-// learned sample sets the means, then a running mean until baseline_time has been learned,
-// then weight dt / baseline_time per sample.
+// Exponentially weighted moments (West's update for the variance and covariance of s and
+// e), the residual covariance C, and the raw bias's covariance and lag-1 covariance: the
+// first learned sample sets the means, then a running mean until baseline_time has been
+// learned, then weight dt / baseline_time per sample.
 void Deficit::Learn(const Pending& sample) {
   const double alpha =
       learned_samples_ == 0
           ? 1.0
           : std::min(1.0, sample.dt / std::min(learned_ + sample.dt, options_.baseline_time));
   const Vec2 ds = sample.mean - baseline_;
-  const Features df = sample.features - feature_mean_;
+  const double de = sample.energy - energy_mean_;
   baseline_ += alpha * ds;
-  feature_mean_ += alpha * df;
-  feature_covariance_ = (1.0 - alpha) * (feature_covariance_ + alpha * df * df.transpose());
-  cross_ = (1.0 - alpha) * (cross_ + alpha * ds * df.transpose());
-  // The gain once f has varied measurably (1e-12 m^4: a millimetre of wave motion); with
-  // three features a ridge of 1e-3 of their mean variance keeps a product that hardly
-  // varies (the sway of a vessel in head seas) from taking a gain its noise sets.
-  const int k = FeatureCount();
-  gain_.setZero();
-  if (k > 0) {
-    const double trace = feature_covariance_.topLeftCorner(k, k).trace();
-    if (trace > 1e-12) {
-      const Eigen::MatrixXd f = feature_covariance_.topLeftCorner(k, k) +
-                                (k > 1 ? 1e-3 * trace / k : 0.0) * Eigen::MatrixXd::Identity(k, k);
-      gain_.leftCols(k) = f.ldlt().solve(cross_.leftCols(k).transpose()).transpose();
-    }
-  }
-  const Vec2 e = sample.mean - Predict(sample.features);
+  energy_mean_ += alpha * de;
+  energy_variance_ = (1.0 - alpha) * (energy_variance_ + alpha * de * de);
+  cross_ = (1.0 - alpha) * (cross_ + alpha * ds * de);
+  // The gain once e has varied measurably (1e-12 m^4: a millimetre of wave motion).
+  gain_ =
+      options_.drift && energy_variance_ > 1e-12 ? Vec2(cross_ / energy_variance_) : Vec2::Zero();
+  const Vec2 e = sample.mean - Predict(sample.energy);
   disturbance_ += alpha * (e * e.transpose() - disturbance_);
-  const Vec2 r = sample.raw - Predict(sample.features);
+  const Vec2 r = sample.raw - Predict(sample.energy);
   raw_covariance_ += alpha * (r * r.transpose() - raw_covariance_);
   if (learned_samples_ > 0) {
     lag_covariance_ += alpha * (r.dot(previous_raw_) - lag_covariance_);
@@ -270,23 +233,15 @@ const Verdict& Deficit::StepSlow(const Evidence& evidence) {
   newest_ = (newest_ + 1) % options_.window;
   filled_ = std::min(filled_ + 1, options_.window);
   ring_[static_cast<std::size_t>(newest_)] = compensated;
-  // The features, delayed as the bias is (less the lead).
-  const Features f = DriftFeatures(load.wave_motion);
-  const double lag = std::max(0.0, options_.drift_lag - options_.lead);
-  if (samples_ == 0 || lag <= 0.0) {
-    lagged_ = f;
-  } else if (dt > 0.0) {
-    lagged_ += (1.0 - std::exp(-dt / lag)) * (f - lagged_);
-  }
-  features_[static_cast<std::size_t>(newest_)] = lagged_;
+  energies_[static_cast<std::size_t>(newest_)] = load.wave_motion.head<2>().squaredNorm();
   Vec2 mean = Vec2::Zero();
-  Features features = Features::Zero();
+  double energy = 0.0;
   for (int i = 0; i < filled_; ++i) {
     mean += ring_[static_cast<std::size_t>(i)];
-    features += features_[static_cast<std::size_t>(i)];
+    energy += energies_[static_cast<std::size_t>(i)];
   }
   mean /= filled_;
-  features /= filled_;
+  energy /= filled_;
   if (samples_ == 0) first_time_ = t;
   ++samples_;
   last_time_ = t;
@@ -302,11 +257,11 @@ const Verdict& Deficit::StepSlow(const Evidence& evidence) {
       Hold(delay_[static_cast<std::size_t>(delay_oldest_)]);
       delay_oldest_ = (delay_oldest_ + 1) % capacity;
     }
-    Hold(Pending{mean, compensated, features, dt});
+    Hold(Pending{mean, compensated, energy, dt});
   } else {
     const int capacity = static_cast<int>(delay_.size());
     delay_[static_cast<std::size_t>((delay_oldest_ + delay_count_) % capacity)] =
-        Pending{mean, compensated, features, dt};
+        Pending{mean, compensated, energy, dt};
     if (++delay_count_ > options_.learn_delay) {
       Learn(delay_[static_cast<std::size_t>(delay_oldest_)]);
       delay_oldest_ = (delay_oldest_ + 1) % capacity;
@@ -322,7 +277,7 @@ const Verdict& Deficit::StepSlow(const Evidence& evidence) {
       (DisturbanceInflation(m) * disturbance_ +
        options_.floor * options_.floor * Eigen::Matrix2d::Identity())
           .inverse();
-  const Vec2 shift = mean - Predict(features);
+  const Vec2 shift = mean - Predict(energy);
   for (int h = 1; h < hypotheses_; ++h) {
     const Vec2 d = -load.line_load[static_cast<std::size_t>(h)].head<2>();
     const Vec2 weighted = information * d;

@@ -23,25 +23,14 @@
 //            sea (41 -> 25 s) and raised 5 false alarms an hour, hence the default 0;
 //   s_n      mean of x over the last `window` samples (averages the wave-frequency
 //            leakage and the filter's noise);
-//   f_n      the drift regression's features: the slowly varying wave drift goes with the
-//            square of the wave envelope (Newman 1974), and so do the products of the
-//            filter's wave-frequency motion estimate w = C_w xi (horizontal, Earth frame,
-//            Evidence::load.wave_motion): f = (w_x^2, w_y^2, w_x w_y) (`drift` directional;
-//            surge and sway respond to a sea differently, and each product
-//            carries its own share of the drift), or f = |w|^2 (`drift` energy, the default). The
-//            bias answers a load change with the filter's lag, the motion at once, so f passes
-//            through a first-order lag of time constant `drift_lag` (less the lead, which
-//            undoes as much of the bias's lag), then the same window mean as s. On Hs 6 m
-//            runs into the weather the slow test's s (1.5 MN standard deviation about its
-//            mean) kept 1.33-1.48 MN about |w|^2 unlagged, 1.08-1.20 MN about the three
-//            products lagged 10-15 s (in-sample least squares per run; the true drift force
-//            lagged 20 s, which no detector sees, leaves 0.8-0.9 MN);
-//   B, C     baseline and disturbance covariance. With a drift model, B(f) = mean of s + G (f
-//            - mean of f), G the regression of s on f (exponentially weighted covariance of
-//            s and f times the inverse covariance of f, ridge-regularised by 1e-3 of its
-//            mean variance when there are three): the part of the drift that the estimated
-//            wave motion explains leaves the disturbance. C is the exponentially weighted
-//            covariance of s - B(f). Both with time constant `baseline_time`, bias-corrected
+//   e_n      mean over the same window of the wave-frequency motion's energy |C_w xi|^2
+//            (horizontal, Evidence::load.wave_motion): the slowly varying wave drift goes
+//            with the square of the wave envelope (Newman 1974), and so does this;
+//   B, C     baseline and disturbance covariance. With `drift` on, B(e) = mean of s + g (e -
+//            mean of e), g the regression of s on e (exponentially weighted covariance of s
+//            and e over the variance of e): the part of the drift that the estimated wave
+//            motion explains leaves the disturbance. C is the exponentially weighted
+//            covariance of s - B(e). Both with time constant `baseline_time`, bias-corrected
 //            at the start (a growing-window mean until `baseline_time` has been learned),
 //            and floor^2 I added to C. They learn from full windows only and only while no
 //            failure is suspected (`delay` below), and they follow the sea state: rough seas raise
@@ -53,7 +42,7 @@
 //            `baseline_time` of them, the weights' memory) over m (below). While n is small
 //            C is likely too small (the first minutes of a run in a rough sea learn one or
 //            two drift groups), so the test uses C (1 + small_sample / n);
-//   z_h      = d_h^T C^-1 D - d_h^T C^-1 d_h / 2,  D = s_n - B(f_n): the log-likelihood ratio
+//   z_h      = d_h^T C^-1 D - d_h^T C^-1 d_h / 2,  D = s_n - B(e_n): the log-likelihood ratio
 //            [nats] of "the bias moved by d_h" against "the bias did not move", for D
 //            Gaussian with covariance C. The amplitude is known (the line's whole load), so a
 //            drift group that pushes the other way or twice as hard does not fit. With
@@ -130,14 +119,6 @@
 
 namespace moorsim::detectors {
 
-/// What the baseline B follows of the wave-frequency motion estimate w = C_w xi (horizontal,
-/// Earth frame), the features f of the drift regression (see above).
-enum class DriftModel {
-  kNone,         ///< B constant
-  kEnergy,       ///< f = |w|^2
-  kDirectional,  ///< f = (w_x^2, w_y^2, w_x w_y)
-};
-
 struct DeficitOptions {
   /// Samples of the bias averaged into s, >= 1.
   int window = 15;
@@ -156,11 +137,8 @@ struct DeficitOptions {
   double warmup = 150.0;
   /// Samples a bias waits before it is learned (dropped if an alarm is raised meanwhile), >= 0.
   int learn_delay = 120;
-  /// What B follows of the wave motion (the drift regression above).
-  DriftModel drift = DriftModel::kEnergy;
-  /// [s] tau, the intact filter's lag on a load change that the regression's features are
-  /// delayed by (a first-order lag of max(0, tau - lead)), >= 0.
-  double drift_lag = 0.0;
+  /// Whether B follows the wave-motion energy (the drift regression above).
+  bool drift = true;
   /// c in C's small-sample inflation 1 + c / n (n: independent values learned), >= 0.
   double small_sample = 0.0;
   /// [s] Lead T of the bias compensation b + T db/dt (0: the bias as it is), >= 0.
@@ -195,29 +173,26 @@ class Deficit final : public Detector {
 
   const DeficitOptions& options() const { return options_; }
   /// The learned mean of s and disturbance covariance C [N, N^2] (horizontal force), and
-  /// the drift gain G [N/m^2] (column i: the features' f_i; unused columns zero).
+  /// the drift gain g [N/m^2].
   const Eigen::Vector2d& baseline() const { return baseline_; }
-  const Eigen::Matrix<double, 2, 3>& drift_gain() const { return gain_; }
+  const Eigen::Vector2d& drift_gain() const { return gain_; }
   const Eigen::Matrix2d& disturbance() const { return disturbance_; }
   /// m, the samples per independent value of the window mean (>= 1).
   double samples_per_value() const;
 
  private:
   using Vec2 = Eigen::Vector2d;
-  using Features = Eigen::Vector3d;
   struct Pending {
     Vec2 mean, raw;
-    Features features = Features::Zero();
+    double energy = 0.0;
     double dt = 0.0;
   };
   const Verdict& StepSlow(const Evidence& evidence);
-  void Raise(int hypothesis);        // the alarm names `hypothesis`; revision and end start over
-  void Hold(const Pending& sample);  // keeps a sample that arrives while an alarm stands
-  std::size_t HeldLimit() const;     // the most samples Hold() keeps
-  void EndFalseAlarm();              // learns the held samples, then Restart()
-  Vec2 Predict(const Features& f) const;  // B(f)
-  Features DriftFeatures(const Vec3& wave_motion) const;
-  int FeatureCount() const;
+  void Raise(int hypothesis);         // the alarm names `hypothesis`; revision and end start over
+  void Hold(const Pending& sample);   // keeps a sample that arrives while an alarm stands
+  std::size_t HeldLimit() const;      // the most samples Hold() keeps
+  void EndFalseAlarm();               // learns the held samples, then Restart()
+  Vec2 Predict(double energy) const;  // B(e)
   double DisturbanceInflation(double samples_per_value) const;
   void Learn(const Pending& sample);
   void Restart();
@@ -226,8 +201,7 @@ class Deficit final : public Detector {
   int hypotheses_ = 0;
   std::vector<Vec2> ring_;  // the last `window` lead-compensated horizontal biases
   Vec2 previous_bias_ = Vec2::Zero();
-  std::vector<Features> features_;  // and the lagged features f
-  Features lagged_ = Features::Zero();
+  std::vector<double> energies_;  // and wave-motion energies
   int newest_ = -1;
   int filled_ = 0;
   double first_time_ = 0.0;
@@ -236,10 +210,10 @@ class Deficit final : public Detector {
   double learned_ = 0.0;          // [s] learned since the first learned sample
   long learned_samples_ = 0;      // samples learned
   Vec2 baseline_ = Vec2::Zero();  // mean of s
-  Features feature_mean_ = Features::Zero();
-  Eigen::Matrix3d feature_covariance_ = Eigen::Matrix3d::Zero();
-  Eigen::Matrix<double, 2, 3> cross_ = Eigen::Matrix<double, 2, 3>::Zero();  // cov(s, f)
-  Eigen::Matrix<double, 2, 3> gain_ = Eigen::Matrix<double, 2, 3>::Zero();   // G
+  double energy_mean_ = 0.0;
+  double energy_variance_ = 0.0;
+  Vec2 cross_ = Vec2::Zero();  // covariance of s and e
+  Vec2 gain_ = Vec2::Zero();   // g
   Eigen::Matrix2d disturbance_ = Eigen::Matrix2d::Zero();
   Eigen::Matrix2d raw_covariance_ = Eigen::Matrix2d::Zero();  // C_r
   double lag_covariance_ = 0.0;  // tr E[r_n r_{n-1}^T], r = raw bias - B

@@ -47,9 +47,7 @@ constexpr ParameterRange kCount{1.0, 10000.0, false, false, true};  // [1, 10000
 constexpr ParameterRange kDelay{0.0, 10000.0, false, false, true};  // [0, 10000]
 constexpr ParameterRange kSwitch{0.0, 1.0, false, false, true};     // 0 or 1
 
-constexpr ParameterRange kDriftModel{0.0, 2.0, false, false, true};  // 0, 1 or 2
-
-constexpr std::array<DetectorParameter, 17> kDeficitParameters = {{
+constexpr std::array<DetectorParameter, 16> kDeficitParameters = {{
     {"baseline_time", DeficitOptions{}.baseline_time, "", kPositive, "s",
      "time constant of the learned baseline and disturbance of the intact filter's bias"},
     {"confirm", DeficitOptions{}.confirm, "", kNonNegative, "nats",
@@ -57,12 +55,9 @@ constexpr std::array<DetectorParameter, 17> kDeficitParameters = {{
      "its line reaches this"},
     {"confirm_time", DeficitOptions{}.confirm_time, "", kPositive, "s",
      "how long a fast alarm waits for confirmation before the fast test starts over"},
-    {"drift", static_cast<int>(DeficitOptions{}.drift) * 1.0, "", kDriftModel, "",
-     "what the baseline follows of the estimated wave motion w (slowly varying drift): 2: the "
-     "products w_x^2, w_y^2, w_x w_y; 1: the energy |w|^2; 0: nothing (constant)"},
-    {"drift_lag", DeficitOptions{}.drift_lag, "", kNonNegative, "s",
-     "the intact filter's lag on a load change, by which the wave motion's products are "
-     "delayed (less the lead)"},
+    {"drift", 1.0, "", kSwitch, "",
+     "1: the baseline follows the estimated wave motion's energy (slowly varying drift); 0: "
+     "constant"},
     {"fast_lead", DeficitOptions{}.fast_lead, "", kNonNegative, "s",
      "the fast test's lead (with confirm > 0)"},
     {"fast_window", DeficitOptions{}.fast_window, "", kCount, "samples",
@@ -130,8 +125,7 @@ std::unique_ptr<Detector> MakeDeficit(const DetectorParameters& p) {
   options.baseline_time = p.Get("baseline_time");
   options.confirm = p.Get("confirm");
   options.confirm_time = p.Get("confirm_time");
-  options.drift = static_cast<DriftModel>(static_cast<int>(p.Get("drift")));
-  options.drift_lag = p.Get("drift_lag");
+  options.drift = p.Get("drift") != 0.0;
   options.fast_lead = p.Get("fast_lead");
   options.fast_window = static_cast<int>(p.Get("fast_window"));
   options.floor = p.Get("floor");
