@@ -10,6 +10,7 @@
 #include <map>
 #include <span>
 
+#include "core/angles.h"
 #include "core/error.h"
 #include "core/random.h"
 #include "scenarios/strict_yaml.h"
@@ -124,8 +125,8 @@ void ReadInterval(const Reader& r, const std::string& shape, CampaignFactor& f) 
 }
 
 CampaignFactor ParseFactor(const Reader& r, const YAML::Node& node) {
-  r.CheckKeys(
-      {"key", "values", "range", "uniform", "normal", "choice", "follows", "add", "modulo"});
+  r.CheckKeys({"key", "values", "range", "uniform", "normal", "choice", "follows", "add", "modulo",
+               "function", "scale"});
   CampaignFactor f;
   f.mark = r.mark();
   f.key = r.Required<std::string>("key");
@@ -138,7 +139,7 @@ CampaignFactor ParseFactor(const Reader& r, const YAML::Node& node) {
     if (r.Find(k)) ++kinds;
   }
   if (kinds != 1) r.Fail("give exactly one of values, range, uniform, normal, choice, follows");
-  for (const char* k : {"add", "modulo"}) {
+  for (const char* k : {"add", "modulo", "function", "scale"}) {
     if (r.Find(k) && !r.Find("follows")) r.Child(k).Fail(std::string(k) + " goes with follows");
   }
   const auto list = [&](const char* key) {
@@ -176,6 +177,20 @@ CampaignFactor ParseFactor(const Reader& r, const YAML::Node& node) {
     if (const std::optional<Reader> modulo = r.Find("modulo")) {
       f.modulo = modulo->As<double>();
       if (!(f.modulo > 0.0)) modulo->Fail(Number(f.modulo) + " must be > 0");
+    }
+    if (const std::optional<Reader> function = r.Find("function")) {
+      const std::string name = function->As<std::string>();
+      if (name == "cos") {
+        f.function = CampaignFactor::Function::kCos;
+      } else if (name == "sin") {
+        f.function = CampaignFactor::Function::kSin;
+      } else {
+        function->Fail("'" + name + "' must be cos or sin (of the followed value in degrees)");
+      }
+    }
+    if (const std::optional<Reader> scale = r.Find("scale")) {
+      f.scale = scale->As<double>();
+      if (!std::isfinite(f.scale)) scale->Fail(Number(f.scale) + " must be a finite number");
     }
   } else if (const std::optional<Reader> uniform = r.Find("uniform")) {
     f.kind = CampaignFactor::Kind::kUniform;
@@ -432,7 +447,9 @@ CampaignRun MakeCampaignRun(const Campaign& campaign, std::int64_t index) {
         }
         case CampaignFactor::Kind::kFollows: {
           double x = *ParseNumber(FactorValue(run, f.follows));
-          x += f.high > f.low ? Draw(f, stream) : f.low;
+          if (f.function == CampaignFactor::Function::kCos) x = std::cos(x * kDegree);
+          if (f.function == CampaignFactor::Function::kSin) x = std::sin(x * kDegree);
+          x = f.scale * x + (f.high > f.low ? Draw(f, stream) : f.low);
           if (f.modulo > 0.0) x -= f.modulo * std::floor(x / f.modulo + 0.5);
           value = Number(x);
           break;

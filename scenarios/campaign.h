@@ -22,6 +22,9 @@
 //         - {key: controller.setpoint.heading_deg, follows: environment.waves.direction_toward_deg,
 //            add: [165, 195], modulo: 360}   # an earlier factor's value + a constant or a
 //                                            # uniform draw, reduced to [-180, 180)
+//         - {key: controller.setpoint.x, follows: controller.setpoint.heading_deg,
+//            function: cos, scale: -60, add: 60}  # add + scale * cos(value in deg): a point
+//                                                 # that turns with the heading
 //       combine: grid                 # grid (every combination of the listed values,
 //                                     # first factor slowest) or zip (the i-th value of
 //                                     # every list together; the lists equally long)
@@ -55,10 +58,14 @@ struct CampaignFactor {
   double low = 0.0, high = 0.0;      ///< kUniform: [low, high)
   double mean = 0.0, std_dev = 0.0;  ///< kNormal
   std::optional<double> min, max;    ///< kNormal: draws outside are drawn again
-  /// kFollows: the value of `follows` (an earlier factor of the block, numeric) plus `low`,
-  /// or a uniform draw in [low, high) when high > low; reduced to [-modulo / 2, modulo / 2)
-  /// when modulo > 0.
+  /// kFollows: v, the value of `follows` (an earlier factor of the block, numeric), made
+  /// scale * function(v) (function: none, or cos / sin of v in degrees), plus `low`, or a
+  /// uniform draw in [low, high) when high > low; reduced to [-modulo / 2, modulo / 2) when
+  /// modulo > 0.
+  enum class Function { kNone, kCos, kSin };
   std::string follows;
+  Function function = Function::kNone;
+  double scale = 1.0;
   double modulo = 0.0;
   SourceMark mark;  ///< the factor's list entry
 };

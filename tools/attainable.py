@@ -5,21 +5,26 @@ parted line's lost load has to be seen through, and prints, per sea state (campa
 and per line, the least detection delay a detector can reach at a given false-alarm rate.
 
     tools/attainable.py DIR --static STATIC.json [--rate R]... [--share A]... [--lag S]
-                        [--skip S] [--json OUT.json]
+                        [--skip S] [--target S] [--off-bow DEG] [--json OUT.json]
 
 DIR is the campaign's results directory (DIR/rows/*.json, DIR/runs/*/run.h5); STATIC.json is
 `moorsim static SCENARIO --json` for the campaign's mooring (each line's horizontal tension).
-Only intact runs are read (a failure run's load changes at its break).
+Only intact runs are read (a failure run's load changes at its break). Per block it prints
+where each run's mean wave drift comes from relative to the bow: the disturbance depends on
+it far more than on anything else (a hull that has lost its heading takes the waves on the
+beam), and `--off-bow` keeps only the runs within an angle of it.
 
-Two disturbances, both the horizontal force in the Earth frame after `--skip` seconds:
-  drift  the slowly varying wave drift on the hull (/environment/waves_drift rotated by the
-         heading): what the sea itself puts in the way, seen by nobody; a detector that saw
-         the true force on the hull, with the drift its only disturbance, would face this;
-  bias   the intact filter's load estimate (/observer/bias), what the force-deficit test
-         reads: the drift plus current and wind variation, the filter's estimation error and
-         its model error.
+Two disturbances, both the horizontal force in hull axes after `--skip` seconds:
+  drift  the slowly varying wave drift on the hull (/environment/waves_drift): what the sea
+         itself puts in the way, seen by nobody; a detector that saw the true force on the
+         hull, with the drift its only disturbance, would face this;
+  bias   the intact filter's load estimate (/observer/bias, turned into hull axes by the
+         heading), what the force-deficit test reads: the drift plus current and wind
+         variation, the filter's estimation error and its model error.
 
-Bound. A parted line k takes a share a of its horizontal load d_k (the tension towards its
+Bound. Everything is in hull axes (surge, sway), where the disturbance keeps its shape as
+the heading changes; each run's lines enter at their bearings from the hull. A parted line k
+takes a share a of its horizontal load d_k (the tension towards its
 anchor) off the vessel for good. Seen through a stationary Gaussian disturbance that is
 averaged over a delay long against its correlation time, the evidence for that step grows
 at the Kullback-Leibler rate
@@ -39,8 +44,10 @@ What the bound leaves out: a detector may use more than the averaged load. A bre
 abrupt, a drift group builds up over tens of seconds, so right after the break the vessel's
 acceleration carries evidence the average does not; the filter's bias lags the break by its
 20-30 s time constant and so holds little of it. The "drift" rows are therefore not a bound
-on every conceivable detector, but on those that judge a load averaged over their delay; the
-"bias" rows bound the force-deficit test and every test on the filter's load estimate. The
+on every conceivable detector, but on those that judge a load averaged over their delay. The
+"bias" rows bound every test on the filter's load estimate once the estimate has moved: as
+the bias approaches the step like a first-order lag of time constant T, the evidence it
+gathers by time t is about I (t - 1.5 T), so such a test needs about 1.5 T more. The
 disturbance is not Gaussian either (drift groups are bursts): its tails raise the false
 alarms of a Gaussian-tuned threshold, so real detectors sit above the bound.
 
@@ -171,11 +178,12 @@ def read_run(path, skip):
     bias = np.column_stack((c * bias_earth[:, 0] + s * bias_earth[:, 1],
                             -s * bias_earth[:, 0] + c * bias_earth[:, 1]))
     heading = math.atan2(s.mean(), c.mean())
-    # Where the waves come from relative to the bow, read from the drift's mean direction
-    # (it pushes down-wave): 0 = from ahead, +90 deg = from starboard.
-    waves_from = math.degrees(math.atan2(-drift[:, 1].mean(), -drift[:, 0].mean()))
+    # Where the mean wave drift comes from relative to the bow (it pushes down-wave, though
+    # not exactly along the waves: a hull's sway drift grows faster off the bow than its
+    # surge drift): 0 = from ahead, +90 deg = from starboard.
+    drift_from = math.degrees(math.atan2(-drift[:, 1].mean(), -drift[:, 0].mean()))
     return {"dt": float(steps[0]), "drift": drift, "bias": bias, "heading": heading,
-            "waves_from": waves_from,
+            "drift_from": drift_from,
             "position": pose[:, :2].mean(axis=0), "anchors": anchors[:, :2]}
 
 
@@ -212,14 +220,14 @@ def analyse(directory, line_loads, rates, shares, lag_seconds, skip, target, off
     result = []
     for block, runs in intact_runs_by_block(directory).items():
         data = [read_run(run, skip) for run in runs]
-        waves_from = [d["waves_from"] for d in data]
+        drift_from = [d["drift_from"] for d in data]
         if off_bow is not None:
-            data = [d for d in data if abs(d["waves_from"]) <= off_bow]
+            data = [d for d in data if abs(d["drift_from"]) <= off_bow]
             if not data:
                 continue
         dt = data[0]["dt"]
         lag = int(round(lag_seconds / dt))
-        entry = {"block": block, "runs": len(data), "waves_from": waves_from,
+        entry = {"block": block, "runs": len(data), "drift_from": drift_from,
                  "hours": sum(len(d["bias"]) for d in data) * dt / HOUR, "sources": {}}
         # Each run's lines in hull axes: the disturbance's shape follows the hull (a vessel
         # into the weather takes its drift mostly in surge), the lines' bearings to it vary.
@@ -268,9 +276,9 @@ def print_table(result, target):
     print(f"least median delay [s] of any detector averaging the load, over every run's "
           f"lines; 'above' = share of the breaks whose bound exceeds {target:g} s")
     for entry in result:
-        print(f"\n{entry['block']}: {entry['runs']} intact runs, {entry['hours']:.1f} h; waves "
+        print(f"\n{entry['block']}: {entry['runs']} intact runs, {entry['hours']:.1f} h; mean drift "
               f"from (deg off the bow, all runs): "
-              f"{' '.join(f'{a:.0f}' for a in sorted(entry['waves_from'], key=abs))}")
+              f"{' '.join(f'{a:.0f}' for a in sorted(entry['drift_from'], key=abs))}")
         for source, values in entry["sources"].items():
             std, scale = values["std"], values["time_scale"]
             print(f"  {source}: std surge {std[0] / 1e6:.2f} / sway {std[1] / 1e6:.2f} MN, "
@@ -299,8 +307,8 @@ def main(argv=None):
     parser.add_argument("--target", type=float, default=30.0,
                         help="delay [s] whose share of exceeding breaks is counted (default 30)")
     parser.add_argument("--off-bow", type=float,
-                        help="only runs whose waves come from within this angle of the bow "
-                             "[deg] (default all)")
+                        help="only runs whose mean wave drift comes from within this angle "
+                             "of the bow [deg] (default all)")
     parser.add_argument("--json", type=Path, help="write every number to this file")
     args = parser.parse_args(argv)
     rates = args.rate or [0.01, 1.0]
@@ -325,7 +333,7 @@ def main(argv=None):
         print(f"attainable: {error}", file=sys.stderr)
         return EXIT_BAD_INPUT
     if not result:
-        print(f"attainable: {args.directory}: no intact run has its waves within "
+        print(f"attainable: {args.directory}: no intact run has its mean drift within "
               f"{args.off_bow:g} deg of the bow", file=sys.stderr)
         return EXIT_BAD_INPUT
     print_table(result, args.target)

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <set>
 #include <string>
 
@@ -203,6 +204,35 @@ blocks:
   EXPECT_EQ(MakeCampaignRun(c, 201).factors[1].second, "170");
 }
 
+TEST(Campaign, FollowsTurnsAPointWithTheHeading) {
+  // A turret 60 m ahead of the reference point kept over the field origin: the reference
+  // point at -60 (cos psi, sin psi), psi the drawn heading; the sum of the two squares is
+  // 60^2 whatever the draw.
+  const std::string text = R"(scenario: ../library/thesis_no_failure.yaml
+seed: 5
+blocks:
+  - name: turned
+    factors:
+      - {key: controller.setpoint.heading_deg, uniform: [-180, 180]}
+      - {key: controller.setpoint.x, follows: controller.setpoint.heading_deg, function: cos,
+         scale: -60}
+      - {key: controller.setpoint.y, follows: controller.setpoint.heading_deg, function: sin,
+         scale: -60, add: [0, 1]}
+    seeds: 50
+)";
+  const Campaign c = ParseCampaign(text, kSource);
+  for (int i = 0; i < 50; ++i) {
+    const CampaignRun r = MakeCampaignRun(c, i);
+    const double psi = std::stod(r.factors[0].second) * std::numbers::pi / 180.0;
+    const double x = std::stod(r.factors[1].second);
+    const double y = std::stod(r.factors[2].second);
+    EXPECT_NEAR(x, -60.0 * std::cos(psi), 1e-12);
+    const double drawn = y + 60.0 * std::sin(psi);  // the uniform add
+    EXPECT_GE(drawn, -1e-12);
+    EXPECT_LT(drawn, 1.0 + 1e-12);
+  }
+}
+
 TEST(Campaign, CommandRepeatsTheRunWithQuotedValues) {
   const std::string text = R"(scenario: ../library/thesis_no_failure.yaml
 seed: 3
@@ -303,6 +333,18 @@ std::vector<CampaignError> Errors() {
        Replace(b, "{key: failure.time, uniform: [100, 200]}",
                "{key: failure.time, follows: failure.line, modulo: 0}"),
        "0}", "blocks[1].factors[3].modulo: 0 must be > 0"},
+      {"FunctionUnknown",
+       Replace(b, "{key: failure.time, uniform: [100, 200]}",
+               "{key: failure.time, follows: failure.line, function: tan}"),
+       "tan}",
+       "blocks[1].factors[3].function: 'tan' must be cos or sin (of the followed value "
+       "in degrees)"},
+      {"ScaleAlone", Replace(b, "uniform: [100, 200]}", "uniform: [100, 200], scale: 2}"), "2}",
+       "blocks[1].factors[3].scale: scale goes with follows"},
+      {"ScaleNotFinite",
+       Replace(b, "{key: failure.time, uniform: [100, 200]}",
+               "{key: failure.time, follows: failure.line, scale: .inf}"),
+       ".inf}", "blocks[1].factors[3].scale: .inf must be a finite number"},
       {"EmptyValues", Replace(b, "values: [1, 2, 3]", "values: []"), "[]",
        "blocks[1].factors[1].values: an empty list"},
       {"TwiceVaried", Replace(b, "failure.time, uniform", "failure.line, uniform"),

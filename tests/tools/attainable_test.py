@@ -134,7 +134,7 @@ with tempfile.TemporaryDirectory() as scratch:
     result = json.loads(out.read_text())["blocks"]
     check(len(result) == 1 and result[0]["runs"] == 2, "two intact runs read, the failure left out")
     block = result[0]
-    check(all(abs(a) < 1.0 for a in block["waves_from"]), f"waves from ahead: {block['waves_from']}")
+    check(all(abs(a) < 1.0 for a in block["drift_from"]), f"drift from ahead: {block['drift_from']}")
     for source, sigma, rho in (("drift", drift_e, 0.9), ("bias", bias_e, 0.8)):
         exact = sigma / (1.0 - rho) ** 2
         got = np.array(block["sources"][source]["long_run_covariance"])
