@@ -79,6 +79,15 @@ int Batch(const BatchCommandOptions& o) {
   const simulation::BatchResult result = simulation::RunBatch(options);
   if (!speaks) return result.exit_code;
   if (!result.message.empty()) std::cerr << "moorsim: " << result.message << "\n";
+  if (result.heading_lost > 0) {
+    // Not an error (a campaign may mean to test it), but never silent: such runs met the
+    // waves from another side than their factors say.
+    std::fprintf(stderr,
+                 "moorsim batch: warning: %lld runs left their setpoint heading by more than "
+                 "%g deg (the thrust could not hold it: heading_error_max_deg and "
+                 "thrust_saturated_share in runs.csv)\n",
+                 static_cast<long long>(result.heading_lost), simulation::kHeadingLostDeg);
+  }
   if (result.exit_code != 2 && !o.quiet) {
     std::fprintf(stderr,
                  "moorsim batch: %lld runs in this shard: %lld done now, %lld already done, "

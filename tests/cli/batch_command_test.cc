@@ -89,6 +89,9 @@ TEST(BatchCommand, WritesTheTableAndTheReportMatchesIt) {
   const std::string csv = ReadWholeFile(std::filesystem::path(out) / "runs.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);  // header + 4 runs
   EXPECT_EQ(csv.rfind("run,block,seed,status,failure.line,failure_line,", 0), 0u) << csv;
+  EXPECT_NE(csv.find(",wall_time,thrust_saturated_share,heading_error_max_deg,"), std::string::npos)
+      << csv;
+  EXPECT_EQ(r.err.find("left their setpoint heading"), std::string::npos) << r.err;
   // The report, checked number by number against campaign.h5.
   const CliResult report =
       RunProgram("/usr/bin/python3", {MOORSIM_SOURCE_DIR "/tests/tools/report_test.py", out},
@@ -117,11 +120,32 @@ TEST(BatchCommand, WritesTheTableAndTheReportMatchesIt) {
       }
     }
     EXPECT_EQ(summary.at("integrator").at("steps"), row.at("integrator").at("steps"));
+    EXPECT_EQ(summary.at("station_keeping"), row.at("station_keeping"));
   }
   // Run again: every run has its row, nothing is done twice.
   const CliResult again = RunCli({"batch", campaign, "--out", out}, dir.path());
   ASSERT_EQ(again.exit_code, 0) << again.Describe();
   EXPECT_NE(again.err.find("0 done now, 4 already done"), std::string::npos) << again.err;
+}
+
+TEST(BatchCommand, WarnsWhenARunLostItsHeading) {
+  // A hull started 30 deg off its setpoint heading has left it by more than 10 deg: the
+  // batch finishes as usual (exit 0) and says so on stderr, even with --quiet.
+  TempDirectory dir(::testing::TempDir());
+  const std::filesystem::path campaign = dir.path() / "turned.yaml";
+  std::ofstream(campaign) << "scenario: " << kScenario
+                          << "\nseed: 5\nset: {simulation.duration: 5, detectors: []}\n"
+                             "blocks:\n"
+                             "  - name: turned\n"
+                             "    factors: [{key: vessel.initial_pose.heading_deg, values: "
+                             "[-135, -105]}]\n"
+                             "    seeds: 1\n";
+  const std::string out = (dir.path() / "results").string();
+  const CliResult r = RunCli({"batch", campaign.string(), "--out", out, "--quiet"}, dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  EXPECT_NE(r.err.find("warning: 1 runs left their setpoint heading by more than 10 deg"),
+            std::string::npos)
+      << r.err;
 }
 
 TEST(BatchCommand, SigtermStopsTheBatchWithExit143AndKeepsTheFinishedRows) {

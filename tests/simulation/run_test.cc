@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "core/angles.h"
 #include "core/error.h"
 #include "core/sample_clock.h"
 #include "scenarios/load.h"
@@ -88,6 +89,54 @@ TEST_F(RunTest, EveryControllerRateReachesEveryInstant) {
     EXPECT_EQ(sim.controller_updates(), clock.LastIndex(20.0) + 1);
     EXPECT_EQ(sim.detection_timing().samples, 21);  // the 1 Hz GNSS/gyro
   }
+}
+
+TEST_F(RunTest, StationKeepingFollowsTheHeadingAndTheThrustersLimits) {
+  // The heading error is the low-frequency heading's distance from the setpoint at each
+  // controller update, recomputed here from the recorded pose; the saturated share counts
+  // the updates whose command the allocation scaled down: none without control, nearly all
+  // with the setpoint 300 m away.
+  for (const auto& [setpoint, saturates] : std::vector<std::pair<std::string, bool>>{
+           {"controller.type=none", false},
+           {"controller.setpoint={x: 300, y: 0, heading_deg: -105}", true}}) {
+    SCOPED_TRACE(setpoint);
+    const scenarios::Scenario scenario =
+        scenarios::LoadScenario(kThesis, {setpoint, "simulation.duration=40"});
+    Simulation sim(scenario, 1);
+    const double target = scenario.controller.setpoint ? scenario.controller.setpoint->z()
+                                                       : scenario.vessel->initial_pose.z();
+    double largest = 0.0, last = 0.0;
+    for (int k = 0; k <= 40; ++k) {
+      sim.AdvanceTo(k);
+      last = std::abs(std::remainder(sim.Record().pose_low_frequency(5) - target, 2.0 * kPi));
+      largest = std::max(largest, last);
+    }
+    const StationKeeping& kept = sim.station_keeping();
+    EXPECT_EQ(kept.updates, 41);
+    EXPECT_NEAR(kept.heading_error_max, largest, 1e-12);
+    EXPECT_NEAR(kept.heading_error_last, last, 1e-12);
+    if (saturates) {
+      // 300 m off: the PI asks for far more than the seed thrusters' ~1-2 MN.
+      EXPECT_GT(kept.SaturatedShare(), 0.9);
+      EXPECT_GT(kept.heading_error_max, 29.0 * kDegree);  // the start is 30 deg off
+    } else {
+      EXPECT_EQ(kept.saturated, 0);
+      EXPECT_LT(kept.heading_error_max, 1.0 * kDegree);  // 40 s adrift from the setpoint
+    }
+  }
+  // The summary and a campaign's table carry the same numbers, in degrees.
+  const fs::path dir = FreshDirectory("run_station_keeping");
+  ASSERT_EQ(RunScenario(Request(dir, {"controller.setpoint={x: 300, y: 0, heading_deg: -105}",
+                                      "simulation.duration=10"}))
+                .status,
+            RunStatus::kOk);
+  const nlohmann::json kept = ReadJson(dir / "summary.json")["station_keeping"];
+  EXPECT_EQ(kept["controller_updates"], 11);
+  EXPECT_GT(kept["thrust_saturated_share"].get<double>(), 0.9);
+  EXPECT_NEAR(kept["heading_error_max_deg"].get<double>(), 30.0, 1.0);
+  EXPECT_LE(kept["heading_error_final_deg"].get<double>(),
+            kept["heading_error_max_deg"].get<double>());
+  fs::remove_all(dir);
 }
 
 TEST_F(RunTest, ClocksWithNoCommonPeriodAllKeepTheirInstants) {

@@ -201,6 +201,15 @@ std::vector<Column> TableColumns(const std::vector<std::string>& factor_keys,
   c.push_back({"duration", K::kFloat, field("duration")});
   c.push_back({"simulated_time", K::kFloat, field("simulated_time")});
   c.push_back({"wall_time", K::kFloat, field("wall_time")});
+  // How well the heading and the thrust held (a row of an older campaign has none: NaN).
+  const auto kept = [](const char* key) {
+    return [key](const nlohmann::json& row) {
+      const nlohmann::json& k = row.value("station_keeping", nlohmann::json::object());
+      return k.is_object() ? k.value(key, nlohmann::json()) : nlohmann::json();
+    };
+  };
+  c.push_back({"thrust_saturated_share", K::kFloat, kept("thrust_saturated_share")});
+  c.push_back({"heading_error_max_deg", K::kFloat, kept("heading_error_max_deg")});
   for (const std::string& d : detectors) {
     const auto of = [d](const char* key, nlohmann::json absent) {
       return [d, key, absent](const nlohmann::json& row) {
@@ -581,6 +590,7 @@ nlohmann::json MakeRow(const PreparedCampaign& p, const scenarios::CampaignRun& 
   }
   row["detectors"] = detectors;
   row["integrator"] = result.summary.value("integrator", nlohmann::json::object());
+  row["station_keeping"] = result.summary.value("station_keeping", nlohmann::json::object());
   return row;
 }
 
@@ -843,8 +853,14 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
     progress.Update(result.done, result.failed, local.seconds_done(), true);
 
     // 5. The tables, from every row there is (this batch's and earlier ones').
+    const std::vector<nlohmann::json> rows = ReadRows(result.directory);
     WriteCampaignTables(result.directory, c.text, c.name, c.source_path, c.seed, c.FactorKeys(),
-                        ReadRows(result.directory), o.command_line);
+                        rows, o.command_line);
+    for (const nlohmann::json& row : rows) {
+      const nlohmann::json kept = row.value("station_keeping", nlohmann::json::object());
+      const double error = kept.is_object() ? kept.value("heading_error_max_deg", 0.0) : 0.0;
+      result.heading_lost += error > kHeadingLostDeg ? 1 : 0;
+    }
     if (!first_error.empty()) throw Error(first_error);
     const int signal = stop_signal.load();
     if (signal > 0) {

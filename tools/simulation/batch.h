@@ -124,8 +124,14 @@ struct BatchResult {
   std::int64_t skipped = 0;  ///< had a row already (resumed)
   std::int64_t done = 0;     ///< finished in this batch
   std::int64_t failed = 0;   ///< rows with a status other than ok, this batch
+  /// Rows (all of the campaign's) whose hull left its setpoint heading by more than
+  /// kHeadingLostDeg at some time: it met other seas than the campaign set.
+  std::int64_t heading_lost = 0;
   std::filesystem::path directory;
 };
+
+/// [deg] The heading error past which `moorsim batch` warns that runs lost their heading.
+inline constexpr double kHeadingLostDeg = 10.0;
 
 /// Threads when none are asked for: the machine's cores (omp_get_num_procs).
 int DefaultThreads();

@@ -14,6 +14,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include "core/angles.h"
 #include "core/error.h"
 #include "core/sample_clock.h"
 #include "core/version.h"
@@ -254,6 +255,11 @@ void AddDetection(const scenarios::Scenario& scenario, const Simulation& sim,
   summary["detection"] = {{"setup_seconds", timing.setup_seconds},
                           {"update_seconds", timing.update_seconds},
                           {"samples", timing.samples}};
+  const StationKeeping& kept = sim.station_keeping();
+  summary["station_keeping"] = {{"controller_updates", kept.updates},
+                                {"thrust_saturated_share", kept.SaturatedShare()},
+                                {"heading_error_max_deg", kept.heading_error_max / kDegree},
+                                {"heading_error_final_deg", kept.heading_error_last / kDegree}};
 }
 
 std::string SystemError(int error) { return std::strerror(error); }

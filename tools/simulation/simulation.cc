@@ -674,6 +674,12 @@ void Simulation::DiscreteEvents() {
     tau_command_ = parts_->controller->Update(input);
     const vessel::Allocation a = parts_->allocator->Allocate(tau_command_);
     parts_->thrust_issued = a.achieved;
+    const double heading_error = std::abs(WrapAngle(x_[5] - parts_->controller->setpoint()(2)));
+    station_keeping_.updates += 1;
+    station_keeping_.saturated += a.saturated ? 1 : 0;
+    station_keeping_.heading_error_max =
+        std::max(station_keeping_.heading_error_max, heading_error);
+    station_keeping_.heading_error_last = heading_error;
     parts_->thruster_dynamics->Step(a.thrust, dt);
     parts_->directions = a.direction;
     plant_->SetThrustCommand(parts_->thruster_dynamics->command(), parts_->directions);

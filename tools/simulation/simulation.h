@@ -109,6 +109,22 @@ struct DetectionTiming {
   long samples = 0;             ///< observations processed
 };
 
+/// How well the station keeping held over the controller updates so far: how many of them
+/// the thrust allocation had to scale down (a thruster at its rating: the controller asked
+/// for more than the thrusters give), and the low-frequency heading's largest and latest
+/// distance from the controller's setpoint heading [rad]. A hull that has lost its heading
+/// meets other seas than its campaign meant to test (a turret at the reference point
+/// leaves the heading to the thrusters alone).
+struct StationKeeping {
+  std::int64_t updates = 0;
+  std::int64_t saturated = 0;
+  double heading_error_max = 0.0;
+  double heading_error_last = 0.0;
+  double SaturatedShare() const {
+    return updates > 0 ? static_cast<double>(saturated) / static_cast<double>(updates) : 0.0;
+  }
+};
+
 /// Builds every detector of the scenario once to check its type and parameters; a bad one
 /// is an InputError placed at its entry in the file. `moorsim validate` and `run` call it.
 void CheckDetectors(const scenarios::Scenario& scenario);
@@ -181,6 +197,7 @@ class Simulation {
   /// Time in detection; included in integrator_seconds() for the updates (they run at the
   /// sensor events inside AdvanceTo), not for the setup (in the constructor).
   const DetectionTiming& detection_timing() const { return detection_; }
+  const StationKeeping& station_keeping() const { return station_keeping_; }
 
  private:
   struct Parts;
@@ -206,6 +223,7 @@ class Simulation {
   Vec6 initial_pose_ = Vec6::Zero();
   double integrator_seconds_ = 0.0;
   DetectionTiming detection_;
+  StationKeeping station_keeping_;
 
   // Discrete schedule: integer sample indices, instants k / rate (core/sample_clock.h).
   SampleClock controller_clock_;
