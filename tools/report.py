@@ -6,8 +6,9 @@ and writes report.html, the PNG figures it shows and report.json (every number s
 
 Per detector: detection and isolation rates (overall, per failed line, per factor level),
 the confusion matrix, detection delays, false alarms per hour, ROC curves over the
-detector's threshold grid, the run counts by status and the worst runs with the command
-that repeats each. All intervals are 95 %: Wilson (1927) score intervals for proportions,
+detector's threshold grid, the run counts by status, the station keeping per block (runs
+that left their setpoint heading, flagged) and the worst runs with the command that repeats
+each. All intervals are 95 %: Wilson (1927) score intervals for proportions,
 exact (Garwood 1936) intervals for Poisson rates, whose chi-square quantiles come from
 bisection on the regularised incomplete gamma function (series and continued fraction,
 Press et al. 2007; stdlib only, quantiles accurate to about 1e-12 relative).
@@ -55,6 +56,11 @@ DETECTOR_COLUMNS = {"alarm_time": float, "isolated_line": int, "delay": float,
 # report leaves their section out).
 VERDICT_COLUMNS = {"isolation_delay": float, "final_line": int,
                    "alarm_seconds_before_failure": float}
+# How well each run's station keeping held (campaigns from 2026-11-25 on; older ones lack
+# them and the report leaves the section out). A hull that left its setpoint heading met the
+# waves from another side than the campaign set.
+STATION_COLUMNS = {"heading_error_max_deg": float, "thrust_saturated_share": float}
+HEADING_LOST_DEG = 10.0  # as `moorsim batch` warns
 
 
 class CampaignError(Exception):
@@ -139,6 +145,9 @@ def read_campaign(path: Path) -> Campaign:
         rows = h5["runs/run"].shape[0] if "run" in h5["runs"] else None
         runs = {name: read_column(h5, f"runs/{name}", kind, rows)
                 for name, kind in RUN_COLUMNS.items()}
+        if all(f"runs/{name}" in h5 for name in STATION_COLUMNS):
+            runs.update({name: read_column(h5, f"runs/{name}", kind, rows)
+                         for name, kind in STATION_COLUMNS.items()})
         factors = [f for f in attrs.get("factors", "").split("\n") if f]
         for factor in factors:
             dataset = h5["runs"].get(factor)
@@ -455,6 +464,25 @@ def worst_runs(c: Campaign) -> list:
     return entries
 
 
+def station_keeping(c: Campaign) -> dict | None:
+    """Per block, over its runs with status ok: how many left their setpoint heading by more
+    than HEADING_LOST_DEG, and the medians of the largest heading error and of the share of
+    controller updates with the thrust saturated. None for a campaign without the columns."""
+    r = c.runs
+    if not all(name in r for name in STATION_COLUMNS):
+        return None
+    out = {}
+    for b in sorted(set(r["block"])):
+        rows = c.ok & (r["block"] == b)
+        error = r["heading_error_max_deg"][rows]
+        share = r["thrust_saturated_share"][rows]
+        out[b] = {"runs": int(rows.sum()),
+                  "heading_lost": int((error > HEADING_LOST_DEG).sum()),
+                  "heading_error_max_deg_median": float(np.median(error)) if error.size else None,
+                  "thrust_saturated_share_median": float(np.median(share)) if share.size else None}
+    return out
+
+
 def analyse(c: Campaign) -> dict:
     r = c.runs
     statuses = {s: int((r["status"] == s).sum()) for s in sorted(set(r["status"]))}
@@ -473,7 +501,7 @@ def analyse(c: Campaign) -> dict:
             "confidence": CONFIDENCE},
         "runs": {"total": c.size, "status": statuses, "by_block": blocks,
                  "failure_runs_ok": int(c.fail_ok.sum()), "intact_runs_ok": int(c.intact_ok.sum()),
-                 "not_ok": not_ok},
+                 "not_ok": not_ok, "station_keeping": station_keeping(c)},
         "detectors": {d.label: analyse_detector(c, d) for d in c.detectors},
         "worst_runs": worst_runs(c),
     }
@@ -754,6 +782,24 @@ def runs_section(p: Page) -> list:
            f"</p>", table(["block"] + statuses,
                           [[b] + [v[s] for s in statuses] for b, v in runs["by_block"].items()]
                           + [["all"] + [runs["status"][s] for s in statuses]])]
+    kept = runs.get("station_keeping")
+    if kept:
+        lost = sum(v["heading_lost"] for v in kept.values())
+        warning = (f" <b>{lost} runs left their setpoint heading by more than "
+                   f"{HEADING_LOST_DEG:g} deg: they met the waves from another side than their "
+                   f"factors say.</b>" if lost else "")
+        out += [f"<h3>Station keeping</h3><p class='note'>Runs with status ok, by block: how "
+                f"many left their setpoint heading by more than {HEADING_LOST_DEG:g} deg, the "
+                f"median of the largest heading error, and the median share of controller "
+                f"updates whose thrust the allocation scaled down.{warning}</p>",
+                table(["block", "runs", "heading lost", "heading error max, median [deg]",
+                       "thrust saturated, median share"],
+                      [[b, v["runs"], v["heading_lost"],
+                        "" if v["heading_error_max_deg_median"] is None
+                        else f"{v['heading_error_max_deg_median']:.1f}",
+                        "" if v["thrust_saturated_share_median"] is None
+                        else f"{v['thrust_saturated_share_median']:.2f}"]
+                       for b, v in kept.items()])]
     if runs["not_ok"]:
         out += ["<h3>Runs that did not finish</h3>",
                 table(["run", "block", "seed", "status", "error", "command"],

@@ -15,6 +15,7 @@ Exit 0 when everything matches, else 1 after printing each mismatch.
 import json
 import math
 import re
+import statistics
 import subprocess
 import sys
 from pathlib import Path
@@ -71,6 +72,9 @@ def check(directory: Path) -> list[str]:
         columns = {label: {key: list(runs[f"{label}.{key}"][()]) for key in
                            ("alarm_time", "isolated_line", "delay", "false_alarms")}
                    for label in labels}
+        station = ({key: [float(v) for v in runs[key][()]] for key in
+                    ("heading_error_max_deg", "thrust_saturated_share")}
+                   if "heading_error_max_deg" in runs else None)
         verdict_keys = ("isolation_delay", "final_line", "alarm_seconds_before_failure")
         for label in labels:
             if all(f"{label}.{key}" in runs for key in verdict_keys):
@@ -81,6 +85,22 @@ def check(directory: Path) -> list[str]:
     for s in status:
         counts[s] = counts.get(s, 0) + 1
     expect("status counts", report["runs"]["status"], counts)
+    # Station keeping per block, over the ok runs (older tables have no such columns).
+    if station is None:
+        expect("station keeping", report["runs"].get("station_keeping"), None)
+    else:
+        for b in sorted(set(block)):
+            rows = [i for i in range(len(status)) if block[i] == b and status[i] == "ok"]
+            got = report["runs"]["station_keeping"].get(b, {})
+            errors_ = sorted(station["heading_error_max_deg"][i] for i in rows)
+            shares = sorted(station["thrust_saturated_share"][i] for i in rows)
+            expect(f"{b} station runs", got.get("runs"), len(rows))
+            expect(f"{b} heading lost", got.get("heading_lost"), sum(e > 10.0 for e in errors_))
+            if rows:
+                expect(f"{b} heading error median", got.get("heading_error_max_deg_median"),
+                       statistics.median(errors_), 1e-12)
+                expect(f"{b} saturated median", got.get("thrust_saturated_share_median"),
+                       statistics.median(shares), 1e-12)
     failure_runs = [i for i in range(len(status)) if status[i] == "ok" and line[i] > 0
                     and math.isfinite(failure_time[i])]
     intact_runs = [i for i in range(len(status)) if status[i] == "ok" and line[i] == 0]
