@@ -124,6 +124,24 @@ TEST_F(RunTest, StationKeepingFollowsTheHeadingAndTheThrustersLimits) {
       EXPECT_LT(kept.heading_error_max, 1.0 * kDegree);  // 40 s adrift from the setpoint
     }
   }
+  {
+    // Without control the beam wind turns the free-turret hull; the largest error counts
+    // up to the failure only (what a parted line does to the heading is the failure's).
+    const scenarios::Scenario scenario = scenarios::LoadScenario(
+        kThesis, {"controller.type=none", "environment.wind={speed: 20, direction_from_deg: -45}",
+                  "failure.line=2", "failure.time=30.5", "simulation.duration=60"});
+    Simulation sim(scenario, 1);
+    const double target = scenario.controller.setpoint->z();
+    double before = 0.0, after = 0.0;
+    for (int k = 0; k <= 60; ++k) {
+      sim.AdvanceTo(k);
+      const double e =
+          std::abs(std::remainder(sim.Record().pose_low_frequency(5) - target, 2.0 * kPi));
+      (k <= 30 ? before : after) = std::max(k <= 30 ? before : after, e);
+    }
+    EXPECT_GT(after, before + 0.1 * kDegree);  // the test tells the two apart
+    EXPECT_NEAR(sim.station_keeping().heading_error_max, before, 1e-12);
+  }
   // The summary and a campaign's table carry the same numbers, in degrees.
   const fs::path dir = FreshDirectory("run_station_keeping");
   ASSERT_EQ(RunScenario(Request(dir, {"controller.setpoint={x: 300, y: 0, heading_deg: -105}",

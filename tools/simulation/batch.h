@@ -125,7 +125,8 @@ struct BatchResult {
   std::int64_t done = 0;     ///< finished in this batch
   std::int64_t failed = 0;   ///< rows with a status other than ok, this batch
   /// Rows (all of the campaign's) whose hull left its setpoint heading by more than
-  /// kHeadingLostDeg at some time: it met other seas than the campaign set.
+  /// kHeadingLostDeg before the failure (in the whole run without one): it met other seas
+  /// than the campaign set.
   std::int64_t heading_lost = 0;
   std::filesystem::path directory;
 };

@@ -677,8 +677,12 @@ void Simulation::DiscreteEvents() {
     const double heading_error = std::abs(WrapAngle(x_[5] - parts_->controller->setpoint()(2)));
     station_keeping_.updates += 1;
     station_keeping_.saturated += a.saturated ? 1 : 0;
-    station_keeping_.heading_error_max =
-        std::max(station_keeping_.heading_error_max, heading_error);
+    // The largest error up to the failure: what a parted line does to the heading afterwards
+    // is the failure's doing, not the station keeping's.
+    if (scenario_.failure.line == 0 || failure_pending_) {
+      station_keeping_.heading_error_max =
+          std::max(station_keeping_.heading_error_max, heading_error);
+    }
     station_keeping_.heading_error_last = heading_error;
     parts_->thruster_dynamics->Step(a.thrust, dt);
     parts_->directions = a.direction;

@@ -111,8 +111,9 @@ struct DetectionTiming {
 
 /// How well the station keeping held over the controller updates so far: how many of them
 /// the thrust allocation had to scale down (a thruster at its rating: the controller asked
-/// for more than the thrusters give), and the low-frequency heading's largest and latest
-/// distance from the controller's setpoint heading [rad]. A hull that has lost its heading
+/// for more than the thrusters give), and the low-frequency heading's largest distance from
+/// the controller's setpoint heading [rad] up to the failure (the whole run without one)
+/// and its latest. A hull that has lost its heading
 /// meets other seas than its campaign meant to test (a turret at the reference point
 /// leaves the heading to the thrusters alone).
 struct StationKeeping {
