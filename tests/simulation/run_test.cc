@@ -91,6 +91,11 @@ TEST_F(RunTest, EveryControllerRateReachesEveryInstant) {
   }
 }
 
+// The low-frequency heading's distance from `target` [rad], recomputed from the record.
+double HeadingError(Simulation& sim, double target) {
+  return std::abs(std::remainder(sim.Record().pose_low_frequency(5) - target, 2.0 * kPi));
+}
+
 TEST_F(RunTest, StationKeepingFollowsTheHeadingAndTheThrustersLimits) {
   // The heading error is the low-frequency heading's distance from the setpoint at each
   // controller update, recomputed here from the recorded pose; the saturated share counts
@@ -108,7 +113,7 @@ TEST_F(RunTest, StationKeepingFollowsTheHeadingAndTheThrustersLimits) {
     double largest = 0.0, last = 0.0;
     for (int k = 0; k <= 40; ++k) {
       sim.AdvanceTo(k);
-      last = std::abs(std::remainder(sim.Record().pose_low_frequency(5) - target, 2.0 * kPi));
+      last = HeadingError(sim, target);
       largest = std::max(largest, last);
     }
     const StationKeeping& kept = sim.station_keeping();
@@ -135,9 +140,8 @@ TEST_F(RunTest, StationKeepingFollowsTheHeadingAndTheThrustersLimits) {
     double before = 0.0, after = 0.0;
     for (int k = 0; k <= 60; ++k) {
       sim.AdvanceTo(k);
-      const double e =
-          std::abs(std::remainder(sim.Record().pose_low_frequency(5) - target, 2.0 * kPi));
-      (k <= 30 ? before : after) = std::max(k <= 30 ? before : after, e);
+      double& largest = k <= 30 ? before : after;
+      largest = std::max(largest, HeadingError(sim, target));
     }
     EXPECT_GT(after, before + 0.1 * kDegree);  // the test tells the two apart
     EXPECT_NEAR(sim.station_keeping().heading_error_max, before, 1e-12);

@@ -172,6 +172,12 @@ struct Column {
   std::function<nlohmann::json(const nlohmann::json&)> get;
 };
 
+// A row's station_keeping entry `key`, or null (a row of an older campaign has none).
+nlohmann::json StationKeepingValue(const nlohmann::json& row, const char* key) {
+  const nlohmann::json kept = row.value("station_keeping", nlohmann::json::object());
+  return kept.is_object() ? kept.value(key, nlohmann::json()) : nlohmann::json();
+}
+
 std::vector<Column> TableColumns(const std::vector<std::string>& factor_keys,
                                  const std::vector<std::string>& detectors) {
   using K = Column::Kind;
@@ -202,14 +208,10 @@ std::vector<Column> TableColumns(const std::vector<std::string>& factor_keys,
   c.push_back({"simulated_time", K::kFloat, field("simulated_time")});
   c.push_back({"wall_time", K::kFloat, field("wall_time")});
   // How well the heading and the thrust held (a row of an older campaign has none: NaN).
-  const auto kept = [](const char* key) {
-    return [key](const nlohmann::json& row) {
-      const nlohmann::json& k = row.value("station_keeping", nlohmann::json::object());
-      return k.is_object() ? k.value(key, nlohmann::json()) : nlohmann::json();
-    };
-  };
-  c.push_back({"thrust_saturated_share", K::kFloat, kept("thrust_saturated_share")});
-  c.push_back({"heading_error_max_deg", K::kFloat, kept("heading_error_max_deg")});
+  for (const char* key : {"thrust_saturated_share", "heading_error_max_deg"}) {
+    c.push_back({key, K::kFloat,
+                 [key](const nlohmann::json& row) { return StationKeepingValue(row, key); }});
+  }
   for (const std::string& d : detectors) {
     const auto of = [d](const char* key, nlohmann::json absent) {
       return [d, key, absent](const nlohmann::json& row) {
@@ -857,9 +859,8 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
     WriteCampaignTables(result.directory, c.text, c.name, c.source_path, c.seed, c.FactorKeys(),
                         rows, o.command_line);
     for (const nlohmann::json& row : rows) {
-      const nlohmann::json kept = row.value("station_keeping", nlohmann::json::object());
-      const double error = kept.is_object() ? kept.value("heading_error_max_deg", 0.0) : 0.0;
-      result.heading_lost += error > kHeadingLostDeg ? 1 : 0;
+      const nlohmann::json error = StationKeepingValue(row, "heading_error_max_deg");
+      result.heading_lost += error.is_number() && error.get<double>() > kHeadingLostDeg ? 1 : 0;
     }
     if (!first_error.empty()) throw Error(first_error);
     const int signal = stop_signal.load();

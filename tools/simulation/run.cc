@@ -255,6 +255,10 @@ void AddDetection(const scenarios::Scenario& scenario, const Simulation& sim,
   summary["detection"] = {{"setup_seconds", timing.setup_seconds},
                           {"update_seconds", timing.update_seconds},
                           {"samples", timing.samples}};
+}
+
+/// How well the station keeping held (Simulation::station_keeping), in degrees.
+void AddStationKeeping(const Simulation& sim, nlohmann::json& summary) {
   const StationKeeping& kept = sim.station_keeping();
   summary["station_keeping"] = {{"controller_updates", kept.updates},
                                 {"thrust_saturated_share", kept.SaturatedShare()},
@@ -493,7 +497,10 @@ RunResult RunScenario(const RunRequest& request) noexcept {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.simulated_time = sim ? sim->time() : 0.0;
   try {
-    if (sim) AddDetection(scenario, *sim, summary);
+    if (sim) {
+      AddDetection(scenario, *sim, summary);
+      AddStationKeeping(*sim, summary);
+    }
     summary["status"] = StatusName(result.status);
     if (!result.message.empty()) summary["error"] = result.message;
     if (result.status == RunStatus::kInterrupted) summary["signal"] = result.signal;
