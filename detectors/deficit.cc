@@ -262,7 +262,10 @@ const Verdict& Deficit::StepSlow(const Evidence& evidence) {
     const int capacity = static_cast<int>(delay_.size());
     delay_[static_cast<std::size_t>((delay_oldest_ + delay_count_) % capacity)] =
         Pending{mean, compensated, energy, dt};
-    if (++delay_count_ > options_.learn_delay) {
+    // During the warm-up (with warmup_learning) nothing waits: no alarm can be raised
+    // yet, so there is nothing to protect the baseline from.
+    const bool warming_up = options_.warmup_learning && t - first_time_ < options_.warmup;
+    if (++delay_count_ > options_.learn_delay || warming_up) {
       Learn(delay_[static_cast<std::size_t>(delay_oldest_)]);
       delay_oldest_ = (delay_oldest_ + 1) % capacity;
       --delay_count_;

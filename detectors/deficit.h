@@ -135,6 +135,9 @@ struct DeficitOptions {
   double release = 8.0;
   /// [s] Load evidence before any alarm, >= 0.
   double warmup = 150.0;
+  /// Whether the samples of the warm-up are learned at once instead of `learn_delay`
+  /// samples later (the mooring is taken to be intact while the test cannot alarm).
+  bool warmup_learning = false;
   /// Samples a bias waits before it is learned (dropped if an alarm is raised meanwhile), >= 0.
   int learn_delay = 120;
   /// Whether B follows the wave-motion energy (the drift regression above).

@@ -47,7 +47,7 @@ constexpr ParameterRange kCount{1.0, 10000.0, false, false, true};  // [1, 10000
 constexpr ParameterRange kDelay{0.0, 10000.0, false, false, true};  // [0, 10000]
 constexpr ParameterRange kSwitch{0.0, 1.0, false, false, true};     // 0 or 1
 
-constexpr std::array<DetectorParameter, 16> kDeficitParameters = {{
+constexpr std::array<DetectorParameter, 17> kDeficitParameters = {{
     {"baseline_time", DeficitOptions{}.baseline_time, "", kPositive, "s",
      "time constant of the learned baseline and disturbance of the intact filter's bias"},
     {"confirm", DeficitOptions{}.confirm, "", kNonNegative, "nats",
@@ -83,6 +83,9 @@ constexpr std::array<DetectorParameter, 16> kDeficitParameters = {{
      "revision)"},
     {"warmup", DeficitOptions{}.warmup, "", kNonNegative, "s",
      "load evidence learned before any alarm"},
+    {"warmup_learning", DeficitOptions{}.warmup_learning ? 1.0 : 0.0, "", kSwitch, "",
+     "1: the warm-up's samples are learned at once (the mooring taken as intact); 0: after "
+     "learn_delay like the others"},
     {"window", DeficitOptions{}.window, "", kCount, "samples",
      "samples of the bias averaged before the test"},
 }};
@@ -137,6 +140,7 @@ std::unique_ptr<Detector> MakeDeficit(const DetectorParameters& p) {
   options.small_sample = p.Get("small_sample");
   options.threshold = p.Get("threshold");
   options.warmup = p.Get("warmup");
+  options.warmup_learning = p.Get("warmup_learning") != 0.0;
   options.window = static_cast<int>(p.Get("window"));
   return std::make_unique<Deficit>(options);
 }
