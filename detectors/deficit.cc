@@ -22,6 +22,7 @@ Deficit::Deficit(const DeficitOptions& options) : options_(options) {
   internal::Require(options.baseline_time > 0.0, "deficit", "baseline_time > 0");
   internal::Require(options.floor > 0.0, "deficit", "floor > 0");
   internal::Require(options.threshold > 0.0, "deficit", "threshold > 0");
+  internal::Require(options.revision > 0.0, "deficit", "revision > 0");
   internal::Require(options.release > 0.0, "deficit", "release > 0");
   internal::Require(options.warmup >= 0.0, "deficit", "warmup >= 0");
   internal::Require(options.learn_delay >= 0, "deficit", "learn_delay >= 0");
@@ -314,7 +315,7 @@ const Verdict& Deficit::StepSlow(const Evidence& evidence) {
     for (int j = 1; j < hypotheses_; ++j) {
       double& r = rival_[static_cast<std::size_t>(j)];
       r = j == named_ ? 0.0 : std::max(0.0, r + z_[static_cast<std::size_t>(j)] - named_z);
-      if (r > options_.threshold && (rival == 0 || r > rival_[static_cast<std::size_t>(rival)])) {
+      if (r > options_.revision && (rival == 0 || r > rival_[static_cast<std::size_t>(rival)])) {
         rival = j;
       }
     }

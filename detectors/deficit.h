@@ -76,7 +76,7 @@
 // to confirm instead of raising false alarms. Verdict, a latch rather than a level:
 //  - raise: max_h S_h > threshold (h >= 1); the alarm names that h;
 //  - revise: while the alarm names k, R_j <- max(0, R_j + (z_j - z_k) / m) for every other
-//    j; R_j > threshold (j likelier than k by that many nats) names j (a line that parts
+//    j; R_j > revision (j likelier than k by that many nats) names j (a line that parts
 //    under a standing false alarm is named; the alarm history records the revision);
 //  - end: E <- max(0, E - z_k / m) > release (no change likelier than line k by `release`
 //    nats): the evidence has reversed with stated confidence; the alarm ends, the sums
@@ -135,9 +135,11 @@ struct DeficitOptions {
   /// [N] Least standard deviation of the disturbance in either direction, > 0: keeps
   /// C from collapsing in a flat calm onto the filter's own noise.
   double floor = 1e5;
-  /// [nats] Cumulative evidence for a line over no change that raises the alarm (and for
-  /// another line over the named one that revises it), > 0.
+  /// [nats] Cumulative evidence for a line over no change that raises the alarm, > 0.
   double threshold = 12.0;
+  /// [nats] Cumulative evidence for another line over the named one that revises the
+  /// alarm, > 0.
+  double revision = 12.0;
   /// [nats] Cumulative evidence for no change over the named line that ends an alarm, > 0.
   double release = 8.0;
   /// [s] Load evidence before any alarm, >= 0.

@@ -47,7 +47,7 @@ constexpr ParameterRange kCount{1.0, 10000.0, false, false, true};  // [1, 10000
 constexpr ParameterRange kDelay{0.0, 10000.0, false, false, true};  // [0, 10000]
 constexpr ParameterRange kSwitch{0.0, 1.0, false, false, true};     // 0 or 1
 
-constexpr std::array<DetectorParameter, 17> kDeficitParameters = {{
+constexpr std::array<DetectorParameter, 18> kDeficitParameters = {{
     {"baseline_time", DeficitOptions{}.baseline_time, "", kPositive, "s",
      "time constant of the learned baseline and disturbance of the intact filter's bias"},
     {"confirm", DeficitOptions{}.confirm, "", kNonNegative, "nats",
@@ -76,11 +76,12 @@ constexpr std::array<DetectorParameter, 17> kDeficitParameters = {{
      "learned disturbance; 0: they are dropped"},
     {"release", DeficitOptions{}.release, "", kPositive, "nats",
      "cumulative evidence for no change over the named line that ends the alarm"},
+    {"revision", DeficitOptions{}.revision, "", kPositive, "nats",
+     "cumulative evidence for another line over the named one that revises the alarm"},
     {"small_sample", DeficitOptions{}.small_sample, "", kNonNegative, "",
      "c: the learned disturbance is used as C (1 + c / n), n the independent values learned"},
     {"threshold", DeficitOptions{}.threshold, "", kPositive, "nats",
-     "cumulative evidence for a line's missing load over no change (over the named line: "
-     "revision)"},
+     "cumulative evidence for a line's missing load over no change that raises the alarm"},
     {"warmup", DeficitOptions{}.warmup, "", kNonNegative, "s",
      "load evidence learned before any alarm"},
     {"warmup_learning", DeficitOptions{}.warmup_learning ? 1.0 : 0.0, "", kSwitch, "",
@@ -137,6 +138,7 @@ std::unique_ptr<Detector> MakeDeficit(const DetectorParameters& p) {
   options.min_fraction = p.Get("min_fraction");
   options.relearn = p.Get("relearn") != 0.0;
   options.release = p.Get("release");
+  options.revision = p.Get("revision");
   options.small_sample = p.Get("small_sample");
   options.threshold = p.Get("threshold");
   options.warmup = p.Get("warmup");
