@@ -195,6 +195,43 @@ TEST(Deficit, APassingGroupEndsItsAlarmAndALineThatPartsUnderItIsNamed) {
   }
 }
 
+TEST(Deficit, TheRevisionHasItsOwnThreshold) {
+  // The group and the break under it of the test above, the onset at 20 nats: the revision
+  // to line 2 comes when R_2 passes `revision`, sooner at 8 nats than at 20, and never at
+  // 1e9; the onset is the same in all three. One stage: with two, the fast test's revision
+  // (its own `revision`) revises this test's alarm too.
+  const Vec3 group = -LineLoad(6) * (5e6 / kLineLoad);
+  std::vector<double> onset, revised;
+  for (const double revision : {20.0, 8.0, 1e9}) {
+    SCOPED_TRACE("revision " + std::to_string(revision));
+    DeficitOptions options;
+    options.confirm = 0.0;
+    options.threshold = 20.0;
+    options.revision = revision;
+    Deficit deficit(options);
+    BiasStream stream(11, 2e5, 60.0);
+    const AlarmHistory history = RunDetector(deficit, stream, 1500, [&](int t) {
+      if (t == 530) stream.Part(2);
+      return t >= 500 && t < 560 ? group : Vec3::Zero();
+    });
+    ASSERT_GE(history.events().size(), 1u);
+    EXPECT_EQ(history.events()[0].hypothesis, 6);
+    onset.push_back(history.events()[0].time);
+    if (revision > 1e8) {
+      EXPECT_EQ(history.events().size(), 1u);  // line 6 named to the end
+      EXPECT_EQ(history.hypothesis(), 6);
+    } else {
+      ASSERT_EQ(history.events().size(), 2u);
+      EXPECT_EQ(history.events()[1].kind, AlarmEvent::Kind::kRevision);
+      EXPECT_EQ(history.events()[1].hypothesis, 2);
+      revised.push_back(history.events()[1].time);
+    }
+  }
+  EXPECT_EQ(onset[0], onset[1]);
+  EXPECT_EQ(onset[0], onset[2]);
+  EXPECT_LT(revised[1], revised[0]);
+}
+
 TEST(Deficit, AFalseAlarmsSamplesAreLearnedOnceTheEvidenceReverses) {
   // The 5 MN group of the test above raises an alarm that ends once it has passed. With
   // `relearn` the samples held while the alarm stood (and those waiting at its onset) are
