@@ -136,7 +136,10 @@ struct DeficitOptions {
   /// C from collapsing in a flat calm onto the filter's own noise.
   double floor = 1e5;
   /// [nats] Cumulative evidence for a line over no change that raises the alarm, > 0.
-  double threshold = 12.0;
+  /// 20 rather than 12 took the false alarms at Hs 6 m from 10 to 4 in 120 training hours
+  /// at no cost elsewhere, once the revision had its own threshold (sixteenth round,
+  /// benchmarks/README.md).
+  double threshold = 20.0;
   /// [nats] Cumulative evidence for another line over the named one that revises the
   /// alarm, > 0.
   double revision = 12.0;
