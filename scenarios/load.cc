@@ -702,19 +702,31 @@ void CheckLines(const Checker& check, const MooringSpec& mooring) {
   }
 }
 
-// The reach and slack rules of CheckLines again, with the vessel where `run` starts it.
+// The reach and slack rules of CheckLines again, with the vessel where `run` starts it and
+// the fairleads where its turret starts them: a turret given its own initial heading holds
+// them at that heading, turned about the turret centre from where the hull's would put
+// them (the plant's OnTurret at the angle initial heading - hull heading).
 void CheckLinesAtInitialPose(const Checker& check, const Scenario& scenario) {
   if (!scenario.vessel) return;
   const Vec3& pose = scenario.vessel->initial_pose;
-  if (pose == Vec3::Zero()) return;  // the origin: CheckLines has seen it
+  const TurretSpec& turret = scenario.vessel->turret;
+  const bool turned = turret.initial_heading.has_value() && turret.bearing != "locked";
+  const double alpha = turned ? *turret.initial_heading - pose.z() : 0.0;
+  if (pose == Vec3::Zero() && alpha == 0.0) return;  // the origin: CheckLines has seen it
+  const Vec3 centre(turret.x, turret.y, 0.0);
+  std::string where = "at x " + WithUnit(pose.x(), "m") + ", y " + WithUnit(pose.y(), "m") +
+                      ", heading " + Significant(pose.z() * 180.0 / std::numbers::pi, 10) + " deg";
+  if (turned) {
+    where += ", turret heading " +
+             Significant(*turret.initial_heading * 180.0 / std::numbers::pi, 10) + " deg";
+  }
   const std::vector<LineSpec>& lines = scenario.mooring.lines;
   for (std::size_t i = 0; i < lines.size(); ++i) {
-    const Vec3 fairlead = FairleadAt(lines[i].fairlead_body, pose.x(), pose.y(), pose.z());
+    const Vec3 on_turret = centre + FairleadAt(lines[i].fairlead_body - centre, 0.0, 0.0, alpha);
+    const Vec3 fairlead = FairleadAt(on_turret, pose.x(), pose.y(), pose.z());
     if (const std::string problem = LineGeometryProblem(lines[i], fairlead); !problem.empty()) {
       check.Fail("vessel.initial_pose",
-                 "at x " + WithUnit(pose.x(), "m") + ", y " + WithUnit(pose.y(), "m") +
-                     ", heading " + Significant(pose.z() * 180.0 / std::numbers::pi, 10) +
-                     " deg, " + LinePath(lines[i], i) + ".length " + problem);
+                 where + ", " + LinePath(lines[i], i) + ".length " + problem);
     }
   }
 }

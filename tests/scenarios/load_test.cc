@@ -431,6 +431,32 @@ TEST(ScenarioText, BoundsThemselvesAreAccepted) {
   EXPECT_EQ(ErrorOf(text), "(no error)");
 }
 
+TEST(ScenarioText, LineRulesAtTheInitialPoseTurnTheFairleadsWithTheTurret) {
+  // The vessel 1500 m south, heading 10 deg: line 1 cannot reach (bad_input_cases.h,
+  // LineCannotReachAtTheInitialPose: 3569.8 m). A turret that starts at 190 deg holds its
+  // fairleads half a turn from where the hull would put them: line 1's, 20 m from the turret
+  // centre at 10 deg, is then at 190 deg, 3607.6 m from its anchor at (1950, 0, 1000) m
+  // (by hand: the fairlead at (-1500 - 19.70, 2 - 3.47, 12) m). At 10 deg the turret
+  // changes nothing.
+  const std::string south = Edit(kBase, "initial_pose:", "x: 2,", "x: -1500,");
+  const std::string turned =
+      Edit(south, "turret:", "bearing: friction", "bearing: friction, initial_heading_deg: 190");
+  const std::string error = ErrorOf(turned);
+  const std::string head =
+      "test.yaml:" + PositionOf(turned, "initial_pose:", "initial_pose: ^{") +
+      ": vessel.initial_pose: at x -1500 m, y 2 m, heading 10 deg, turret heading 190 deg, "
+      "mooring.lines[1].length 2250 m is shorter than the anchor-fairlead distance ";
+  ASSERT_EQ(error.substr(0, head.size()), head) << error;
+  const double distance = std::stod(error.substr(head.size()));
+  EXPECT_NEAR(distance, 3607.6, 0.05);
+  const std::string same =
+      Edit(south, "turret:", "bearing: friction", "bearing: friction, initial_heading_deg: 10");
+  EXPECT_NE(ErrorOf(same).find("heading 10 deg, turret heading 10 deg, mooring.lines[1].length "
+                               "2250 m is shorter than the anchor-fairlead distance 3569.8 m"),
+            std::string::npos)
+      << ErrorOf(same);
+}
+
 TEST(ScenarioText, LineRulesWithoutAVesselUseTheOrigin) {
   // A lines-only scenario: the reach and slack rules at the origin, no initial pose.
   const std::string minimal = R"(mooring:
