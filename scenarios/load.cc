@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/angles.h"
 #include "core/error.h"
 #include "scenarios/convert.h"
 #include "scenarios/strict_yaml.h"
@@ -710,15 +711,13 @@ void CheckLinesAtInitialPose(const Checker& check, const Scenario& scenario) {
   if (!scenario.vessel) return;
   const Vec3& pose = scenario.vessel->initial_pose;
   const TurretSpec& turret = scenario.vessel->turret;
-  const bool turned = turret.initial_heading.has_value() && turret.bearing != "locked";
-  const double alpha = turned ? *turret.initial_heading - pose.z() : 0.0;
+  const double alpha = scenario.vessel->InitialTurretAngle();
   if (pose == Vec3::Zero() && alpha == 0.0) return;  // the origin: CheckLines has seen it
   const Vec3 centre(turret.x, turret.y, 0.0);
   std::string where = "at x " + WithUnit(pose.x(), "m") + ", y " + WithUnit(pose.y(), "m") +
-                      ", heading " + Significant(pose.z() * 180.0 / std::numbers::pi, 10) + " deg";
-  if (turned) {
-    where += ", turret heading " +
-             Significant(*turret.initial_heading * 180.0 / std::numbers::pi, 10) + " deg";
+                      ", heading " + Significant(pose.z() / kDegree, 10) + " deg";
+  if (turret.bearing != "locked" && turret.initial_heading) {
+    where += ", turret heading " + Significant(*turret.initial_heading / kDegree, 10) + " deg";
   }
   const std::vector<LineSpec>& lines = scenario.mooring.lines;
   for (std::size_t i = 0; i < lines.size(); ++i) {

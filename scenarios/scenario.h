@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/angles.h"
 #include "core/types.h"
 #include "mooring_fem/parameters.h"
 
@@ -152,6 +153,14 @@ struct VesselSpec {
   HullSpec hull;
   WindageSpec windage;
   TurretSpec turret;
+
+  /// The turret's angle to the hull at the start [rad, in (-pi, pi]]: a turret on its
+  /// bearing given its own initial heading starts at that heading, so at it minus the
+  /// hull's; otherwise 0 (the fairleads where the hull puts them).
+  double InitialTurretAngle() const {
+    if (turret.bearing == "locked" || !turret.initial_heading) return 0.0;
+    return WrapAngle(*turret.initial_heading - initial_pose.z());
+  }
 };
 
 struct WavesSpec {

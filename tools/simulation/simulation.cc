@@ -543,10 +543,8 @@ void Simulation::SettleMooredEquilibrium() {
   x_[5] = pose.z();
   // A turret on its bearing starts at its own heading (default: the hull's), its angle to
   // the hull the difference; the fairleads turn with it about the turret centre.
-  const std::optional<double>& turret_heading = scenario_.vessel->turret.initial_heading;
-  double turret_angle = 0.0;
-  if (plant_->turret_turns() && turret_heading) {
-    turret_angle = WrapAngle(*turret_heading - pose.z());
+  const double turret_angle = scenario_.vessel->InitialTurretAngle();
+  if (plant_->turret_turns()) {
     x_[static_cast<std::size_t>(plant_->turret_state())] = turret_angle;
   }
   const int nb = plant_->StateSize();
