@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
 
 #include "core/error.h"
@@ -47,7 +48,7 @@ void Deficit::Reset(int hypotheses) {
   internal::Require(hypotheses >= 1, "deficit", "at least one hypothesis");
   hypotheses_ = hypotheses;
   ring_.assign(static_cast<std::size_t>(options_.window), Vec2::Zero());
-  energies_.assign(static_cast<std::size_t>(options_.window), 0.0);
+  energies_.assign(static_cast<std::size_t>(options_.window), Regressors::Zero());
   previous_bias_.setZero();
   newest_ = -1;
   filled_ = 0;
@@ -56,7 +57,8 @@ void Deficit::Reset(int hypotheses) {
   learned_ = 0.0;
   learned_samples_ = 0;
   baseline_.setZero();
-  energy_mean_ = energy_variance_ = 0.0;
+  energy_mean_.setZero();
+  energy_covariance_.setZero();
   cross_.setZero();
   gain_.setZero();
   disturbance_.setZero();
@@ -178,8 +180,15 @@ void Deficit::Raise(int hypothesis) {
   verdict_.hypothesis = hypothesis;
 }
 
-Deficit::Vec2 Deficit::Predict(double energy) const {
+Deficit::Vec2 Deficit::Predict(const Regressors& energy) const {
   return baseline_ + gain_ * (energy - energy_mean_);
+}
+
+Deficit::Regressors Deficit::WaveRegressors(const Vec3& wave_motion) const {
+  const double x = wave_motion.x();
+  const double y = wave_motion.y();
+  return options_.drift_direction ? Regressors(x * x, y * y, x * y)
+                                  : Regressors(x * x + y * y, 0.0, 0.0);
 }
 
 // Exponentially weighted moments (West's update for the variance and covariance of s and
@@ -192,14 +201,25 @@ void Deficit::Learn(const Pending& sample) {
           ? 1.0
           : std::min(1.0, sample.dt / std::min(learned_ + sample.dt, options_.baseline_time));
   const Vec2 ds = sample.mean - baseline_;
-  const double de = sample.energy - energy_mean_;
+  const Regressors de = sample.energy - energy_mean_;
   baseline_ += alpha * ds;
   energy_mean_ += alpha * de;
-  energy_variance_ = (1.0 - alpha) * (energy_variance_ + alpha * de * de);
-  cross_ = (1.0 - alpha) * (cross_ + alpha * ds * de);
-  // The gain once e has varied measurably (1e-12 m^4: a millimetre of wave motion).
-  gain_ =
-      options_.drift && energy_variance_ > 1e-12 ? Vec2(cross_ / energy_variance_) : Vec2::Zero();
+  energy_covariance_ = (1.0 - alpha) * (energy_covariance_ + alpha * de * de.transpose());
+  cross_ = (1.0 - alpha) * (cross_ + alpha * ds * de.transpose());
+  // The gain once e has varied measurably (1e-12 m^4: a millimetre of wave motion). With
+  // the direction, a ridge of 1e-3 of the regressors' mean variance keeps a regressor that
+  // hardly varies (no sway motion in head seas) from taking a gain from noise.
+  const double variance = energy_covariance_.trace();
+  gain_.setZero();
+  if (options_.drift && variance > 1e-12) {
+    if (options_.drift_direction) {
+      const Eigen::Matrix3d ridged =
+          energy_covariance_ + 1e-3 * variance / 3.0 * Eigen::Matrix3d::Identity();
+      gain_ = ridged.ldlt().solve(cross_.transpose()).transpose();
+    } else {
+      gain_.col(0) = cross_.col(0) / energy_covariance_(0, 0);
+    }
+  }
   const Vec2 e = sample.mean - Predict(sample.energy);
   disturbance_ += alpha * (e * e.transpose() - disturbance_);
   const Vec2 r = sample.raw - Predict(sample.energy);
@@ -234,9 +254,9 @@ const Verdict& Deficit::StepSlow(const Evidence& evidence) {
   newest_ = (newest_ + 1) % options_.window;
   filled_ = std::min(filled_ + 1, options_.window);
   ring_[static_cast<std::size_t>(newest_)] = compensated;
-  energies_[static_cast<std::size_t>(newest_)] = load.wave_motion.head<2>().squaredNorm();
+  energies_[static_cast<std::size_t>(newest_)] = WaveRegressors(load.wave_motion);
   Vec2 mean = Vec2::Zero();
-  double energy = 0.0;
+  Regressors energy = Regressors::Zero();
   for (int i = 0; i < filled_; ++i) {
     mean += ring_[static_cast<std::size_t>(i)];
     energy += energies_[static_cast<std::size_t>(i)];

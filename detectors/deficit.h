@@ -155,6 +155,9 @@ struct DeficitOptions {
   int learn_delay = 120;
   /// Whether B follows the wave-motion energy (the drift regression above).
   bool drift = true;
+  /// Whether the drift regression takes the wave motion's direction too: regressors x^2,
+  /// y^2 and xy of the horizontal wave-frequency motion instead of x^2 + y^2 alone.
+  bool drift_direction = false;
   /// c in C's small-sample inflation 1 + c / n (n: independent values learned), >= 0.
   double small_sample = 0.0;
   /// [s] Lead T of the bias compensation b + T db/dt (0: the bias as it is), >= 0.
@@ -188,10 +191,15 @@ class Deficit final : public Detector {
   const Verdict& Step(const Evidence& evidence);
 
   const DeficitOptions& options() const { return options_; }
+  /// The wave-motion regressors: (x^2 + y^2, 0, 0), or (x^2, y^2, xy) with
+  /// `drift_direction` [m^2].
+  using Regressors = Eigen::Vector3d;
+  using Gain = Eigen::Matrix<double, 2, 3>;
+
   /// The learned mean of s and disturbance covariance C [N, N^2] (horizontal force), and
-  /// the drift gain g [N/m^2].
+  /// the drift gain g [N/m^2], one column per regressor.
   const Eigen::Vector2d& baseline() const { return baseline_; }
-  const Eigen::Vector2d& drift_gain() const { return gain_; }
+  const Gain& drift_gain() const { return gain_; }
   const Eigen::Matrix2d& disturbance() const { return disturbance_; }
   /// m, the samples per independent value of the window mean (>= 1).
   double samples_per_value() const;
@@ -200,15 +208,16 @@ class Deficit final : public Detector {
   using Vec2 = Eigen::Vector2d;
   struct Pending {
     Vec2 mean, raw;
-    double energy = 0.0;
+    Regressors energy = Regressors::Zero();
     double dt = 0.0;
   };
   const Verdict& StepSlow(const Evidence& evidence);
-  void Raise(int hypothesis);         // the alarm names `hypothesis`; revision and end start over
-  void Hold(const Pending& sample);   // keeps a sample that arrives while an alarm stands
-  std::size_t HeldLimit() const;      // the most samples Hold() keeps
-  void EndFalseAlarm();               // learns the held samples, then Restart()
-  Vec2 Predict(double energy) const;  // B(e)
+  void Raise(int hypothesis);        // the alarm names `hypothesis`; revision and end start over
+  void Hold(const Pending& sample);  // keeps a sample that arrives while an alarm stands
+  std::size_t HeldLimit() const;     // the most samples Hold() keeps
+  void EndFalseAlarm();              // learns the held samples, then Restart()
+  Vec2 Predict(const Regressors& energy) const;  // B(e)
+  Regressors WaveRegressors(const Vec3& wave_motion) const;
   double DisturbanceInflation(double samples_per_value) const;
   void Learn(const Pending& sample);
   void Restart();
@@ -217,7 +226,7 @@ class Deficit final : public Detector {
   int hypotheses_ = 0;
   std::vector<Vec2> ring_;  // the last `window` lead-compensated horizontal biases
   Vec2 previous_bias_ = Vec2::Zero();
-  std::vector<double> energies_;  // and wave-motion energies
+  std::vector<Regressors> energies_;  // and wave-motion regressors
   int newest_ = -1;
   int filled_ = 0;
   double first_time_ = 0.0;
@@ -226,10 +235,10 @@ class Deficit final : public Detector {
   double learned_ = 0.0;          // [s] learned since the first learned sample
   long learned_samples_ = 0;      // samples learned
   Vec2 baseline_ = Vec2::Zero();  // mean of s
-  double energy_mean_ = 0.0;
-  double energy_variance_ = 0.0;
-  Vec2 cross_ = Vec2::Zero();  // covariance of s and e
-  Vec2 gain_ = Vec2::Zero();   // g
+  Regressors energy_mean_ = Regressors::Zero();
+  Eigen::Matrix3d energy_covariance_ = Eigen::Matrix3d::Zero();
+  Gain cross_ = Gain::Zero();  // covariance of s and e
+  Gain gain_ = Gain::Zero();   // g
   Eigen::Matrix2d disturbance_ = Eigen::Matrix2d::Zero();
   Eigen::Matrix2d raw_covariance_ = Eigen::Matrix2d::Zero();  // C_r
   double lag_covariance_ = 0.0;  // tr E[r_n r_{n-1}^T], r = raw bias - B

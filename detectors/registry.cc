@@ -47,7 +47,7 @@ constexpr ParameterRange kCount{1.0, 10000.0, false, false, true};  // [1, 10000
 constexpr ParameterRange kDelay{0.0, 10000.0, false, false, true};  // [0, 10000]
 constexpr ParameterRange kSwitch{0.0, 1.0, false, false, true};     // 0 or 1
 
-constexpr std::array<DetectorParameter, 18> kDeficitParameters = {{
+constexpr std::array<DetectorParameter, 19> kDeficitParameters = {{
     {"baseline_time", DeficitOptions{}.baseline_time, "", kPositive, "s",
      "time constant of the learned baseline and disturbance of the intact filter's bias"},
     {"confirm", DeficitOptions{}.confirm, "", kNonNegative, "nats",
@@ -58,6 +58,9 @@ constexpr std::array<DetectorParameter, 18> kDeficitParameters = {{
     {"drift", 1.0, "", kSwitch, "",
      "1: the baseline follows the estimated wave motion's energy (slowly varying drift); 0: "
      "constant"},
+    {"drift_direction", DeficitOptions{}.drift_direction ? 1.0 : 0.0, "", kSwitch, "",
+     "1: the drift regression takes the wave motion's direction (x^2, y^2, xy); 0: its "
+     "energy x^2 + y^2 alone"},
     {"fast_lead", DeficitOptions{}.fast_lead, "", kNonNegative, "s",
      "the fast test's lead (with confirm > 0)"},
     {"fast_window", DeficitOptions{}.fast_window, "", kCount, "samples",
@@ -130,6 +133,7 @@ std::unique_ptr<Detector> MakeDeficit(const DetectorParameters& p) {
   options.confirm = p.Get("confirm");
   options.confirm_time = p.Get("confirm_time");
   options.drift = p.Get("drift") != 0.0;
+  options.drift_direction = p.Get("drift_direction") != 0.0;
   options.fast_lead = p.Get("fast_lead");
   options.fast_window = static_cast<int>(p.Get("fast_window"));
   options.floor = p.Get("floor");

@@ -334,8 +334,8 @@ TEST(Deficit, TheDriftThatTheWaveMotionExplainsLeavesTheDisturbance) {
     });
     (drift ? with_drift : without) = std::sqrt(deficit.disturbance().trace() / 2.0);
     if (drift) {
-      EXPECT_NEAR(deficit.drift_gain().x(), gain.x(), 0.1 * gain.norm());
-      EXPECT_NEAR(deficit.drift_gain().y(), gain.y(), 0.1 * gain.norm());
+      EXPECT_NEAR(deficit.drift_gain()(0, 0), gain.x(), 0.1 * gain.norm());
+      EXPECT_NEAR(deficit.drift_gain()(1, 0), gain.y(), 0.1 * gain.norm());
       EXPECT_EQ(history.OnsetsBefore(2000.0), 0);
       const std::optional<double> named = history.FirstNamed(6, 2000.0);
       ASSERT_TRUE(named.has_value());
