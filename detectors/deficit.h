@@ -29,7 +29,12 @@
 //   B, C     baseline and disturbance covariance. With `drift` on, B(e) = mean of s + g (e -
 //            mean of e), g the regression of s on e (exponentially weighted covariance of s
 //            and e over the variance of e): the part of the drift that the estimated wave
-//            motion explains leaves the disturbance. C is the exponentially weighted
+//            motion explains leaves the disturbance. With `drift_direction`, e is the
+//            window mean of the three products (x^2, y^2, xy) of the horizontal wave motion
+//            and g a 2 x 3 regression (ridged by 1e-3 of e's mean variance): a hull that
+//            yaws off the weather meets the waves at another angle, and its drift turns
+//            with it (the sway drift grows with the relative angle, on the side the waves
+//            come from), which the energy x^2 + y^2 cannot tell. C is the exponentially weighted
 //            covariance of s - B(e). Both with time constant `baseline_time`, bias-corrected
 //            at the start (a growing-window mean until `baseline_time` has been learned),
 //            and floor^2 I added to C. They learn from full windows only and only while no
