@@ -28,6 +28,7 @@ Deficit::Deficit(const DeficitOptions& options) : options_(options) {
   internal::Require(options.warmup >= 0.0, "deficit", "warmup >= 0");
   internal::Require(options.learn_delay >= 0, "deficit", "learn_delay >= 0");
   internal::Require(options.small_sample >= 0.0, "deficit", "small_sample >= 0");
+  internal::Require(options.direction_prior >= 0.0, "deficit", "direction_prior >= 0");
   internal::Require(options.lead >= 0.0, "deficit", "lead >= 0");
   internal::Require(options.min_fraction > 0.0 && options.min_fraction <= 1.0, "deficit",
                     "0 < min_fraction <= 1");
@@ -96,15 +97,18 @@ double Deficit::samples_per_value() const {
   return std::clamp(inflation * raw / mean, 1.0, kMaxSamplesPerValue);
 }
 
-double Deficit::DisturbanceInflation(double samples_per_value) const {
+double Deficit::IndependentValues(double samples_per_value) const {
   // The learned samples, counted up to the baseline time (the weights' memory), per
   // independent value.
   const double dt =
       learned_samples_ > 1 ? learned_ / static_cast<double>(learned_samples_ - 1) : 1.0;
   const double span =
       std::min(static_cast<double>(learned_samples_), options_.baseline_time / std::max(dt, 1e-9));
-  const double values = std::max(span / samples_per_value, 1e-3);
-  return 1.0 + options_.small_sample / values;
+  return std::max(span / samples_per_value, 1e-3);
+}
+
+double Deficit::DisturbanceInflation(double samples_per_value) const {
+  return 1.0 + options_.small_sample / IndependentValues(samples_per_value);
 }
 
 Verdict Deficit::Update(const Evidence& evidence) { return Step(evidence); }
@@ -208,7 +212,9 @@ void Deficit::Learn(const Pending& sample) {
   cross_ = (1.0 - alpha) * (cross_ + alpha * ds * de.transpose());
   // The gain once e has varied measurably (1e-12 m^4: a millimetre of wave motion). With
   // the direction, a ridge of 1e-3 of the regressors' mean variance keeps a regressor that
-  // hardly varies (no sway motion in head seas) from taking a gain from noise.
+  // hardly varies (no sway motion in head seas) from taking a gain from noise, and the
+  // regression is shrunk toward the energy-only gain (g_e, g_e, 0) (the energy x^2 + y^2
+  // is the sum of the first two regressors) with weight n / (n + direction_prior).
   const double variance = energy_covariance_.trace();
   gain_.setZero();
   if (options_.drift && variance > 1e-12) {
@@ -216,6 +222,14 @@ void Deficit::Learn(const Pending& sample) {
       const Eigen::Matrix3d ridged =
           energy_covariance_ + 1e-3 * variance / 3.0 * Eigen::Matrix3d::Identity();
       gain_ = ridged.ldlt().solve(cross_.transpose()).transpose();
+      const Eigen::Vector3d sum(1.0, 1.0, 0.0);
+      const double energy_variance = sum.dot(energy_covariance_ * sum);
+      if (options_.direction_prior > 0.0 && energy_variance > 1e-12) {
+        const Gain prior = (cross_ * sum / energy_variance) * sum.transpose();
+        const double n = IndependentValues(samples_per_value());
+        const double weight = n / (n + options_.direction_prior);
+        gain_ = weight * gain_ + (1.0 - weight) * prior;
+      }
     } else {
       gain_.col(0) = cross_.col(0) / energy_covariance_(0, 0);
     }

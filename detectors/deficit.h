@@ -31,16 +31,20 @@
 //            and e over the variance of e): the part of the drift that the estimated wave
 //            motion explains leaves the disturbance. With `drift_direction`, e is the
 //            window mean of the three products (x^2, y^2, xy) of the horizontal wave motion
-//            and g a 2 x 3 regression (ridged by 1e-3 of e's mean variance): a hull that
-//            yaws off the weather meets the waves at another angle, and its drift turns
-//            with it (the sway drift grows with the relative angle, on the side the waves
-//            come from), which the energy x^2 + y^2 cannot tell. C is the exponentially weighted
-//            covariance of s - B(e). Both with time constant `baseline_time`, bias-corrected
-//            at the start (a growing-window mean until `baseline_time` has been learned),
-//            and floor^2 I added to C. They learn from full windows only and only while no
-//            failure is suspected (`delay` below), and they follow the sea state: rough seas raise
-//            C and with it the evidence needed (an adaptive threshold in the sense of Ye, Reppa,
-//            Godjevac & Negenborn 2021);
+//            and g a 2 x 3 regression: a hull that yaws off the weather meets the waves at
+//            another angle, and its drift turns with it (the sway drift grows with the
+//            relative angle, on the side the waves come from), which the energy x^2 + y^2
+//            cannot tell. Three gains learned from a few minutes of sea fit its groups by
+//            chance, so g is shrunk toward the energy-only regression (g_e, g_e, 0) as
+//            toward a prior worth `direction_prior` independent values (Zellner's g-prior):
+//            g = w g_3 + (1 - w) g_0, w = n / (n + direction_prior), g_3 the three-gain
+//            regression (ridged by 1e-3 of e's mean variance), n below. C is the exponentially
+//            weighted covariance of s - B(e). Both with time constant `baseline_time`,
+//            bias-corrected at the start (a growing-window mean until `baseline_time` has been
+//            learned), and floor^2 I added to C. They learn from full windows only and only while
+//            no failure is suspected (`delay` below), and they follow the sea state: rough seas
+//            raise C and with it the evidence needed (an adaptive threshold in the sense of Ye,
+//            Reppa, Godjevac & Negenborn 2021);
 //   d_h      the shift of the bias that hypothesis h predicts: -line_load[h] (the load of
 //            its failed lines at the pose estimate);
 //   n        the independent values C rests on: the learned samples (at most
@@ -163,6 +167,9 @@ struct DeficitOptions {
   /// Whether the drift regression takes the wave motion's direction too: regressors x^2,
   /// y^2 and xy of the horizontal wave-frequency motion instead of x^2 + y^2 alone.
   bool drift_direction = false;
+  /// The independent values the energy-only regression's prior is worth when
+  /// `drift_direction` learns three gains (see g above), >= 0.
+  double direction_prior = 3.0;
   /// c in C's small-sample inflation 1 + c / n (n: independent values learned), >= 0.
   double small_sample = 0.0;
   /// [s] Lead T of the bias compensation b + T db/dt (0: the bias as it is), >= 0.
@@ -223,6 +230,7 @@ class Deficit final : public Detector {
   void EndFalseAlarm();              // learns the held samples, then Restart()
   Vec2 Predict(const Regressors& energy) const;  // B(e)
   Regressors WaveRegressors(const Vec3& wave_motion) const;
+  double IndependentValues(double samples_per_value) const;  // n
   double DisturbanceInflation(double samples_per_value) const;
   void Learn(const Pending& sample);
   void Restart();

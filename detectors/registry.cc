@@ -47,7 +47,7 @@ constexpr ParameterRange kCount{1.0, 10000.0, false, false, true};  // [1, 10000
 constexpr ParameterRange kDelay{0.0, 10000.0, false, false, true};  // [0, 10000]
 constexpr ParameterRange kSwitch{0.0, 1.0, false, false, true};     // 0 or 1
 
-constexpr std::array<DetectorParameter, 19> kDeficitParameters = {{
+constexpr std::array<DetectorParameter, 20> kDeficitParameters = {{
     {"baseline_time", DeficitOptions{}.baseline_time, "", kPositive, "s",
      "time constant of the learned baseline and disturbance of the intact filter's bias"},
     {"confirm", DeficitOptions{}.confirm, "", kNonNegative, "nats",
@@ -55,6 +55,9 @@ constexpr std::array<DetectorParameter, 19> kDeficitParameters = {{
      "its line reaches this"},
     {"confirm_time", DeficitOptions{}.confirm_time, "", kPositive, "s",
      "how long a fast alarm waits for confirmation before the fast test starts over"},
+    {"direction_prior", DeficitOptions{}.direction_prior, "", kNonNegative, "",
+     "independent values the energy-only drift regression is worth as the prior of "
+     "drift_direction's three gains"},
     {"drift", 1.0, "", kSwitch, "",
      "1: the baseline follows the estimated wave motion's energy (slowly varying drift); 0: "
      "constant"},
@@ -134,6 +137,7 @@ std::unique_ptr<Detector> MakeDeficit(const DetectorParameters& p) {
   options.confirm_time = p.Get("confirm_time");
   options.drift = p.Get("drift") != 0.0;
   options.drift_direction = p.Get("drift_direction") != 0.0;
+  options.direction_prior = p.Get("direction_prior");
   options.fast_lead = p.Get("fast_lead");
   options.fast_window = static_cast<int>(p.Get("fast_window"));
   options.floor = p.Get("floor");

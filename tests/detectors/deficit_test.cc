@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -369,18 +370,27 @@ TEST(Deficit, TheDirectionOfTheWaveMotionExplainsTheSwayDrift) {
   // and a sway drift of 6 MN per m^2 on the cross term xy, which changes sign with the side
   // the waves come from, so that the energy x^2 + y^2 cannot explain it (E0 = 1 m^2,
   // log-normal with 0.7: ~1 MN of slowly varying sway load) on 0.2 MN of other disturbance.
-  // With the direction, the learned gains are within 10 % of the true ones, C is back
-  // within 30 % of the 0.2 MN, and no alarm comes before line 2 parts (east, the sway
-  // drift's axis) and is named within a minute; on the energy alone the sway drift stays in
-  // C (at least twice the standard deviation).
+  // With the direction and no prior, the learned gains are within 10 % of the true ones;
+  // with the default prior (the energy-only gain, worth direction_prior independent values
+  // against the n learned, ~13 here) the sway gain lies between the prior's 0 and the
+  // truth, weighted n / (n + direction_prior) within 10 %. C is back within 30 % of the
+  // 0.2 MN without the prior, within 50 % with it, and either way no alarm comes before line 2
+  // parts (east, the sway drift's axis) and is named within a minute; on the energy alone the sway
+  // drift stays in C (at least twice the standard deviation).
   Deficit::Gain gain = Deficit::Gain::Zero();
   gain(0, 0) = 2e6;
   gain(1, 2) = 6e6;
-  double with_direction = 0.0;
-  double energy_only = 0.0;
-  for (const bool direction : {true, false}) {
+  struct Case {
+    bool direction;
+    double prior;
+    double deviation = 0.0;  // sqrt(tr C / 2) at the end
+  };
+  std::array<Case, 3> cases = {
+      {{true, 0.0}, {true, DeficitOptions{}.direction_prior}, {false, 0.0}}};
+  for (Case& c : cases) {
     DeficitOptions options;
-    options.drift_direction = direction;
+    options.drift_direction = c.direction;
+    options.direction_prior = c.prior;
     Deficit deficit(options);
     BiasStream stream(43, 2e5, 60.0);
     stream.AddDrift(Vec3::Zero(), 1.0);
@@ -389,18 +399,26 @@ TEST(Deficit, TheDirectionOfTheWaveMotionExplainsTheSwayDrift) {
       if (t == 2000) stream.Part(2);
       return Vec3::Zero();
     });
-    (direction ? with_direction : energy_only) = std::sqrt(deficit.disturbance().trace() / 2.0);
-    if (direction) {
+    c.deviation = std::sqrt(deficit.disturbance().trace() / 2.0);
+    if (!c.direction) continue;
+    if (c.prior == 0.0) {
       EXPECT_NEAR(deficit.drift_gain()(0, 0), gain(0, 0), 0.1 * gain.norm());
       EXPECT_NEAR(deficit.drift_gain()(1, 2), gain(1, 2), 0.1 * gain.norm());
-      EXPECT_EQ(history.OnsetsBefore(2000.0), 0);
-      const std::optional<double> named = history.FirstNamed(2, 2000.0);
-      ASSERT_TRUE(named.has_value());
-      EXPECT_LT(*named, 2060.0);
+    } else {
+      // n as the detector counts it: its memory over the samples per independent value.
+      const double n = options.baseline_time / deficit.samples_per_value();
+      const double weight = n / (n + c.prior);
+      EXPECT_NEAR(deficit.drift_gain()(1, 2), weight * gain(1, 2), 0.1 * gain.norm());
+      EXPECT_GT(weight, 0.5);
     }
+    EXPECT_EQ(history.OnsetsBefore(2000.0), 0);
+    const std::optional<double> named = history.FirstNamed(2, 2000.0);
+    ASSERT_TRUE(named.has_value());
+    EXPECT_LT(*named, 2060.0);
+    // The shrunk sway gain leaves a fifth of the sway drift (~0.2 MN) in C.
+    EXPECT_NEAR(c.deviation, 2e5, (c.prior == 0.0 ? 0.3 : 0.5) * 2e5);
   }
-  EXPECT_NEAR(with_direction, 2e5, 0.3 * 2e5);
-  EXPECT_GT(energy_only, 2.0 * with_direction);
+  EXPECT_GT(cases[2].deviation, 2.0 * cases[1].deviation);
 }
 
 TEST(Deficit, FewLearnedValuesInflateTheDisturbance) {
