@@ -6,6 +6,7 @@ and per line, the least detection delay a detector can reach at a given false-al
 
     tools/attainable.py DIR --static STATIC.json [--rate R]... [--share A]... [--lag S]
                         [--skip S] [--target S] [--off-bow DEG] [--json OUT.json]
+    tools/attainable.py DIR --explain [--skip S] [--json OUT.json]
 
 DIR is the campaign's results directory (DIR/rows/*.json, DIR/runs/*/run.h5); STATIC.json is
 `moorsim static SCENARIO --json` for the campaign's mooring (each line's horizontal tension).
@@ -50,6 +51,21 @@ the bias approaches the step like a first-order lag of time constant T, the evid
 gathers by time t is about I (t - 1.5 T), so such a test needs about 1.5 T more. The
 disturbance is not Gaussian either (drift groups are bursts): its tails raise the false
 alarms of a Gaussian-tuned threshold, so real detectors sit above the bound.
+
+How much of the disturbance a drift model could remove (`--explain`): per intact run, the
+share of the variance of the bias's 15 s mean (Earth axes, as the force-deficit test reads
+it) that a linear regression explains out of sample (fitted on the first half of the run
+after `--skip`, judged on the second half) on
+  drift           the true wave drift (Earth axes) through a 15 s first-order lag, as the
+                  filter lags: what a perfect drift model could explain;
+  filter, energy  the 15 s mean of x^2 + y^2 of the filter's wave-frequency motion
+                  (/observer/wave_motion): the deficit test's drift regression;
+  filter, direction  the 15 s means of x^2, y^2 and xy (`drift_direction`);
+  true, energy / direction  the same of the true wave-frequency motion (/vessel/pose_true
+                  less /vessel/pose_low_frequency): what the pose would tell without sensor
+                  noise.
+Printed per block as the median and range over its runs, with the bias's standard deviation
+and what is left of it after the true drift.
 
 A missing directory, file or dataset ends the script with one line naming it and exit 2.
 Needs Debian's python3-numpy and python3-h5py (tools/setup.sh); use /usr/bin/python3.
@@ -291,11 +307,110 @@ def print_table(result, target):
                       f"worst {w['information']:.3f} nats/s, mean delay {w['mean_delay']:.0f} s")
 
 
+EXPLAIN_WINDOW = 15  # [samples] the deficit test's window
+EXPLAIN_LAG = 15.0   # [s] the filter's lag behind the true drift
+
+
+def trailing_mean(x, window):
+    """The mean of the last `window` rows at every row (fewer at the start)."""
+    cumulative = np.cumsum(np.vstack((np.zeros((1, x.shape[1])), x)), axis=0)
+    index = np.arange(1, len(x) + 1)
+    start = np.maximum(index - window, 0)
+    return (cumulative[index] - cumulative[start]) / (index - start)[:, None]
+
+
+def first_order_lag(x, time_constant, dt):
+    y = np.empty_like(x)
+    y[0] = x[0]
+    a = dt / (time_constant + dt)
+    for i in range(1, len(x)):
+        y[i] = y[i - 1] + a * (x[i] - y[i - 1])
+    return y
+
+
+def explained_out_of_sample(target, features):
+    """1 - residual variance / variance of `target` on the second half, the linear regression
+    (with intercept) of target on features fitted on the first half."""
+    n = len(target)
+    half = n // 2
+    design = np.column_stack((np.ones(n), features))
+    coefficients, *_ = np.linalg.lstsq(design[:half], target[:half], rcond=None)
+    residual = target[half:] - design[half:] @ coefficients
+    return 1.0 - residual.var(axis=0).sum() / target[half:].var(axis=0).sum()
+
+
+def wave_regressors(motion):
+    x, y = motion[:, 0], motion[:, 1]
+    return {"energy": (x * x + y * y)[:, None],
+            "direction": np.column_stack((x * x, y * y, x * y))}
+
+
+def explain_run(path, skip):
+    try:
+        file = h5py.File(path, "r")
+    except OSError as error:
+        raise InputError(f"{path}: not an HDF5 file ({error})") from None
+    with file:
+        time = read_dataset(path, file, "/time")
+        keep = time >= skip
+        if keep.sum() < 200:
+            raise InputError(f"{path}: fewer than 200 samples after {skip} s")
+        data = {name: read_dataset(path, file, name) for name in (
+            "/observer/bias", "/observer/wave_motion", "/environment/waves_drift",
+            "/vessel/pose_true", "/vessel/pose_low_frequency")}
+    dt = float(np.median(np.diff(time)))
+    psi = data["/vessel/pose_low_frequency"][:, 5]
+    c, s = np.cos(psi), np.sin(psi)
+    hull = data["/environment/waves_drift"]
+    drift = np.column_stack((c * hull[:, 0] - s * hull[:, 1], s * hull[:, 0] + c * hull[:, 1]))
+    bias = trailing_mean(data["/observer/bias"][:, :2], EXPLAIN_WINDOW)
+    if not np.all(np.isfinite(bias[keep])):
+        raise InputError(f"{path}: /observer/bias has NaN after {skip} s")
+    motions = {"filter": data["/observer/wave_motion"][:, :2],
+               "true": (data["/vessel/pose_true"][:, :2] -
+                        data["/vessel/pose_low_frequency"][:, :2])}
+    shares = {"drift": explained_out_of_sample(
+        bias[keep], trailing_mean(first_order_lag(drift, EXPLAIN_LAG, dt), EXPLAIN_WINDOW)[keep])}
+    for source, motion in motions.items():
+        for kind, features in wave_regressors(motion).items():
+            shares[f"{source}, {kind}"] = explained_out_of_sample(
+                bias[keep], trailing_mean(features, EXPLAIN_WINDOW)[keep])
+    std = math.sqrt(bias[keep].var(axis=0).sum())
+    return {"run": str(path), "bias_std": std,
+            "left_after_drift": std * math.sqrt(max(0.0, 1.0 - shares["drift"])),
+            "explained": shares}
+
+
+def explain(directory, skip):
+    result = []
+    for block, runs in intact_runs_by_block(directory).items():
+        result.append({"block": block, "runs": [explain_run(run, skip) for run in runs]})
+    return result
+
+
+def print_explained(result):
+    print("share of the bias's 15 s mean (Earth axes) explained out of sample by a linear "
+          "regression: median [least, most] over the block's runs")
+    for entry in result:
+        runs = entry["runs"]
+        print(f"\n{entry['block']}: {len(runs)} intact runs; bias std "
+              f"{statistics.median(r['bias_std'] for r in runs) / 1e6:.2f} MN, left after the "
+              f"true drift {statistics.median(r['left_after_drift'] for r in runs) / 1e6:.2f} MN "
+              f"(medians)")
+        for name in runs[0]["explained"]:
+            values = sorted(r["explained"][name] for r in runs)
+            print(f"  {name:18s} {statistics.median(values):5.2f} [{values[0]:.2f}, "
+                  f"{values[-1]:.2f}]")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("directory", type=Path)
-    parser.add_argument("--static", required=True, type=Path,
-                        help="`moorsim static SCENARIO --json` for the campaign's mooring")
+    parser.add_argument("--static", type=Path,
+                        help="`moorsim static SCENARIO --json` for the campaign's mooring "
+                             "(required unless --explain)")
+    parser.add_argument("--explain", action="store_true",
+                        help="how much of the bias a drift model explains (see above)")
     parser.add_argument("--rate", type=float, action="append",
                         help="false alarms per hour (repeatable; default 0.01 and 1)")
     parser.add_argument("--share", type=float, action="append",
@@ -311,6 +426,22 @@ def main(argv=None):
                              "of the bow [deg] (default all)")
     parser.add_argument("--json", type=Path, help="write every number to this file")
     args = parser.parse_args(argv)
+    if args.explain:
+        if not args.skip >= 0.0:
+            print(f"attainable: --skip {args.skip} must be >= 0", file=sys.stderr)
+            return EXIT_BAD_INPUT
+        try:
+            result = explain(args.directory, args.skip)
+        except InputError as error:
+            print(f"attainable: {error}", file=sys.stderr)
+            return EXIT_BAD_INPUT
+        print_explained(result)
+        if args.json:
+            args.json.write_text(json.dumps({"skip": args.skip, "blocks": result}, indent=1))
+        return 0
+    if args.static is None:
+        print("attainable: --static is required (unless --explain)", file=sys.stderr)
+        return EXIT_BAD_INPUT
     rates = args.rate or [0.01, 1.0]
     shares = args.share or [1.0, 0.7]
     for name, values in (("--rate", rates), ("--share", shares)):

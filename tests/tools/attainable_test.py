@@ -2,8 +2,9 @@
 """Checks tools/attainable.py against independent references: the long-run covariance of a
 first-order autoregression (closed form), the Brownian CUSUM's mean delays (Monte-Carlo of
 the discretised sum, with Siegmund's correction for the overshoot), the inverse Gaussian
-median (numpy's Wald sampler), and the whole tool on a synthetic campaign whose disturbance
-is known, with its bad inputs. Usage: attainable_test.py SOURCE_DIR"""
+median (numpy's Wald sampler), the whole tool on a synthetic campaign whose disturbance
+is known, with its bad inputs, and --explain on a run whose drift is known.
+Usage: attainable_test.py SOURCE_DIR"""
 
 import contextlib
 import io
@@ -166,6 +167,63 @@ with tempfile.TemporaryDirectory() as scratch:
     with h5py.File(directory / "runs" / "00000001" / "run.h5", "a") as f:
         del f["observer/bias"]
     run_bad([str(directory), "--static", str(static)], "no dataset /observer/bias")
+
+# 6. --explain on a synthetic run whose drift is known: waves whose direction wanders slowly
+#    (theta, AR(1) with a 200 s memory) under a slowly varying envelope; the drift is a
+#    surge gain on x^2 and a sway gain on xy (which changes sign with the side the waves
+#    come from), the bias that drift through the filter's 15 s lag plus a little white
+#    noise, and the filter's wave motion the true one plus half its size in noise. The true
+#    drift must explain nearly all of it (> 0.9), the direction regressors of the true
+#    motion most (> 0.6, the lag they leave out costs a little), the energy alone less than
+#    half as much, and the noisy motion less than the true one.
+with tempfile.TemporaryDirectory() as scratch:
+    directory = Path(scratch) / "campaign"
+    (directory / "rows").mkdir(parents=True)
+    (directory / "runs" / "00000000").mkdir(parents=True)
+    (directory / "rows" / "00000000.json").write_text(json.dumps(
+        {"block": "turning", "status": "ok", "failure_line": 0}))
+    n = 7200
+    t = np.arange(n, dtype=float)
+
+    def unit_ar1(memory):
+        rho = math.exp(-1.0 / memory)
+        return ar1(rng, n, rho, np.eye(2) * (1.0 - rho * rho))[:, 0]
+
+    theta = 0.3 * unit_ar1(200.0)
+    envelope = np.exp(0.5 * unit_ar1(60.0))
+    carrier = envelope * np.cos(2.0 * math.pi * t / 11.0)
+    motion = np.column_stack((carrier * np.cos(theta), carrier * np.sin(theta)))
+    drift = np.column_stack((-2e6 * motion[:, 0] ** 2, 6e6 * motion[:, 0] * motion[:, 1]))
+    bias = attainable.first_order_lag(drift, attainable.EXPLAIN_LAG, 1.0)
+    bias += 2e4 * rng.standard_normal((n, 2))
+    noisy = motion + 0.5 * motion.std(axis=0).mean() * rng.standard_normal((n, 2))
+    pose = np.zeros((n, 6))
+    with h5py.File(directory / "runs" / "00000000" / "run.h5", "w") as f:
+        f["time"] = t
+        f["vessel/pose_low_frequency"] = pose
+        f["vessel/pose_true"] = np.column_stack((motion, np.zeros((n, 4))))
+        f["environment/waves_drift"] = np.column_stack((drift, np.zeros((n, 4))))
+        f["observer/bias"] = np.column_stack((bias, np.zeros(n)))
+        f["observer/wave_motion"] = np.column_stack((noisy, np.zeros(n)))
+    out = Path(scratch) / "explained.json"
+    with contextlib.redirect_stdout(io.StringIO()):
+        code = attainable.main([str(directory), "--explain", "--skip", "0", "--json", str(out)])
+    check(code == 0, f"exit code {code} of --explain")
+    shares = json.loads(out.read_text())["blocks"][0]["runs"][0]["explained"]
+    check(shares["drift"] > 0.9, f"true drift explains {shares['drift']}")
+    check(shares["true, direction"] > 0.6, f"true direction explains {shares['true, direction']}")
+    check(shares["true, energy"] < 0.5 * shares["true, direction"],
+          f"energy {shares['true, energy']} against direction {shares['true, direction']}")
+    check(shares["filter, direction"] < shares["true, direction"] - 0.02,
+          f"noisy motion {shares['filter, direction']} against true {shares['true, direction']}")
+    with h5py.File(directory / "runs" / "00000000" / "run.h5", "a") as f:
+        del f["observer/wave_motion"]
+    stderr = io.StringIO()
+    with contextlib.redirect_stderr(stderr), contextlib.redirect_stdout(io.StringIO()):
+        code = attainable.main([str(directory), "--explain"])
+    message = stderr.getvalue().strip()
+    check(code == 2 and "no dataset /observer/wave_motion" in message,
+          f"--explain without the wave motion: exit {code}, '{message}'")
 
 if failures:
     sys.exit(1)
