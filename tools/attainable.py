@@ -168,9 +168,9 @@ def read_dataset(path, file, name):
     return np.asarray(file[name][...], dtype=float)
 
 
-def read_run(path, skip):
-    """The run's time step, its two horizontal disturbances in hull axes (surge, sway) after
-    `skip` s, its mean heading and position, and its anchors."""
+def read_run_datasets(path, names, skip, least):
+    """/time, the mask of its samples at or after `skip` s (at least `least` of them, evenly
+    spaced) and the named datasets whole."""
     try:
         file = h5py.File(path, "r")
     except OSError as error:
@@ -178,17 +178,28 @@ def read_run(path, skip):
     with file:
         time = read_dataset(path, file, "/time")
         keep = time >= skip
-        if keep.sum() < 100:
-            raise InputError(f"{path}: fewer than 100 samples after {skip} s")
+        if keep.sum() < least:
+            raise InputError(f"{path}: fewer than {least} samples after {skip} s")
         steps = np.diff(time[keep])
         if not np.allclose(steps, steps[0], rtol=1e-6):
             raise InputError(f"{path}: /time is not evenly spaced")
-        pose = read_dataset(path, file, "/vessel/pose_low_frequency")[keep]
-        drift = read_dataset(path, file, "/environment/waves_drift")[keep][:, :2]
-        bias_earth = read_dataset(path, file, "/observer/bias")[keep]
-        anchors = read_dataset(path, file, "/mooring/anchors")
-    if not np.all(np.isfinite(bias_earth[:, :2])):
+        data = {name: read_dataset(path, file, name) for name in names}
+    if "/observer/bias" in data and not np.all(np.isfinite(data["/observer/bias"][keep, :2])):
         raise InputError(f"{path}: /observer/bias has NaN after {skip} s")
+    return time, keep, data
+
+
+def read_run(path, skip):
+    """The run's time step, its two horizontal disturbances in hull axes (surge, sway) after
+    `skip` s, its mean heading and position, and its anchors."""
+    time, keep, data = read_run_datasets(path, (
+        "/vessel/pose_low_frequency", "/environment/waves_drift", "/observer/bias",
+        "/mooring/anchors"), skip, 100)
+    steps = np.diff(time[keep])
+    pose = data["/vessel/pose_low_frequency"][keep]
+    drift = data["/environment/waves_drift"][keep][:, :2]
+    bias_earth = data["/observer/bias"][keep]
+    anchors = data["/mooring/anchors"]
     psi = pose[:, 5]
     c, s = np.cos(psi), np.sin(psi)
     bias = np.column_stack((c * bias_earth[:, 0] + s * bias_earth[:, 1],
@@ -346,26 +357,15 @@ def wave_regressors(motion):
 
 
 def explain_run(path, skip):
-    try:
-        file = h5py.File(path, "r")
-    except OSError as error:
-        raise InputError(f"{path}: not an HDF5 file ({error})") from None
-    with file:
-        time = read_dataset(path, file, "/time")
-        keep = time >= skip
-        if keep.sum() < 200:
-            raise InputError(f"{path}: fewer than 200 samples after {skip} s")
-        data = {name: read_dataset(path, file, name) for name in (
-            "/observer/bias", "/observer/wave_motion", "/environment/waves_drift",
-            "/vessel/pose_true", "/vessel/pose_low_frequency")}
+    time, keep, data = read_run_datasets(path, (
+        "/observer/bias", "/observer/wave_motion", "/environment/waves_drift",
+        "/vessel/pose_true", "/vessel/pose_low_frequency"), skip, 200)
     dt = float(np.median(np.diff(time)))
     psi = data["/vessel/pose_low_frequency"][:, 5]
     c, s = np.cos(psi), np.sin(psi)
     hull = data["/environment/waves_drift"]
     drift = np.column_stack((c * hull[:, 0] - s * hull[:, 1], s * hull[:, 0] + c * hull[:, 1]))
     bias = trailing_mean(data["/observer/bias"][:, :2], EXPLAIN_WINDOW)
-    if not np.all(np.isfinite(bias[keep])):
-        raise InputError(f"{path}: /observer/bias has NaN after {skip} s")
     motions = {"filter": data["/observer/wave_motion"][:, :2],
                "true": (data["/vessel/pose_true"][:, :2] -
                         data["/vessel/pose_low_frequency"][:, :2])}
