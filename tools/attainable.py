@@ -232,7 +232,8 @@ def intact_runs_by_block(directory):
     blocks = {}
     for row_path in rows:
         row = json.loads(row_path.read_text())
-        if row.get("status") != "ok" or row.get("failure_line", 0):
+        # A failure run's row carries {"failure": {"line": k, ...}}, an intact run's null.
+        if row.get("status") != "ok" or (row.get("failure") or {}).get("line", 0):
             continue
         run = directory / "runs" / row_path.stem / "run.h5"
         if not run.exists():

@@ -110,7 +110,9 @@ with tempfile.TemporaryDirectory() as scratch:
     n = 40_000
     for run, failure_line in ((0, 0), (1, 0), (2, 1)):
         (directory / "rows" / f"{run:08d}.json").write_text(json.dumps(
-            {"block": "rough", "status": "ok", "failure_line": failure_line}))
+            {"block": "rough", "status": "ok",
+             "failure": {"line": failure_line, "time": 100.0, "mode": "fairlead"}
+             if failure_line else None}))
         (directory / "runs" / f"{run:08d}").mkdir(parents=True)
         drift = ar1(rng, n, 0.9, drift_e) - [5e5, 0.0]  # pushed aft: waves from ahead
         bias = ar1(rng, n, 0.8, bias_e) @ rotation.T
@@ -181,7 +183,7 @@ with tempfile.TemporaryDirectory() as scratch:
     (directory / "rows").mkdir(parents=True)
     (directory / "runs" / "00000000").mkdir(parents=True)
     (directory / "rows" / "00000000.json").write_text(json.dumps(
-        {"block": "turning", "status": "ok", "failure_line": 0}))
+        {"block": "turning", "status": "ok", "failure": None}))
     n = 7200
     t = np.arange(n, dtype=float)
 
