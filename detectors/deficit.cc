@@ -137,8 +137,7 @@ const Verdict& Deficit::Step(const Evidence& evidence) {
     if (alarm_ && named_ == line) {
       fast_taken_ = line;
       fast_pending_ = 0;
-    } else if ((alarm_ ? rival_[i] : verdict_.score[i]) >= options_.confirm &&
-               (!options_.confirm_best || LeadsThisTest(line))) {
+    } else if ((alarm_ ? rival_[i] : verdict_.score[i]) >= options_.confirm) {
       Raise(line);
       fast_taken_ = line;
       fast_pending_ = 0;
@@ -148,16 +147,6 @@ const Verdict& Deficit::Step(const Evidence& evidence) {
     }
   }
   return verdict_;
-}
-
-bool Deficit::LeadsThisTest(int line) const {
-  // Before an alarm the sums S_h, during one the rivals R_h over the named line.
-  const std::vector<double>& evidence = alarm_ ? rival_ : verdict_.score;
-  const double own = evidence[static_cast<std::size_t>(line)];
-  for (int h = 1; h < hypotheses_; ++h) {
-    if (h != line && evidence[static_cast<std::size_t>(h)] > own) return false;
-  }
-  return true;
 }
 
 void Deficit::Hold(const Pending& sample) {

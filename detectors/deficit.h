@@ -186,10 +186,6 @@ struct DeficitOptions {
   double confirm = 2.0;
   /// [s] How long a fast alarm may wait for `confirm` before the fast test starts over, > 0.
   double confirm_time = 60.0;
-  /// Whether the fast test's line is confirmed only while this test also ranks it first
-  /// (its S_h, or R_h during an alarm, the largest): in the filter's transient the fast
-  /// test can name a neighbour whose evidence ties with the parted line's.
-  bool confirm_best = false;
   int fast_window = 5;
   double fast_lead = 10.0;
 };
@@ -228,11 +224,10 @@ class Deficit final : public Detector {
     double dt = 0.0;
   };
   const Verdict& StepSlow(const Evidence& evidence);
-  void Raise(int hypothesis);          // the alarm names `hypothesis`; revision and end start over
-  bool LeadsThisTest(int line) const;  // `line` has this test's largest S_h (R_h in an alarm)
-  void Hold(const Pending& sample);    // keeps a sample that arrives while an alarm stands
-  std::size_t HeldLimit() const;       // the most samples Hold() keeps
-  void EndFalseAlarm();                // learns the held samples, then Restart()
+  void Raise(int hypothesis);        // the alarm names `hypothesis`; revision and end start over
+  void Hold(const Pending& sample);  // keeps a sample that arrives while an alarm stands
+  std::size_t HeldLimit() const;     // the most samples Hold() keeps
+  void EndFalseAlarm();              // learns the held samples, then Restart()
   Vec2 Predict(const Regressors& energy) const;  // B(e)
   Regressors WaveRegressors(const Vec3& wave_motion) const;
   double IndependentValues(double samples_per_value) const;  // n

@@ -47,14 +47,12 @@ constexpr ParameterRange kCount{1.0, 10000.0, false, false, true};  // [1, 10000
 constexpr ParameterRange kDelay{0.0, 10000.0, false, false, true};  // [0, 10000]
 constexpr ParameterRange kSwitch{0.0, 1.0, false, false, true};     // 0 or 1
 
-constexpr std::array<DetectorParameter, 21> kDeficitParameters = {{
+constexpr std::array<DetectorParameter, 20> kDeficitParameters = {{
     {"baseline_time", DeficitOptions{}.baseline_time, "", kPositive, "s",
      "time constant of the learned baseline and disturbance of the intact filter's bias"},
     {"confirm", DeficitOptions{}.confirm, "", kNonNegative, "nats",
      "two-stage verdict (0: off): a fast test's alarm stands once this test's evidence for "
      "its line reaches this"},
-    {"confirm_best", DeficitOptions{}.confirm_best ? 1.0 : 0.0, "", kSwitch, "",
-     "1: the fast test's line is confirmed only while this test ranks it first too"},
     {"confirm_time", DeficitOptions{}.confirm_time, "", kPositive, "s",
      "how long a fast alarm waits for confirmation before the fast test starts over"},
     {"direction_prior", DeficitOptions{}.direction_prior, "", kNonNegative, "",
@@ -136,7 +134,6 @@ std::unique_ptr<Detector> MakeDeficit(const DetectorParameters& p) {
   DeficitOptions options;
   options.baseline_time = p.Get("baseline_time");
   options.confirm = p.Get("confirm");
-  options.confirm_best = p.Get("confirm_best") != 0.0;
   options.confirm_time = p.Get("confirm_time");
   options.drift = p.Get("drift") != 0.0;
   options.drift_direction = p.Get("drift_direction") != 0.0;
