@@ -278,21 +278,7 @@ std::unique_ptr<Detector> MakeDetector(const DetectorSpec& spec, std::string_vie
     }
     throw InputError(path + ".type: unknown detector '" + spec.type + "' (known: " + known + ")");
   }
-  for (const auto& [name, value] : spec.parameters) {
-    const DetectorParameter* parameter = FindParameter(it->parameters, name);
-    if (parameter == nullptr) {
-      std::string known;
-      for (const DetectorParameter& p : it->parameters) {
-        known += (known.empty() ? "" : ", ") + std::string(p.name);
-      }
-      throw InputError(path + ": unknown parameter '" + name + "' for " + std::string(it->name) +
-                       " (known: " + known + ")");
-    }
-    if (!parameter->range.Contains(value)) {
-      throw InputError(path + "." + name + ": " + FormatNumber(value) + " must be " +
-                       parameter->range.Describe());
-    }
-  }
+  internal::CheckParameters(spec, it->parameters, it->name, path);
   try {
     return it->make(DetectorParameters(it->parameters, spec.parameters));
   } catch (const InputError& error) {  // a rule between parameters
@@ -317,6 +303,33 @@ std::string DetectorHelp() {
 }
 
 namespace internal {
+
+void CheckParameters(const DetectorSpec& spec, std::span<const DetectorParameter> table,
+                     std::string_view type, std::string_view key_path) {
+  const std::string path(key_path);
+  for (const auto& [name, value] : spec.parameters) {
+    const DetectorParameter* parameter = FindParameter(table, name);
+    if (parameter == nullptr) {
+      std::string known;
+      for (const DetectorParameter& p : table) {
+        known += (known.empty() ? "" : ", ") + std::string(p.name);
+      }
+      throw InputError(path + ": unknown parameter '" + name + "' for " + std::string(type) +
+                       " (known: " + known + ")");
+    }
+    if (!parameter->range.Contains(value)) {
+      throw InputError(path + "." + name + ": " + FormatNumber(value) + " must be " +
+                       parameter->range.Describe());
+    }
+  }
+  for (const DetectorParameter& parameter : table) {
+    const bool required = !parameter.default_value && parameter.default_note.empty();
+    if (required && !spec.parameters.contains(std::string(parameter.name))) {
+      throw InputError(path + ": " + std::string(type) + " needs parameter '" +
+                       std::string(parameter.name) + "' (no default)");
+    }
+  }
+}
 
 void ContractViolation(std::string_view where, std::string_view what) {
   throw ContractError(std::string(where) + ": contract violated: " + std::string(what));

@@ -38,7 +38,7 @@ struct ParameterRange {
 struct DetectorParameter {
   std::string_view name;
   /// nullopt: no fixed default; `default_note` says what the detector does when the
-  /// parameter is not given.
+  /// parameter is not given (no note: the scenario must give it).
   std::optional<double> default_value;
   std::string_view default_note;
   ParameterRange range;
@@ -98,6 +98,12 @@ namespace internal {
 /// violated: <what>", an always-on assert that a run reports as failed instead of aborting
 /// the process (a batch of runs goes on).
 [[noreturn]] void ContractViolation(std::string_view where, std::string_view what);
+
+/// The registry's checks of a scenario entry's parameters against a type's table (sorted by
+/// name): unknown names, values out of range and missing required parameters are
+/// InputErrors located at `key_path` (the messages of MakeDetector()).
+void CheckParameters(const DetectorSpec& spec, std::span<const DetectorParameter> table,
+                     std::string_view type, std::string_view key_path);
 
 inline void Require(bool condition, std::string_view where, std::string_view what) {
   if (!condition) [[unlikely]] {

@@ -1,0 +1,271 @@
+#include "detectors/plugin_detector.h"
+
+#include <dlfcn.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace moorsim::detectors {
+
+namespace {
+
+constexpr std::size_t kErrorSize = 512;
+
+std::string_view Text(const char* text) { return text == nullptr ? std::string_view() : text; }
+
+// The plugin's reason, or `fallback` if it wrote none.
+std::string Reason(const char* error, std::string_view fallback) {
+  const std::string_view reason = Text(error);
+  return reason.empty() ? std::string(fallback) : std::string(reason);
+}
+
+class PluginDetector final : public Detector {
+ public:
+  PluginDetector(std::shared_ptr<const PluginLibrary> library, const moorsim_detector_plugin* type,
+                 void* instance)
+      : library_(std::move(library)), type_(type), instance_(instance) {}
+  ~PluginDetector() override { type_->destroy(instance_); }
+  PluginDetector(const PluginDetector&) = delete;
+  PluginDetector& operator=(const PluginDetector&) = delete;
+
+  std::string_view type() const override { return type_->type; }
+  bool NeedsLoadEvidence() const override { return type_->needs_load_evidence != 0; }
+
+  void Reset(int hypotheses) override {
+    internal::Require(hypotheses >= 1, Where(), "at least one hypothesis");
+    hypotheses_ = hypotheses;
+    score_.assign(static_cast<std::size_t>(hypotheses), 0.0);
+    error_[0] = '\0';
+    if (type_->reset(instance_, hypotheses, error_, kErrorSize) != 0) {
+      throw SolverError(Where() + ": reset failed: " + Reason(error_, "no reason given"));
+    }
+  }
+
+  Verdict Update(const Evidence& evidence) override {
+    internal::CheckEvidence(Where(), evidence, hypotheses_);
+    const std::size_t n = evidence.hypotheses.size();
+    hypothesis_.resize(n);
+    for (std::size_t h = 0; h < n; ++h) Convert(evidence.hypotheses[h], hypothesis_[h]);
+    moorsim_hypothesis_evidence nominal{};
+    if (evidence.nominal) Convert(*evidence.nominal, nominal);
+    moorsim_load_evidence load{};
+    if (evidence.load) {
+      internal::Require(evidence.load->line_load.size() == n, Where(),
+                        "one line load per hypothesis");
+      line_load_.resize(3 * n);
+      for (std::size_t h = 0; h < n; ++h) {
+        for (int i = 0; i < 3; ++i) line_load_[3 * h + i] = evidence.load->line_load[h](i);
+      }
+      Copy(evidence.load->bias, load.bias);
+      CopyMatrix(evidence.load->bias_covariance, load.bias_covariance);
+      load.line_load = line_load_.data();
+      Copy(evidence.load->wave_motion, load.wave_motion);
+    }
+    const moorsim_evidence sample{evidence.t, hypotheses_, hypothesis_.data(),
+                                  evidence.nominal ? &nominal : nullptr,
+                                  evidence.load ? &load : nullptr};
+    std::fill(score_.begin(), score_.end(), 0.0);
+    moorsim_verdict verdict{score_.data(), 0, 0};
+    error_[0] = '\0';
+    if (type_->step(instance_, &sample, &verdict, error_, kErrorSize) != 0) {
+      std::ostringstream message;
+      message << Where() << ": step failed at t = " << evidence.t
+              << " s: " << Reason(error_, "no reason given");
+      throw SolverError(message.str());
+    }
+    // The plugin's side of the contract.
+    for (std::size_t h = 0; h < score_.size(); ++h) {
+      if (!std::isfinite(score_[h])) {
+        std::ostringstream message;
+        message << "score of hypothesis " << h << " is " << score_[h] << " at t = " << evidence.t
+                << " s";
+        internal::ContractViolation(Where(), message.str());
+      }
+    }
+    if (verdict.hypothesis < 0 || verdict.hypothesis >= hypotheses_ ||
+        (verdict.alarm != 0 && verdict.alarm != 1)) {
+      std::ostringstream message;
+      message << "verdict hypothesis " << verdict.hypothesis << " (of " << hypotheses_
+              << "), alarm " << verdict.alarm << " at t = " << evidence.t << " s";
+      internal::ContractViolation(Where(), message.str());
+    }
+    return Verdict{score_, verdict.hypothesis, verdict.alarm == 1};
+  }
+
+ private:
+  std::string Where() const {
+    return "plugin " + library_->path() + " detector '" + std::string(type_->type) + "'";
+  }
+  static void Copy(const Vec3& from, double* to) {
+    for (int i = 0; i < 3; ++i) to[i] = from(i);
+  }
+  static void CopyMatrix(const Mat3& from, double* to) {
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) to[3 * r + c] = from(r, c);
+    }
+  }
+  static void Convert(const HypothesisEvidence& from, moorsim_hypothesis_evidence& to) {
+    Copy(from.innovation, to.innovation);
+    CopyMatrix(from.covariance, to.covariance);
+    to.log_likelihood = from.log_likelihood;
+    to.dimension = from.dimension;
+  }
+
+  std::shared_ptr<const PluginLibrary> library_;
+  const moorsim_detector_plugin* type_;
+  void* instance_;
+  int hypotheses_ = 0;
+  std::vector<moorsim_hypothesis_evidence> hypothesis_;
+  std::vector<double> line_load_;
+  std::vector<double> score_;
+  char error_[kErrorSize] = {};
+};
+
+// The declared table in the registry's form; throws InputError on a malformed one.
+std::vector<DetectorParameter> Table(const std::string& path, const moorsim_detector_plugin& type) {
+  const auto bad = [&](const std::string& what) {
+    return InputError("plugin " + path + ": detector '" + std::string(Text(type.type)) +
+                      "': " + what);
+  };
+  if (type.parameter_count < 0 || (type.parameter_count > 0 && type.parameters == nullptr)) {
+    throw bad("parameter table missing");
+  }
+  std::vector<DetectorParameter> table;
+  for (int i = 0; i < type.parameter_count; ++i) {
+    const moorsim_parameter& p = type.parameters[i];
+    if (Text(p.name).empty()) throw bad("parameter " + std::to_string(i) + " has no name");
+    DetectorParameter entry;
+    entry.name = p.name;
+    if (p.has_default) entry.default_value = p.default_value;
+    entry.range = ParameterRange{p.min, p.max, p.min_open != 0, p.max_open != 0, p.integer != 0};
+    entry.unit = Text(p.unit);
+    entry.description = Text(p.description);
+    if (!(p.min <= p.max) || std::isnan(p.min)) {
+      throw bad("parameter '" + std::string(entry.name) + "' has the range [" +
+                std::to_string(p.min) + ", " + std::to_string(p.max) + "]");
+    }
+    if (entry.default_value && !entry.range.Contains(*entry.default_value)) {
+      throw bad("parameter '" + std::string(entry.name) + "' has a default outside its range");
+    }
+    if (!table.empty() && !(table.back().name < entry.name)) {
+      throw bad("parameter table not sorted by name (or a name twice) at '" +
+                std::string(entry.name) + "'");
+    }
+    table.push_back(entry);
+  }
+  return table;
+}
+
+}  // namespace
+
+std::shared_ptr<const PluginLibrary> PluginLibrary::Load(const std::string& path) {
+  std::shared_ptr<PluginLibrary> library(new PluginLibrary(path));
+  const auto fail = [&](const std::string& why) {
+    return InputError("plugin " + path + ": " + why);
+  };
+  dlerror();
+  library->handle_ = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (library->handle_ == nullptr) throw fail("cannot load (" + Reason(dlerror(), "?") + ")");
+  const auto symbol = [&](const char* name) {
+    void* address = dlsym(library->handle_, name);
+    if (address == nullptr) {
+      throw fail(std::string("no entry point ") + name +
+                 " (see detectors/plugin/moorsim_detector_plugin.h)");
+    }
+    return address;
+  };
+  // ISO C++ has no cast from an object pointer to a function pointer; POSIX guarantees the
+  // conversion of what dlsym() returns.
+  moorsim_plugin_abi_version_fn abi_version;
+  void* abi_symbol = symbol("moorsim_plugin_abi_version");
+  static_assert(sizeof(abi_version) == sizeof(abi_symbol));
+  std::memcpy(&abi_version, &abi_symbol, sizeof(abi_version));
+  const int version = abi_version();
+  if (version != MOORSIM_DETECTOR_ABI_VERSION) {
+    throw fail("built for detector plugin ABI version " + std::to_string(version) +
+               ", this moorsim loads version " + std::to_string(MOORSIM_DETECTOR_ABI_VERSION) +
+               " (rebuild the plugin against this moorsim's header)");
+  }
+  moorsim_detector_plugins_fn plugins;
+  void* plugins_symbol = symbol("moorsim_detector_plugins");
+  std::memcpy(&plugins, &plugins_symbol, sizeof(plugins));
+  int count = 0;
+  const moorsim_detector_plugin* types = plugins(&count);
+  if (types == nullptr || count <= 0) throw fail("provides no detector types");
+  library->types_ = std::span(types, static_cast<std::size_t>(count));
+  for (const moorsim_detector_plugin& type : library->types_) {
+    if (Text(type.type).empty()) throw fail("a detector type without a name");
+    if (type.create == nullptr || type.reset == nullptr || type.step == nullptr ||
+        type.destroy == nullptr) {
+      throw fail("detector '" + std::string(type.type) + "' lacks a function");
+    }
+    if (library->Find(type.type) != &type) {
+      throw fail("detector type '" + std::string(type.type) + "' given twice");
+    }
+    library->parameters_.push_back(Table(path, type));
+  }
+  return library;
+}
+
+PluginLibrary::~PluginLibrary() {
+  if (handle_ != nullptr) dlclose(handle_);
+}
+
+std::vector<std::string_view> PluginLibrary::TypeNames() const {
+  std::vector<std::string_view> names;
+  for (const moorsim_detector_plugin& type : types_) names.push_back(type.type);
+  return names;
+}
+
+const moorsim_detector_plugin* PluginLibrary::Find(std::string_view type) const {
+  for (const moorsim_detector_plugin& entry : types_) {
+    if (Text(entry.type) == type) return &entry;
+  }
+  return nullptr;
+}
+
+std::span<const DetectorParameter> PluginLibrary::Parameters(std::string_view type) const {
+  const moorsim_detector_plugin* entry = Find(type);
+  internal::Require(entry != nullptr, "PluginLibrary::Parameters", "a type of the library");
+  return parameters_[static_cast<std::size_t>(entry - types_.data())];
+}
+
+std::unique_ptr<Detector> MakePluginDetector(const std::string& path, const DetectorSpec& spec,
+                                             std::string_view key_path) {
+  const std::string where(key_path);
+  std::shared_ptr<const PluginLibrary> library;
+  try {
+    library = PluginLibrary::Load(path);
+  } catch (const InputError& error) {
+    throw InputError(where + ".plugin: " + error.what());
+  }
+  const moorsim_detector_plugin* type = library->Find(spec.type);
+  if (type == nullptr) {
+    std::string known;
+    for (std::string_view name : library->TypeNames()) {
+      known += (known.empty() ? "" : ", ") + std::string(name);
+    }
+    throw InputError(where + ".type: plugin " + path + " has no detector '" + spec.type +
+                     "' (it has: " + known + ")");
+  }
+  const std::span<const DetectorParameter> table = library->Parameters(spec.type);
+  internal::CheckParameters(spec, table, spec.type, key_path);
+  std::vector<double> values;
+  const DetectorParameters given(table, spec.parameters);
+  for (const DetectorParameter& parameter : table) {
+    values.push_back(given.Find(parameter.name).value_or(0.0));
+  }
+  char error[kErrorSize] = {};
+  void* instance = type->create(values.data(), error, kErrorSize);
+  if (instance == nullptr) {
+    throw InputError(where + ": plugin " + path + " detector '" + spec.type +
+                     "' refused its parameters: " + Reason(error, "no reason given"));
+  }
+  return std::make_unique<PluginDetector>(std::move(library), type, instance);
+}
+
+}  // namespace moorsim::detectors

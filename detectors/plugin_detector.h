@@ -1,0 +1,55 @@
+// Detectors from shared libraries built outside the moorsim tree, through the C ABI of
+// detectors/plugin/moorsim_detector_plugin.h: the library is loaded (dlopen), its ABI
+// version checked before anything else is read, its parameter tables turned into the
+// registry's form (so a plugin's parameters get the built-in ones' checks and messages),
+// and each instance wrapped as a Detector that checks the plugin's side of the contract at
+// every sample (finite scores, a hypothesis in range).
+#pragma once
+
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "detectors/detector.h"
+#include "detectors/plugin/moorsim_detector_plugin.h"
+#include "detectors/registry.h"
+
+namespace moorsim::detectors {
+
+/// A loaded plugin library; its types stay valid while any detector made from it lives.
+class PluginLibrary {
+ public:
+  /// Loads `path` (a relative path is taken from the working directory, as the scenario's
+  /// loader resolves it). Throws InputError "plugin <path>: <why>" if the library cannot be
+  /// loaded, lacks an entry point, has another ABI version or declares a malformed table.
+  static std::shared_ptr<const PluginLibrary> Load(const std::string& path);
+  ~PluginLibrary();
+  PluginLibrary(const PluginLibrary&) = delete;
+  PluginLibrary& operator=(const PluginLibrary&) = delete;
+
+  const std::string& path() const { return path_; }
+  /// The types the library provides, in its order.
+  std::vector<std::string_view> TypeNames() const;
+  /// The type named `type`, or nullptr.
+  const moorsim_detector_plugin* Find(std::string_view type) const;
+  /// Its parameter table in the registry's form (sorted by name, as the plugin declared it).
+  std::span<const DetectorParameter> Parameters(std::string_view type) const;
+
+ private:
+  explicit PluginLibrary(std::string path) : path_(std::move(path)) {}
+  std::string path_;
+  void* handle_ = nullptr;
+  std::span<const moorsim_detector_plugin> types_;
+  std::vector<std::vector<DetectorParameter>> parameters_;  // per type
+};
+
+/// A detector of `spec.type` from the plugin library at `path`, its parameters checked as
+/// the registry checks the built-in ones (messages located at `key_path`). Throws
+/// InputError for a library that does not load or a type it does not provide ("<key_path>:
+/// plugin <path> has no detector 'x' (it has: a, b)"), and for a create() that fails.
+std::unique_ptr<Detector> MakePluginDetector(const std::string& path, const DetectorSpec& spec,
+                                             std::string_view key_path);
+
+}  // namespace moorsim::detectors
