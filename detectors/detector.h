@@ -95,6 +95,9 @@ struct DetectorSpec {
   std::string type;
   std::string label;
   std::map<std::string, double> parameters;
+  /// The shared library that provides `type` (detectors/plugin_detector.h); empty: a
+  /// built-in detector of the registry.
+  std::string plugin;
 };
 
 }  // namespace moorsim::detectors

@@ -1,5 +1,4 @@
 #include "detectors/registry.h"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -14,6 +13,7 @@
 #include "detectors/dht.h"
 #include "detectors/glr.h"
 #include "detectors/mle.h"
+#include "detectors/plugin_detector.h"
 
 namespace moorsim::detectors {
 
@@ -267,6 +267,7 @@ std::vector<std::string_view> DetectorTypes() {
 }
 
 std::unique_ptr<Detector> MakeDetector(const DetectorSpec& spec, std::string_view key_path) {
+  if (!spec.plugin.empty()) return MakePluginDetector(spec.plugin, spec, key_path);
   const std::string path(key_path);
   const auto it = std::lower_bound(
       kDetectors.begin(), kDetectors.end(), spec.type,

@@ -81,7 +81,8 @@ std::span<const DetectorType> DetectorTable();
 /// The registered type names, sorted: deficit, dht, glr, mle.
 std::vector<std::string_view> DetectorTypes();
 
-/// Builds the detector a scenario entry names. `key_path` locates the entry in the
+/// Builds the detector a scenario entry names: a built-in one, or with `spec.plugin` one
+/// from that plugin library (MakePluginDetector()). `key_path` locates the entry in the
 /// scenario for the messages ("detectors[2]"). Throws InputError:
 ///   "<key_path>.type: unknown detector 'x' (known: deficit, dht, glr, mle)"
 ///   "<key_path>: unknown parameter 'y' for dht (known: floor, hold, prior_intact, threshold)"

@@ -348,6 +348,9 @@ void ParseDetectors(const Reader& r, Scenario& scenario) {
         entry.type = item.Required<std::string>("type");
       } else if (key == "label") {
         entry.label = item.Required<std::string>("label");
+      } else if (key == "plugin") {
+        entry.plugin = item.Required<std::string>("plugin");
+        if (entry.plugin.empty()) item.Child("plugin").Fail("the plugin's path is empty");
       } else {
         entry.parameters[key] = item.Required<double>(key);
       }
@@ -1296,6 +1299,15 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source_n
     }
     const Reader root(context, document, "", ToSourceMark(document.Mark()));
     ParseDocument(root, scenario);
+    // A relative plugin path, like a relative WAMIT stem, is relative to the scenario
+    // file's directory.
+    for (DetectorEntry& entry : scenario.detectors) {
+      if (!entry.plugin.empty() && std::filesystem::path(entry.plugin).is_relative()) {
+        entry.plugin = (std::filesystem::path(source_name).parent_path() / entry.plugin)
+                           .lexically_normal()
+                           .string();
+      }
+    }
     // A relative WAMIT stem is relative to the scenario file's directory.
     if (scenario.vessel && std::filesystem::path(scenario.vessel->hydrodynamics).is_relative()) {
       scenario.vessel->hydrodynamics =

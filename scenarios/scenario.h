@@ -247,6 +247,9 @@ struct DetectorEntry {
   std::string type;
   std::string label;
   std::map<std::string, double> parameters;
+  /// `plugin:` the shared library that provides `type` (empty: built in); a relative path
+  /// is resolved against the scenario file's directory at load time.
+  std::string plugin;
 };
 
 /// How the hypothesis bank and its observers are built (`detection:`).

@@ -26,7 +26,7 @@ Evidence MakeEvidence(double t, const std::vector<double>& ll) {
 }
 
 DetectorSpec Spec(const std::string& type, std::map<std::string, double> parameters = {}) {
-  return DetectorSpec{type, type, std::move(parameters)};
+  return DetectorSpec{type, type, std::move(parameters), ""};
 }
 
 // The message of the InputError that `make` throws ("" if none).

@@ -240,7 +240,7 @@ vessel::ControllerSpec ToControllerSpec(const scenarios::ControllerSpec& c, cons
 namespace {
 
 detectors::DetectorSpec Spec(const scenarios::DetectorEntry& e) {
-  return {.type = e.type, .label = e.label, .parameters = e.parameters};
+  return {.type = e.type, .label = e.label, .parameters = e.parameters, .plugin = e.plugin};
 }
 
 /// Builds detector i; an InputError from the registry ("detectors[2].floor: ...") is placed

@@ -1,0 +1,136 @@
+// Detector plugins end to end (detectors/plugin/moorsim_detector_plugin.h): a plugin named
+// in a scenario's `detectors:` runs in `moorsim run` beside a built-in detector and its
+// verdicts land in run.h5 and summary.json; a plugin that cannot be used is one located line
+// and exit 2; a plugin that breaks the contract fails its runs in a campaign, which goes on.
+#include <gtest/gtest.h>
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "tests/cli/run_cli.h"
+
+namespace moorsim::testing {
+namespace {
+
+const std::string kScenario =
+    MOORSIM_SOURCE_DIR "/scenarios/library/thesis_no_failure_current.yaml";
+
+std::vector<double> ReadTable(hid_t file, const char* path, std::size_t& columns) {
+  const hid_t d = H5Dopen2(file, path, H5P_DEFAULT);
+  if (d < 0) return {};
+  const hid_t space = H5Dget_space(d);
+  std::vector<hsize_t> dims(static_cast<std::size_t>(H5Sget_simple_extent_ndims(space)));
+  H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+  H5Sclose(space);
+  columns = dims.size() > 1 ? dims[1] : 1;
+  std::vector<double> values(dims[0] * columns);
+  H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
+  H5Dclose(d);
+  return values;
+}
+
+TEST(PluginCommand, APluginRunsBesideTheBuiltInDetectors) {
+  // The bank CUSUM in plain C with a low threshold, so that it alarms on the intact run's
+  // likelihood ratios: every row of its table must follow its rule (score[0] = 0, the sums
+  // >= 0, alarm exactly when the largest sum exceeds 3, then naming that line).
+  TempDirectory dir(::testing::TempDir());
+  const std::string out = (dir.path() / "plugin").string();
+  const CliResult r =
+      RunCli({"run", kScenario, "--out", out, "--duration", "120", "--quiet", "--set",
+              std::string("detectors=[{type: dht}, {plugin: ") + MOORSIM_TEST_CUSUM_PLUGIN +
+                  ", type: bank_cusum, label: cusum, threshold: 3}]"},
+             dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  const hid_t file = H5Fopen((out + "/run.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  std::size_t columns = 0, one = 0;
+  const std::vector<double> score = ReadTable(file, "/detectors/cusum/score", columns);
+  const std::vector<double> alarm = ReadTable(file, "/detectors/cusum/alarm", one);
+  const std::vector<double> decision = ReadTable(file, "/detectors/cusum/decision", one);
+  std::size_t dht_columns = 0;
+  EXPECT_FALSE(ReadTable(file, "/detectors/dht/score", dht_columns).empty());
+  H5Fclose(file);
+  ASSERT_EQ(columns, 9u);
+  const std::size_t rows = alarm.size();
+  ASSERT_EQ(score.size(), rows * columns);
+  int alarms = 0;
+  for (std::size_t k = 0; k < rows; ++k) {
+    const double* s = &score[k * columns];
+    EXPECT_EQ(s[0], 0.0);
+    const double* best = std::max_element(s + 1, s + columns);
+    EXPECT_TRUE(std::all_of(s, s + columns, [](double v) { return std::isfinite(v) && v >= 0; }));
+    EXPECT_EQ(alarm[k] != 0.0, *best > 3.0) << "row " << k;
+    if (alarm[k] != 0.0) {
+      EXPECT_EQ(decision[k], static_cast<double>(best - s)) << "row " << k;
+      ++alarms;
+    }
+  }
+  EXPECT_GT(alarms, 0) << "the low threshold should alarm on the intact run";
+  const nlohmann::json summary = nlohmann::json::parse(ReadWholeFile(out + "/summary.json"));
+  EXPECT_EQ(summary["detectors"]["cusum"]["type"], "bank_cusum");
+  EXPECT_FALSE(summary["detectors"]["cusum"]["history"].empty());
+}
+
+TEST(PluginCommand, APluginThatCannotBeUsedIsOneLocatedLine) {
+  TempDirectory dir(::testing::TempDir());
+  const std::string plugin = MOORSIM_TEST_CUSUM_PLUGIN;
+  const struct {
+    std::string entry;
+    std::string expected;
+  } cases[] = {
+      {"{plugin: /nonexistent/libnone.so, type: bank_cusum}",
+       "detectors[1].plugin: plugin /nonexistent/libnone.so: cannot load"},
+      {"{plugin: " + plugin + ", type: bank_cusum, gain: 3}",
+       "detectors[1]: unknown parameter 'gain' for bank_cusum (known: drift, threshold)"},
+      {"{plugin: " + plugin + ", type: cusum}",
+       "detectors[1].type: plugin " + plugin + " has no detector 'cusum' (it has: bank_cusum)"},
+      {std::string("{plugin: ") + MOORSIM_TEST_OLD_ABI_PLUGIN + ", type: nan_score}",
+       "built for detector plugin ABI version 0"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.entry);
+    const CliResult r =
+        RunCli({"run", kScenario, "--out", (dir.path() / "bad").string(), "--duration", "5",
+                "--quiet", "--set", "detectors=[" + c.entry + "]"},
+               dir.path());
+    EXPECT_EQ(r.exit_code, 2) << r.Describe();
+    EXPECT_NE(r.err.find(c.expected), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+}
+
+TEST(PluginCommand, APluginThatBreaksTheContractFailsItsRunsAndTheCampaignGoesOn) {
+  TempDirectory dir(::testing::TempDir());
+  const std::filesystem::path campaign = dir.path() / "faulty.yaml";
+  std::ofstream(campaign) << "scenario: " << kScenario
+                          << "\nseed: 3\nset:\n  simulation.duration: 5\n  detectors: [{type: "
+                             "dht}, {plugin: "
+                          << MOORSIM_TEST_FAULTY_PLUGIN
+                          << ", type: nan_score}]\nblocks:\n  - name: intact\n    seeds: 2\n";
+  const std::string out = (dir.path() / "out").string();
+  const CliResult r =
+      RunCli({"batch", campaign.string(), "--out", out, "--quiet", "--threads", "2"}, dir.path());
+  EXPECT_EQ(r.exit_code, 1) << r.Describe();
+  int failed = 0;
+  for (const auto& row : std::filesystem::directory_iterator(std::filesystem::path(out) / "rows")) {
+    const nlohmann::json j = nlohmann::json::parse(ReadWholeFile(row.path()));
+    EXPECT_NE(j["status"], "ok");
+    const std::string error = j["error"].get<std::string>();
+    EXPECT_NE(
+        error.find(std::string("plugin ") + MOORSIM_TEST_FAULTY_PLUGIN + " detector 'nan_score'"),
+        std::string::npos)
+        << error;
+    ++failed;
+  }
+  EXPECT_EQ(failed, 2);
+}
+
+}  // namespace
+}  // namespace moorsim::testing
