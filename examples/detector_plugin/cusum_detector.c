@@ -1,4 +1,5 @@
-/* A detector plugin in plain C, built as a shared library by the tests: a bank CUSUM.
+/* A moorsim detector plugin in plain C, built outside the moorsim tree (CMakeLists.txt
+ * beside it) and by moorsim's tests: a bank CUSUM.
  * For every hypothesis h >= 1 it sums the log-likelihood ratio of h against "intact" less
  * a drift, S_h <- max(0, S_h + log L_h - log L_0 - drift) (Page 1954; Basseville &
  * Nikiforov 1993, section 2.2), and declares a failure of the h with the largest S_h once
