@@ -19,10 +19,10 @@
 namespace moorsim::testing {
 namespace {
 
-const std::string kScenario =
+const std::string kPluginScenario =
     MOORSIM_SOURCE_DIR "/scenarios/library/thesis_no_failure_current.yaml";
 
-std::vector<double> ReadTable(hid_t file, const char* path, std::size_t& columns) {
+std::vector<double> ReadDetectorTable(hid_t file, const char* path, std::size_t& columns) {
   const hid_t d = H5Dopen2(file, path, H5P_DEFAULT);
   if (d < 0) return {};
   const hid_t space = H5Dget_space(d);
@@ -43,7 +43,7 @@ TEST(PluginCommand, APluginRunsBesideTheBuiltInDetectors) {
   TempDirectory dir(::testing::TempDir());
   const std::string out = (dir.path() / "plugin").string();
   const CliResult r =
-      RunCli({"run", kScenario, "--out", out, "--duration", "120", "--quiet", "--set",
+      RunCli({"run", kPluginScenario, "--out", out, "--duration", "120", "--quiet", "--set",
               std::string("detectors=[{type: dht}, {plugin: ") + MOORSIM_TEST_CUSUM_PLUGIN +
                   ", type: bank_cusum, label: cusum, threshold: 3}]"},
              dir.path());
@@ -51,11 +51,11 @@ TEST(PluginCommand, APluginRunsBesideTheBuiltInDetectors) {
   const hid_t file = H5Fopen((out + "/run.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   ASSERT_GE(file, 0);
   std::size_t columns = 0, one = 0;
-  const std::vector<double> score = ReadTable(file, "/detectors/cusum/score", columns);
-  const std::vector<double> alarm = ReadTable(file, "/detectors/cusum/alarm", one);
-  const std::vector<double> decision = ReadTable(file, "/detectors/cusum/decision", one);
+  const std::vector<double> score = ReadDetectorTable(file, "/detectors/cusum/score", columns);
+  const std::vector<double> alarm = ReadDetectorTable(file, "/detectors/cusum/alarm", one);
+  const std::vector<double> decision = ReadDetectorTable(file, "/detectors/cusum/decision", one);
   std::size_t dht_columns = 0;
-  EXPECT_FALSE(ReadTable(file, "/detectors/dht/score", dht_columns).empty());
+  EXPECT_FALSE(ReadDetectorTable(file, "/detectors/dht/score", dht_columns).empty());
   H5Fclose(file);
   ASSERT_EQ(columns, 9u);
   const std::size_t rows = alarm.size();
@@ -97,7 +97,7 @@ TEST(PluginCommand, APluginThatCannotBeUsedIsOneLocatedLine) {
   for (const auto& c : cases) {
     SCOPED_TRACE(c.entry);
     const CliResult r =
-        RunCli({"run", kScenario, "--out", (dir.path() / "bad").string(), "--duration", "5",
+        RunCli({"run", kPluginScenario, "--out", (dir.path() / "bad").string(), "--duration", "5",
                 "--quiet", "--set", "detectors=[" + c.entry + "]"},
                dir.path());
     EXPECT_EQ(r.exit_code, 2) << r.Describe();
@@ -109,7 +109,7 @@ TEST(PluginCommand, APluginThatCannotBeUsedIsOneLocatedLine) {
 TEST(PluginCommand, APluginThatBreaksTheContractFailsItsRunsAndTheCampaignGoesOn) {
   TempDirectory dir(::testing::TempDir());
   const std::filesystem::path campaign = dir.path() / "faulty.yaml";
-  std::ofstream(campaign) << "scenario: " << kScenario
+  std::ofstream(campaign) << "scenario: " << kPluginScenario
                           << "\nseed: 3\nset:\n  simulation.duration: 5\n  detectors: [{type: "
                              "dht}, {plugin: "
                           << MOORSIM_TEST_FAULTY_PLUGIN

@@ -17,7 +17,7 @@ namespace moorsim::detectors {
 namespace {
 
 // Evidence for `n` hypotheses whose log-likelihoods are `ll`.
-Evidence MakeEvidence(double t, const std::vector<double>& ll) {
+Evidence PluginEvidence(double t, const std::vector<double>& ll) {
   Evidence evidence;
   evidence.t = t;
   evidence.hypotheses.resize(ll.size());
@@ -25,13 +25,13 @@ Evidence MakeEvidence(double t, const std::vector<double>& ll) {
   return evidence;
 }
 
-DetectorSpec Spec(const std::string& type, std::map<std::string, double> parameters = {}) {
+DetectorSpec PluginSpec(const std::string& type, std::map<std::string, double> parameters = {}) {
   return DetectorSpec{type, type, std::move(parameters), ""};
 }
 
 // The message of the InputError that `make` throws ("" if none).
 template <typename F>
-std::string InputErrorOf(F make) {
+std::string PluginInputError(F make) {
   try {
     make();
   } catch (const InputError& error) {
@@ -43,15 +43,15 @@ std::string InputErrorOf(F make) {
 TEST(PluginDetector, ACusumWrittenInCMatchesItsDefinition) {
   // Three hypotheses; line 1 is less likely than intact by 1 nat a sample, line 2 more
   // likely by 0.5 minus a drift of 0.1: S_2 = 0.4 t crosses 5 at the 13th sample.
-  const auto detector =
-      MakePluginDetector(MOORSIM_TEST_CUSUM_PLUGIN,
-                         Spec("bank_cusum", {{"drift", 0.1}, {"threshold", 5}}), "detectors[0]");
+  const auto detector = MakePluginDetector(
+      MOORSIM_TEST_CUSUM_PLUGIN, PluginSpec("bank_cusum", {{"drift", 0.1}, {"threshold", 5}}),
+      "detectors[0]");
   EXPECT_EQ(detector->type(), "bank_cusum");
   EXPECT_FALSE(detector->NeedsLoadEvidence());
   detector->Reset(3);
   double s1 = 0.0, s2 = 0.0;
   for (int t = 1; t <= 20; ++t) {
-    const Verdict v = detector->Update(MakeEvidence(t, {-3.0, -4.0, -2.5}));
+    const Verdict v = detector->Update(PluginEvidence(t, {-3.0, -4.0, -2.5}));
     s1 = std::max(0.0, s1 - 1.0 - 0.1);
     s2 = std::max(0.0, s2 + 0.5 - 0.1);
     ASSERT_EQ(v.score.size(), 3u);
@@ -63,57 +63,60 @@ TEST(PluginDetector, ACusumWrittenInCMatchesItsDefinition) {
   }
   // Reset starts over.
   detector->Reset(3);
-  EXPECT_FALSE(detector->Update(MakeEvidence(21, {-3.0, -4.0, -2.5})).alarm);
+  EXPECT_FALSE(detector->Update(PluginEvidence(21, {-3.0, -4.0, -2.5})).alarm);
 }
 
 TEST(PluginDetector, TheDefaultsAndTheRegistrysChecksApplyToAPluginsTable) {
-  const auto detector = MakePluginDetector(MOORSIM_TEST_CUSUM_PLUGIN, Spec("bank_cusum"), "d");
+  const auto detector =
+      MakePluginDetector(MOORSIM_TEST_CUSUM_PLUGIN, PluginSpec("bank_cusum"), "d");
   detector->Reset(2);
   int first = 0;  // default threshold 10, drift 0: 1 nat a sample alarms at the 11th
   for (int t = 1; t <= 12 && first == 0; ++t) {
-    if (detector->Update(MakeEvidence(t, {0.0, 1.0})).alarm) first = t;
+    if (detector->Update(PluginEvidence(t, {0.0, 1.0})).alarm) first = t;
   }
   EXPECT_EQ(first, 11);
-  EXPECT_EQ(InputErrorOf([] {
-              MakePluginDetector(MOORSIM_TEST_CUSUM_PLUGIN, Spec("bank_cusum", {{"gain", 1}}),
+  EXPECT_EQ(PluginInputError([] {
+              MakePluginDetector(MOORSIM_TEST_CUSUM_PLUGIN, PluginSpec("bank_cusum", {{"gain", 1}}),
                                  "detectors[2]");
             }),
             "detectors[2]: unknown parameter 'gain' for bank_cusum (known: drift, threshold)");
-  EXPECT_EQ(InputErrorOf([] {
-              MakePluginDetector(MOORSIM_TEST_CUSUM_PLUGIN, Spec("bank_cusum", {{"threshold", 0}}),
-                                 "detectors[2]");
+  EXPECT_EQ(PluginInputError([] {
+              MakePluginDetector(MOORSIM_TEST_CUSUM_PLUGIN,
+                                 PluginSpec("bank_cusum", {{"threshold", 0}}), "detectors[2]");
             }),
             "detectors[2].threshold: 0 must be > 0");
-  EXPECT_EQ(InputErrorOf([] {
-              MakePluginDetector(MOORSIM_TEST_FAULTY_PLUGIN, Spec("needs_gain"), "detectors[1]");
+  EXPECT_EQ(PluginInputError([] {
+              MakePluginDetector(MOORSIM_TEST_FAULTY_PLUGIN, PluginSpec("needs_gain"),
+                                 "detectors[1]");
             }),
             "detectors[1]: needs_gain needs parameter 'gain' (no default)");
 }
 
 TEST(PluginDetector, ALibraryThatIsNoPluginOrAnotherVersionIsRefusedByName) {
-  const std::string missing = InputErrorOf(
-      [] { MakePluginDetector("/nonexistent/libnothing.so", Spec("x"), "detectors[0]"); });
+  const std::string missing = PluginInputError(
+      [] { MakePluginDetector("/nonexistent/libnothing.so", PluginSpec("x"), "detectors[0]"); });
   EXPECT_NE(missing.find("detectors[0].plugin: plugin /nonexistent/libnothing.so: cannot load"),
             std::string::npos)
       << missing;
-  const std::string no_entry = InputErrorOf(
-      [] { MakePluginDetector(MOORSIM_TEST_NO_ENTRY_PLUGIN, Spec("x"), "detectors[0]"); });
+  const std::string no_entry = PluginInputError(
+      [] { MakePluginDetector(MOORSIM_TEST_NO_ENTRY_PLUGIN, PluginSpec("x"), "detectors[0]"); });
   EXPECT_NE(no_entry.find("no entry point moorsim_plugin_abi_version"), std::string::npos)
       << no_entry;
-  const std::string old_abi = InputErrorOf(
-      [] { MakePluginDetector(MOORSIM_TEST_OLD_ABI_PLUGIN, Spec("nan_score"), "detectors[0]"); });
+  const std::string old_abi = PluginInputError([] {
+    MakePluginDetector(MOORSIM_TEST_OLD_ABI_PLUGIN, PluginSpec("nan_score"), "detectors[0]");
+  });
   EXPECT_NE(old_abi.find("built for detector plugin ABI version 0, this moorsim loads version " +
                          std::to_string(MOORSIM_DETECTOR_ABI_VERSION)),
             std::string::npos)
       << old_abi;
-  EXPECT_EQ(InputErrorOf([] {
-              MakePluginDetector(MOORSIM_TEST_FAULTY_PLUGIN, Spec("cusum"), "detectors[3]");
+  EXPECT_EQ(PluginInputError([] {
+              MakePluginDetector(MOORSIM_TEST_FAULTY_PLUGIN, PluginSpec("cusum"), "detectors[3]");
             }),
             std::string("detectors[3].type: plugin ") + MOORSIM_TEST_FAULTY_PLUGIN +
                 " has no detector 'cusum' (it has: nan_score, wrong_hypothesis, refuses, "
                 "needs_gain)");
-  EXPECT_EQ(InputErrorOf([] {
-              MakePluginDetector(MOORSIM_TEST_FAULTY_PLUGIN, Spec("refuses"), "detectors[0]");
+  EXPECT_EQ(PluginInputError([] {
+              MakePluginDetector(MOORSIM_TEST_FAULTY_PLUGIN, PluginSpec("refuses"), "detectors[0]");
             }),
             std::string("detectors[0]: plugin ") + MOORSIM_TEST_FAULTY_PLUGIN +
                 " detector 'refuses' refused its parameters: this detector accepts no "
@@ -123,10 +126,10 @@ TEST(PluginDetector, ALibraryThatIsNoPluginOrAnotherVersionIsRefusedByName) {
 TEST(PluginDetector, AVerdictThatBreaksTheContractNamesThePlugin) {
   for (const std::string type : {"nan_score", "wrong_hypothesis"}) {
     SCOPED_TRACE(type);
-    const auto detector = MakePluginDetector(MOORSIM_TEST_FAULTY_PLUGIN, Spec(type), "d");
+    const auto detector = MakePluginDetector(MOORSIM_TEST_FAULTY_PLUGIN, PluginSpec(type), "d");
     detector->Reset(3);
     try {
-      detector->Update(MakeEvidence(7.0, {0.0, 0.0, 0.0}));
+      detector->Update(PluginEvidence(7.0, {0.0, 0.0, 0.0}));
       FAIL() << "no ContractError";
     } catch (const ContractError& error) {
       const std::string message = error.what();
