@@ -27,7 +27,10 @@ class PluginDetector final : public Detector {
  public:
   PluginDetector(std::shared_ptr<const PluginLibrary> library, const moorsim_detector_plugin* type,
                  void* instance)
-      : library_(std::move(library)), type_(type), instance_(instance) {}
+      : library_(std::move(library)),
+        type_(type),
+        instance_(instance),
+        where_("plugin " + library_->path() + " detector '" + std::string(type_->type) + "'") {}
   ~PluginDetector() override { type_->destroy(instance_); }
   PluginDetector(const PluginDetector&) = delete;
   PluginDetector& operator=(const PluginDetector&) = delete;
@@ -36,17 +39,17 @@ class PluginDetector final : public Detector {
   bool NeedsLoadEvidence() const override { return type_->needs_load_evidence != 0; }
 
   void Reset(int hypotheses) override {
-    internal::Require(hypotheses >= 1, Where(), "at least one hypothesis");
+    internal::Require(hypotheses >= 1, where_, "at least one hypothesis");
     hypotheses_ = hypotheses;
     score_.assign(static_cast<std::size_t>(hypotheses), 0.0);
     error_[0] = '\0';
     if (type_->reset(instance_, hypotheses, error_, kErrorSize) != 0) {
-      throw SolverError(Where() + ": reset failed: " + Reason(error_, "no reason given"));
+      throw SolverError(where_ + ": reset failed: " + Reason(error_, "no reason given"));
     }
   }
 
   Verdict Update(const Evidence& evidence) override {
-    internal::CheckEvidence(Where(), evidence, hypotheses_);
+    internal::CheckEvidence(where_, evidence, hypotheses_);
     const std::size_t n = evidence.hypotheses.size();
     hypothesis_.resize(n);
     for (std::size_t h = 0; h < n; ++h) Convert(evidence.hypotheses[h], hypothesis_[h]);
@@ -54,7 +57,7 @@ class PluginDetector final : public Detector {
     if (evidence.nominal) Convert(*evidence.nominal, nominal);
     moorsim_load_evidence load{};
     if (evidence.load) {
-      internal::Require(evidence.load->line_load.size() == n, Where(),
+      internal::Require(evidence.load->line_load.size() == n, where_,
                         "one line load per hypothesis");
       line_load_.resize(3 * n);
       for (std::size_t h = 0; h < n; ++h) {
@@ -73,7 +76,7 @@ class PluginDetector final : public Detector {
     error_[0] = '\0';
     if (type_->step(instance_, &sample, &verdict, error_, kErrorSize) != 0) {
       std::ostringstream message;
-      message << Where() << ": step failed at t = " << evidence.t
+      message << where_ << ": step failed at t = " << evidence.t
               << " s: " << Reason(error_, "no reason given");
       throw SolverError(message.str());
     }
@@ -83,7 +86,7 @@ class PluginDetector final : public Detector {
         std::ostringstream message;
         message << "score of hypothesis " << h << " is " << score_[h] << " at t = " << evidence.t
                 << " s";
-        internal::ContractViolation(Where(), message.str());
+        internal::ContractViolation(where_, message.str());
       }
     }
     if (verdict.hypothesis < 0 || verdict.hypothesis >= hypotheses_ ||
@@ -91,15 +94,12 @@ class PluginDetector final : public Detector {
       std::ostringstream message;
       message << "verdict hypothesis " << verdict.hypothesis << " (of " << hypotheses_
               << "), alarm " << verdict.alarm << " at t = " << evidence.t << " s";
-      internal::ContractViolation(Where(), message.str());
+      internal::ContractViolation(where_, message.str());
     }
     return Verdict{score_, verdict.hypothesis, verdict.alarm == 1};
   }
 
  private:
-  std::string Where() const {
-    return "plugin " + library_->path() + " detector '" + std::string(type_->type) + "'";
-  }
   static void Copy(const Vec3& from, double* to) {
     for (int i = 0; i < 3; ++i) to[i] = from(i);
   }
@@ -118,6 +118,7 @@ class PluginDetector final : public Detector {
   std::shared_ptr<const PluginLibrary> library_;
   const moorsim_detector_plugin* type_;
   void* instance_;
+  std::string where_;  // "plugin <path> detector '<type>'", for the messages
   int hypotheses_ = 0;
   std::vector<moorsim_hypothesis_evidence> hypothesis_;
   std::vector<double> line_load_;
@@ -144,7 +145,7 @@ std::vector<DetectorParameter> Table(const std::string& path, const moorsim_dete
     entry.range = ParameterRange{p.min, p.max, p.min_open != 0, p.max_open != 0, p.integer != 0};
     entry.unit = Text(p.unit);
     entry.description = Text(p.description);
-    if (!(p.min <= p.max) || std::isnan(p.min)) {
+    if (!(p.min <= p.max)) {  // also NaN
       throw bad("parameter '" + std::string(entry.name) + "' has the range [" +
                 std::to_string(p.min) + ", " + std::to_string(p.max) + "]");
     }
@@ -245,12 +246,8 @@ std::unique_ptr<Detector> MakePluginDetector(const std::string& path, const Dete
   }
   const moorsim_detector_plugin* type = library->Find(spec.type);
   if (type == nullptr) {
-    std::string known;
-    for (std::string_view name : library->TypeNames()) {
-      known += (known.empty() ? "" : ", ") + std::string(name);
-    }
     throw InputError(where + ".type: plugin " + path + " has no detector '" + spec.type +
-                     "' (it has: " + known + ")");
+                     "' (it has: " + internal::JoinNames(library->TypeNames()) + ")");
   }
   const std::span<const DetectorParameter> table = library->Parameters(spec.type);
   internal::CheckParameters(spec, table, spec.type, key_path);

@@ -1,4 +1,5 @@
 #include "detectors/registry.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -273,11 +274,8 @@ std::unique_ptr<Detector> MakeDetector(const DetectorSpec& spec, std::string_vie
       kDetectors.begin(), kDetectors.end(), spec.type,
       [](const DetectorType& entry, const std::string& name) { return entry.name < name; });
   if (it == kDetectors.end() || it->name != spec.type) {
-    std::string known;
-    for (const DetectorType& type : kDetectors) {
-      known += (known.empty() ? "" : ", ") + std::string(type.name);
-    }
-    throw InputError(path + ".type: unknown detector '" + spec.type + "' (known: " + known + ")");
+    throw InputError(path + ".type: unknown detector '" + spec.type +
+                     "' (known: " + internal::JoinNames(DetectorTypes()) + ")");
   }
   internal::CheckParameters(spec, it->parameters, it->name, path);
   try {
@@ -305,18 +303,22 @@ std::string DetectorHelp() {
 
 namespace internal {
 
+std::string JoinNames(const std::vector<std::string_view>& names) {
+  std::string joined;
+  for (std::string_view name : names) joined += (joined.empty() ? "" : ", ") + std::string(name);
+  return joined;
+}
+
 void CheckParameters(const DetectorSpec& spec, std::span<const DetectorParameter> table,
                      std::string_view type, std::string_view key_path) {
   const std::string path(key_path);
   for (const auto& [name, value] : spec.parameters) {
     const DetectorParameter* parameter = FindParameter(table, name);
     if (parameter == nullptr) {
-      std::string known;
-      for (const DetectorParameter& p : table) {
-        known += (known.empty() ? "" : ", ") + std::string(p.name);
-      }
+      std::vector<std::string_view> known;
+      for (const DetectorParameter& p : table) known.push_back(p.name);
       throw InputError(path + ": unknown parameter '" + name + "' for " + std::string(type) +
-                       " (known: " + known + ")");
+                       " (known: " + internal::JoinNames(known) + ")");
     }
     if (!parameter->range.Contains(value)) {
       throw InputError(path + "." + name + ": " + FormatNumber(value) + " must be " +

@@ -100,6 +100,9 @@ namespace internal {
 /// the process (a batch of runs goes on).
 [[noreturn]] void ContractViolation(std::string_view where, std::string_view what);
 
+/// "a, b, c": the names of a "known: ..." list.
+std::string JoinNames(const std::vector<std::string_view>& names);
+
 /// The registry's checks of a scenario entry's parameters against a type's table (sorted by
 /// name): unknown names, values out of range and missing required parameters are
 /// InputErrors located at `key_path` (the messages of MakeDetector()).

@@ -169,8 +169,8 @@ def read_dataset(path, file, name):
 
 
 def read_run_datasets(path, names, skip, least):
-    """/time, the mask of its samples at or after `skip` s (at least `least` of them, evenly
-    spaced) and the named datasets whole."""
+    """The time step, the mask of the samples at or after `skip` s (at least `least` of them,
+    evenly spaced) and the named datasets whole."""
     try:
         file = h5py.File(path, "r")
     except OSError as error:
@@ -186,30 +186,34 @@ def read_run_datasets(path, names, skip, least):
         data = {name: read_dataset(path, file, name) for name in names}
     if "/observer/bias" in data and not np.all(np.isfinite(data["/observer/bias"][keep, :2])):
         raise InputError(f"{path}: /observer/bias has NaN after {skip} s")
-    return time, keep, data
+    return float(steps[0]), keep, data
+
+
+def rotate(xy, angle):
+    """The rows (x, y) turned by `angle` [rad] per row: hull to Earth axes by the heading,
+    Earth to hull by minus it."""
+    c, s = np.cos(angle), np.sin(angle)
+    return np.column_stack((c * xy[:, 0] - s * xy[:, 1], s * xy[:, 0] + c * xy[:, 1]))
 
 
 def read_run(path, skip):
     """The run's time step, its two horizontal disturbances in hull axes (surge, sway) after
     `skip` s, its mean heading and position, and its anchors."""
-    time, keep, data = read_run_datasets(path, (
+    dt, keep, data = read_run_datasets(path, (
         "/vessel/pose_low_frequency", "/environment/waves_drift", "/observer/bias",
         "/mooring/anchors"), skip, 100)
-    steps = np.diff(time[keep])
     pose = data["/vessel/pose_low_frequency"][keep]
     drift = data["/environment/waves_drift"][keep][:, :2]
-    bias_earth = data["/observer/bias"][keep]
-    anchors = data["/mooring/anchors"]
     psi = pose[:, 5]
+    bias = rotate(data["/observer/bias"][keep], -psi)
+    anchors = data["/mooring/anchors"]
     c, s = np.cos(psi), np.sin(psi)
-    bias = np.column_stack((c * bias_earth[:, 0] + s * bias_earth[:, 1],
-                            -s * bias_earth[:, 0] + c * bias_earth[:, 1]))
     heading = math.atan2(s.mean(), c.mean())
     # Where the mean wave drift comes from relative to the bow (it pushes down-wave, though
     # not exactly along the waves: a hull's sway drift grows faster off the bow than its
     # surge drift): 0 = from ahead, +90 deg = from starboard.
     drift_from = math.degrees(math.atan2(-drift[:, 1].mean(), -drift[:, 0].mean()))
-    return {"dt": float(steps[0]), "drift": drift, "bias": bias, "heading": heading,
+    return {"dt": dt, "drift": drift, "bias": bias, "heading": heading,
             "drift_from": drift_from,
             "position": pose[:, :2].mean(axis=0), "anchors": anchors[:, :2]}
 
@@ -358,14 +362,10 @@ def wave_regressors(motion):
 
 
 def explain_run(path, skip):
-    time, keep, data = read_run_datasets(path, (
+    dt, keep, data = read_run_datasets(path, (
         "/observer/bias", "/observer/wave_motion", "/environment/waves_drift",
         "/vessel/pose_true", "/vessel/pose_low_frequency"), skip, 200)
-    dt = float(np.median(np.diff(time)))
-    psi = data["/vessel/pose_low_frequency"][:, 5]
-    c, s = np.cos(psi), np.sin(psi)
-    hull = data["/environment/waves_drift"]
-    drift = np.column_stack((c * hull[:, 0] - s * hull[:, 1], s * hull[:, 0] + c * hull[:, 1]))
+    drift = rotate(data["/environment/waves_drift"], data["/vessel/pose_low_frequency"][:, 5])
     bias = trailing_mean(data["/observer/bias"][:, :2], EXPLAIN_WINDOW)
     motions = {"filter": data["/observer/wave_motion"][:, :2],
                "true": (data["/vessel/pose_true"][:, :2] -
