@@ -3,6 +3,7 @@
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <sstream>
@@ -38,12 +39,25 @@ class PluginDetector final : public Detector {
   std::string_view type() const override { return type_->type; }
   bool NeedsLoadEvidence() const override { return type_->needs_load_evidence != 0; }
 
+  void SetFailedLines(std::vector<std::array<int, 2>> failed) { failed_ = std::move(failed); }
+
   void Reset(int hypotheses) override {
     internal::Require(hypotheses >= 1, where_, "at least one hypothesis");
     hypotheses_ = hypotheses;
     score_.assign(static_cast<std::size_t>(hypotheses), 0.0);
+    // The map the bank gave, or moorsim's numbering without pairs: hypothesis h, line h.
+    std::vector<int> failed(2 * static_cast<std::size_t>(hypotheses), 0);
+    if (failed_.size() == static_cast<std::size_t>(hypotheses)) {
+      for (int h = 0; h < hypotheses; ++h) {
+        failed[2 * h] = failed_[h][0];
+        failed[2 * h + 1] = failed_[h][1];
+      }
+    } else {
+      internal::Require(failed_.empty(), where_, "one failed-lines entry per hypothesis");
+      for (int h = 1; h < hypotheses; ++h) failed[2 * h] = h;
+    }
     error_[0] = '\0';
-    if (type_->reset(instance_, hypotheses, error_, kErrorSize) != 0) {
+    if (type_->reset(instance_, hypotheses, failed.data(), error_, kErrorSize) != 0) {
       throw SolverError(where_ + ": reset failed: " + Reason(error_, "no reason given"));
     }
   }
@@ -120,6 +134,7 @@ class PluginDetector final : public Detector {
   void* instance_;
   std::string where_;  // "plugin <path> detector '<type>'", for the messages
   int hypotheses_ = 0;
+  std::vector<std::array<int, 2>> failed_;  // per hypothesis, from SetPluginHypotheses
   std::vector<moorsim_hypothesis_evidence> hypothesis_;
   std::vector<double> line_load_;
   std::vector<double> score_;
@@ -263,6 +278,12 @@ std::unique_ptr<Detector> MakePluginDetector(const std::string& path, const Dete
                      "' refused its parameters: " + Reason(error, "no reason given"));
   }
   return std::make_unique<PluginDetector>(std::move(library), type, instance);
+}
+
+void SetPluginHypotheses(Detector& detector, std::vector<std::array<int, 2>> failed_lines) {
+  if (auto* plugin = dynamic_cast<PluginDetector*>(&detector)) {
+    plugin->SetFailedLines(std::move(failed_lines));
+  }
 }
 
 }  // namespace moorsim::detectors

@@ -6,6 +6,7 @@
 // every sample (finite scores, a hypothesis in range).
 #pragma once
 
+#include <array>
 #include <memory>
 #include <span>
 #include <string>
@@ -51,5 +52,11 @@ class PluginLibrary {
 /// plugin <path> has no detector 'x' (it has: a, b)"), and for a create() that fails.
 std::unique_ptr<Detector> MakePluginDetector(const std::string& path, const DetectorSpec& spec,
                                              std::string_view key_path);
+
+/// Gives a plugin detector the lines each hypothesis fails (failed_lines[h]: up to two
+/// 1-based ids, 0 for none), which its next Reset passes on; call before Reset. Without it
+/// a plugin is told moorsim's numbering without pairs (hypothesis h = line h). Detectors
+/// that are not plugins are left as they are.
+void SetPluginHypotheses(Detector& detector, std::vector<std::array<int, 2>> failed_lines);
 
 }  // namespace moorsim::detectors

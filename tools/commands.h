@@ -16,6 +16,7 @@ Command AddSimulateLinesCommand(CLI::App& app);
 Command AddValidateCommand(CLI::App& app);
 Command AddRunCommand(CLI::App& app);
 Command AddAnalyzeCommand(CLI::App& app);
+Command AddDetectCommand(CLI::App& app);
 /// `moorsim batch`; argc/argv are recorded in the campaign's results.
 Command AddBatchCommand(CLI::App& app, int argc, char** argv);
 

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   add(&moorsim::cli::AddSimulateLinesCommand);
   add(&moorsim::cli::AddValidateCommand);
   add(&moorsim::cli::AddAnalyzeCommand);
+  add(&moorsim::cli::AddDetectCommand);
   {
     const std::size_t before = app.get_subcommands({}).size();
     moorsim::cli::Command command = moorsim::cli::AddBatchCommand(app, argc, argv);

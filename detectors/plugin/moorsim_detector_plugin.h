@@ -93,8 +93,12 @@ typedef struct moorsim_detector_plugin {
   /* A new detector from the checked parameter values, in the table's order; NULL on
    * failure (with the reason in `error`). */
   void* (*create)(const double* values, char* error, size_t error_size);
-  /* Starts over for `hypotheses` hypotheses (hypothesis 0 intact). */
-  int (*reset)(void* detector, int hypotheses, char* error, size_t error_size);
+  /* Starts over for `hypotheses` hypotheses (hypothesis 0 intact). failed_lines[2 h] and
+   * failed_lines[2 h + 1] are the 1-based ids of the lines hypothesis h says have parted
+   * (0 where there is none: both 0 for h = 0, the second 0 for a single line), so a
+   * detector never has to guess where the pairs begin or which lines they join. */
+  int (*reset)(void* detector, int hypotheses, const int* failed_lines, char* error,
+               size_t error_size);
   /* One sample: reads `evidence`, fills `verdict`. */
   int (*step)(void* detector, const moorsim_evidence* evidence, moorsim_verdict* verdict,
               char* error, size_t error_size);

@@ -28,8 +28,10 @@ static void* cusum_create(const double* values, char* error, size_t error_size) 
   return c;
 }
 
-static int cusum_reset(void* detector, int hypotheses, char* error, size_t error_size) {
+static int cusum_reset(void* detector, int hypotheses, const int* failed_lines, char* error,
+                        size_t error_size) {
   cusum* c = (cusum*)detector;
+  (void)failed_lines; /* every hypothesis is scored alike, single lines and pairs */
   double* sum = (double*)realloc(c->sum, (size_t)hypotheses * sizeof(double));
   if (sum == NULL) {
     snprintf(error, error_size, "out of memory for %d hypotheses", hypotheses);

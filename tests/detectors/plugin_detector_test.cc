@@ -114,7 +114,7 @@ TEST(PluginDetector, ALibraryThatIsNoPluginOrAnotherVersionIsRefusedByName) {
             }),
             std::string("detectors[3].type: plugin ") + MOORSIM_TEST_FAULTY_PLUGIN +
                 " has no detector 'cusum' (it has: nan_score, wrong_hypothesis, refuses, "
-                "needs_gain)");
+                "needs_gain, lines_map)");
   EXPECT_EQ(PluginInputError([] {
               MakePluginDetector(MOORSIM_TEST_FAULTY_PLUGIN, PluginSpec("refuses"), "detectors[0]");
             }),
@@ -143,6 +143,22 @@ TEST(PluginDetector, AVerdictThatBreaksTheContractNamesThePlugin) {
           << message;
     }
   }
+}
+
+TEST(PluginDetector, ResetTellsWhichLinesEachHypothesisFails) {
+  const auto detector =
+      MakePluginDetector(MOORSIM_TEST_FAULTY_PLUGIN, PluginSpec("lines_map"), "d");
+  // Without a map: moorsim's numbering without pairs, hypothesis h = line h.
+  detector->Reset(4);
+  EXPECT_EQ(detector->Update(PluginEvidence(0.0, {0, 0, 0, 0})).score,
+            (std::vector<double>{0, 100, 200, 300}));
+  // With the bank's map, pairs included (the lines 100 a + b as the plugin reads them).
+  SetPluginHypotheses(*detector, {{0, 0}, {1, 0}, {2, 0}, {3, 0}, {1, 2}, {1, 3}, {2, 3}});
+  detector->Reset(7);
+  EXPECT_EQ(detector->Update(PluginEvidence(1.0, {0, 0, 0, 0, 0, 0, 0})).score,
+            (std::vector<double>{0, 100, 200, 300, 102, 103, 203}));
+  // A map for another number of hypotheses is moorsim's own mistake, never the plugin's.
+  EXPECT_THROW(detector->Reset(5), ContractError);
 }
 
 }  // namespace

@@ -20,6 +20,7 @@
 #include "core/version.h"
 #include "scenarios/load.h"
 #include "tools/output/hdf5_file.h"
+#include "tools/simulation/detection_tables.h"
 
 namespace moorsim::simulation {
 namespace {
@@ -61,6 +62,7 @@ class RunWriter {
                                   {"angle", "rate", "moment_lines", "moment_bearing"});
     }
     const int lines = sim.num_lines();
+    lines_ = static_cast<std::size_t>(lines);
     std::vector<std::string> line_names;
     for (int i = 1; i <= lines; ++i) line_names.push_back("line " + std::to_string(i));
     tension_ = file_.CreateTable("/mooring/fairlead_tension", lines, "N", line_names);
@@ -80,35 +82,40 @@ class RunWriter {
     current_ = file_.CreateTable("/environment/current", 6, load_units, load);
     wind_ = file_.CreateTable("/environment/wind", 6, load_units, load);
     thrust_ = file_.CreateTable("/environment/thrust", 6, load_units, load);
-    if (sim.estimates_load()) {
-      observer_bias_ = file_.CreateTable("/observer/bias", 3, "N,N,N m", {"X", "Y", "N"});
-      observer_wave_ = file_.CreateTable("/observer/wave_motion", 3, "m,m,rad", {"x", "y", "psi"});
-    }
-    file_.CreateGroup("/detectors");
-    const std::vector<std::string> hypotheses = sim.HypothesisLabels();
-    if (!hypotheses.empty()) {
-      std::string joined;
-      for (const std::string& h : hypotheses) joined += (joined.empty() ? "" : ",") + h;
-      file_.SetAttribute("/detectors", "hypotheses", joined);
-    }
-    for (const DetectorRecord& d : sim.detector_records()) {
-      const std::string group = "/detectors/" + d.label;
-      const char* score_units = d.type == "dht"   ? "probability"
-                                : d.type == "mle" ? "nats (negative log-likelihood)"
-                                                  : "chi-square statistic";
-      Tables t;
-      t.score = file_.CreateTable(group + "/score", static_cast<int>(hypotheses.size()),
-                                  score_units, hypotheses);
-      t.decision = file_.CreateTable(group + "/decision", 0, "hypothesis (0 = intact, k = line k)",
-                                     {}, output::TableType::kInt32);
-      t.alarm = file_.CreateTable(group + "/alarm", 0, "0/1", {}, output::TableType::kInt8);
-      file_.SetAttribute(group, "type", d.type);
-      if (d.threshold) file_.SetAttribute(group, "threshold", *d.threshold);
-      detector_tables_.push_back(t);
+    detection_tables_.emplace(file_, sim.detection());
+    if (sim.detection()) {
+      // Every sample the detection took, as it took it: `moorsim detect` replays these.
+      sim.KeepDetectionInput(true);
+      input_time_ = file_.CreateTable("/detection/input/time", 0, "s");
+      input_pose_ =
+          file_.CreateTable("/detection/input/pose_measured", 3, "m,m,rad", {"x", "y", "psi"});
+      file_.SetAttribute("/detection/input/pose_measured", "missing",
+                         std::string("NaN: the channel delivered nothing at this sample"));
+      input_thrust_ = file_.CreateTable("/detection/input/thrust", 3, "N,N,N m", {"X", "Y", "N"});
+      if (scenario.sensors.tension_cells) {
+        input_tension_ =
+            file_.CreateTable("/detection/input/tension_measured", lines, "N", line_names);
+      }
     }
   }
 
   void Append(const Sample& s) {
+    for (const detectors::Observation& o : s.detection_input) {
+      file_.Append(*input_time_, o.t);
+      Vec3 pose = o.pose;
+      for (int i = 0; i < 3; ++i) {
+        if (!o.valid[i]) pose(i) = kNaN;
+      }
+      Row(*input_pose_, pose);
+      Row(*input_thrust_, o.tau_command);
+      if (input_tension_) {
+        if (o.tensions) {
+          Row(*input_tension_, *o.tensions);
+        } else {
+          file_.Append(*input_tension_, std::vector<double>(lines_, kNaN));
+        }
+      }
+    }
     file_.Append(time_, s.time);
     Row(pose_true_, s.pose_true);
     Row(pose_lf_, s.pose_low_frequency);
@@ -128,17 +135,7 @@ class RunWriter {
     Row(current_, s.load_current);
     Row(wind_, s.load_wind);
     Row(thrust_, s.load_thrust);
-    if (observer_bias_) {
-      // NaN until the bank's first sample.
-      Row(*observer_bias_, s.observer_bias.value_or(Vec3::Constant(kNaN)));
-      Row(*observer_wave_, s.observer_wave_motion.value_or(Vec3::Constant(kNaN)));
-    }
-    for (std::size_t i = 0; i < detector_tables_.size() && i < s.detectors.size(); ++i) {
-      const detectors::Verdict& v = s.detectors[i];
-      file_.Append(detector_tables_[i].score, v.score);
-      file_.Append(detector_tables_[i].decision, static_cast<std::int32_t>(v.hypothesis));
-      file_.Append(detector_tables_[i].alarm, static_cast<std::int32_t>(v.alarm ? 1 : 0));
-    }
+    detection_tables_->Append(file_, s.observer_bias, s.observer_wave_motion, s.detectors);
   }
 
   void Flush() { file_.Flush(); }
@@ -155,11 +152,9 @@ class RunWriter {
       delivered_, mooring_, drift_, current_, wind_, thrust_;
   std::optional<output::TableId> tension_measured_;
   std::optional<output::TableId> turret_;
-  std::optional<output::TableId> observer_bias_, observer_wave_;
-  struct Tables {
-    output::TableId score, decision, alarm;
-  };
-  std::vector<Tables> detector_tables_;
+  std::optional<output::TableId> input_time_, input_pose_, input_thrust_, input_tension_;
+  std::size_t lines_ = 0;
+  std::optional<DetectionTables> detection_tables_;
 };
 
 nlohmann::json Stats(const IntegratorStats& s) {
@@ -185,72 +180,15 @@ nlohmann::json SummaryHead(const scenarios::Scenario& scenario) {
   summary["seed"] = scenario.simulation.seed;
   summary["version"] = moorsim::kVersion;
   summary["duration"] = scenario.simulation.duration;
-  if (scenario.failure.line > 0) {
-    summary["failure"] = {{"line", scenario.failure.line},
-                          {"time", scenario.failure.time},
-                          {"mode", scenario.failure.mode}};
-  } else {
-    summary["failure"] = nullptr;
-  }
+  summary["failure"] = FailureSummary(scenario);
   return summary;
 }
 
 /// The per-detector results and detection timing of a run.
 void AddDetection(const scenarios::Scenario& scenario, const Simulation& sim,
                   nlohmann::json& summary) {
-  nlohmann::json detectors = nlohmann::json::object();
-  const std::vector<std::string> labels = sim.HypothesisLabels();
-  const int lines = sim.num_lines();
-  for (const DetectorRecord& d : sim.detector_records()) {
-    nlohmann::json j;
-    j["type"] = d.type;
-    if (d.threshold) j["threshold"] = *d.threshold;
-    const std::optional<detectors::AlarmEvent> first = d.FirstAlarm();
-    j["alarm_time"] = first ? nlohmann::json(first->time) : nlohmann::json(nullptr);
-    // Hypothesis k <= number of lines is "line k failed"; pairs are named by their label.
-    if (!first) {
-      j["isolated_line"] = nullptr;
-    } else if (first->hypothesis >= 1 && first->hypothesis <= lines) {
-      j["isolated_line"] = first->hypothesis;
-    } else {
-      j["isolated_line"] = nullptr;
-      j["isolated_hypothesis"] = labels.at(first->hypothesis);
-    }
-    j["delay"] = (first && d.failure_time) ? nlohmann::json(first->time - *d.failure_time)
-                                           : nlohmann::json(nullptr);
-    j["false_alarms"] = d.FalseAlarms();
-    // The verdict as it evolved (detectors::AlarmHistory): when it first named the failed
-    // line after the break, by an onset, a revision or an alarm already standing on it;
-    // what it said at the end; how long an alarm stood before and after the break.
-    const double end = sim.time();
-    const bool failed = scenario.failure.line > 0 && scenario.failure.time <= end;
-    const double t_failure = failed ? scenario.failure.time : end;
-    const std::optional<double> named =
-        failed ? d.history.FirstNamed(scenario.failure.line, t_failure) : std::nullopt;
-    j["isolation_time"] = named ? nlohmann::json(*named) : nlohmann::json(nullptr);
-    j["isolation_delay"] = named ? nlohmann::json(*named - t_failure) : nlohmann::json(nullptr);
-    j["final_alarm"] = d.history.alarm();
-    j["final_hypothesis"] = d.history.alarm() ? nlohmann::json(labels.at(d.history.hypothesis()))
-                                              : nlohmann::json(nullptr);
-    const int final_hypothesis = d.history.hypothesis();
-    j["final_line"] = final_hypothesis >= 1 && final_hypothesis <= lines
-                          ? nlohmann::json(final_hypothesis)
-                          : nlohmann::json(nullptr);
-    j["alarm_seconds_before_failure"] = d.history.AlarmSeconds(0.0, t_failure);
-    j["alarm_seconds_after_failure"] =
-        failed ? nlohmann::json(d.history.AlarmSeconds(t_failure, end)) : nlohmann::json(nullptr);
-    nlohmann::json history = nlohmann::json::array();
-    for (const detectors::AlarmEvent& e : d.history.events()) {
-      history.push_back({{"time", e.time},
-                         {"event", detectors::AlarmEventName(e.kind)},
-                         {"hypothesis", e.kind == detectors::AlarmEvent::Kind::kEnd
-                                            ? nlohmann::json(nullptr)
-                                            : nlohmann::json(labels.at(e.hypothesis))}});
-    }
-    j["history"] = history;
-    detectors[d.label] = j;
-  }
-  summary["detectors"] = detectors;
+  summary["detectors"] = sim.detection() ? DetectorsSummary(scenario, *sim.detection(), sim.time())
+                                         : nlohmann::json::object();
   const DetectionTiming& timing = sim.detection_timing();
   summary["detection"] = {{"setup_seconds", timing.setup_seconds},
                           {"update_seconds", timing.update_seconds},

@@ -237,41 +237,6 @@ vessel::ControllerSpec ToControllerSpec(const scenarios::ControllerSpec& c, cons
   return spec;
 }
 
-namespace {
-
-detectors::DetectorSpec Spec(const scenarios::DetectorEntry& e) {
-  return {.type = e.type, .label = e.label, .parameters = e.parameters, .plugin = e.plugin};
-}
-
-/// Builds detector i; an InputError from the registry ("detectors[2].floor: ...") is placed
-/// at that key in the scenario file.
-std::unique_ptr<detectors::Detector> BuildDetector(const scenarios::Scenario& scenario,
-                                                   std::size_t i) {
-  const std::string path = "detectors[" + std::to_string(i + 1) + "]";
-  try {
-    std::unique_ptr<detectors::Detector> detector =
-        detectors::MakeDetector(Spec(scenario.detectors[i]), path);
-    if (detector->NeedsLoadEvidence() && scenario.detection.observer == "passive") {
-      scenarios::FailAt(scenario, path + ".type",
-                        scenario.detectors[i].type +
-                            " reads the EKF observers' load estimate, which "
-                            "detection.observer: passive does not give (use ekf)");
-    }
-    return detector;
-  } catch (const InputError& e) {
-    const std::string message = e.what();
-    const std::size_t colon = message.find(": ");
-    if (colon == std::string::npos || message.compare(0, path.size(), path) != 0) throw;
-    scenarios::FailAt(scenario, message.substr(0, colon), message.substr(colon + 2));
-  }
-}
-
-}  // namespace
-
-void CheckDetectors(const scenarios::Scenario& scenario) {
-  for (std::size_t i = 0; i < scenario.detectors.size(); ++i) BuildDetector(scenario, i);
-}
-
 mooring_fem::LineFailure ToLineFailure(const scenarios::Scenario& scenario) {
   const scenarios::FailureSpec& f = scenario.failure;
   mooring_fem::LineFailure failure;
@@ -346,22 +311,6 @@ std::shared_ptr<const vessel::HydroData> SharedHydroData(const std::string& stem
                                        [&] { return vessel::ReadWamit(stem, options); });
 }
 
-/// What determines the detectors' hypothesis bank and GLR signatures: the scenario (its
-/// file, text and overrides) without the keys that cannot change them, the seed, the
-/// failure and the simulation's length and output rate. Conservative: any other override
-/// gives another key (a rebuild, never a wrong share).
-std::string DetectionKey(const scenarios::Scenario& s) {
-  std::string key = "detection " + s.source_path + "\n" + s.text;
-  for (const std::string& o : s.overrides) {
-    if (o.rfind("simulation.", 0) == 0 || o.rfind("failure.", 0) == 0 ||
-        o.rfind("failure=", 0) == 0) {
-      continue;
-    }
-    key += "\n--set " + o;
-  }
-  return key;
-}
-
 }  // namespace
 
 struct Simulation::Parts {
@@ -376,13 +325,6 @@ struct Simulation::Parts {
   std::optional<vessel::ThrusterDynamics> thruster_dynamics;
   Eigen::VectorXd directions;
   std::vector<double> measured_tensions;
-  // Detection: the hypothesis bank, one observer per hypothesis, the detectors.
-  std::shared_ptr<const detectors::HypothesisBank> bank;  // shared between runs (read only)
-  std::optional<detectors::ObserverBank> observers;       // detection.observer: ekf
-  std::optional<detectors::PassiveObserverBank> passive;  // detection.observer: passive
-  std::vector<std::unique_ptr<detectors::Detector>> detectors;
-  std::vector<detectors::Verdict> verdicts;
-  std::optional<Vec3> observer_bias, observer_wave_motion;  // the latest load picture
   Vec3 thrust_issued = Vec3::Zero();  // what the allocation sent to the thrusters
 };
 
@@ -436,88 +378,41 @@ Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed)
   x_.assign(system_->StateSize(), 0.0);
   SettleMooredEquilibrium();
   if (!scenario_.detectors.empty()) {
-    const auto start = std::chrono::steady_clock::now();
-    StartDetection();
-    detection_.setup_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    detection_ = std::make_unique<Detection>(scenario_, plant_->model(), initial_pose_);
   }
   StartIntegrator();
 }
 
 Simulation::~Simulation() = default;
 
-void Simulation::StartDetection() {
-  Parts& p = *parts_;
-  const DetectionModels models = MakeDetectionModels(scenario_, plant_->model(), initial_pose_);
-  const detectors::HypothesisBankOptions& options = models.bank;
-  // The bank, the GLR signatures and the passive observers' training depend on the scenario
-  // (not on the seed, the failure or the run's length) and on the calm-water moored pose,
-  // which the scenario alone determines: every run of a set-up shares them (shared_parts.h).
-  // The heave stays in the key so that the key names everything the parts are built from.
-  char heave[40];
-  std::snprintf(heave, sizeof heave, "\nmoored heave %a", initial_pose_(2));
-  const std::string key = DetectionKey(scenario_) + heave;
-  p.bank = SharedPart<detectors::HypothesisBank>(key, [&] {
-    return detectors::HypothesisBank(scenarios::ToMooringParameters(scenario_.mooring), options);
-  });
-  const detectors::LowFrequencyModel& model = models.model;
-  const detectors::EkfOptions& ekf = models.ekf;
-  const scenarios::DetectionSpec& d = scenario_.detection;
-  if (d.observer == "passive") {
-    // The TAPM thesis's passive observers, each with the innovation covariance of a 10000 s
-    // training run of its own hypothesis's model (section 4.4), held at the setpoint, with
-    // the noise levels of detection.model; streams "training.*" of detection.training_seed.
-    detectors::PassiveObserverOptions passive;
-    passive.bias_time_constant = ekf.bias_time_constant;
-    passive.mooring_damping_ratio = ekf.mooring_damping_ratio;
-    // Trained once per set-up (detection.training_seed, not the run seed) and shared by
-    // every run of it in the process, as a vessel's covariances are trained once.
-    detectors::CovarianceTrainingOptions training;
-    training.pose = options.reference_pose;
-    training.sample_interval = 1.0 / scenario_.sensors.gnss_rate;
-    training.seed = d.training_seed;
-    p.passive.emplace(
-        *p.bank, model, passive, *SharedPart<std::vector<Mat3>>(key + "\npassive training", [&] {
-          return detectors::TrainPassiveCovariances(*p.bank, model, passive, ekf, training);
-        }));
-  } else {
-    p.observers.emplace(*p.bank, model, ekf, models.observer_bank);
+std::unique_ptr<Detection> MakeDetection(const scenarios::Scenario& scenario) {
+  if (scenario.detectors.empty()) {
+    throw InputError(scenario.source_path + ": detectors: none (detection needs at least one)");
   }
-  for (std::size_t i = 0; i < scenario_.detectors.size(); ++i) {
-    p.detectors.push_back(BuildDetector(scenario_, i));
-    p.detectors.back()->Reset(p.bank->size());
-    DetectorRecord record;
-    record.label = scenario_.detectors[i].label;
-    record.type = scenario_.detectors[i].type;
-    if (scenario_.failure.line > 0) record.failure_time = scenario_.failure.time;
-    if (const auto* glr = dynamic_cast<const detectors::Glr*>(p.detectors.back().get())) {
-      record.threshold = glr->threshold();
-    } else if (const auto* dht = dynamic_cast<const detectors::Dht*>(p.detectors.back().get())) {
-      record.threshold = dht->options().threshold;
-    }
-    detector_records_.push_back(record);
-  }
-  // GLR detectors isolate by the failure signatures computed from the same models.
-  for (const std::unique_ptr<detectors::Detector>& d : p.detectors) {
-    if (auto* glr = dynamic_cast<detectors::Glr*>(d.get())) {
-      const int window = glr->options().window;
-      glr->SetSignatures(
-          *SharedPart<std::vector<Vec3>>(key + "\nGLR window " + std::to_string(window), [&] {
-            return detectors::GlrSignatures(*p.bank, model, ekf, options.reference_pose,
-                                            1.0 / scenario_.sensors.gnss_rate, window);
-          }));
-    }
-  }
-  p.verdicts.assign(p.detectors.size(), detectors::Verdict{});
-  for (detectors::Verdict& v : p.verdicts) v.score.assign(p.bank->size(), 0.0);
+  scenarios::Scenario plant_only = scenario;
+  plant_only.detectors.clear();
+  const Simulation start(plant_only, scenario.simulation.seed);
+  return std::make_unique<Detection>(scenario, start.plant_model(), start.initial_pose());
 }
 
-int Simulation::num_hypotheses() const { return parts_->bank ? parts_->bank->size() : 0; }
+int Simulation::num_hypotheses() const { return detection_ ? detection_->num_hypotheses() : 0; }
 
 std::vector<std::string> Simulation::HypothesisLabels() const {
-  std::vector<std::string> labels;
-  for (int h = 0; h < num_hypotheses(); ++h) labels.push_back(parts_->bank->Label(h));
-  return labels;
+  return detection_ ? detection_->HypothesisLabels() : std::vector<std::string>();
+}
+
+const std::vector<DetectorRecord>& Simulation::detector_records() const {
+  static const std::vector<DetectorRecord> kNone;
+  return detection_ ? detection_->records() : kNone;
+}
+
+const DetectionTiming& Simulation::detection_timing() const {
+  static const DetectionTiming kNone;
+  return detection_ ? detection_->timing() : kNone;
+}
+
+void Simulation::KeepDetectionInput(bool keep) {
+  if (detection_) detection_->KeepInput(keep);
 }
 
 std::vector<PointKinematics> Simulation::Points() {
@@ -686,33 +581,19 @@ void Simulation::DiscreteEvents() {
     parts_->directions = a.direction;
     plant_->SetThrustCommand(parts_->thruster_dynamics->command(), parts_->directions);
   }
-  if (sampled && (parts_->observers || parts_->passive)) {
-    const vessel::PoseMeasurement& m = *sampled;
+  if (sampled && detection_) {
     // The detectors see what a real system has: the measured pose and the thrust the
     // allocation sent to the thrusters (after its saturation handling) from now on.
-    const auto start = std::chrono::steady_clock::now();
     detectors::Observation observation;
     observation.t = t_;
-    observation.pose = m.value;
-    observation.valid = m.valid;
+    observation.pose = sampled->value;
+    observation.valid = sampled->valid;
     observation.tau_command = parts_->thrust_issued;
     if (!parts_->measured_tensions.empty()) {
       observation.tensions = Eigen::Map<const VecX>(parts_->measured_tensions.data(),
                                                     parts_->measured_tensions.size());
     }
-    const detectors::Evidence& evidence = parts_->observers ? parts_->observers->Update(observation)
-                                                            : parts_->passive->Update(observation);
-    if (evidence.load) {
-      parts_->observer_bias = evidence.load->bias;
-      parts_->observer_wave_motion = evidence.load->wave_motion;
-    }
-    for (std::size_t i = 0; i < parts_->detectors.size(); ++i) {
-      const detectors::Verdict& v = parts_->verdicts[i] = parts_->detectors[i]->Update(evidence);
-      detector_records_[i].history.Update(t_, v.alarm, v.hypothesis);
-    }
-    detection_.update_seconds +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    ++detection_.samples;
+    detection_->Update(observation);
   }
   if (failure_pending_ && t_ >= scenario_.failure.time) {
     failure_pending_ = false;
@@ -744,7 +625,7 @@ void Simulation::AdvanceTo(double t) {
 
 void Simulation::SetExternalLoad(const Vec3& load) { parts_->external.load_ = load; }
 
-bool Simulation::estimates_load() const { return parts_->observers.has_value(); }
+bool Simulation::estimates_load() const { return detection_ && detection_->estimates_load(); }
 
 Sample Simulation::Record() {
   Sample s;
@@ -767,9 +648,12 @@ Sample Simulation::Record() {
   s.thrust_delivered = Vec3(s.load_thrust(0), s.load_thrust(1), s.load_thrust(5));
   s.thrust_commanded = tau_command_;
   s.tension_measured = parts_->measured_tensions;
-  s.detectors = parts_->verdicts;
-  s.observer_bias = parts_->observer_bias;
-  s.observer_wave_motion = parts_->observer_wave_motion;
+  if (detection_) {
+    s.detectors = detection_->verdicts();
+    s.observer_bias = detection_->bias();
+    s.observer_wave_motion = detection_->wave_motion();
+    s.detection_input = detection_->TakeInput();
+  }
   Vec6 xi, xi_dot;
   plant_->Sea(t_, x_.data(), &xi, &xi_dot, &s.load_wave_drift);
   if (parts_->current) s.load_current = parts_->current->Load(t_, eta, nu);

@@ -23,11 +23,11 @@
 #include "core/coupled_system.h"
 #include "core/integrator.h"
 #include "core/sample_clock.h"
-#include "detectors/alarm_history.h"
 #include "detectors/detector.h"
 #include "mooring_fem/mooring_attachment.h"
 #include "mooring_fem/mooring_system.h"
 #include "scenarios/scenario.h"
+#include "tools/simulation/detection.h"
 #include "vessel/controller.h"
 #include "vessel/hull_loads.h"
 #include "vessel/hydro_data.h"
@@ -69,44 +69,13 @@ struct Sample {
   Vec6 load_thrust = Vec6::Zero();
   /// Every detector's latest verdict (scenario order), empty without detectors.
   std::vector<detectors::Verdict> detectors;
+  /// The samples the detection took since the previous row (Simulation::KeepDetectionInput).
+  std::vector<detectors::Observation> detection_input;
   /// The intact observer's latest load picture (EKF observer bank only): its bias state b
   /// [N, N, N m] and wave-frequency motion estimate C_w xi [m, m, rad], Earth frame; what
   /// the force-deficit test reads. Unset without an EKF bank or before its first sample.
   std::optional<Vec3> observer_bias;
   std::optional<Vec3> observer_wave_motion;
-};
-
-/// What a detector did over a run (summary.json). Alarm onsets are the samples where its
-/// alarm turns on. `alarm_time` is the first onset at or after the true failure time (with
-/// no failure: the first onset at all), `isolated` the hypothesis it named there; onsets
-/// before the failure (all onsets without one) count as false alarms.
-struct DetectorRecord {
-  std::string label;
-  std::string type;
-  /// The threshold the detector's alarm rule compares its score with (GLR: h on g; DHT:
-  /// the posterior), for plots; unset for detectors without one (MLE: a margin on gaps).
-  std::optional<double> threshold;
-  /// The scenario's failure time; unset without a failure.
-  std::optional<double> failure_time;
-  /// Every onset, revision of the named hypothesis and end of its alarm.
-  detectors::AlarmHistory history;
-
-  /// The first alarm onset at or after the failure (without a failure, the first onset):
-  /// its time is the alarm time, its hypothesis the isolated one.
-  std::optional<detectors::AlarmEvent> FirstAlarm() const {
-    return history.FirstOnset(failure_time.value_or(-std::numeric_limits<double>::infinity()));
-  }
-  /// Alarm onsets before the failure (all of them without a failure).
-  int FalseAlarms() const {
-    return history.OnsetsBefore(failure_time.value_or(std::numeric_limits<double>::infinity()));
-  }
-};
-
-/// Wall time spent on detection (steady clock).
-struct DetectionTiming {
-  double setup_seconds = 0.0;   ///< hypothesis bank, observers, signatures, training
-  double update_seconds = 0.0;  ///< observer bank and detectors, all samples
-  long samples = 0;             ///< observations processed
 };
 
 /// How well the station keeping held over the controller updates so far: how many of them
@@ -125,10 +94,6 @@ struct StationKeeping {
     return updates > 0 ? static_cast<double>(saturated) / static_cast<double>(updates) : 0.0;
   }
 };
-
-/// Builds every detector of the scenario once to check its type and parameters; a bad one
-/// is an InputError placed at its entry in the file. `moorsim validate` and `run` call it.
-void CheckDetectors(const scenarios::Scenario& scenario);
 
 /// A line failure in the FEM's terms, from the scenario's failure section (1-based line,
 /// node or arc length from the anchor).
@@ -149,6 +114,12 @@ vessel::WindParameters ToWindParameters(const scenarios::VesselSpec& spec);
 /// controller.heading is given.
 vessel::ControllerSpec ToControllerSpec(const scenarios::ControllerSpec& c, const Vec3& initial,
                                         const vessel::VesselModel& vessel);
+
+/// The scenario's detection as a run of it builds it, without the run: the plant is built
+/// and put at its moored static start (the models depend on it) and nothing is integrated.
+/// For `moorsim detect` on recorded data. Throws InputError for a scenario without
+/// detectors or one that cannot be simulated.
+std::unique_ptr<Detection> MakeDetection(const scenarios::Scenario& scenario);
 
 class Simulation {
  public:
@@ -179,13 +150,19 @@ class Simulation {
 
   mooring_fem::MooringSystem& mooring() { return mooring_; }
   vessel::VesselPlant& plant() { return *plant_; }
+  const vessel::VesselModel& plant_model() const { return plant_->model(); }
   CoupledSystem& system() { return *system_; }
   const vessel::HydroData& hydro() const { return *hydro_; }
   int num_lines() const { return mooring_.num_lines(); }
   /// Number of hypotheses of the detectors' bank (0 without detectors) and their labels.
   int num_hypotheses() const;
-  const std::vector<DetectorRecord>& detector_records() const { return detector_records_; }
+  const std::vector<DetectorRecord>& detector_records() const;
   std::vector<std::string> HypothesisLabels() const;
+  /// The detection (nullptr without detectors).
+  const Detection* detection() const { return detection_.get(); }
+  /// Record() hands over every sample the detection took since the previous Record
+  /// (Sample::detection_input): what run.h5 keeps as /detection/input.
+  void KeepDetectionInput(bool keep);
   /// Whether the detection has an EKF observer bank, whose load picture Record() reports.
   bool estimates_load() const;
   /// Mooring load (body frame) of the static start and the pose found there.
@@ -197,13 +174,12 @@ class Simulation {
   double integrator_seconds() const { return integrator_seconds_; }
   /// Time in detection; included in integrator_seconds() for the updates (they run at the
   /// sensor events inside AdvanceTo), not for the setup (in the constructor).
-  const DetectionTiming& detection_timing() const { return detection_; }
+  const DetectionTiming& detection_timing() const;
   const StationKeeping& station_keeping() const { return station_keeping_; }
 
  private:
   struct Parts;
   void SettleMooredEquilibrium();
-  void StartDetection();
   void StartIntegrator();
   void DiscreteEvents();
   double NextEventTime() const;
@@ -223,7 +199,7 @@ class Simulation {
   double t_ = 0.0;
   Vec6 initial_pose_ = Vec6::Zero();
   double integrator_seconds_ = 0.0;
-  DetectionTiming detection_;
+  std::unique_ptr<Detection> detection_;
   StationKeeping station_keeping_;
 
   // Discrete schedule: integer sample indices, instants k / rate (core/sample_clock.h).
@@ -234,7 +210,6 @@ class Simulation {
   bool failure_pending_ = false;
   Vec3 last_measurement_ = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
   Vec3 tau_command_ = Vec3::Zero();
-  std::vector<DetectorRecord> detector_records_;
 };
 
 }  // namespace moorsim::simulation

@@ -1,0 +1,279 @@
+#include "tools/simulation/detection.h"
+
+#include <chrono>
+#include <cstdio>
+
+#include "core/error.h"
+#include "detectors/dht.h"
+#include "detectors/ekf_observer.h"
+#include "detectors/glr.h"
+#include "detectors/glr_signatures.h"
+#include "detectors/hypothesis_bank.h"
+#include "detectors/innovation_covariance.h"
+#include "detectors/passive_observer.h"
+#include "detectors/plugin_detector.h"
+#include "detectors/registry.h"
+#include "scenarios/convert.h"
+#include "scenarios/load.h"
+#include "tools/simulation/detection_models.h"
+#include "tools/simulation/shared_parts.h"
+
+namespace moorsim::simulation {
+
+namespace {
+
+detectors::DetectorSpec Spec(const scenarios::DetectorEntry& e) {
+  return {.type = e.type, .label = e.label, .parameters = e.parameters, .plugin = e.plugin};
+}
+
+/// Builds detector i; an InputError from the registry ("detectors[2].floor: ...") is placed
+/// at that key in the scenario file.
+std::unique_ptr<detectors::Detector> BuildDetector(const scenarios::Scenario& scenario,
+                                                   std::size_t i) {
+  const std::string path = "detectors[" + std::to_string(i + 1) + "]";
+  try {
+    std::unique_ptr<detectors::Detector> detector =
+        detectors::MakeDetector(Spec(scenario.detectors[i]), path);
+    if (detector->NeedsLoadEvidence() && scenario.detection.observer == "passive") {
+      scenarios::FailAt(scenario, path + ".type",
+                        scenario.detectors[i].type +
+                            " reads the EKF observers' load estimate, which "
+                            "detection.observer: passive does not give (use ekf)");
+    }
+    return detector;
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    const std::size_t colon = message.find(": ");
+    if (colon == std::string::npos || message.compare(0, path.size(), path) != 0) throw;
+    scenarios::FailAt(scenario, message.substr(0, colon), message.substr(colon + 2));
+  }
+}
+
+/// What determines the detectors' hypothesis bank and GLR signatures: the scenario (its
+/// file, text and overrides) without the keys that cannot change them, the seed, the
+/// failure and the simulation's length and output rate. Conservative: any other override
+/// gives another key (a rebuild, never a wrong share).
+std::string DetectionKey(const scenarios::Scenario& s) {
+  std::string key = "detection " + s.source_path + "\n" + s.text;
+  for (const std::string& o : s.overrides) {
+    if (o.rfind("simulation.", 0) == 0 || o.rfind("failure.", 0) == 0 ||
+        o.rfind("failure=", 0) == 0) {
+      continue;
+    }
+    key += "\n--set " + o;
+  }
+  return key;
+}
+
+}  // namespace
+
+void CheckDetectors(const scenarios::Scenario& scenario) {
+  for (std::size_t i = 0; i < scenario.detectors.size(); ++i) BuildDetector(scenario, i);
+}
+
+struct Detection::Parts {
+  std::shared_ptr<const detectors::HypothesisBank> bank;  // shared between runs (read only)
+  std::optional<detectors::ObserverBank> observers;       // detection.observer: ekf
+  std::optional<detectors::PassiveObserverBank> passive;  // detection.observer: passive
+  std::vector<std::unique_ptr<detectors::Detector>> detectors;
+  std::vector<detectors::Verdict> verdicts;
+  std::optional<Vec3> bias, wave_motion;  // the latest load picture
+};
+
+Detection::Detection(const scenarios::Scenario& scenario, const vessel::VesselModel& vessel,
+                     const Vec6& moored_pose)
+    : parts_(std::make_unique<Parts>()) {
+  const auto start = std::chrono::steady_clock::now();
+  Parts& p = *parts_;
+  const DetectionModels models = MakeDetectionModels(scenario, vessel, moored_pose);
+  const detectors::HypothesisBankOptions& options = models.bank;
+  // The bank, the GLR signatures and the passive observers' training depend on the scenario
+  // (not on the seed, the failure or the run's length) and on the calm-water moored pose,
+  // which the scenario alone determines: every run of a set-up shares them (shared_parts.h).
+  // The heave stays in the key so that the key names everything the parts are built from.
+  char heave[40];
+  std::snprintf(heave, sizeof heave, "\nmoored heave %a", moored_pose(2));
+  const std::string key = DetectionKey(scenario) + heave;
+  p.bank = SharedPart<detectors::HypothesisBank>(key, [&] {
+    return detectors::HypothesisBank(scenarios::ToMooringParameters(scenario.mooring), options);
+  });
+  const detectors::LowFrequencyModel& model = models.model;
+  const detectors::EkfOptions& ekf = models.ekf;
+  const scenarios::DetectionSpec& d = scenario.detection;
+  if (d.observer == "passive") {
+    // The TAPM thesis's passive observers, each with the innovation covariance of a 10000 s
+    // training run of its own hypothesis's model (section 4.4), held at the setpoint, with
+    // the noise levels of detection.model; streams "training.*" of detection.training_seed.
+    detectors::PassiveObserverOptions passive;
+    passive.bias_time_constant = ekf.bias_time_constant;
+    passive.mooring_damping_ratio = ekf.mooring_damping_ratio;
+    // Trained once per set-up (detection.training_seed, not the run seed) and shared by
+    // every run of it in the process, as a vessel's covariances are trained once.
+    detectors::CovarianceTrainingOptions training;
+    training.pose = options.reference_pose;
+    training.sample_interval = 1.0 / scenario.sensors.gnss_rate;
+    training.seed = d.training_seed;
+    p.passive.emplace(
+        *p.bank, model, passive, *SharedPart<std::vector<Mat3>>(key + "\npassive training", [&] {
+          return detectors::TrainPassiveCovariances(*p.bank, model, passive, ekf, training);
+        }));
+  } else {
+    p.observers.emplace(*p.bank, model, ekf, models.observer_bank);
+  }
+  const std::vector<std::array<int, 2>> failed = FailedLines();
+  for (std::size_t i = 0; i < scenario.detectors.size(); ++i) {
+    p.detectors.push_back(BuildDetector(scenario, i));
+    detectors::SetPluginHypotheses(*p.detectors.back(), failed);
+    p.detectors.back()->Reset(p.bank->size());
+    DetectorRecord record;
+    record.label = scenario.detectors[i].label;
+    record.type = scenario.detectors[i].type;
+    if (scenario.failure.line > 0) record.failure_time = scenario.failure.time;
+    if (const auto* glr = dynamic_cast<const detectors::Glr*>(p.detectors.back().get())) {
+      record.threshold = glr->threshold();
+    } else if (const auto* dht = dynamic_cast<const detectors::Dht*>(p.detectors.back().get())) {
+      record.threshold = dht->options().threshold;
+    }
+    records_.push_back(record);
+  }
+  // GLR detectors isolate by the failure signatures computed from the same models.
+  for (const std::unique_ptr<detectors::Detector>& detector : p.detectors) {
+    if (auto* glr = dynamic_cast<detectors::Glr*>(detector.get())) {
+      const int window = glr->options().window;
+      glr->SetSignatures(
+          *SharedPart<std::vector<Vec3>>(key + "\nGLR window " + std::to_string(window), [&] {
+            return detectors::GlrSignatures(*p.bank, model, ekf, options.reference_pose,
+                                            1.0 / scenario.sensors.gnss_rate, window);
+          }));
+    }
+  }
+  p.verdicts.assign(p.detectors.size(), detectors::Verdict{});
+  for (detectors::Verdict& v : p.verdicts) v.score.assign(p.bank->size(), 0.0);
+  timing_.setup_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+Detection::~Detection() = default;
+
+void Detection::Update(const detectors::Observation& observation) {
+  const auto start = std::chrono::steady_clock::now();
+  Parts& p = *parts_;
+  if (keep_input_) input_.push_back(observation);
+  const detectors::Evidence& evidence =
+      p.observers ? p.observers->Update(observation) : p.passive->Update(observation);
+  if (evidence.load) {
+    p.bias = evidence.load->bias;
+    p.wave_motion = evidence.load->wave_motion;
+  }
+  for (std::size_t i = 0; i < p.detectors.size(); ++i) {
+    const detectors::Verdict& v = p.verdicts[i] = p.detectors[i]->Update(evidence);
+    records_[i].history.Update(observation.t, v.alarm, v.hypothesis);
+  }
+  timing_.update_seconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ++timing_.samples;
+}
+
+std::vector<detectors::Observation> Detection::TakeInput() {
+  std::vector<detectors::Observation> taken;
+  taken.swap(input_);
+  return taken;
+}
+
+int Detection::num_hypotheses() const { return parts_->bank->size(); }
+
+std::vector<std::string> Detection::HypothesisLabels() const {
+  std::vector<std::string> labels;
+  for (int h = 0; h < num_hypotheses(); ++h) labels.push_back(parts_->bank->Label(h));
+  return labels;
+}
+
+std::vector<std::array<int, 2>> Detection::FailedLines() const {
+  std::vector<std::array<int, 2>> failed(static_cast<std::size_t>(num_hypotheses()), {0, 0});
+  for (int h = 0; h < num_hypotheses(); ++h) {
+    const std::span<const int> lines = parts_->bank->failed_lines(h);
+    for (std::size_t k = 0; k < lines.size() && k < 2; ++k) failed[h][k] = lines[k];
+  }
+  return failed;
+}
+
+bool Detection::estimates_load() const { return parts_->observers.has_value(); }
+
+const std::vector<detectors::Verdict>& Detection::verdicts() const { return parts_->verdicts; }
+
+const std::optional<Vec3>& Detection::bias() const { return parts_->bias; }
+
+const std::optional<Vec3>& Detection::wave_motion() const { return parts_->wave_motion; }
+
+const char* ScoreUnits(std::string_view type) {
+  if (type == "dht") return "probability";
+  if (type == "mle") return "nats (negative log-likelihood)";
+  if (type == "glr") return "chi-square statistic";
+  return "score";
+}
+
+nlohmann::json FailureSummary(const scenarios::Scenario& scenario) {
+  if (scenario.failure.line == 0) return nullptr;
+  return {{"line", scenario.failure.line},
+          {"time", scenario.failure.time},
+          {"mode", scenario.failure.mode}};
+}
+
+nlohmann::json DetectorsSummary(const scenarios::Scenario& scenario, const Detection& detection,
+                                double end_time) {
+  nlohmann::json detectors = nlohmann::json::object();
+  const std::vector<std::string> labels = detection.HypothesisLabels();
+  const int lines = static_cast<int>(scenario.mooring.lines.size());
+  for (const DetectorRecord& d : detection.records()) {
+    nlohmann::json j;
+    j["type"] = d.type;
+    if (d.threshold) j["threshold"] = *d.threshold;
+    const std::optional<detectors::AlarmEvent> first = d.FirstAlarm();
+    j["alarm_time"] = first ? nlohmann::json(first->time) : nlohmann::json(nullptr);
+    // Hypothesis k <= number of lines is "line k failed"; pairs are named by their label.
+    if (!first) {
+      j["isolated_line"] = nullptr;
+    } else if (first->hypothesis >= 1 && first->hypothesis <= lines) {
+      j["isolated_line"] = first->hypothesis;
+    } else {
+      j["isolated_line"] = nullptr;
+      j["isolated_hypothesis"] = labels.at(first->hypothesis);
+    }
+    j["delay"] = (first && d.failure_time) ? nlohmann::json(first->time - *d.failure_time)
+                                           : nlohmann::json(nullptr);
+    j["false_alarms"] = d.FalseAlarms();
+    // The verdict as it evolved (detectors::AlarmHistory): when it first named the failed
+    // line after the break, by an onset, a revision or an alarm already standing on it;
+    // what it said at the end; how long an alarm stood before and after the break.
+    const bool failed = scenario.failure.line > 0 && scenario.failure.time <= end_time;
+    const double t_failure = failed ? scenario.failure.time : end_time;
+    const std::optional<double> named =
+        failed ? d.history.FirstNamed(scenario.failure.line, t_failure) : std::nullopt;
+    j["isolation_time"] = named ? nlohmann::json(*named) : nlohmann::json(nullptr);
+    j["isolation_delay"] = named ? nlohmann::json(*named - t_failure) : nlohmann::json(nullptr);
+    j["final_alarm"] = d.history.alarm();
+    j["final_hypothesis"] = d.history.alarm() ? nlohmann::json(labels.at(d.history.hypothesis()))
+                                              : nlohmann::json(nullptr);
+    const int final_hypothesis = d.history.hypothesis();
+    j["final_line"] = final_hypothesis >= 1 && final_hypothesis <= lines
+                          ? nlohmann::json(final_hypothesis)
+                          : nlohmann::json(nullptr);
+    j["alarm_seconds_before_failure"] = d.history.AlarmSeconds(0.0, t_failure);
+    j["alarm_seconds_after_failure"] =
+        failed ? nlohmann::json(d.history.AlarmSeconds(t_failure, end_time))
+               : nlohmann::json(nullptr);
+    nlohmann::json history = nlohmann::json::array();
+    for (const detectors::AlarmEvent& e : d.history.events()) {
+      history.push_back({{"time", e.time},
+                         {"event", detectors::AlarmEventName(e.kind)},
+                         {"hypothesis", e.kind == detectors::AlarmEvent::Kind::kEnd
+                                            ? nlohmann::json(nullptr)
+                                            : nlohmann::json(labels.at(e.hypothesis))}});
+    }
+    j["history"] = history;
+    detectors[d.label] = j;
+  }
+  return detectors;
+}
+
+}  // namespace moorsim::simulation

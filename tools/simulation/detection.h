@@ -1,0 +1,127 @@
+// The detection of a scenario on its own: the hypothesis bank, the observer bank and the
+// scenario's detectors, fed one sensor sample at a time. The coupled simulation feeds it the
+// samples its sensors take; `moorsim detect` feeds it a recorded or live stream without the
+// plant. Both build it from the same scenario the same way, so a replay of a run's recorded
+// detection input gives the run's verdicts bit for bit.
+//
+// The models depend on the scenario and the vessel's moored static start only (not on the
+// seed): the bank, the GLR signatures and the passive observers' training are shared by
+// every Detection of the same set-up in the process (shared_parts.h).
+#pragma once
+
+#include <array>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/types.h"
+#include "detectors/alarm_history.h"
+#include "detectors/detector.h"
+#include "scenarios/scenario.h"
+#include "vessel/vessel_model.h"
+
+namespace moorsim::simulation {
+
+/// What a detector did over a run (summary.json). Alarm onsets are the samples where its
+/// alarm turns on. `alarm_time` is the first onset at or after the true failure time (with
+/// no failure: the first onset at all), `isolated` the hypothesis it named there; onsets
+/// before the failure (all onsets without one) count as false alarms.
+struct DetectorRecord {
+  std::string label;
+  std::string type;
+  /// The threshold the detector's alarm rule compares its score with (GLR: h on g; DHT:
+  /// the posterior), for plots; unset for detectors without one (MLE: a margin on gaps).
+  std::optional<double> threshold;
+  /// The scenario's failure time; unset without a failure.
+  std::optional<double> failure_time;
+  /// Every onset, revision of the named hypothesis and end of its alarm.
+  detectors::AlarmHistory history;
+
+  /// The first alarm onset at or after the failure (without a failure, the first onset):
+  /// its time is the alarm time, its hypothesis the isolated one.
+  std::optional<detectors::AlarmEvent> FirstAlarm() const {
+    return history.FirstOnset(failure_time.value_or(-std::numeric_limits<double>::infinity()));
+  }
+  /// Alarm onsets before the failure (all of them without a failure).
+  int FalseAlarms() const {
+    return history.OnsetsBefore(failure_time.value_or(std::numeric_limits<double>::infinity()));
+  }
+};
+
+/// Wall time spent on detection (steady clock).
+struct DetectionTiming {
+  double setup_seconds = 0.0;   ///< hypothesis bank, observers, signatures, training
+  double update_seconds = 0.0;  ///< observer bank and detectors, all samples
+  long samples = 0;             ///< observations processed
+};
+
+/// Builds every detector of the scenario once to check its type and parameters; a bad one
+/// is an InputError placed at its entry in the file. `moorsim validate` and `run` call it.
+void CheckDetectors(const scenarios::Scenario& scenario);
+
+class Detection {
+ public:
+  /// The scenario's detection (it must have detectors and a vessel section) for the plant
+  /// model `vessel` at its moored static start `moored_pose` (Simulation::initial_pose()).
+  /// Throws moorsim::InputError for a detector or model the scenario cannot have.
+  Detection(const scenarios::Scenario& scenario, const vessel::VesselModel& vessel,
+            const Vec6& moored_pose);
+  ~Detection();
+  Detection(const Detection&) = delete;
+  Detection& operator=(const Detection&) = delete;
+
+  /// One sensor sample: the observers, then every detector in scenario order, whose alarm
+  /// histories record what changed. Times must not decrease (ContractError otherwise).
+  void Update(const detectors::Observation& observation);
+
+  /// Keeps every observation given to Update until TakeInput, for the run's record of its
+  /// detection input (run.h5 /detection/input).
+  void KeepInput(bool keep) { keep_input_ = keep; }
+  /// The observations since the last call, in order.
+  std::vector<detectors::Observation> TakeInput();
+
+  int num_hypotheses() const;
+  /// "intact", "line 6", "lines 2+5", by hypothesis.
+  std::vector<std::string> HypothesisLabels() const;
+  /// Per hypothesis, the 1-based lines it says have failed (0 where there is none).
+  std::vector<std::array<int, 2>> FailedLines() const;
+  /// Whether the observers are the EKF bank, whose load picture bias()/wave_motion() give.
+  bool estimates_load() const;
+  /// Every detector's latest verdict (scenario order).
+  const std::vector<detectors::Verdict>& verdicts() const;
+  const std::vector<DetectorRecord>& records() const { return records_; }
+  const DetectionTiming& timing() const { return timing_; }
+  /// The intact observer's latest bias b [N, N, N m] and wave-frequency motion [m, m, rad]
+  /// (Earth frame); unset before the first sample or without the EKF bank.
+  const std::optional<Vec3>& bias() const;
+  const std::optional<Vec3>& wave_motion() const;
+
+ private:
+  struct Parts;
+  std::unique_ptr<Parts> parts_;
+  std::vector<DetectorRecord> records_;
+  DetectionTiming timing_;
+  bool keep_input_ = false;
+  std::vector<detectors::Observation> input_;
+};
+
+/// What a detector's scores are, for the "units" of its score table: "probability" (DHT),
+/// "nats (negative log-likelihood)" (MLE), "chi-square statistic" (GLR), "score" otherwise
+/// (the deficit test's and a plugin's are documented with them).
+const char* ScoreUnits(std::string_view type);
+
+/// summary.json's "failure": the scenario's line, time and mode, or null without one.
+nlohmann::json FailureSummary(const scenarios::Scenario& scenario);
+
+/// summary.json's "detectors" object (one entry per detector: alarm time, isolated line,
+/// delay, false alarms, isolation, final verdict, alarm seconds, the event history) for a
+/// detection that ran up to `end_time` [s]; the scenario's failure, if any, is the truth
+/// the verdicts are scored against.
+nlohmann::json DetectorsSummary(const scenarios::Scenario& scenario, const Detection& detection,
+                                double end_time);
+
+}  // namespace moorsim::simulation

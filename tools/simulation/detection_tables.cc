@@ -1,0 +1,57 @@
+#include "tools/simulation/detection_tables.h"
+
+#include <limits>
+#include <span>
+
+namespace moorsim::simulation {
+
+namespace {
+
+void AppendRow(output::Hdf5File& file, output::TableId table, const Vec3& v) {
+  file.Append(table, std::span<const double>(v.data(), 3));
+}
+
+}  // namespace
+
+DetectionTables::DetectionTables(output::Hdf5File& file, const Detection* detection) {
+  if (detection != nullptr && detection->estimates_load()) {
+    bias_ = file.CreateTable("/observer/bias", 3, "N,N,N m", {"X", "Y", "N"});
+    wave_motion_ = file.CreateTable("/observer/wave_motion", 3, "m,m,rad", {"x", "y", "psi"});
+  }
+  file.CreateGroup("/detectors");
+  if (detection == nullptr) return;
+  const std::vector<std::string> hypotheses = detection->HypothesisLabels();
+  std::string joined;
+  for (const std::string& h : hypotheses) joined += (joined.empty() ? "" : ",") + h;
+  file.SetAttribute("/detectors", "hypotheses", joined);
+  for (const DetectorRecord& d : detection->records()) {
+    const std::string group = "/detectors/" + d.label;
+    Tables t;
+    t.score = file.CreateTable(group + "/score", static_cast<int>(hypotheses.size()),
+                               ScoreUnits(d.type), hypotheses);
+    t.decision = file.CreateTable(group + "/decision", 0, "hypothesis (0 = intact, k = line k)", {},
+                                  output::TableType::kInt32);
+    t.alarm = file.CreateTable(group + "/alarm", 0, "0/1", {}, output::TableType::kInt8);
+    file.SetAttribute(group, "type", d.type);
+    if (d.threshold) file.SetAttribute(group, "threshold", *d.threshold);
+    detectors_.push_back(t);
+  }
+}
+
+void DetectionTables::Append(output::Hdf5File& file, const std::optional<Vec3>& bias,
+                             const std::optional<Vec3>& wave_motion,
+                             const std::vector<detectors::Verdict>& verdicts) const {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  if (bias_) {
+    AppendRow(file, *bias_, bias.value_or(Vec3::Constant(kNaN)));
+    AppendRow(file, *wave_motion_, wave_motion.value_or(Vec3::Constant(kNaN)));
+  }
+  for (std::size_t i = 0; i < detectors_.size() && i < verdicts.size(); ++i) {
+    const detectors::Verdict& v = verdicts[i];
+    file.Append(detectors_[i].score, v.score);
+    file.Append(detectors_[i].decision, static_cast<std::int32_t>(v.hypothesis));
+    file.Append(detectors_[i].alarm, static_cast<std::int32_t>(v.alarm ? 1 : 0));
+  }
+}
+
+}  // namespace moorsim::simulation
