@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "tests/cli/run_cli.h"
@@ -136,6 +137,91 @@ TEST_F(DetectCommand, ACsvLogOnStandardInputGivesTheSameAlarms) {
   const CliResult r = RunProgram("/bin/sh", {"-c", command}, dir.path());
   ASSERT_EQ(r.exit_code, 0) << r.Describe();
   const nlohmann::json run = ReadJsonFile(RunDir() / "summary.json");
+  EXPECT_EQ(ReadJsonFile(dir.path() / "d" / "summary.json")["detectors"], run["detectors"]);
+}
+
+// The lines of `path` so far.
+std::vector<std::string> LinesOf(const std::filesystem::path& path) {
+  std::vector<std::string> lines;
+  std::istringstream in(ReadWholeFile(path));
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// Waits up to 30 s for `path` to have at least `n` lines; returns how many it has.
+std::size_t AwaitLines(const std::filesystem::path& path, std::size_t n) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  std::size_t have = 0;
+  while ((have = LinesOf(path).size()) < n && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return have;
+}
+
+void Append(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::app | std::ios::binary);
+  out << text << std::flush;
+}
+
+TEST_F(DetectCommand, FollowingALogPrintsEachAlarmWhenItsRowArrives) {
+  TempDirectory dir(::testing::TempDir());
+  const nlohmann::json run = ReadJsonFile(RunDir() / "summary.json");
+  // The first event of the run and how many there are in all.
+  double first = 1e300;
+  std::size_t events = 0;
+  for (const auto& [label, d] : run["detectors"].items()) {
+    for (const nlohmann::json& e : d["history"]) first = std::min(first, e["time"].get<double>());
+    events += d["history"].size();
+  }
+  ASSERT_LT(first, 250.0);
+  // The log up to the first event's row; the rest comes later, a line split in two.
+  const std::string csv = DetectionInputCsv((RunDir() / "run.h5").string());
+  std::size_t cut = 0;  // after the first event's row (time is the second column)
+  for (std::size_t begin = 0; begin < csv.size() && cut == 0;) {
+    const std::size_t end = csv.find('\n', begin);
+    const std::string line = csv.substr(begin, end - begin);
+    const std::size_t comma = line.find(',');
+    if (line[0] != '#' && comma != std::string::npos &&
+        std::atof(line.c_str() + comma + 1) == first) {
+      cut = end + 1;
+    }
+    begin = end + 1;
+  }
+  ASSERT_GT(cut, 0u);
+  const std::filesystem::path log = dir.path() / "log.csv";
+  WriteWholeFile(log, csv.substr(0, cut));
+
+  std::vector<std::string> args = {MOORSIM_CLI,     "detect",  log.string(),
+                                   "--follow",      "--quiet", "--scenario",
+                                   kDetectScenario, "--out",   (dir.path() / "d").string()};
+  args.insert(args.end(), kDetectSets.begin(), kDetectSets.end());
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const std::filesystem::path events_path = dir.path() / "events.jsonl";
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, events_path.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, MOORSIM_CLI, &actions, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+
+  // The first alarm is printed while the log still ends at its row.
+  EXPECT_GE(AwaitLines(events_path, 1), 1u);
+  const nlohmann::json printed = nlohmann::json::parse(LinesOf(events_path).at(0));
+  EXPECT_EQ(printed["time"].get<double>(), first);
+  const std::string rest = csv.substr(cut);
+  Append(log, rest.substr(0, rest.size() / 2));
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  Append(log, rest.substr(rest.size() / 2));
+  EXPECT_EQ(AwaitLines(events_path, events), events);
+  // SIGINT ends it with the summary of everything so far: the run's own verdicts.
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
   EXPECT_EQ(ReadJsonFile(dir.path() / "d" / "summary.json")["detectors"], run["detectors"]);
 }
 
