@@ -1,11 +1,14 @@
 #include "detectors/plugin_detector.h"
 
 #include <dlfcn.h>
+#include <nettle/sha2.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <mutex>
 #include <sstream>
 
 #include "core/error.h"
@@ -40,6 +43,7 @@ class PluginDetector final : public Detector {
   bool NeedsLoadEvidence() const override { return type_->needs_load_evidence != 0; }
 
   void SetFailedLines(std::vector<std::array<int, 2>> failed) { failed_ = std::move(failed); }
+  const PluginLibrary& library() const { return *library_; }
 
   void Reset(int hypotheses) override {
     internal::Require(hypotheses >= 1, where_, "at least one hypothesis");
@@ -176,6 +180,38 @@ std::vector<DetectorParameter> Table(const std::string& path, const moorsim_dete
   return table;
 }
 
+// SHA-256 of the file at `path`, lower-case hex; empty if it cannot be read.
+std::string FileSha256(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return "";
+  sha256_ctx context;
+  sha256_init(&context);
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    sha256_update(&context, static_cast<std::size_t>(in.gcount()),
+                  reinterpret_cast<const std::uint8_t*>(buffer));
+  }
+  std::uint8_t digest[SHA256_DIGEST_SIZE];
+  sha256_digest(&context, SHA256_DIGEST_SIZE, digest);
+  static const char kHex[] = "0123456789abcdef";
+  std::string hex;
+  for (std::uint8_t byte : digest) {
+    hex += kHex[byte >> 4];
+    hex += kHex[byte & 15];
+  }
+  return hex;
+}
+
+// The libraries of --plugin, in order.
+struct Registered {
+  std::mutex mutex;
+  std::vector<std::shared_ptr<const PluginLibrary>> libraries;
+};
+Registered& Registry() {
+  static Registered registered;
+  return registered;
+}
+
 }  // namespace
 
 std::shared_ptr<const PluginLibrary> PluginLibrary::Load(const std::string& path) {
@@ -186,6 +222,7 @@ std::shared_ptr<const PluginLibrary> PluginLibrary::Load(const std::string& path
   dlerror();
   library->handle_ = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (library->handle_ == nullptr) throw fail("cannot load (" + Reason(dlerror(), "?") + ")");
+  library->sha256_ = FileSha256(path);
   const auto symbol = [&](const char* name) {
     void* address = dlsym(library->handle_, name);
     if (address == nullptr) {
@@ -278,6 +315,48 @@ std::unique_ptr<Detector> MakePluginDetector(const std::string& path, const Dete
                      "' refused its parameters: " + Reason(error, "no reason given"));
   }
   return std::make_unique<PluginDetector>(std::move(library), type, instance);
+}
+
+std::vector<std::shared_ptr<const PluginLibrary>> RegisteredPluginLibraries() {
+  Registered& r = Registry();
+  const std::lock_guard lock(r.mutex);
+  return r.libraries;
+}
+
+std::shared_ptr<const PluginLibrary> RegisteredPluginFor(std::string_view type) {
+  for (const std::shared_ptr<const PluginLibrary>& library : RegisteredPluginLibraries()) {
+    if (library->Find(type) != nullptr) return library;
+  }
+  return nullptr;
+}
+
+void RegisterPluginLibrary(const std::string& path) {
+  std::shared_ptr<const PluginLibrary> library = PluginLibrary::Load(path);
+  Registered& r = Registry();
+  const std::lock_guard lock(r.mutex);
+  for (const std::shared_ptr<const PluginLibrary>& other : r.libraries) {
+    if (other->path() == path) return;
+  }
+  const std::vector<std::string_view> built_in = DetectorTypes();
+  for (std::string_view type : library->TypeNames()) {
+    if (std::find(built_in.begin(), built_in.end(), type) != built_in.end()) {
+      throw InputError("plugin " + path + ": detector '" + std::string(type) +
+                       "' is a built-in detector's name (rename it, or name the library in "
+                       "the scenario's `plugin:` key instead)");
+    }
+    for (const std::shared_ptr<const PluginLibrary>& other : r.libraries) {
+      if (other->Find(type) != nullptr) {
+        throw InputError("plugin " + path + ": detector '" + std::string(type) +
+                         "' is provided by plugin " + other->path() + " too");
+      }
+    }
+  }
+  r.libraries.push_back(std::move(library));
+}
+
+const PluginLibrary* PluginLibraryOf(const Detector& detector) {
+  const auto* plugin = dynamic_cast<const PluginDetector*>(&detector);
+  return plugin != nullptr ? &plugin->library() : nullptr;
 }
 
 void SetPluginHypotheses(Detector& detector, std::vector<std::array<int, 2>> failed_lines) {

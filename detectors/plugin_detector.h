@@ -31,6 +31,9 @@ class PluginLibrary {
   PluginLibrary& operator=(const PluginLibrary&) = delete;
 
   const std::string& path() const { return path_; }
+  /// SHA-256 of the library file as loaded, lower-case hex: outputs record it so that a
+  /// result names exactly the code that produced it.
+  const std::string& sha256() const { return sha256_; }
   /// The types the library provides, in its order.
   std::vector<std::string_view> TypeNames() const;
   /// The type named `type`, or nullptr.
@@ -41,6 +44,7 @@ class PluginLibrary {
  private:
   explicit PluginLibrary(std::string path) : path_(std::move(path)) {}
   std::string path_;
+  std::string sha256_;
   void* handle_ = nullptr;
   std::span<const moorsim_detector_plugin> types_;
   std::vector<std::vector<DetectorParameter>> parameters_;  // per type
@@ -52,6 +56,15 @@ class PluginLibrary {
 /// plugin <path> has no detector 'x' (it has: a, b)"), and for a create() that fails.
 std::unique_ptr<Detector> MakePluginDetector(const std::string& path, const DetectorSpec& spec,
                                              std::string_view key_path);
+
+/// The libraries registered with RegisterPluginLibrary (detectors/registry.h), in order.
+std::vector<std::shared_ptr<const PluginLibrary>> RegisteredPluginLibraries();
+
+/// The registered library that provides `type`, or nullptr.
+std::shared_ptr<const PluginLibrary> RegisteredPluginFor(std::string_view type);
+
+/// The library a plugin detector came from; nullptr for a built-in detector.
+const PluginLibrary* PluginLibraryOf(const Detector& detector);
 
 /// Gives a plugin detector the lines each hypothesis fails (failed_lines[h]: up to two
 /// 1-based ids, 0 for none), which its next Reset passes on; call before Reset. Without it

@@ -274,8 +274,16 @@ std::unique_ptr<Detector> MakeDetector(const DetectorSpec& spec, std::string_vie
       kDetectors.begin(), kDetectors.end(), spec.type,
       [](const DetectorType& entry, const std::string& name) { return entry.name < name; });
   if (it == kDetectors.end() || it->name != spec.type) {
+    if (const std::shared_ptr<const PluginLibrary> library = RegisteredPluginFor(spec.type)) {
+      return MakePluginDetector(library->path(), spec, key_path);
+    }
+    std::vector<std::string_view> known = DetectorTypes();
+    const std::vector<std::shared_ptr<const PluginLibrary>> plugins = RegisteredPluginLibraries();
+    for (const std::shared_ptr<const PluginLibrary>& library : plugins) {
+      for (std::string_view type : library->TypeNames()) known.push_back(type);
+    }
     throw InputError(path + ".type: unknown detector '" + spec.type +
-                     "' (known: " + internal::JoinNames(DetectorTypes()) + ")");
+                     "' (known: " + internal::JoinNames(known) + ")");
   }
   internal::CheckParameters(spec, it->parameters, it->name, path);
   try {
@@ -285,17 +293,33 @@ std::unique_ptr<Detector> MakeDetector(const DetectorSpec& spec, std::string_vie
   }
 }
 
+namespace {
+
+void ParameterHelp(std::ostringstream& out, std::span<const DetectorParameter> parameters) {
+  for (const DetectorParameter& p : parameters) {
+    const std::string default_text =
+        p.default_value ? FormatNumber(*p.default_value) : std::string(p.default_note);
+    out << "    " << std::left << std::setw(24) << p.name << " default " << default_text
+        << (p.unit.empty() || !p.default_value ? "" : " ") << (p.default_value ? p.unit : "")
+        << "; " << p.range.Describe() << "; " << p.description << "\n";
+  }
+}
+
+}  // namespace
+
 std::string DetectorHelp() {
   std::ostringstream out;
   out << "Detectors (the scenario's `detectors:` list: type, optional label, parameters):\n";
   for (const DetectorType& type : kDetectors) {
     out << "  " << type.name << ": " << type.description << "\n";
-    for (const DetectorParameter& p : type.parameters) {
-      const std::string default_text =
-          p.default_value ? FormatNumber(*p.default_value) : std::string(p.default_note);
-      out << "    " << std::left << std::setw(24) << p.name << " default " << default_text
-          << (p.unit.empty() || !p.default_value ? "" : " ") << (p.default_value ? p.unit : "")
-          << "; " << p.range.Describe() << "; " << p.description << "\n";
+    ParameterHelp(out, type.parameters);
+  }
+  for (const std::shared_ptr<const PluginLibrary>& library : RegisteredPluginLibraries()) {
+    out << "From plugin " << library->path() << ":\n";
+    for (std::string_view type : library->TypeNames()) {
+      const char* description = library->Find(type)->description;
+      out << "  " << type << ": " << (description != nullptr ? description : "") << "\n";
+      ParameterHelp(out, library->Parameters(type));
     }
   }
   return out.str();

@@ -90,8 +90,15 @@ std::vector<std::string_view> DetectorTypes();
 std::unique_ptr<Detector> MakeDetector(const DetectorSpec& spec, std::string_view key_path);
 
 /// The --help listing: every type with its description and its parameters (default, range,
-/// unit, meaning), one per line.
+/// unit, meaning), one per line; then the types of the plugin libraries registered so far.
 std::string DetectorHelp();
+
+/// Loads the plugin library at `path` for the rest of the process (`--plugin PATH`): a
+/// scenario then names its types by `type:` alone, as built-in ones. Throws InputError
+/// "plugin <path>: ..." for a library that does not load (PluginLibrary::Load) or a type
+/// that a built-in detector or an earlier registered library already has. Registering the
+/// same path twice is one registration. Call before any thread makes detectors.
+void RegisterPluginLibrary(const std::string& path);
 
 namespace internal {
 

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "core/error.h"
+#include "detectors/registry.h"
 #include "tools/commands.h"
 #include "tools/simulation/batch.h"
 
@@ -117,7 +118,8 @@ Command AddBatchCommand(CLI::App& app, int argc, char** argv) {
       "finished run: rerunning the same command resumes) and, with --keep-runs, every run's\n"
       "run.h5 under DIR/runs/. tools/report.py DIR writes the report. Exit codes: 0 every run\n"
       "ok, 1 some run failed or timed out (recorded in the table), 2 bad input, 130/143\n"
-      "interrupted by SIGINT/SIGTERM (finished runs are kept; the same command resumes).");
+      "interrupted by SIGINT/SIGTERM (finished runs are kept; the same command resumes).\n\n" +
+      detectors::DetectorHelp());
   sub->add_option("--out", o->out, "results directory (default out/<campaign name>)");
   sub->add_option("--threads", o->threads, "runs at once (default: every core)");
   sub->add_option("--shard", o->shard, "K/N: only every N-th run from the K-th (job arrays)");
@@ -128,6 +130,7 @@ Command AddBatchCommand(CLI::App& app, int argc, char** argv) {
   sub->add_flag("--keep-runs", o->keep_runs, "keep every run's run.h5 and summary.json");
   sub->add_flag("--dry-run", o->dry_run, "list the runs and the estimated wall time, run nothing");
   sub->add_flag("--quiet", o->quiet, "no progress line on stderr");
+  AddPluginOption(sub);
   return [o] { return Batch(*o); };
 }
 

@@ -20,6 +20,15 @@ Command AddDetectCommand(CLI::App& app);
 /// `moorsim batch`; argc/argv are recorded in the campaign's results.
 Command AddBatchCommand(CLI::App& app, int argc, char** argv);
 
+/// Declares `--plugin PATH` (repeatable) on a subcommand that makes detectors. main()
+/// registers the libraries before the commands are built (RegisterPlugins), so that their
+/// types are in the subcommand's --help and nameable by `type:` alone.
+void AddPluginOption(CLI::App* sub);
+/// Registers every `--plugin PATH` / `--plugin=PATH` of the command line
+/// (detectors::RegisterPluginLibrary), a relative path from the working directory; returns
+/// the paths registered. Throws InputError "--plugin: ..." for one that cannot be used.
+std::vector<std::string> RegisterPlugins(int argc, char** argv);
+
 /// Splits "a,b,c" into numbers; throws InputError naming the flag on anything else.
 std::vector<double> ParseNumberList(const std::string& flag, const std::string& text);
 /// The flag's text if it is not empty; throws InputError naming the flag otherwise (an

@@ -287,6 +287,10 @@ int Detect(const DetectOptions& o) {
   summary["first_time"] = samples > 0 ? nlohmann::json(first_time) : nlohmann::json(nullptr);
   summary["last_time"] = samples > 0 ? nlohmann::json(last_time) : nlohmann::json(nullptr);
   summary["failure"] = simulation::FailureSummary(scenario);
+  if (const nlohmann::json plugins = simulation::PluginsSummary(detection->PluginPaths());
+      !plugins.empty()) {
+    summary["plugins"] = plugins;
+  }
   summary["detectors"] =
       simulation::DetectorsSummary(scenario, *detection, samples > 0 ? last_time : 0.0);
   summary["detection"] = {{"setup_seconds", detection->timing().setup_seconds},
@@ -326,6 +330,7 @@ Command AddDetectCommand(CLI::App& app) {
                 "at the end of a CSV file, wait for more rows (a log being appended) until "
                 "SIGINT/SIGTERM");
   sub->add_flag("--quiet", o->quiet, "no summary line on stderr");
+  AddPluginOption(sub);
   sub->footer(
       "\nCSV columns (SI units, any order, matched by name): time [s], north [m], east [m],\n"
       "heading [rad] (an empty cell: the sensor gave nothing), thrust_surge [N],\n"
@@ -335,7 +340,8 @@ Command AddDetectCommand(CLI::App& app) {
       "latency_ms: the wall time of that sample in the observers and detectors} as soon\n"
       "as its sample is processed. The scenario's failure, if it has one, is the truth the\n"
       "summary scores the verdicts against. Exit codes: 0 ok, 1 failed, 2 bad input (one line\n"
-      "naming file, row and column), 128 + signal when --follow was stopped.");
+      "naming file, row and column), 128 + signal when --follow was stopped.\n\n" +
+      detectors::DetectorHelp());
   return [o] { return Detect(*o); };
 }
 

@@ -5,10 +5,47 @@
 #include <string>
 #include <vector>
 
+#include <filesystem>
+
 #include "core/error.h"
+#include "detectors/registry.h"
 #include "tools/commands.h"
 
 namespace moorsim::cli {
+
+void AddPluginOption(CLI::App* sub) {
+  static std::vector<std::string> ignored;  // main() registered them already
+  sub->add_option("--plugin", ignored,
+                  "detector plugin library (repeatable): its detector types are named by "
+                  "`type:` alone and listed below");
+}
+
+std::vector<std::string> RegisterPlugins(int argc, char** argv) {
+  std::vector<std::string> paths;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--") break;
+    std::string path;
+    if (arg == "--plugin") {
+      if (i + 1 >= argc) throw InputError("--plugin: needs a library path");
+      path = argv[++i];
+    } else if (arg.rfind("--plugin=", 0) == 0) {
+      path = arg.substr(9);
+    } else {
+      continue;
+    }
+    RequireText("--plugin", path);
+    // A path without a slash would make dlopen() search the system's library path.
+    path = std::filesystem::absolute(path).lexically_normal().string();
+    try {
+      detectors::RegisterPluginLibrary(path);
+    } catch (const InputError& error) {
+      throw InputError(std::string("--plugin: ") + error.what());
+    }
+    paths.push_back(path);
+  }
+  return paths;
+}
 
 std::vector<double> ParseNumberList(const std::string& flag, const std::string& text) {
   if (text.empty()) throw InputError(flag + ": no numbers in ''");

@@ -10,6 +10,13 @@
 #include "tools/commands.h"
 
 int main(int argc, char** argv) {
+  // Plugin libraries first: the commands' help lists their detector types.
+  try {
+    moorsim::cli::RegisterPlugins(argc, argv);
+  } catch (const moorsim::InputError& e) {
+    std::cerr << "moorsim: " << e.what() << "\n";
+    return 2;
+  }
   CLI::App app{std::string("moorsim ") + moorsim::kVersion +
                " - turret-moored FPSO mooring simulator (lumped-mass FEM lines on CVODE/KLU)"};
   app.require_subcommand(1);

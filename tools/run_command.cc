@@ -92,6 +92,7 @@ Command AddRunCommand(CLI::App& app) {
   sub->add_option("--duration", o->duration, "simulated time [s] (default simulation.duration)");
   sub->add_option("--set", o->sets, "override a scenario value: key.path=value (repeatable)");
   sub->add_flag("--quiet", o->quiet, "no progress lines on stderr");
+  AddPluginOption(sub);
   return [o] { return Run(*o); };
 }
 

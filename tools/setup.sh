@@ -15,6 +15,7 @@ packages=(
   libgtest-dev libgmock-dev googletest
   libbenchmark-dev
   libhdf5-dev              # run.h5 writer (HDF5 C API)
+  nettle-dev               # SHA-256 of detector plugin libraries
   libopenmpi-dev openmpi-bin   # moorsim batch under mpirun
   python3-numpy python3-h5py python3-matplotlib   # tools/plot_run.py
   clang-format

@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/version.h"
+#include "detectors/registry.h"
 #include "mooring_fem/catenary.h"
 #include "mooring_fem/line_simulation.h"
 #include "mooring_fem/mooring_system.h"
@@ -184,6 +185,8 @@ Command AddValidateCommand(CLI::App& app) {
   auto path = std::make_shared<std::string>();
   CLI::App* sub = app.add_subcommand("validate", "load and check a scenario, then exit");
   sub->add_option("scenario", *path, "scenario YAML file")->required();
+  AddPluginOption(sub);
+  sub->footer("\n" + detectors::DetectorHelp());
   return [path] {
     const scenarios::Scenario s = scenarios::LoadScenario(*path);
     simulation::CheckDetectors(s);

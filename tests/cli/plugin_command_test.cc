@@ -132,5 +132,64 @@ TEST(PluginCommand, APluginThatBreaksTheContractFailsItsRunsAndTheCampaignGoesOn
   EXPECT_EQ(failed, 2);
 }
 
+// The SHA-256 of `path` as coreutils' sha256sum computes it.
+std::string Sha256Sum(const std::string& path, const std::filesystem::path& scratch) {
+  const CliResult r = RunProgram("/usr/bin/sha256sum", {path}, scratch);
+  return r.out.substr(0, r.out.find(' '));
+}
+
+TEST(PluginCommand, WithPluginOnTheCommandLineItsTypesAreNamedAloneListedAndRecorded) {
+  TempDirectory dir(::testing::TempDir());
+  const std::string plugin = MOORSIM_TEST_CUSUM_PLUGIN;
+  const std::string sha256 = Sha256Sum(plugin, dir.path());
+  ASSERT_EQ(sha256.size(), 64u);
+  // The run's help lists the plugin's types with their parameter tables.
+  CliResult r = RunCli({"run", "--plugin", plugin, "--help"}, dir.path());
+  EXPECT_EQ(r.exit_code, 0) << r.Describe();
+  EXPECT_NE(r.out.find("From plugin " + plugin + ":\n  bank_cusum: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("    threshold                default 10 nats; > 0;"), std::string::npos);
+  // `type:` alone names it; summary.json records the library and its checksum.
+  const std::string out = (dir.path() / "run").string();
+  r = RunCli({"run", kPluginScenario, "--plugin", plugin, "--out", out, "--duration", "20",
+              "--quiet", "--set", "detectors=[{type: bank_cusum, label: cusum}]"},
+             dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  const nlohmann::json summary = nlohmann::json::parse(ReadWholeFile(out + "/summary.json"));
+  EXPECT_EQ(summary["detectors"]["cusum"]["type"], "bank_cusum");
+  EXPECT_EQ(summary["plugins"], nlohmann::json::parse(R"([{"path": ")" + plugin +
+                                                      R"(", "sha256": ")" + sha256 + R"("}])"));
+  // A library that cannot be loaded: one line, exit 2, before anything else.
+  r = RunCli({"validate", "--plugin", "/nonexistent/libnone.so", kPluginScenario}, dir.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err.rfind("moorsim: --plugin: plugin /nonexistent/libnone.so: cannot load", 0), 0u)
+      << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  // A campaign: every row's command carries --plugin, campaign.json the library's identity.
+  const std::filesystem::path campaign = dir.path() / "cusum.yaml";
+  std::ofstream(campaign) << "scenario: " << kPluginScenario
+                          << "\nseed: 3\nset:\n  simulation.duration: 5\n  detectors: [{type: "
+                             "bank_cusum}]\nblocks:\n  - name: intact\n    seeds: 2\n";
+  const std::string campaign_out = (dir.path() / "campaign").string();
+  r = RunCli({"batch", campaign.string(), "--plugin", plugin, "--out", campaign_out, "--quiet"},
+             dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  const nlohmann::json meta = nlohmann::json::parse(ReadWholeFile(campaign_out + "/campaign.json"));
+  EXPECT_EQ(meta["plugins"], summary["plugins"]);
+  int rows = 0;
+  for (const auto& row :
+       std::filesystem::directory_iterator(std::filesystem::path(campaign_out) / "rows")) {
+    const std::string command = nlohmann::json::parse(ReadWholeFile(row.path()))["command"];
+    EXPECT_NE(command.find(" --plugin " + plugin), std::string::npos) << command;
+    ++rows;
+  }
+  EXPECT_EQ(rows, 2);
+  r = RunCli({"batch", campaign.string(), "--out", (dir.path() / "none").string(), "--quiet"},
+             dir.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("unknown detector 'bank_cusum' (known: deficit, dht, glr, mle)"),
+            std::string::npos)
+      << r.err;
+}
+
 }  // namespace
 }  // namespace moorsim::testing

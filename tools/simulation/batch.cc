@@ -21,6 +21,7 @@
 
 #include "core/error.h"
 #include "core/version.h"
+#include "detectors/plugin_detector.h"
 #include "scenarios/load.h"
 #include "tools/output/hdf5_file.h"
 
@@ -370,9 +371,15 @@ std::string JoinLines(const std::vector<std::string>& items) {
 }
 
 // What --merge needs to know of the campaign without its scenario file at hand.
-nlohmann::json CampaignMeta(const scenarios::Campaign& c) {
-  return {{"name", c.name}, {"path", c.source_path},     {"scenario", c.scenario_path},
-          {"seed", c.seed}, {"factors", c.FactorKeys()}, {"runs", c.NumRuns()}};
+nlohmann::json CampaignMeta(const PreparedCampaign& p) {
+  const scenarios::Campaign& c = p.campaign;
+  nlohmann::json meta = {
+      {"name", c.name}, {"path", c.source_path},     {"scenario", c.scenario_path},
+      {"seed", c.seed}, {"factors", c.FactorKeys()}, {"runs", c.NumRuns()}};
+  if (nlohmann::json plugins = PluginsSummary(p.plugin_paths); !plugins.empty()) {
+    meta["plugins"] = plugins;
+  }
+  return meta;
 }
 
 }  // namespace
@@ -493,6 +500,12 @@ PreparedCampaign PrepareCampaign(const std::string& campaign_path) {
         }
       }
       if (checked.insert(key).second) CheckDetectors(s);
+      for (const scenarios::DetectorEntry& d : s.detectors) {
+        if (!d.plugin.empty() && std::find(p.plugin_paths.begin(), p.plugin_paths.end(),
+                                           d.plugin) == p.plugin_paths.end()) {
+          p.plugin_paths.push_back(d.plugin);
+        }
+      }
       PreparedCampaign::Truth t;
       if (s.failure.line > 0) {
         t.failure_line = s.failure.line;
@@ -564,7 +577,12 @@ nlohmann::json MakeRow(const PreparedCampaign& p, const scenarios::CampaignRun& 
   row["factors"] = factors;
   row["status"] = StatusName(result.status);
   row["error"] = result.message;
-  row["command"] = run.Command(c, out_dir);
+  // The row's own command needs the --plugin libraries too.
+  std::string command = run.Command(c, out_dir);
+  for (const auto& library : detectors::RegisteredPluginLibraries()) {
+    command += " --plugin " + scenarios::ShellQuote(library->path());
+  }
+  row["command"] = command;
   if (t.failure_line > 0) {
     row["failure"] = {{"line", t.failure_line}, {"time", t.failure_time}, {"mode", t.failure_mode}};
   } else {
@@ -809,7 +827,7 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
     } else {
       WriteFileAtomically(recorded, c.text);
     }
-    WriteFileAtomically(result.directory / "campaign.json", CampaignMeta(c).dump(2) + "\n");
+    WriteFileAtomically(result.directory / "campaign.json", CampaignMeta(p).dump(2) + "\n");
 
     // 3. What is left to do in this shard.
     std::set<std::int64_t> finished;

@@ -105,6 +105,8 @@ struct PreparedCampaign {
   std::vector<Truth> truth;
   /// Simulated seconds in all runs (for the estimate).
   double simulated_seconds = 0.0;
+  /// The plugin libraries the runs' scenarios name (`plugin:`), in order without repeats.
+  std::vector<std::string> plugin_paths;
 };
 
 /// Loads the campaign and the scenario of every run (each with its overrides), checks the

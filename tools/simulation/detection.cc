@@ -1,5 +1,6 @@
 #include "tools/simulation/detection.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
@@ -204,6 +205,32 @@ const std::vector<detectors::Verdict>& Detection::verdicts() const { return part
 const std::optional<Vec3>& Detection::bias() const { return parts_->bias; }
 
 const std::optional<Vec3>& Detection::wave_motion() const { return parts_->wave_motion; }
+
+std::vector<std::string> Detection::PluginPaths() const {
+  std::vector<std::string> paths;
+  for (const std::unique_ptr<detectors::Detector>& d : parts_->detectors) {
+    const detectors::PluginLibrary* library = detectors::PluginLibraryOf(*d);
+    if (library != nullptr &&
+        std::find(paths.begin(), paths.end(), library->path()) == paths.end()) {
+      paths.push_back(library->path());
+    }
+  }
+  return paths;
+}
+
+nlohmann::json PluginsSummary(const std::vector<std::string>& paths) {
+  std::vector<std::shared_ptr<const detectors::PluginLibrary>> libraries;
+  for (const std::string& path : paths) libraries.push_back(detectors::PluginLibrary::Load(path));
+  for (auto& library : detectors::RegisteredPluginLibraries()) libraries.push_back(library);
+  nlohmann::json plugins = nlohmann::json::array();
+  std::vector<std::string> seen;
+  for (const auto& library : libraries) {
+    if (std::find(seen.begin(), seen.end(), library->path()) != seen.end()) continue;
+    seen.push_back(library->path());
+    plugins.push_back({{"path", library->path()}, {"sha256", library->sha256()}});
+  }
+  return plugins;
+}
 
 const char* ScoreUnits(std::string_view type) {
   if (type == "dht") return "probability";

@@ -189,6 +189,10 @@ void AddDetection(const scenarios::Scenario& scenario, const Simulation& sim,
                   nlohmann::json& summary) {
   summary["detectors"] = sim.detection() ? DetectorsSummary(scenario, *sim.detection(), sim.time())
                                          : nlohmann::json::object();
+  if (sim.detection()) {
+    const nlohmann::json plugins = PluginsSummary(sim.detection()->PluginPaths());
+    if (!plugins.empty()) summary["plugins"] = plugins;
+  }
   const DetectionTiming& timing = sim.detection_timing();
   summary["detection"] = {{"setup_seconds", timing.setup_seconds},
                           {"update_seconds", timing.update_seconds},
