@@ -3,6 +3,10 @@
 
     python3 tools/plot_run.py RUN_DIR [--out DIR] [--show]
 
+RUN_DIR may also be the --out directory of `moorsim detect` (detect.h5: the detectors on
+a recorded stream, without the plant): the figures are then the measured ones only
+(no true pose, no tensions, the thrust as the stream gave it).
+
 Figures (in --out, default RUN_DIR):
   trajectory.png  north-east track, true and measured, with rays toward the anchors
   pose.png        x, y and heading against time, true and measured
@@ -58,15 +62,23 @@ class Detector:
 class Run:
     title: str
     time: np.ndarray  # (N,) s
-    pose_true: np.ndarray  # (N, 6) x, y, z m; phi, theta, psi rad (NED)
+    pose_true: np.ndarray | None  # (N, 6) x, y, z m; phi, theta, psi rad (NED); None: detect.h5
     pose_measured: np.ndarray  # (N, 3) x, y m; psi rad; NaN where missing
-    fairlead_tension: np.ndarray  # (N, lines) N
-    thrust_commanded: np.ndarray  # (N, 3) X, Y N; N N m (body)
+    fairlead_tension: np.ndarray | None  # (N, lines) N; None: detect.h5
+    thrust_commanded: np.ndarray | None  # (N, 3) X, Y N; N N m (body); None: detect.h5
     thrust_delivered: np.ndarray  # (N, 3)
     anchors: np.ndarray | None  # (lines, 3) m (NED)
     failure_line: int  # 1-based, 0 = no failure
     failure_time: float  # s, NaN = no failure
     detectors: dict[str, Detector] = field(default_factory=dict)
+
+    @property
+    def lines(self) -> int:
+        """Mooring lines: the tension columns, else the single-line hypotheses."""
+        if self.fairlead_tension is not None:
+            return self.fairlead_tension.shape[1]
+        labels = next((d.hypotheses for d in self.detectors.values()), [])
+        return sum(1 for label in labels if label.startswith("line "))
 
     @property
     def has_failure(self) -> bool:
@@ -137,13 +149,18 @@ def read_run(path: Path) -> Run:
             anchors = read_table(h5, "/mooring/anchors", 3, None)
         name = attribute_text(h5.attrs.get("scenario_name", "unnamed scenario"))
         seed = attribute_text(h5.attrs.get("seed", "?"))
+        # detect.h5 (moorsim detect) has what a recorded stream gives, no plant.
+        detect = "input" in h5.attrs
+        title = (f"{name}, detection on {attribute_text(h5.attrs['input'])}" if detect
+                 else f"{name}, seed {seed}")
         return Run(
-            title=f"{name}, seed {seed}",
+            title=title,
             time=time,
-            pose_true=read_table(h5, "/vessel/pose_true", 6, rows),
+            pose_true=None if detect else read_table(h5, "/vessel/pose_true", 6, rows),
             pose_measured=read_table(h5, "/vessel/pose_measured", 3, rows),
-            fairlead_tension=read_table(h5, "/mooring/fairlead_tension", 0, rows),
-            thrust_commanded=read_table(h5, "/thrust/commanded", 3, rows),
+            fairlead_tension=(None if detect
+                              else read_table(h5, "/mooring/fairlead_tension", 0, rows)),
+            thrust_commanded=None if detect else read_table(h5, "/thrust/commanded", 3, rows),
             thrust_delivered=read_table(h5, "/thrust/delivered", 3, rows),
             anchors=anchors,
             failure_line=int(h5.attrs.get("failure_line", 0)),
@@ -165,7 +182,11 @@ def unwrap_ignoring_nan(angle: np.ndarray) -> np.ndarray:
 
 def heading_degrees(run: Run) -> tuple[np.ndarray, np.ndarray]:
     """True and measured heading in degrees, the measured one on the true one's branch
-    (sensors report psi wrapped, the simulation's psi is continuous)."""
+    (sensors report psi wrapped, the simulation's psi is continuous). Without the true
+    pose (detect.h5) the measured one unwrapped, for both."""
+    if run.pose_true is None:
+        measured = np.degrees(unwrap_ignoring_nan(run.pose_measured[:, 2]))
+        return measured, measured
     true = unwrap_ignoring_nan(run.pose_true[:, 5])
     measured = run.pose_measured[:, 2]
     measured = true + np.angle(np.exp(1j * (measured - true)))
@@ -199,10 +220,12 @@ def save(figure, out_dir: Path, name: str) -> Path:
 
 def plot_trajectory(plt, run: Run, out_dir: Path) -> Path:
     figure, (ax,) = new_figure(plt, run, "Trajectory", height=8.0)
-    north, east = run.pose_true[:, 0], run.pose_true[:, 1]
+    track = run.pose_true if run.pose_true is not None else run.pose_measured
+    north, east = track[:, 0], track[:, 1]
     ax.plot(run.pose_measured[:, 1], run.pose_measured[:, 0], ".", markersize=1.5,
             color="tab:orange", alpha=0.5, label="measured")
-    ax.plot(east, north, color="tab:blue", linewidth=1.0, label="true")
+    if run.pose_true is not None:
+        ax.plot(east, north, color="tab:blue", linewidth=1.0, label="true")
     if len(run.time) > 0:
         ax.plot(east[0], north[0], "o", color="black", label="start")
         if run.has_failure:
@@ -253,15 +276,17 @@ def draw_anchor_rays(ax, run: Run, east: np.ndarray, north: np.ndarray) -> None:
 def plot_pose(plt, run: Run, out_dir: Path) -> Path:
     figure, axes = new_figure(plt, run, "Position and heading", rows=3, height=8.0)
     heading_true, heading_measured = heading_degrees(run)
+    track = run.pose_true if run.pose_true is not None else run.pose_measured
     channels = [
-        ("x (north) [m]", run.pose_true[:, 0], run.pose_measured[:, 0]),
-        ("y (east) [m]", run.pose_true[:, 1], run.pose_measured[:, 1]),
+        ("x (north) [m]", track[:, 0], run.pose_measured[:, 0]),
+        ("y (east) [m]", track[:, 1], run.pose_measured[:, 1]),
         ("heading [deg]", heading_true, heading_measured),
     ]
     for ax, (label, true, measured) in zip(axes, channels):
         ax.plot(run.time, measured, color="tab:orange", linewidth=0.6, alpha=0.7,
                 label="measured")
-        ax.plot(run.time, true, color="tab:blue", linewidth=1.0, label="true")
+        if run.pose_true is not None:
+            ax.plot(run.time, true, color="tab:blue", linewidth=1.0, label="true")
         ax.set_ylabel(label)
         ax.grid(True, linewidth=0.3)
     mark_failure(run, axes)
@@ -287,10 +312,11 @@ def plot_thrust(plt, run: Run, out_dir: Path) -> Path:
     figure, axes = new_figure(plt, run, "Thrust (body axes)", rows=3, height=8.0)
     channels = [("X [kN]", 1e3), ("Y [kN]", 1e3), ("N [MN m]", 1e6)]
     for column, (ax, (label, scale)) in enumerate(zip(axes, channels)):
-        ax.plot(run.time, run.thrust_commanded[:, column] / scale, color="tab:gray",
-                linestyle="--", linewidth=0.8, label="commanded")
+        if run.thrust_commanded is not None:
+            ax.plot(run.time, run.thrust_commanded[:, column] / scale, color="tab:gray",
+                    linestyle="--", linewidth=0.8, label="commanded")
         ax.plot(run.time, run.thrust_delivered[:, column] / scale, color="tab:green",
-                linewidth=1.0, label="delivered")
+                linewidth=1.0, label="delivered" if run.pose_true is not None else "as recorded")
         ax.set_ylabel(label)
         ax.grid(True, linewidth=0.3)
     mark_failure(run, axes)
@@ -314,7 +340,7 @@ def plot_detectors(plt, run: Run, out_dir: Path) -> Path:
         if run.has_failure:
             ax.axhline(run.failure_line, color=FAILURE_COLOUR, linestyle=":", linewidth=0.8,
                        label=f"failed line {run.failure_line}")
-        lines = max(run.fairlead_tension.shape[1], int(np.max(detector.decision, initial=0)))
+        lines = max(run.lines, int(np.max(detector.decision, initial=0)))
         ax.set_ylim(-0.5, lines + 0.5)
         ax.yaxis.get_major_locator().set_params(integer=True)
         ax.set_title(name, loc="left", fontsize="medium")
@@ -368,7 +394,8 @@ def plot_scores(plt, run: Run, out_dir: Path) -> Path:
 
 def parse_arguments(argv: list[str]) -> argparse.Namespace:
     parser = argparse.ArgumentParser(description="Plot a moorsim run (RUN_DIR/run.h5) as PNGs.")
-    parser.add_argument("run_dir", type=Path, metavar="RUN_DIR", help="directory holding run.h5")
+    parser.add_argument("run_dir", type=Path, metavar="RUN_DIR",
+                        help="directory holding run.h5 (or detect.h5 of moorsim detect)")
     parser.add_argument("--out", type=Path, metavar="DIR", help="where to write (default RUN_DIR)")
     parser.add_argument("--show", action="store_true", help="also open the figures in a window")
     return parser.parse_args(argv)
@@ -381,14 +408,19 @@ def main(argv: list[str]) -> int:
     import matplotlib.pyplot as plt  # after choosing the backend
 
     try:
-        run = read_run(args.run_dir / "run.h5")
+        run_file = args.run_dir / "run.h5"
+        if not run_file.is_file() and (args.run_dir / "detect.h5").is_file():
+            run_file = args.run_dir / "detect.h5"
+        run = read_run(run_file)
     except RunFileError as error:
         print(f"plot_run: {error}", file=sys.stderr)
         return EXIT_BAD_INPUT
     out_dir = args.out if args.out is not None else args.run_dir
     out_dir.mkdir(parents=True, exist_ok=True)
 
-    figures = [plot_trajectory, plot_pose, plot_tensions, plot_thrust]
+    figures = [plot_trajectory, plot_pose, plot_thrust]
+    if run.fairlead_tension is not None:
+        figures.insert(2, plot_tensions)
     if run.detectors:
         figures.append(plot_detectors)
         if any(d.score is not None for d in run.detectors.values()):

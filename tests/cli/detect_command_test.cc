@@ -123,6 +123,17 @@ TEST_F(DetectCommand, ReplayingARunGivesExactlyItsAlarms) {
   for (std::string line; std::getline(csv, line);) ++rows;
   EXPECT_EQ(rows, events);
   EXPECT_EQ(replay["samples"], 251);  // the 1 Hz sensors, 0 to 250 s
+  // tools/plot_run.py draws what detection alone has: no tensions, no true pose.
+  const CliResult plot =
+      RunProgram("/usr/bin/python3",
+                 {MOORSIM_SOURCE_DIR "/tools/plot_run.py", (dir.path() / "d").string()},
+                 dir.path());
+  ASSERT_EQ(plot.exit_code, 0) << plot.Describe();
+  for (const char* figure : {"trajectory", "pose", "thrust", "detectors", "detector_scores"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir.path() / "d" / (std::string(figure) + ".png")))
+        << figure;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "d" / "tensions.png"));
 }
 
 TEST_F(DetectCommand, ACsvLogOnStandardInputGivesTheSameAlarms) {
