@@ -56,6 +56,17 @@ struct LoadEvidence {
   Vec3 wave_motion = Vec3::Zero();
 };
 
+/// Fairlead load cells, where the vessel has them: their latest readings and what the intact
+/// model says each should read with the vessel where the filter puts it (the quasi-static
+/// fairlead tension sqrt(H^2 + V^2) of each line at the intact filter's pose). A parted
+/// line's cell falls far below its expectation (to zero after a fairlead break, to the
+/// hanging chain's weight after an anchor release); a faulty cell does too, which is what
+/// the pose evidence is there to tell apart.
+struct TensionEvidence {
+  VecX measured;  ///< [N] per line, in line order
+  VecX expected;  ///< [N] per line
+};
+
 /// The evidence of every hypothesis at one sample; hypotheses[0] is "all intact".
 struct Evidence {
   double t = 0.0;
@@ -67,6 +78,8 @@ struct Evidence {
   /// From the same filter as `nominal` (the intact filter where the bank does not mix);
   /// unset where the observers estimate no load (the passive observers).
   std::optional<LoadEvidence> load;
+  /// Set with `load` when the observation carries load-cell readings.
+  std::optional<TensionEvidence> tensions;
 };
 
 /// A detector's state after a sample.

@@ -449,6 +449,7 @@ const Evidence& ObserverBank::Update(const Observation& observation) {
     best = std::max(best, log_probability_[h]);
   }
   UpdateLoadEvidence(nominal_ ? *nominal_ : filters_[0]);
+  UpdateTensionEvidence(nominal_ ? *nominal_ : filters_[0], observation);
   if (!informative) {
     std::copy(predicted_.begin(), predicted_.end(), probability_.begin());
     for (int h = 0; h < n; ++h) log_probability_[h] = std::log(probability_[h]);
@@ -462,6 +463,23 @@ const Evidence& ObserverBank::Update(const Observation& observation) {
     probability_[h] = std::exp(log_probability_[h]);
   }
   return evidence_;
+}
+
+void ObserverBank::UpdateTensionEvidence(const HypothesisEkf& intact,
+                                         const Observation& observation) {
+  if (!observation.tensions || !intact.initialised() ||
+      observation.tensions->size() != intact_mooring_.num_lines()) {
+    evidence_.tensions.reset();
+    return;
+  }
+  if (!evidence_.tensions) evidence_.tensions.emplace();
+  TensionEvidence& cells = *evidence_.tensions;
+  cells.measured = *observation.tensions;
+  cells.expected.resize(intact_mooring_.num_lines());
+  const Vec3 pose = intact.pose();
+  for (int i = 0; i < intact_mooring_.num_lines(); ++i) {
+    cells.expected(i) = intact_mooring_.LineTension(i, pose);
+  }
 }
 
 void ObserverBank::UpdateLoadEvidence(const HypothesisEkf& intact) {

@@ -259,6 +259,7 @@ class ObserverBank {
  private:
   void Mix(double dt);
   void UpdateLoadEvidence(const HypothesisEkf& intact);
+  void UpdateTensionEvidence(const HypothesisEkf& intact, const Observation& observation);
 
   ObserverBankOptions options_;
   std::vector<HypothesisEkf> filters_;

@@ -192,25 +192,35 @@ QuasiStaticMooring::QuasiStaticMooring(std::vector<std::shared_ptr<const LineFor
   }
 }
 
-Vec3 QuasiStaticMooring::LineLoad(int index, const Vec3& eta, Mat3* J_load_eta) const {
-  const LineForceTable& table = *lines_[index];
+void QuasiStaticMooring::FairleadOffset(const LineForceTable& table, const Vec3& eta,
+                                        Eigen::Vector2d* r, Eigen::Vector2d* lever) const {
   const double c = std::cos(eta.z());
   const double s = std::sin(eta.z());
   const Eigen::Vector2d& rb = table.fairlead_body().head<2>();
-  // The fairlead's offset r from (x, y) and the lever of its force about (x, y): the fairlead
-  // itself on a locked turret; on a turning one, the turret centre (R c), about which the
-  // fairlead holds its absolute direction.
-  Eigen::Vector2d r, lever;
   if (turret_) {
     const Eigen::Vector2d& centre = turret_->centre;
-    lever = Eigen::Vector2d(c * centre.x() - s * centre.y(), s * centre.x() + c * centre.y());
+    *lever = Eigen::Vector2d(c * centre.x() - s * centre.y(), s * centre.x() + c * centre.y());
     const double ct = std::cos(turret_->heading), st = std::sin(turret_->heading);
     const Eigen::Vector2d arm = rb - centre;
-    r = lever + Eigen::Vector2d(ct * arm.x() - st * arm.y(), st * arm.x() + ct * arm.y());
+    *r = *lever + Eigen::Vector2d(ct * arm.x() - st * arm.y(), st * arm.x() + ct * arm.y());
   } else {
-    r = Eigen::Vector2d(c * rb.x() - s * rb.y(), s * rb.x() + c * rb.y());  // R rb
-    lever = r;
+    *r = Eigen::Vector2d(c * rb.x() - s * rb.y(), s * rb.x() + c * rb.y());  // R rb
+    *lever = *r;
   }
+}
+
+double QuasiStaticMooring::LineTension(int index, const Vec3& eta) const {
+  const LineForceTable& table = *lines_[index];
+  Eigen::Vector2d r, lever;
+  FairleadOffset(table, eta, &r, &lever);
+  const double span = (table.anchor().head<2>() - eta.head<2>() - r).norm();
+  return std::hypot(table.HorizontalTension(span), table.VerticalTension(span));
+}
+
+Vec3 QuasiStaticMooring::LineLoad(int index, const Vec3& eta, Mat3* J_load_eta) const {
+  const LineForceTable& table = *lines_[index];
+  Eigen::Vector2d r, lever;
+  FairleadOffset(table, eta, &r, &lever);
   const Eigen::Vector2d dr_dpsi(-lever.y(), lever.x());                    // = d lever / d psi
   const Eigen::Vector2d d = table.anchor().head<2>() - eta.head<2>() - r;  // fairlead->anchor
   const double span = d.norm();

@@ -147,10 +147,19 @@ class QuasiStaticMooring {
   Vec3 LoadBody(const Vec3& eta, Mat3* J_load_eta = nullptr) const;
   /// Load of the line with list index `index` alone (Earth frame), with its Jacobian.
   Vec3 LineLoad(int index, const Vec3& eta, Mat3* J_load_eta = nullptr) const;
+  /// The quasi-static fairlead tension sqrt(H^2 + V^2) [N] of the line with list index
+  /// `index` at eta: what a load cell on it would read with the vessel held there.
+  double LineTension(int index, const Vec3& eta) const;
 
   const std::optional<TurretModel>& turret() const { return turret_; }
 
  private:
+  /// The fairlead's offset r from (x, y) and the lever of its force about (x, y): the
+  /// fairlead itself on a locked turret; on a turning one, the turret centre (R c), about
+  /// which the fairlead holds its absolute direction.
+  void FairleadOffset(const LineForceTable& table, const Vec3& eta, Eigen::Vector2d* r,
+                      Eigen::Vector2d* lever) const;
+
   std::vector<std::shared_ptr<const LineForceTable>> lines_;
   std::optional<TurretModel> turret_;
 };

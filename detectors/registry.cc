@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "detectors/cells.h"
 #include "detectors/deficit.h"
 #include "detectors/dht.h"
 #include "detectors/glr.h"
@@ -47,6 +48,23 @@ constexpr double kGlrHold = 15.0;
 constexpr ParameterRange kCount{1.0, 10000.0, false, false, true};  // [1, 10000]
 constexpr ParameterRange kDelay{0.0, 10000.0, false, false, true};  // [0, 10000]
 constexpr ParameterRange kSwitch{0.0, 1.0, false, false, true};     // 0 or 1
+
+constexpr std::array<DetectorParameter, 7> kCellsParameters = {{
+    {"confirm", 1.0, "", kSwitch, "",
+     "1: the intact filter's bias must show the lost load before the alarm; 0: cells alone"},
+    {"confirm_floor", CellsOptions{}.confirm_floor, "", kNonNegative, "N",
+     "least bias shift toward the lost line that confirms"},
+    {"confirm_fraction", CellsOptions{}.confirm_fraction, "", kNonNegative, "",
+     "share of the horizontal load the cell says is lost that the bias must show"},
+    {"confirm_time", CellsOptions{}.confirm_time, "", kPositive, "s",
+     "how long a low cell waits for the pose before it is declared faulty"},
+    {"drop", CellsOptions{}.drop, "", kProbability, "",
+     "fraction of its expected reading a cell must lose to read low"},
+    {"hold", CellsOptions{}.hold, "", kNonNegative, "s",
+     "time a cell must read low before the alarm"},
+    {"window", CellsOptions{}.window, "", kCount, "samples",
+     "samples in the moving mean of reading / expected"},
+}};
 
 constexpr std::array<DetectorParameter, 20> kDeficitParameters = {{
     {"baseline_time", DeficitOptions{}.baseline_time, "", kPositive, "s",
@@ -131,6 +149,18 @@ constexpr std::array<DetectorParameter, 3> kMleParameters = {{
      "lead J_0 - J_k the failure hypothesis needs over the intact one for the alarm"},
 }};
 
+std::unique_ptr<Detector> MakeCells(const DetectorParameters& p) {
+  CellsOptions options;
+  options.confirm = p.Get("confirm") != 0.0;
+  options.confirm_floor = p.Get("confirm_floor");
+  options.confirm_fraction = p.Get("confirm_fraction");
+  options.confirm_time = p.Get("confirm_time");
+  options.drop = p.Get("drop");
+  options.hold = p.Get("hold");
+  options.window = static_cast<int>(p.Get("window"));
+  return std::make_unique<Cells>(options);
+}
+
 std::unique_ptr<Detector> MakeDeficit(const DetectorParameters& p) {
   DeficitOptions options;
   options.baseline_time = p.Get("baseline_time");
@@ -189,7 +219,10 @@ std::unique_ptr<Detector> MakeMle(const DetectorParameters& p) {
 }
 
 // The registry, sorted by name.
-constexpr std::array<DetectorType, 4> kDetectors = {{
+constexpr std::array<DetectorType, 5> kDetectors = {{
+    {"cells", MakeCells, kCellsParameters,
+     "fairlead load cells against the intact model at the filter's pose; a low cell names "
+     "its line once the vessel's bias shows the lost load, else it is a faulty cell"},
     {"deficit", MakeDeficit, kDeficitParameters,
      "force deficit: CUSUM of the intact filter's bias shift against each line's missing "
      "load, over a learned disturbance; latched until the evidence reverses"},

@@ -78,13 +78,13 @@ struct DetectorType {
 /// The registry, sorted by name.
 std::span<const DetectorType> DetectorTable();
 
-/// The registered type names, sorted: deficit, dht, glr, mle.
+/// The registered type names, sorted: cells, deficit, dht, glr, mle.
 std::vector<std::string_view> DetectorTypes();
 
 /// Builds the detector a scenario entry names: a built-in one, or with `spec.plugin` one
 /// from that plugin library (MakePluginDetector()). `key_path` locates the entry in the
 /// scenario for the messages ("detectors[2]"). Throws InputError:
-///   "<key_path>.type: unknown detector 'x' (known: deficit, dht, glr, mle)"
+///   "<key_path>.type: unknown detector 'x' (known: cells, deficit, dht, glr, mle)"
 ///   "<key_path>: unknown parameter 'y' for dht (known: floor, hold, prior_intact, threshold)"
 ///   "<key_path>.floor: 2 must be in (0, 1)"
 std::unique_ptr<Detector> MakeDetector(const DetectorSpec& spec, std::string_view key_path);

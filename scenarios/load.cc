@@ -322,10 +322,21 @@ void ParseSensors(const Reader& r, Scenario& scenario) {
     g->Optional("dropout_probability", s.gyro_dropout_probability);
   }
   if (std::optional<Reader> t = r.Find("tension_cells")) {
-    t->CheckKeys({"noise", "rate_hz"});
+    t->CheckKeys({"faults", "noise", "rate_hz"});
     s.tension_cells = true;
     t->Optional("rate_hz", s.tension_rate);
     if (std::optional<Reader> n = t->Find("noise")) ParseNoise(*n, s.tension_noise);
+    if (std::optional<Reader> faults = t->Find("faults")) {
+      for (const Reader& item : faults->Items()) {
+        item.CheckKeys({"line", "mode", "rate", "time"});
+        SensorsSpec::CellFault fault;
+        fault.line = item.Required<int>("line");
+        fault.mode = item.Required<std::string>("mode");
+        fault.time = item.Required<double>("time");
+        item.Optional("rate", fault.rate);
+        s.tension_faults.push_back(fault);
+      }
+    }
   }
 }
 
@@ -1040,6 +1051,23 @@ void CheckSensors(const Checker& check, const SensorsSpec& s) {
   CheckNoise(check, "sensors.tension_cells.noise", s.tension_noise, "N", 1e8);
 }
 
+void CheckCellFaults(const Checker& check, const Scenario& scenario) {
+  const SensorsSpec& s = scenario.sensors;
+  for (std::size_t i = 0; i < s.tension_faults.size(); ++i) {
+    const SensorsSpec::CellFault& f = s.tension_faults[i];
+    const std::string path = "sensors.tension_cells.faults[" + std::to_string(i + 1) + "]";
+    check.InRange(path + ".line", f.line, 1, static_cast<int>(scenario.mooring.lines.size()));
+    if (f.mode != "stuck" && f.mode != "drift") {
+      check.Fail(path + ".mode", "'" + f.mode + "' is not a cell fault (known: drift, stuck)");
+    }
+    check.NonNegative(path + ".time", f.time, "s");
+    check.Between(path + ".rate", f.rate, -1e6, 1e6, "N/s");
+    if (f.mode == "drift" && f.rate == 0.0) {
+      check.Fail(path + ".rate", "a drifting cell needs a nonzero rate [N/s]");
+    }
+  }
+}
+
 constexpr std::string_view kFailureModes[] = {"anchor", "fairlead", "node"};
 
 void CheckFailure(const Checker& check, const Scenario& scenario) {
@@ -1157,6 +1185,7 @@ void Validate(const Scenario& scenario) {
   CheckEnvironment(check, scenario);
   CheckController(check, scenario.controller);
   CheckSensors(check, scenario.sensors);
+  CheckCellFaults(check, scenario);
   CheckSimulation(check, scenario.simulation);
   CheckFailure(check, scenario);
   CheckDetectors(check, scenario);

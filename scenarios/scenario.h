@@ -231,6 +231,16 @@ struct SensorsSpec {
   bool tension_cells = false;
   ChannelNoiseSpec tension_noise;  ///< [N]
   double tension_rate = 1.0;       ///< [Hz]
+  /// A load cell that goes wrong during the run (`tension_cells.faults`): from `time` on,
+  /// line `line`'s cell is "stuck" (repeats its last reading before `time`) or "drift"s
+  /// (reads `rate` [N/s] x (t - time) off, on top of its noise).
+  struct CellFault {
+    int line = 0;
+    std::string mode;
+    double time = 0.0;
+    double rate = 0.0;
+  };
+  std::vector<CellFault> tension_faults;
 };
 
 struct FailureSpec {

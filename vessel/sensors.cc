@@ -220,6 +220,7 @@ TensionCells::TensionCells(int lines, const ChannelNoise& noise, double rate,
   for (int k = 1; k <= lines; ++k) {
     cells_.emplace_back(checked, 1.0 / rate, run_seed, "tension_cell." + std::to_string(k));
   }
+  faults_.resize(cells_.size());
 }
 
 std::vector<double> TensionCells::Sample(double t, std::span<const double> true_tensions) {
@@ -236,9 +237,26 @@ std::vector<double> TensionCells::Sample(double t, std::span<const double> true_
   }
   for (std::size_t i = 0; i < cells_.size(); ++i) {
     measured[i] = true_tensions[i] + cells_[i].Next();
+    Fault& fault = faults_[i];
+    if (fault.kind == Fault::Kind::kStuck) {
+      if (t < fault.from || std::isnan(fault.held)) fault.held = measured[i];
+      if (t >= fault.from) measured[i] = fault.held;
+    } else if (fault.kind == Fault::Kind::kDrift && t >= fault.from) {
+      measured[i] += fault.rate * (t - fault.from);
+    }
   }
   ++next_index_;
   return measured;
+}
+
+void TensionCells::SetStuck(int line, double from) {
+  faults_.at(static_cast<std::size_t>(line)) = {Fault::Kind::kStuck, from, 0.0,
+                                                std::numeric_limits<double>::quiet_NaN()};
+}
+
+void TensionCells::SetDrift(int line, double from, double rate) {
+  faults_.at(static_cast<std::size_t>(line)) = {Fault::Kind::kDrift, from, rate,
+                                                std::numeric_limits<double>::quiet_NaN()};
 }
 
 }  // namespace moorsim::vessel

@@ -232,9 +232,22 @@ class TensionCells {
   int lines() const { return static_cast<int>(cells_.size()); }
   const SensorClock& clock() const { return clock_; }
 
+  /// From time `from` on, cell `line` (0-based) is stuck: it repeats its last reading
+  /// before `from` (the true tension at `from` if it had none).
+  void SetStuck(int line, double from);
+  /// From time `from` on, cell `line` (0-based) reads `rate` [N/s] x (t - from) off.
+  void SetDrift(int line, double from, double rate);
+
  private:
+  struct Fault {
+    enum class Kind { kNone, kStuck, kDrift } kind = Kind::kNone;
+    double from = 0.0;
+    double rate = 0.0;
+    double held = std::numeric_limits<double>::quiet_NaN();  // the stuck reading
+  };
   SensorClock clock_;
   std::vector<internal::ChannelError> cells_;
+  std::vector<Fault> faults_;
   std::int64_t next_index_ = 0;
 };
 

@@ -32,7 +32,8 @@ std::string MessageOf(const DetectorSpec& spec) {
 }
 
 TEST(RegistryTest, TypesAreSortedAndEveryOneBuildsWithDefaults) {
-  EXPECT_EQ(DetectorTypes(), (std::vector<std::string_view>{"deficit", "dht", "glr", "mle"}));
+  EXPECT_EQ(DetectorTypes(),
+            (std::vector<std::string_view>{"cells", "deficit", "dht", "glr", "mle"}));
   for (const std::string_view type : DetectorTypes()) {
     const std::unique_ptr<Detector> detector = MakeDetector(Spec(std::string(type)), "d");
     ASSERT_NE(detector, nullptr);
@@ -83,7 +84,7 @@ TEST(RegistryTest, GivenParametersReachTheDetector) {
 
 TEST(RegistryTest, UnknownTypeNamesTheKnownOnes) {
   EXPECT_EQ(MessageOf(Spec("glrx")),
-            "detectors[2].type: unknown detector 'glrx' (known: deficit, dht, glr, mle)");
+            "detectors[2].type: unknown detector 'glrx' (known: cells, deficit, dht, glr, mle)");
 }
 
 TEST(RegistryTest, UnknownParameterNamesTheKnownOnes) {

@@ -106,7 +106,10 @@ sensors:
     rate_hz: 1
     heading: {std_dev: 0.07}
     dropout_probability: 0.01
-  tension_cells: {rate_hz: 1, noise: {std_dev: 1.0e4}}
+  tension_cells:
+    rate_hz: 1
+    noise: {std_dev: 1.0e4}
+    faults: [{line: 3, mode: drift, time: 500, rate: -1000}]
 failure: {line: 2, time: 300, mode: node, node: 10}
 simulation: {duration: 1000, output_rate_hz: 2, seed: 7}
 detection:
@@ -584,6 +587,12 @@ inline const BadInput kValidationErrors[] = {
      "sensors.gnss.rate_hz: 5000 Hz must be <= 1000"},
     {"GyroRateAboveOneKilohertz", "gyro:", "rate_hz: 1", "rate_hz: 1e6", "rate_hz: ^1e6",
      "sensors.gyro.rate_hz: 1e+06 Hz must be <= 1000"},
+    {"CellFaultModeUnknown", "faults:", "mode: drift", "mode: broken", "mode: ^broken",
+     "sensors.tension_cells.faults[1].mode: 'broken' is not a cell fault (known: drift, stuck)"},
+    {"CellFaultLineBeyondTheMooring", "faults:", "line: 3", "line: 9", "line: ^9",
+     "sensors.tension_cells.faults[1].line: 9 must be in 1..3"},
+    {"CellDriftWithoutRate", "faults:", "rate: -1000", "rate: 0", "rate: ^0",
+     "sensors.tension_cells.faults[1].rate: a drifting cell needs a nonzero rate [N/s]"},
     {"TensionCellRateAboveOneKilohertz", "tension_cells:", "rate_hz: 1", "rate_hz: 2000",
      "rate_hz: ^2000", "sensors.tension_cells.rate_hz: 2000 Hz must be <= 1000"},
     {"GnssStdDevHuge", "north:", "std_dev: 0.07", "std_dev: 5000", "5000",

@@ -722,5 +722,27 @@ TEST(TensionCellsTest, ReproducibleAndChecked) {
   EXPECT_EQ(a.lines(), 3);
 }
 
+TEST(TensionCellsTest, AStuckCellRepeatsItsLastReadingAndADriftingOneWalksOff) {
+  const ChannelNoise noise{.std_dev = 100.0};
+  TensionCells healthy(3, noise, 1.0, 12);
+  TensionCells faulty(3, noise, 1.0, 12);
+  faulty.SetStuck(0, 10.0);
+  faulty.SetDrift(2, 20.0, -500.0);
+  double stuck = 0.0;
+  for (int k = 0; k < 40; ++k) {
+    const std::vector<double> truth = {1e6 + 1e3 * k, 1.1e6, 0.9e6};
+    const std::vector<double> h = healthy.Sample(k, truth);
+    const std::vector<double> f = faulty.Sample(k, truth);
+    if (k < 10) {
+      EXPECT_EQ(f[0], h[0]);
+      stuck = f[0];
+    } else {
+      EXPECT_EQ(f[0], stuck) << k;  // the reading at 9 s, while the truth climbs
+    }
+    EXPECT_EQ(f[1], h[1]);  // the other cells are untouched, noise included
+    EXPECT_DOUBLE_EQ(f[2], h[2] - (k >= 20 ? 500.0 * (k - 20) : 0.0)) << k;
+  }
+}
+
 }  // namespace
 }  // namespace moorsim::vessel

@@ -371,6 +371,13 @@ Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed)
   if (scenario_.sensors.tension_cells) {
     parts_->tension_cells.emplace(mooring_.num_lines(), Noise(scenario_.sensors.tension_noise),
                                   scenario_.sensors.tension_rate, seed_);
+    for (const scenarios::SensorsSpec::CellFault& f : scenario_.sensors.tension_faults) {
+      if (f.mode == "stuck") {
+        parts_->tension_cells->SetStuck(f.line - 1, f.time);
+      } else {
+        parts_->tension_cells->SetDrift(f.line - 1, f.time, f.rate);
+      }
+    }
   }
   failure_pending_ = scenario_.failure.line > 0;
 

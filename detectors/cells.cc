@@ -1,0 +1,91 @@
+#include "detectors/cells.h"
+
+#include <cmath>
+
+#include "core/error.h"
+#include "detectors/registry.h"
+
+namespace moorsim::detectors {
+
+Cells::Cells(const CellsOptions& options) : options_(options) {
+  if (options.window < 1) throw InputError("window must be >= 1");
+  if (!(options.drop > 0.0 && options.drop < 1.0)) throw InputError("drop must be in (0, 1)");
+}
+
+void Cells::Reset(int hypotheses) {
+  internal::Require(hypotheses >= 1, "cells", "at least one hypothesis");
+  hypotheses_ = hypotheses;
+  lines_.clear();
+  bias_history_.clear();
+  cell_faults_ = 0;
+  verdict_ = Verdict{std::vector<double>(static_cast<std::size_t>(hypotheses), 0.0), 0, false};
+}
+
+Verdict Cells::Update(const Evidence& evidence) {
+  internal::CheckEvidence("cells", evidence, hypotheses_);
+  if (!evidence.tensions || !evidence.load) return verdict_;
+  const TensionEvidence& cells = *evidence.tensions;
+  const LoadEvidence& load = *evidence.load;
+  const int n = static_cast<int>(cells.measured.size());
+  internal::Require(cells.expected.size() == cells.measured.size(), "cells",
+                    "as many expected tensions as readings");
+  if (lines_.empty()) lines_.resize(static_cast<std::size_t>(n));
+  internal::Require(static_cast<int>(lines_.size()) == n, "cells", "the same number of cells");
+  const auto window = static_cast<std::size_t>(options_.window);
+  bias_history_.push_back(load.bias);
+  if (bias_history_.size() > window + 1) bias_history_.pop_front();
+
+  const double t = evidence.t;
+  int best = 0;
+  double best_ratio = 1.0;
+  for (int k = 0; k < n; ++k) {
+    Line& line = lines_[static_cast<std::size_t>(k)];
+    const double expected = cells.expected(k);
+    const double ratio = expected > 0.0 ? cells.measured(k) / expected : 1.0;
+    line.ratios.push_back(std::isfinite(ratio) ? ratio : 1.0);
+    if (line.ratios.size() > window) line.ratios.pop_front();
+    double mean = 0.0;
+    for (double r : line.ratios) mean += r;
+    mean /= static_cast<double>(line.ratios.size());
+    const int h = k + 1;  // hypothesis "line k + 1 parted"
+    if (h < hypotheses_) verdict_.score[static_cast<std::size_t>(h)] = 1.0 - mean;
+    const bool low = line.ratios.size() == window && mean < 1.0 - options_.drop;
+    if (line.faulty) {
+      if (mean > 1.0 - options_.drop / 2.0) line.faulty = false;  // reads true again
+      line.low = false;
+      continue;
+    }
+    if (low && !line.low) {
+      line.low_since = t;
+      line.bias_before = bias_history_.front();
+    }
+    line.low = low;
+    if (!low) line.confirmed = false;
+    if (!low || t - line.low_since < options_.hold || h >= hypotheses_) continue;
+    bool agrees = true;
+    if (options_.confirm && !line.confirmed) {
+      const Eigen::Vector2d lost = load.line_load[static_cast<std::size_t>(h)].head<2>();
+      const double size = lost.norm();
+      const double shift =
+          size > 0.0 ? -(load.bias - line.bias_before).head<2>().dot(lost) / size : 0.0;
+      agrees = shift >=
+               std::max(options_.confirm_fraction * (1.0 - mean) * size, options_.confirm_floor);
+      if (!agrees && t - line.low_since >= options_.confirm_time) {
+        line.faulty = true;  // the vessel never felt it: the cell, not the line
+        line.low = false;
+        ++cell_faults_;
+        continue;
+      }
+      line.confirmed = agrees;
+    }
+    if (agrees && mean < best_ratio) {
+      best = h;
+      best_ratio = mean;
+    }
+  }
+  verdict_.alarm = best != 0;
+  verdict_.hypothesis = best;
+  return verdict_;
+}
+
+}  // namespace moorsim::detectors

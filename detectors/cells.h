@@ -1,0 +1,88 @@
+// Fairlead load cells as evidence (Evidence::tensions), checked against the vessel's pose.
+//
+// A load cell tells at once which line has lost its load: a fairlead break takes the
+// reading to zero, an anchor release to the weight of the chain left hanging (on the seed
+// mooring 6.4 -> 4.5 MN within 4 s). A cell that is stuck or drifts tells the same story
+// about a line that is still holding, which is why operators have learned to distrust
+// them and why position-only detection exists. This test uses both: the cells say which
+// line, the pose says whether the vessel lost that line's load.
+//
+// Per line k and sample, the ratio f_k = measured_k / expected_k of the cell's reading to
+// the intact model's quasi-static tension at the filter's pose; its mean over the last
+// `window` samples is fbar_k. The cell reads low while fbar_k < 1 - drop; the reading's
+// deficit is d_k = 1 - fbar_k (score[k]).
+//
+//  - Cells alone (confirm = 0): an alarm naming line k once its cell has read low for
+//    `hold` seconds (the lowest ratio wins when several do).
+//  - Confirmed by the pose (confirm = 1): besides, the intact filter's bias must have
+//    moved as losing line k would move it. A parted line is, to the intact filter, a steady
+//    force: its bias settles by -line_load[k] (Evidence::load). With b0 the bias `window`
+//    samples before the cell began to read low and l_k the horizontal part of
+//    line_load[k], the shift toward the lost load is z_k = -(b - b0) . l_k / |l_k|; the
+//    alarm needs z_k >= max(confirm_fraction d_k |l_k|, confirm_floor) (the floor keeps the
+//    wave-drift wander of the bias from confirming a faulty cell). A cell that reads low for
+//    `confirm_time` seconds without the pose agreeing is declared faulty and ignored until
+//    it reads within drop / 2 of its expectation again; cell_faults() counts them.
+//
+// Pairs: scored 0, never named. Without tension or load evidence a sample leaves the state
+// as it was. A stuck cell on the line that then parts keeps reading its old load: this test
+// cannot see that break (run a pose-only detector beside it; the campaign in
+// benchmarks/README.md shows the cost).
+#pragma once
+
+#include <deque>
+#include <string_view>
+#include <vector>
+
+#include "detectors/detector.h"
+
+namespace moorsim::detectors {
+
+struct CellsOptions {
+  /// Samples in the ratio's moving mean, >= 1.
+  int window = 10;
+  /// Fraction of the expected reading a cell must lose to read low, in (0, 1).
+  double drop = 0.25;
+  /// [s] How long a cell must read low before the alarm, >= 0.
+  double hold = 3.0;
+  /// Whether the pose must confirm (1) or the cells decide alone (0).
+  bool confirm = true;
+  /// Share of the horizontal load the cell says is lost that the bias must show, >= 0.
+  double confirm_fraction = 0.5;
+  /// [N] Least bias shift that confirms, >= 0.
+  double confirm_floor = 1.5e6;
+  /// [s] How long a low cell waits for the pose before it is declared faulty, > 0.
+  double confirm_time = 180.0;
+};
+
+class Cells final : public Detector {
+ public:
+  explicit Cells(const CellsOptions& options = {});
+  std::string_view type() const override { return "cells"; }
+  bool NeedsLoadEvidence() const override { return true; }
+  void Reset(int hypotheses) override;
+  Verdict Update(const Evidence& evidence) override;
+
+  /// Cells declared faulty so far (each time a low cell went unconfirmed for
+  /// confirm_time).
+  int cell_faults() const { return cell_faults_; }
+
+ private:
+  struct Line {
+    std::deque<double> ratios;  // the last `window` ratios
+    bool low = false;
+    double low_since = 0.0;
+    Vec3 bias_before = Vec3::Zero();  // b0: the bias `window` samples before the low began
+    bool confirmed = false;           // the pose agreed during this low spell
+    bool faulty = false;
+  };
+
+  CellsOptions options_;
+  int hypotheses_ = 0;
+  std::vector<Line> lines_;
+  std::deque<Vec3> bias_history_;  // the last window + 1 biases
+  int cell_faults_ = 0;
+  Verdict verdict_;
+};
+
+}  // namespace moorsim::detectors

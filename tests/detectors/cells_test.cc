@@ -1,0 +1,153 @@
+// The load-cell test (detectors/cells.h) on synthetic evidence: a parted line's cell falls
+// and the intact filter's bias moves by that line's load (the alarm names it, at once
+// without confirmation, once the bias agrees with it); a drifting cell on a line that holds
+// moves no bias (cells alone raise a false alarm; confirmed by the pose, the cell is
+// declared faulty after confirm_time and no alarm is raised); a faulty cell that reads true
+// again re-arms.
+#include "detectors/cells.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <optional>
+#include <vector>
+
+#include "core/error.h"
+
+namespace moorsim::detectors {
+namespace {
+
+constexpr int kCellLines = 4;
+constexpr double kPretension = 6.0e6;  // [N] every cell's expected reading
+
+// Line k's horizontal load on the vessel: 4.5 MN pointing to its anchor at 90 deg steps.
+Vec3 CellLineLoad(int line) {
+  const double angle = (line - 1) * M_PI / 2;
+  return Vec3(4.5e6 * std::cos(angle), 4.5e6 * std::sin(angle), 0.0);
+}
+
+// One sample at time t: cell readings `measured` and the intact filter's bias `bias`.
+Evidence CellEvidence(double t, const std::vector<double>& measured, const Vec3& bias) {
+  Evidence e;
+  e.t = t;
+  e.hypotheses.resize(kCellLines + 1);
+  LoadEvidence load;
+  load.bias = bias;
+  load.line_load.push_back(Vec3::Zero());
+  for (int k = 1; k <= kCellLines; ++k) load.line_load.push_back(CellLineLoad(k));
+  e.load = load;
+  TensionEvidence cells;
+  cells.measured = Eigen::Map<const VecX>(measured.data(), kCellLines);
+  cells.expected = VecX::Constant(kCellLines, kPretension);
+  e.tensions = cells;
+  return e;
+}
+
+// Runs `detector` through `seconds` of 1 Hz samples from `t0`; `reading(t)` gives the
+// cells, `bias(t)` the bias. Returns the first time the alarm stands (nullopt if never)
+// and leaves the last verdict in *last.
+template <typename Reading, typename Bias>
+std::optional<double> FirstAlarm(Cells& detector, double t0, double seconds, Reading reading,
+                                 Bias bias, Verdict* last) {
+  std::optional<double> first;
+  for (double t = t0; t < t0 + seconds; t += 1.0) {
+    *last = detector.Update(CellEvidence(t, reading(t), bias(t)));
+    if (last->alarm && !first) first = t;
+  }
+  return first;
+}
+
+std::vector<double> Healthy(double) { return std::vector<double>(kCellLines, kPretension); }
+
+TEST(Cells, APartedLinesCellNamesItOnceThePoseAgrees) {
+  // Line 2 parts at 100 s: its cell reads zero from then on; the bias settles by -load of
+  // line 2 over 20 s (the intact filter's lag).
+  const auto reading = [](double t) {
+    std::vector<double> r = Healthy(t);
+    if (t >= 100) r[1] = 0.0;
+    return r;
+  };
+  const auto bias = [](double t) -> Vec3 {
+    const double share = std::clamp((t - 100) / 20.0, 0.0, 1.0);
+    return -share * CellLineLoad(2);
+  };
+  for (const bool confirm : {false, true}) {
+    SCOPED_TRACE(confirm ? "confirmed" : "cells alone");
+    CellsOptions options;
+    options.confirm = confirm;
+    Cells detector(options);
+    detector.Reset(kCellLines + 1);
+    Verdict last;
+    const std::optional<double> alarm = FirstAlarm(detector, 0, 300, reading, bias, &last);
+    ASSERT_TRUE(alarm.has_value());
+    // The window's mean (10 samples) falls below 0.75 with the third zero: 102 s, plus the
+    // 3 s hold. Confirmed: the bias must move
+    // max(0.5 x 1.0 x 4.5 MN, 1.5 MN) = 2.25 MN toward line 2's load: half-way, at 110 s.
+    EXPECT_EQ(*alarm, confirm ? 110.0 : 105.0);
+    EXPECT_TRUE(last.alarm);
+    EXPECT_EQ(last.hypothesis, 2);
+    EXPECT_NEAR(last.score[2], 1.0, 1e-12);  // the whole reading is gone
+    EXPECT_EQ(last.score[1], 0.0);
+    EXPECT_EQ(detector.cell_faults(), 0);
+  }
+}
+
+TEST(Cells, ADriftingCellOnALineThatHoldsIsAFaultNotAFailure) {
+  // Cell 3 drifts down 10 kN/s from 50 s; nothing moves the vessel (the bias wanders 0.5 MN).
+  const auto reading = [](double t) {
+    std::vector<double> r = Healthy(t);
+    if (t >= 50) r[2] -= 1.0e4 * (t - 50);
+    return r;
+  };
+  const auto bias = [](double t) -> Vec3 { return Vec3(5e5 * std::sin(t / 40), 0.0, 0.0); };
+  CellsOptions alone;
+  alone.confirm = false;
+  Cells cells_alone(alone);
+  cells_alone.Reset(kCellLines + 1);
+  Verdict last;
+  // Alone: low once 25 % of 6 MN = 1.5 MN has drifted off in the window's mean: a false
+  // alarm on line 3 about 200 s after the drift began.
+  const std::optional<double> false_alarm = FirstAlarm(cells_alone, 0, 600, reading, bias, &last);
+  ASSERT_TRUE(false_alarm.has_value());
+  EXPECT_NEAR(*false_alarm, 50 + 150 + 4.5 + 3, 2.0);
+  EXPECT_EQ(last.hypothesis, 3);
+
+  Cells confirmed;  // the defaults: confirm 1, confirm_time 180 s
+  confirmed.Reset(kCellLines + 1);
+  EXPECT_FALSE(FirstAlarm(confirmed, 0, 600, reading, bias, &last).has_value());
+  EXPECT_FALSE(last.alarm);
+  EXPECT_EQ(confirmed.cell_faults(), 1);
+  // Repaired (reads true again): it re-arms and a real break of its line is then named.
+  const auto repaired_then_parted = [](double t) {
+    std::vector<double> r = Healthy(t);
+    if (t >= 700) r[2] = 0.0;
+    return r;
+  };
+  const auto parted_bias = [](double t) -> Vec3 {
+    return -std::clamp((t - 700) / 20.0, 0.0, 1.0) * CellLineLoad(3);
+  };
+  const std::optional<double> alarm =
+      FirstAlarm(confirmed, 600, 200, repaired_then_parted, parted_bias, &last);
+  ASSERT_TRUE(alarm.has_value());
+  EXPECT_EQ(*alarm, 710.0);
+  EXPECT_EQ(last.hypothesis, 3);
+}
+
+TEST(Cells, WithoutCellReadingsNothingChangesAndBadOptionsAreRefused) {
+  Cells detector;
+  detector.Reset(kCellLines + 1);
+  Evidence e = CellEvidence(0.0, Healthy(0), Vec3::Zero());
+  e.tensions.reset();
+  const Verdict v = detector.Update(e);
+  EXPECT_FALSE(v.alarm);
+  EXPECT_EQ(v.score, std::vector<double>(kCellLines + 1, 0.0));
+  CellsOptions bad;
+  bad.drop = 1.0;
+  EXPECT_THROW(Cells{bad}, InputError);
+  bad = CellsOptions{};
+  bad.window = 0;
+  EXPECT_THROW(Cells{bad}, InputError);
+}
+
+}  // namespace
+}  // namespace moorsim::detectors
