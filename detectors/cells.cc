@@ -50,12 +50,25 @@ Verdict Cells::Update(const Evidence& evidence) {
     const int h = k + 1;  // hypothesis "line k + 1 parted"
     if (h < hypotheses_) verdict_.score[static_cast<std::size_t>(h)] = 1.0 - mean;
     const bool low = line.ratios.size() == window && mean < 1.0 - options_.drop;
+    // The mean fall_time ago: the newest one at least that old (none: the record is shorter).
+    line.means.emplace_back(t, mean);
+    while (line.means.size() > 1 && line.means[1].first <= t - options_.fall_time) {
+      line.means.pop_front();
+    }
     if (line.faulty) {
       if (mean > 1.0 - options_.drop / 2.0) line.faulty = false;  // reads true again
       line.low = false;
       continue;
     }
     if (low && !line.low) {
+      const bool fell =
+          options_.fall_time <= 0.0 || (line.means.front().first <= t - options_.fall_time &&
+                                        line.means.front().second >= 1.0 - options_.drop / 2.0);
+      if (!fell) {  // a drift, not a parted line
+        line.faulty = true;
+        ++cell_faults_;
+        continue;
+      }
       line.low_since = t;
       line.bias_before = bias_history_.front();
     }

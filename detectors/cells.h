@@ -12,6 +12,12 @@
 // `window` samples is fbar_k. The cell reads low while fbar_k < 1 - drop; the reading's
 // deficit is d_k = 1 - fbar_k (score[k]).
 //
+//  - A line parts in seconds: a fairlead break takes the whole reading at once, an anchor
+//    release 29 % within 4 s. A cell that drifts loses its reading over minutes. So a cell
+//    that begins to read low counts only if `fall_time` seconds earlier it still read
+//    within drop / 2 of its expectation (fbar then >= 1 - drop / 2); one that fell slower
+//    is a faulty cell at once (cell_faults()). On the seed mooring a drift faster than
+//    about 25 kN/s (drop / 2 of 6 MN in 30 s) still looks like a fall. fall_time = 0: off.
 //  - Cells alone (confirm = 0): an alarm naming line k once its cell has read low for
 //    `hold` seconds (the lowest ratio wins when several do).
 //  - Confirmed by the pose (confirm = 1): besides, the intact filter's bias must have
@@ -53,6 +59,9 @@ struct CellsOptions {
   double confirm_floor = 1.5e6;
   /// [s] How long a low cell waits for the pose before it is declared faulty, > 0.
   double confirm_time = 180.0;
+  /// [s] A cell must have read true this long before it reads low (a fall, not a drift);
+  /// >= 0, 0 = any.
+  double fall_time = 30.0;
 };
 
 class Cells final : public Detector {
@@ -69,7 +78,8 @@ class Cells final : public Detector {
 
  private:
   struct Line {
-    std::deque<double> ratios;  // the last `window` ratios
+    std::deque<double> ratios;                    // the last `window` ratios
+    std::deque<std::pair<double, double>> means;  // (t, fbar) over the last fall_time
     bool low = false;
     double low_since = 0.0;
     Vec3 bias_before = Vec3::Zero();  // b0: the bias `window` samples before the low began

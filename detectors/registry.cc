@@ -49,7 +49,7 @@ constexpr ParameterRange kCount{1.0, 10000.0, false, false, true};  // [1, 10000
 constexpr ParameterRange kDelay{0.0, 10000.0, false, false, true};  // [0, 10000]
 constexpr ParameterRange kSwitch{0.0, 1.0, false, false, true};     // 0 or 1
 
-constexpr std::array<DetectorParameter, 7> kCellsParameters = {{
+constexpr std::array<DetectorParameter, 8> kCellsParameters = {{
     {"confirm", 1.0, "", kSwitch, "",
      "1: the intact filter's bias must show the lost load before the alarm; 0: cells alone"},
     {"confirm_floor", CellsOptions{}.confirm_floor, "", kNonNegative, "N",
@@ -60,6 +60,8 @@ constexpr std::array<DetectorParameter, 7> kCellsParameters = {{
      "how long a low cell waits for the pose before it is declared faulty"},
     {"drop", CellsOptions{}.drop, "", kProbability, "",
      "fraction of its expected reading a cell must lose to read low"},
+    {"fall_time", CellsOptions{}.fall_time, "", kNonNegative, "s",
+     "a low cell counts only if it read true this long before (a fall, not a drift; 0: off)"},
     {"hold", CellsOptions{}.hold, "", kNonNegative, "s",
      "time a cell must read low before the alarm"},
     {"window", CellsOptions{}.window, "", kCount, "samples",
@@ -156,6 +158,7 @@ std::unique_ptr<Detector> MakeCells(const DetectorParameters& p) {
   options.confirm_fraction = p.Get("confirm_fraction");
   options.confirm_time = p.Get("confirm_time");
   options.drop = p.Get("drop");
+  options.fall_time = p.Get("fall_time");
   options.hold = p.Get("hold");
   options.window = static_cast<int>(p.Get("window"));
   return std::make_unique<Cells>(options);

@@ -1057,8 +1057,9 @@ void CheckCellFaults(const Checker& check, const Scenario& scenario) {
     const SensorsSpec::CellFault& f = s.tension_faults[i];
     const std::string path = "sensors.tension_cells.faults[" + std::to_string(i + 1) + "]";
     check.InRange(path + ".line", f.line, 1, static_cast<int>(scenario.mooring.lines.size()));
-    if (f.mode != "stuck" && f.mode != "drift") {
-      check.Fail(path + ".mode", "'" + f.mode + "' is not a cell fault (known: drift, stuck)");
+    if (f.mode != "stuck" && f.mode != "drift" && f.mode != "dead") {
+      check.Fail(path + ".mode",
+                 "'" + f.mode + "' is not a cell fault (known: dead, drift, stuck)");
     }
     check.NonNegative(path + ".time", f.time, "s");
     check.Between(path + ".rate", f.rate, -1e6, 1e6, "N/s");

@@ -232,8 +232,9 @@ struct SensorsSpec {
   ChannelNoiseSpec tension_noise;  ///< [N]
   double tension_rate = 1.0;       ///< [Hz]
   /// A load cell that goes wrong during the run (`tension_cells.faults`): from `time` on,
-  /// line `line`'s cell is "stuck" (repeats its last reading before `time`) or "drift"s
-  /// (reads `rate` [N/s] x (t - time) off, on top of its noise).
+  /// line `line`'s cell is "stuck" (repeats its last reading before `time`), "drift"s
+  /// (reads `rate` [N/s] x (t - time) off, on top of its noise) or is "dead" (reads its
+  /// noise about zero).
   struct CellFault {
     int line = 0;
     std::string mode;

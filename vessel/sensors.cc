@@ -243,6 +243,8 @@ std::vector<double> TensionCells::Sample(double t, std::span<const double> true_
       if (t >= fault.from) measured[i] = fault.held;
     } else if (fault.kind == Fault::Kind::kDrift && t >= fault.from) {
       measured[i] += fault.rate * (t - fault.from);
+    } else if (fault.kind == Fault::Kind::kDead && t >= fault.from) {
+      measured[i] -= true_tensions[i];
     }
   }
   ++next_index_;
@@ -251,6 +253,11 @@ std::vector<double> TensionCells::Sample(double t, std::span<const double> true_
 
 void TensionCells::SetStuck(int line, double from) {
   faults_.at(static_cast<std::size_t>(line)) = {Fault::Kind::kStuck, from, 0.0,
+                                                std::numeric_limits<double>::quiet_NaN()};
+}
+
+void TensionCells::SetDead(int line, double from) {
+  faults_.at(static_cast<std::size_t>(line)) = {Fault::Kind::kDead, from, 0.0,
                                                 std::numeric_limits<double>::quiet_NaN()};
 }
 

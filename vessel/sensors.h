@@ -237,10 +237,13 @@ class TensionCells {
   void SetStuck(int line, double from);
   /// From time `from` on, cell `line` (0-based) reads `rate` [N/s] x (t - from) off.
   void SetDrift(int line, double from, double rate);
+  /// From time `from` on, cell `line` (0-based) is dead: it reads its noise about zero, as
+  /// a cell with a cut cable or a failed bridge does.
+  void SetDead(int line, double from);
 
  private:
   struct Fault {
-    enum class Kind { kNone, kStuck, kDrift } kind = Kind::kNone;
+    enum class Kind { kNone, kStuck, kDrift, kDead } kind = Kind::kNone;
     double from = 0.0;
     double rate = 0.0;
     double held = std::numeric_limits<double>::quiet_NaN();  // the stuck reading

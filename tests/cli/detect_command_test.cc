@@ -22,12 +22,23 @@ namespace {
 
 const std::string kDetectScenario = MOORSIM_SOURCE_DIR "/scenarios/library/thesis_line6.yaml";
 
-// A short thesis line-6 run with the line parting at 100 s and the sensors dropping out now
-// and then (the GNSS for 5 s on average), so the replay meets dropouts.
-const std::vector<std::string> kDetectSets = {"--set", "failure.time=100",
-                                              "--set", "sensors.gnss.dropout_probability=0.03",
-                                              "--set", "sensors.gnss.dropout_mean_duration=5",
-                                              "--set", "sensors.gyro.dropout_probability=0.03"};
+// A short thesis line-6 run with the line parting at 100 s, the sensors dropping out now
+// and then (the GNSS for 5 s on average), so the replay meets dropouts, and load cells
+// (one of them drifting) read by the cells test beside the library's four detectors.
+const std::vector<std::string> kDetectSets = {
+    "--set",
+    "failure.time=100",
+    "--set",
+    "sensors.gnss.dropout_probability=0.03",
+    "--set",
+    "sensors.gnss.dropout_mean_duration=5",
+    "--set",
+    "sensors.gyro.dropout_probability=0.03",
+    "--set",
+    "sensors.tension_cells={rate_hz: 1, noise: {std_dev: 1.0e4}, faults: [{line: 2, mode: drift, "
+    "time: 20, rate: -5000}]}",
+    "--set",
+    "detectors=[{type: dht}, {type: mle}, {type: glr}, {type: deficit}, {type: cells}]"};
 
 std::vector<std::string> With(std::vector<std::string> args, const std::vector<std::string>& more) {
   args.insert(args.end(), more.begin(), more.end());
@@ -45,9 +56,12 @@ std::string DetectionInputCsv(const std::string& run_h5) {
   const output::TableData time = file.ReadTable("/detection/input/time");
   const output::TableData pose = file.ReadTable("/detection/input/pose_measured");
   const output::TableData thrust = file.ReadTable("/detection/input/thrust");
+  const output::TableData tension = file.ReadTable("/detection/input/tension_measured");
   std::ostringstream csv;
   csv << "# replayed from " << run_h5 << "\n";
-  csv << "heading,time,thrust_surge,north,thrust_sway,east,thrust_yaw\n";
+  csv << "heading,time,thrust_surge,north,thrust_sway,east,thrust_yaw";
+  for (std::size_t k = 1; k <= tension.columns; ++k) csv << ",tension_" << k;
+  csv << "\n";
   const auto cell = [](double v) {
     if (std::isnan(v)) return std::string();
     char text[32];
@@ -57,7 +71,9 @@ std::string DetectionInputCsv(const std::string& run_h5) {
   for (std::size_t r = 0; r < time.rows; ++r) {
     csv << cell(pose.at(r, 2)) << ',' << cell(time.values[r]) << ',' << cell(thrust.at(r, 0)) << ','
         << cell(pose.at(r, 0)) << ',' << cell(thrust.at(r, 1)) << ',' << cell(pose.at(r, 1)) << ','
-        << cell(thrust.at(r, 2)) << "\n";
+        << cell(thrust.at(r, 2));
+    for (std::size_t k = 0; k < tension.columns; ++k) csv << ',' << cell(tension.at(r, k));
+    csv << "\n";
   }
   return csv.str();
 }
@@ -101,9 +117,9 @@ TEST_F(DetectCommand, ReplayingARunGivesExactlyItsAlarms) {
   const nlohmann::json run = ReadJsonFile(RunDir() / "summary.json");
   const nlohmann::json replay = ReadJsonFile(dir.path() / "d" / "summary.json");
   EXPECT_EQ(replay["detectors"], run["detectors"]);
-  // The run has alarms to replay: the DHT, MLE and GLR name line 6 after the break (the
-  // deficit test is still learning its drift model 100 s into a run).
-  for (const char* label : {"dht", "mle", "glr"}) {
+  // The run has alarms to replay: the DHT, MLE, GLR and cells tests name line 6 after the
+  // break (the deficit test is still learning its drift model 100 s into a run).
+  for (const char* label : {"dht", "mle", "glr", "cells"}) {
     ASSERT_EQ(run["detectors"][label]["isolated_line"], 6) << label;
   }
   // Each event was printed as it happened, in the history's order.
@@ -124,10 +140,9 @@ TEST_F(DetectCommand, ReplayingARunGivesExactlyItsAlarms) {
   EXPECT_EQ(rows, events);
   EXPECT_EQ(replay["samples"], 251);  // the 1 Hz sensors, 0 to 250 s
   // tools/plot_run.py draws what detection alone has: no tensions, no true pose.
-  const CliResult plot =
-      RunProgram("/usr/bin/python3",
-                 {MOORSIM_SOURCE_DIR "/tools/plot_run.py", (dir.path() / "d").string()},
-                 dir.path());
+  const CliResult plot = RunProgram(
+      "/usr/bin/python3", {MOORSIM_SOURCE_DIR "/tools/plot_run.py", (dir.path() / "d").string()},
+      dir.path());
   ASSERT_EQ(plot.exit_code, 0) << plot.Describe();
   for (const char* figure : {"trajectory", "pose", "thrust", "detectors", "detector_scores"}) {
     EXPECT_TRUE(std::filesystem::exists(dir.path() / "d" / (std::string(figure) + ".png")))

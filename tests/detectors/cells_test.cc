@@ -1,9 +1,9 @@
 // The load-cell test (detectors/cells.h) on synthetic evidence: a parted line's cell falls
 // and the intact filter's bias moves by that line's load (the alarm names it, at once
 // without confirmation, once the bias agrees with it); a drifting cell on a line that holds
-// moves no bias (cells alone raise a false alarm; confirmed by the pose, the cell is
-// declared faulty after confirm_time and no alarm is raised); a faulty cell that reads true
-// again re-arms.
+// moves no bias (a plain threshold on the cells raises a false alarm; asking for a fall,
+// or for the pose to confirm, declares the cell faulty and raises none); a faulty cell
+// that reads true again re-arms.
 #include "detectors/cells.h"
 
 #include <gtest/gtest.h>
@@ -102,6 +102,7 @@ TEST(Cells, ADriftingCellOnALineThatHoldsIsAFaultNotAFailure) {
   const auto bias = [](double t) -> Vec3 { return Vec3(5e5 * std::sin(t / 40), 0.0, 0.0); };
   CellsOptions alone;
   alone.confirm = false;
+  alone.fall_time = 0.0;  // the plain threshold on the reading
   Cells cells_alone(alone);
   cells_alone.Reset(kCellLines + 1);
   Verdict last;
@@ -112,7 +113,15 @@ TEST(Cells, ADriftingCellOnALineThatHoldsIsAFaultNotAFailure) {
   EXPECT_NEAR(*false_alarm, 50 + 150 + 4.5 + 3, 2.0);
   EXPECT_EQ(last.hypothesis, 3);
 
-  Cells confirmed;  // the defaults: confirm 1, confirm_time 180 s
+  // Cells alone but asking for a fall (the default fall_time, 30 s): 10 kN/s takes 30 s to
+  // lose 5 % of the reading, so when the cell first reads low it is a drift: a fault.
+  alone.fall_time = CellsOptions{}.fall_time;
+  Cells falls_only(alone);
+  falls_only.Reset(kCellLines + 1);
+  EXPECT_FALSE(FirstAlarm(falls_only, 0, 600, reading, bias, &last).has_value());
+  EXPECT_EQ(falls_only.cell_faults(), 1);
+
+  Cells confirmed;  // the defaults: confirm 1, fall_time 30 s
   confirmed.Reset(kCellLines + 1);
   EXPECT_FALSE(FirstAlarm(confirmed, 0, 600, reading, bias, &last).has_value());
   EXPECT_FALSE(last.alarm);

@@ -24,7 +24,8 @@ namespace {
 const std::string kCellsLibrary = MOORSIM_SOURCE_DIR "/scenarios/library/";
 const std::string kCells = "sensors.tension_cells={rate_hz: 1, noise: {std_dev: 1.0e4}}";
 const std::string kCellDetectors =
-    "detectors=[{type: deficit}, {type: cells, label: cells_alone, confirm: 0}, {type: cells}]";
+    "detectors=[{type: deficit}, {type: cells, label: cells_alone, confirm: 0, fall_time: 0}, "
+    "{type: cells}]";
 
 TEST(LoadCells, TheExpectedReadingIsTheFemLinesStaticTension) {
   // Calm water: the run starts on the FEM's static shape at the moored pose.

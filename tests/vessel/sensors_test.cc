@@ -722,15 +722,16 @@ TEST(TensionCellsTest, ReproducibleAndChecked) {
   EXPECT_EQ(a.lines(), 3);
 }
 
-TEST(TensionCellsTest, AStuckCellRepeatsItsLastReadingAndADriftingOneWalksOff) {
+TEST(TensionCellsTest, StuckDriftingAndDeadCellsReadAsTheyShould) {
   const ChannelNoise noise{.std_dev = 100.0};
-  TensionCells healthy(3, noise, 1.0, 12);
-  TensionCells faulty(3, noise, 1.0, 12);
+  TensionCells healthy(4, noise, 1.0, 12);
+  TensionCells faulty(4, noise, 1.0, 12);
   faulty.SetStuck(0, 10.0);
   faulty.SetDrift(2, 20.0, -500.0);
+  faulty.SetDead(3, 30.0);
   double stuck = 0.0;
   for (int k = 0; k < 40; ++k) {
-    const std::vector<double> truth = {1e6 + 1e3 * k, 1.1e6, 0.9e6};
+    const std::vector<double> truth = {1e6 + 1e3 * k, 1.1e6, 0.9e6, 1.2e6};
     const std::vector<double> h = healthy.Sample(k, truth);
     const std::vector<double> f = faulty.Sample(k, truth);
     if (k < 10) {
@@ -741,6 +742,7 @@ TEST(TensionCellsTest, AStuckCellRepeatsItsLastReadingAndADriftingOneWalksOff) {
     }
     EXPECT_EQ(f[1], h[1]);  // the other cells are untouched, noise included
     EXPECT_DOUBLE_EQ(f[2], h[2] - (k >= 20 ? 500.0 * (k - 20) : 0.0)) << k;
+    EXPECT_DOUBLE_EQ(f[3], k >= 30 ? h[3] - truth[3] : h[3]) << k;  // its noise alone
   }
 }
 

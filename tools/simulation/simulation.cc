@@ -374,6 +374,8 @@ Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed)
     for (const scenarios::SensorsSpec::CellFault& f : scenario_.sensors.tension_faults) {
       if (f.mode == "stuck") {
         parts_->tension_cells->SetStuck(f.line - 1, f.time);
+      } else if (f.mode == "dead") {
+        parts_->tension_cells->SetDead(f.line - 1, f.time);
       } else {
         parts_->tension_cells->SetDrift(f.line - 1, f.time, f.rate);
       }
