@@ -219,7 +219,8 @@ class Deficit final : public Detector {
  private:
   using Vec2 = Eigen::Vector2d;
   struct Pending {
-    Vec2 mean, raw;
+    Vec2 mean = Vec2::Zero();
+    Vec2 raw = Vec2::Zero();
     Regressors energy = Regressors::Zero();
     double dt = 0.0;
   };
