@@ -588,7 +588,8 @@ inline const BadInput kValidationErrors[] = {
     {"GyroRateAboveOneKilohertz", "gyro:", "rate_hz: 1", "rate_hz: 1e6", "rate_hz: ^1e6",
      "sensors.gyro.rate_hz: 1e+06 Hz must be <= 1000"},
     {"CellFaultModeUnknown", "faults:", "mode: drift", "mode: broken", "mode: ^broken",
-     "sensors.tension_cells.faults[1].mode: 'broken' is not a cell fault (known: dead, drift, stuck)"},
+     "sensors.tension_cells.faults[1].mode: 'broken' is not a cell fault (known: dead, drift, "
+     "stuck)"},
     {"CellFaultLineBeyondTheMooring", "faults:", "line: 3", "line: 9", "line: ^9",
      "sensors.tension_cells.faults[1].line: 9 must be in 1..3"},
     {"CellDriftWithoutRate", "faults:", "rate: -1000", "rate: 0", "rate: ^0",
