@@ -5,7 +5,9 @@
 # without current, 3 seeds each, plus two intact hours: 50 runs, a minute or two on two
 # cores) written to out/thesis_detection_small/ (runs.csv, campaign.h5) and its report
 # (report.html with figures). Then one run of the thesis case "line 6 parts at 400 s, with
-# current" with its figures, and the static solution of the seed mooring.
+# current" with its figures, the same run's detection replayed by `moorsim detect` from its
+# recorded samples (the alarms as JSON lines, identical to the run's), and the static
+# solution of the seed mooring.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -21,6 +23,9 @@ echo
 ./build/release/tools/moorsim run scenarios/library/thesis_line6_current.yaml \
   --out out/thesis_line6_current
 /usr/bin/python3 tools/plot_run.py out/thesis_line6_current
+echo
+./build/release/tools/moorsim detect out/thesis_line6_current/run.h5 \
+  --out out/thesis_line6_current_detect
 echo
 ./build/release/tools/moorsim static scenarios/library/seed_tapm.yaml
 echo
