@@ -29,6 +29,7 @@ struct Options {
   std::string scenario = MOORSIM_SOURCE_DIR "/scenarios/library/seed_tapm.yaml";
   std::string moorsim = MOORSIM_CLI;
   std::string motion = "surge:5,100,2,10";
+  std::vector<std::string> sets;  // --set key.path=value, passed to both runs
 };
 
 struct RunResult {
@@ -61,6 +62,7 @@ RunResult Simulate(const Options& o, int segments, double tolerance_scale) {
   cmd << o.moorsim << " simulate-lines " << o.scenario << " --motion " << o.motion << " --duration "
       << o.duration << " --segments " << segments << " --tolerance-scale " << tolerance_scale
       << " --quiet --out " << csv;
+  for (const std::string& set : o.sets) cmd << " --set '" << set << "'";
   RunResult r;
   r.summary = Run(cmd.str());
   double simulated = 0.0;
@@ -144,11 +146,13 @@ int main(int argc, char** argv) {
       o.moorsim = value();
     } else if (arg == "--no-reference") {
       o.reference = false;
+    } else if (arg == "--set") {
+      o.sets.push_back(value());
     } else {
       std::fprintf(stderr,
                    "usage: moorsim_macro_benchmark [--duration S] [--segments 20,50,100] "
                    "[--reference-scale 0.01] [--scenario FILE] [--moorsim PATH] "
-                   "[--no-reference]\n");
+                   "[--no-reference] [--set key.path=value]...\n");
       return 2;
     }
   }
