@@ -43,7 +43,7 @@ class PluginDetector final : public Detector {
   bool NeedsLoadEvidence() const override { return type_->needs_load_evidence != 0; }
 
   void SetFailedLines(std::vector<std::array<int, 2>> failed) { failed_ = std::move(failed); }
-  const PluginLibrary& library() const { return *library_; }
+  const std::shared_ptr<const PluginLibrary>& library() const { return library_; }
 
   void Reset(int hypotheses) override {
     internal::Require(hypotheses >= 1, where_, "at least one hypothesis");
@@ -354,9 +354,9 @@ void RegisterPluginLibrary(const std::string& path) {
   r.libraries.push_back(std::move(library));
 }
 
-const PluginLibrary* PluginLibraryOf(const Detector& detector) {
+std::shared_ptr<const PluginLibrary> PluginLibraryOf(const Detector& detector) {
   const auto* plugin = dynamic_cast<const PluginDetector*>(&detector);
-  return plugin != nullptr ? &plugin->library() : nullptr;
+  return plugin != nullptr ? plugin->library() : nullptr;
 }
 
 void SetPluginHypotheses(Detector& detector, std::vector<std::array<int, 2>> failed_lines) {

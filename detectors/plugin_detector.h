@@ -64,7 +64,7 @@ std::vector<std::shared_ptr<const PluginLibrary>> RegisteredPluginLibraries();
 std::shared_ptr<const PluginLibrary> RegisteredPluginFor(std::string_view type);
 
 /// The library a plugin detector came from; nullptr for a built-in detector.
-const PluginLibrary* PluginLibraryOf(const Detector& detector);
+std::shared_ptr<const PluginLibrary> PluginLibraryOf(const Detector& detector);
 
 /// Gives a plugin detector the lines each hypothesis fails (failed_lines[h]: up to two
 /// 1-based ids, 0 for none), which its next Reset passes on; call before Reset. Without it

@@ -376,7 +376,10 @@ nlohmann::json CampaignMeta(const PreparedCampaign& p) {
   nlohmann::json meta = {
       {"name", c.name}, {"path", c.source_path},     {"scenario", c.scenario_path},
       {"seed", c.seed}, {"factors", c.FactorKeys()}, {"runs", c.NumRuns()}};
-  if (nlohmann::json plugins = PluginsSummary(p.plugin_paths); !plugins.empty()) {
+  std::vector<std::shared_ptr<const detectors::PluginLibrary>> used;
+  for (const std::string& path : p.plugin_paths)
+    used.push_back(detectors::PluginLibrary::Load(path));
+  if (nlohmann::json plugins = PluginsSummary(used); !plugins.empty()) {
     meta["plugins"] = plugins;
   }
   return meta;

@@ -206,21 +206,21 @@ const std::optional<Vec3>& Detection::bias() const { return parts_->bias; }
 
 const std::optional<Vec3>& Detection::wave_motion() const { return parts_->wave_motion; }
 
-std::vector<std::string> Detection::PluginPaths() const {
-  std::vector<std::string> paths;
+std::vector<std::shared_ptr<const detectors::PluginLibrary>> Detection::PluginLibraries() const {
+  std::vector<std::shared_ptr<const detectors::PluginLibrary>> libraries;
   for (const std::unique_ptr<detectors::Detector>& d : parts_->detectors) {
-    const detectors::PluginLibrary* library = detectors::PluginLibraryOf(*d);
-    if (library != nullptr &&
-        std::find(paths.begin(), paths.end(), library->path()) == paths.end()) {
-      paths.push_back(library->path());
+    if (auto library = detectors::PluginLibraryOf(*d);
+        library != nullptr &&
+        std::find(libraries.begin(), libraries.end(), library) == libraries.end()) {
+      libraries.push_back(std::move(library));
     }
   }
-  return paths;
+  return libraries;
 }
 
-nlohmann::json PluginsSummary(const std::vector<std::string>& paths) {
-  std::vector<std::shared_ptr<const detectors::PluginLibrary>> libraries;
-  for (const std::string& path : paths) libraries.push_back(detectors::PluginLibrary::Load(path));
+nlohmann::json PluginsSummary(
+    const std::vector<std::shared_ptr<const detectors::PluginLibrary>>& used) {
+  std::vector<std::shared_ptr<const detectors::PluginLibrary>> libraries = used;
   for (auto& library : detectors::RegisteredPluginLibraries()) libraries.push_back(library);
   nlohmann::json plugins = nlohmann::json::array();
   std::vector<std::string> seen;

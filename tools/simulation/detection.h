@@ -21,6 +21,7 @@
 #include "core/types.h"
 #include "detectors/alarm_history.h"
 #include "detectors/detector.h"
+#include "detectors/plugin_detector.h"
 #include "scenarios/scenario.h"
 #include "vessel/vessel_model.h"
 
@@ -95,7 +96,7 @@ class Detection {
   const std::vector<detectors::Verdict>& verdicts() const;
   const std::vector<DetectorRecord>& records() const { return records_; }
   /// The plugin libraries the detectors came from, in scenario order without repeats.
-  std::vector<std::string> PluginPaths() const;
+  std::vector<std::shared_ptr<const detectors::PluginLibrary>> PluginLibraries() const;
   const DetectionTiming& timing() const { return timing_; }
   /// The intact observer's latest bias b [N, N, N m] and wave-frequency motion [m, m, rad]
   /// (Earth frame); unset before the first sample or without the EKF bank.
@@ -116,10 +117,11 @@ class Detection {
 /// (the deficit test's and a plugin's are documented with them).
 const char* ScoreUnits(std::string_view type);
 
-/// The plugin libraries (detectors/plugin_detector.h) that `paths` name, and every library
-/// registered with --plugin: [{path, sha256}] in that order without repeats, so that a
-/// result names exactly the code that produced it. Empty without plugins.
-nlohmann::json PluginsSummary(const std::vector<std::string>& paths);
+/// The plugin libraries `used` (detectors/plugin_detector.h), and every library registered
+/// with --plugin: [{path, sha256}] in that order without repeats, so that a result names
+/// exactly the code that produced it. Empty without plugins.
+nlohmann::json PluginsSummary(
+    const std::vector<std::shared_ptr<const detectors::PluginLibrary>>& used);
 
 /// summary.json's "failure": the scenario's line, time and mode, or null without one.
 nlohmann::json FailureSummary(const scenarios::Scenario& scenario);

@@ -190,7 +190,7 @@ void AddDetection(const scenarios::Scenario& scenario, const Simulation& sim,
   summary["detectors"] = sim.detection() ? DetectorsSummary(scenario, *sim.detection(), sim.time())
                                          : nlohmann::json::object();
   if (sim.detection()) {
-    const nlohmann::json plugins = PluginsSummary(sim.detection()->PluginPaths());
+    const nlohmann::json plugins = PluginsSummary(sim.detection()->PluginLibraries());
     if (!plugins.empty()) summary["plugins"] = plugins;
   }
   const DetectionTiming& timing = sim.detection_timing();
