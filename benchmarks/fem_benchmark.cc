@@ -1,5 +1,6 @@
 // Micro benchmarks of the lumped-mass FEM (mooring_fem/mooring_system.h): right-hand side,
-// analytic Jacobian, static settling and the analytic catenary, on the seed mooring
+// analytic Jacobian, the Newton matrix's factorisation and solve (the block solver of
+// core/block_solver.h against KLU), static settling and the analytic catenary, on the seed mooring
 // (scenarios/library/seed_tapm.yaml) with every line's segment count overridden.
 //
 // Arguments: {lines, segments}. `lines` keeps the first 1 or 8 lines of the seed case.
@@ -17,7 +18,12 @@
 #include <vector>
 
 #include <benchmark/benchmark.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_klu.h>
+#include <sunmatrix/sunmatrix_sparse.h>
 
+#include "core/block_solver.h"
 #include "core/ode_system.h"
 #include "core/types.h"
 #include "mooring_fem/catenary.h"
@@ -126,6 +132,93 @@ void BM_Jacobian(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
+// The Newton matrix M = I - gamma J of the lines at gamma = 0.067 (a 0.1 s BDF2 step), as
+// CVODE hands it to the linear solver.
+std::vector<double> NewtonMatrix(Fixture& f) {
+  const std::span<const PointKinematics> fairleads(f.fairleads);
+  f.mooring.Jacobian(f.x.data(), fairleads, f.jacobian.data());
+  const moorsim::SparsityPattern& p = f.mooring.JacobianPattern();
+  std::vector<double> m(f.jacobian.size());
+  const double gamma = 0.1 * 2.0 / 3.0;
+  for (int r = 0; r < p.size; ++r) {
+    for (int64_t j = p.row_start[r]; j < p.row_start[r + 1]; ++j) {
+      m[j] = (p.column[j] == r ? 1.0 : 0.0) - gamma * f.jacobian[j];
+    }
+  }
+  return m;
+}
+
+// KLU through SUNDIALS, set up as the integrator does (no scaling), on the same matrix.
+struct KluSolver {
+  explicit KluSolver(const moorsim::SparsityPattern& p, const std::vector<double>& values) {
+    SUNContext_Create(nullptr, &ctx);
+    const int n = p.size;
+    A = SUNSparseMatrix(n, n, p.nnz(), CSR_MAT, ctx);
+    std::copy(p.row_start.begin(), p.row_start.end(), SUNSparseMatrix_IndexPointers(A));
+    std::copy(p.column.begin(), p.column.end(), SUNSparseMatrix_IndexValues(A));
+    std::copy(values.begin(), values.end(), SUNSparseMatrix_Data(A));
+    x = N_VNew_Serial(n, ctx);
+    b = N_VNew_Serial(n, ctx);
+    LS = SUNLinSol_KLU(x, A, ctx);
+    SUNLinSol_KLUGetCommon(LS)->scale = -1;
+    SUNLinSolInitialize(LS);
+    SUNLinSolSetup(LS, A);  // the symbolic analysis, once per topology
+  }
+  ~KluSolver() {
+    SUNLinSolFree(LS);
+    N_VDestroy(x);
+    N_VDestroy(b);
+    SUNMatDestroy(A);
+    SUNContext_Free(&ctx);
+  }
+  SUNContext ctx = nullptr;
+  SUNMatrix A = nullptr;
+  N_Vector x = nullptr, b = nullptr;
+  SUNLinearSolver LS = nullptr;
+};
+
+// state.range(2): 0 = KLU, 1 = the block solver.
+void BM_NewtonFactor(benchmark::State& state) {
+  Fixture& f = GetFixture(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  const std::vector<double> m = NewtonMatrix(f);
+  const moorsim::SparsityPattern& p = f.mooring.JacobianPattern();
+  if (state.range(2) == 0) {
+    KluSolver klu(p, m);
+    for (auto _ : state) benchmark::DoNotOptimize(SUNLinSolSetup(klu.LS, klu.A));
+  } else {
+    moorsim::BorderedBlockSolver block(p, f.mooring.Blocks());
+    for (auto _ : state) benchmark::DoNotOptimize(block.Factor(m.data()));
+  }
+  state.SetLabel(state.range(2) == 0 ? "klu" : "block");
+  state.counters["state"] = f.mooring.StateSize();
+}
+
+void BM_NewtonSolve(benchmark::State& state) {
+  Fixture& f = GetFixture(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  const std::vector<double> m = NewtonMatrix(f);
+  const moorsim::SparsityPattern& p = f.mooring.JacobianPattern();
+  std::vector<double> rhs(p.size), out(p.size);
+  for (int i = 0; i < p.size; ++i) rhs[i] = std::sin(0.37 * i);
+  if (state.range(2) == 0) {
+    KluSolver klu(p, m);
+    SUNLinSolSetup(klu.LS, klu.A);
+    for (auto _ : state) {
+      std::copy(rhs.begin(), rhs.end(), N_VGetArrayPointer(klu.b));
+      benchmark::DoNotOptimize(SUNLinSolSolve(klu.LS, klu.A, klu.x, klu.b, 0.0));
+    }
+  } else {
+    moorsim::BorderedBlockSolver block(p, f.mooring.Blocks());
+    block.Factor(m.data());
+    for (auto _ : state) {
+      block.Solve(rhs.data(), out.data());
+      benchmark::DoNotOptimize(out.data());
+      benchmark::ClobberMemory();
+    }
+  }
+  state.SetLabel(state.range(2) == 0 ? "klu" : "block");
+  state.counters["state"] = f.mooring.StateSize();
+}
+
 // The cost of `moorsim static`: analytic catenary placement, then Newton on the FEM.
 void BM_StaticSettle(benchmark::State& state) {
   MooringSystem mooring(
@@ -174,6 +267,14 @@ BENCHMARK(BM_Rhs)
 BENCHMARK(BM_Jacobian)
     ->ArgsProduct({{1, 8}, {20, 50, 100}})
     ->ArgNames({"lines", "segments"})
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_NewtonFactor)
+    ->ArgsProduct({{8}, {50, 100}, {0, 1}})
+    ->ArgNames({"lines", "segments", "block"})
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_NewtonSolve)
+    ->ArgsProduct({{8}, {50, 100}, {0, 1}})
+    ->ArgNames({"lines", "segments", "block"})
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StaticSettle)
     ->ArgsProduct({{8}, {20, 50, 100}})

@@ -1,7 +1,7 @@
 // Macro benchmark of the coupled simulation: runs the real `moorsim run` on a scenario
 // (default: the seed FPSO with waves, current, PI controller and sensors,
 // scenarios/library/thesis_no_failure_current.yaml) and prints the real-time factor, where
-// the time goes (right-hand side, Jacobian, KLU factorisation, KLU solves, everything else:
+// the time goes (right-hand side, Jacobian, linear-solver factorisations and solves, the rest:
 // CVODE's own work, events, controller, sensors, output) and the child's peak memory.
 //
 //   moorsim_macro_run [--duration S] [--scenario FILE] [--set key=value]... [--moorsim PATH]
@@ -89,7 +89,7 @@ int main(int argc, char** argv) {
       integ["jacobian_evaluations"].get<long>(), integ["linear_setups"].get<long>(),
       integ["newton_failures"].get<long>(), integ["error_test_failures"].get<long>());
   std::printf(
-      "time shares: rhs %.1f %%, jacobian %.1f %%, KLU factorisation %.1f %%, KLU "
+      "time shares: rhs %.1f %%, jacobian %.1f %%, factorisations %.1f %%, "
       "solves %.1f %%, everything else %.1f %%\n",
       100 * rhs / wall, 100 * jac / wall, 100 * setup / wall, 100 * solve / wall,
       100 * other / wall);

@@ -18,6 +18,16 @@ void CoupledSystem::Rebuild() {
   const int nb = body_size_;
   size_ = nb + sub.size;
   const int attachments = attached_.NumAttachments();
+  const BlockStructure* sub_blocks = attached_.Blocks();
+  has_blocks_ = sub_blocks != nullptr && sub_blocks->border == 0;
+  blocks_.border = nb;
+  blocks_.chains.clear();
+  if (has_blocks_) {
+    for (NodeChain chain : sub_blocks->chains) {
+      chain.first_state += nb;
+      blocks_.chains.push_back(chain);
+    }
+  }
 
   coupled_.clear();
   r_body_.resize(attachments);

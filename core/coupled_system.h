@@ -119,6 +119,9 @@ class AttachedSubsystem {
   /// Coupling blocks of attachment i (which must be attached).
   virtual FairleadCoupling Coupling(const double* x, std::span<const PointKinematics> points,
                                     int i) = 0;
+  /// The block structure of JacobianPattern() (chains coupled to the body through their last
+  /// node, CouplingNode()), or null if it has none.
+  virtual const BlockStructure* Blocks() const { return nullptr; }
 };
 
 class CoupledSystem : public OdeSystem {
@@ -131,6 +134,8 @@ class CoupledSystem : public OdeSystem {
   int StateSize() const override { return size_; }
   void Derivatives(double t, const double* x, double* xdot) override;
   const SparsityPattern& JacobianPattern() const override { return pattern_; }
+  /// The body as the border, the subsystem's chains after it (if it has a structure).
+  const BlockStructure* Blocks() const override { return has_blocks_ ? &blocks_ : nullptr; }
   void Jacobian(double t, const double* x, const double* xdot, double* values) override;
 
   int body_size() const { return body_size_; }
@@ -150,6 +155,8 @@ class CoupledSystem : public OdeSystem {
   int body_size_ = 0;
   int size_ = 0;
   SparsityPattern pattern_;
+  BlockStructure blocks_;
+  bool has_blocks_ = false;
   // Copy plan for the subsystem's Jacobian rows: for subsystem row i, the slot in the
   // combined values where its own entries start.
   std::vector<int64_t> sub_row_destination_;

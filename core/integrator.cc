@@ -5,6 +5,7 @@
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_sparse.h>
+#include <Eigen/Core>
 
 #include <algorithm>
 #include <chrono>
@@ -13,6 +14,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "core/block_solver.h"
 #include "core/error.h"
 #include "core/fast_kernels.h"
 
@@ -60,6 +62,68 @@ N_Vector MakeStateVector(int n, SUNContext ctx) {
   if (v == nullptr) throw Error("SUNDIALS call N_VNew_Serial returned null");
   internal::InstallFastSerialOps(v);
   return v;
+}
+
+// CVODE's view of BorderedBlockSolver: a matrix-based direct SUNLinearSolver. CVODE forms
+// M = I - gamma J in the sparse matrix (the Jacobian's fixed pattern) and calls setup, which
+// factors M's values; solve then back-substitutes. Exceptions never cross into CVODE.
+struct BlockSolverContent {
+  BorderedBlockSolver solver;
+  const SparsityPattern* pattern;
+  sunindextype last_flag = 0;
+};
+
+BlockSolverContent& Content(SUNLinearSolver S) {
+  return *static_cast<BlockSolverContent*>(S->content);
+}
+
+int BlockSetup(SUNLinearSolver S, SUNMatrix A) {
+  BlockSolverContent& c = Content(S);
+  const SparsityPattern& p = *c.pattern;
+  // The values must be in the pattern's order (they are: the Jacobian callback writes the
+  // pattern and CVODE's copy and scale-add-identity keep it).
+  if (SUNSparseMatrix_NNZ(A) < p.nnz() ||
+      std::memcmp(SUNSparseMatrix_IndexPointers(A), p.row_start.data(),
+                  p.row_start.size() * sizeof(sunindextype)) != 0) {
+    c.last_flag = SUNLS_ILL_INPUT;
+    return SUNLS_ILL_INPUT;
+  }
+  try {
+    // A singular or non-finite pivot: recoverable, CVODE retries with a smaller step.
+    c.last_flag = c.solver.Factor(SUNSparseMatrix_Data(A)) ? SUNLS_SUCCESS : SUNLS_LUFACT_FAIL;
+  } catch (const std::exception&) {
+    c.last_flag = SUNLS_PACKAGE_FAIL_UNREC;
+  }
+  return static_cast<int>(c.last_flag);
+}
+
+int BlockSolve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, sunrealtype) {
+  BlockSolverContent& c = Content(S);
+  c.solver.Solve(N_VGetArrayPointer(b), N_VGetArrayPointer(x));
+  c.last_flag = SUNLS_SUCCESS;
+  return SUNLS_SUCCESS;
+}
+
+SUNLinearSolver MakeBlockLinearSolver(const SparsityPattern& pattern,
+                                      const BlockStructure& structure, SUNContext ctx) {
+  auto content = std::make_unique<BlockSolverContent>(
+      BlockSolverContent{BorderedBlockSolver(pattern, structure), &pattern});
+  SUNLinearSolver S = CheckPtr(SUNLinSolNewEmpty(ctx), "SUNLinSolNewEmpty");
+  S->content = content.release();
+  S->ops->gettype = [](SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; };
+  S->ops->getid = [](SUNLinearSolver) { return SUNLINEARSOLVER_CUSTOM; };
+  S->ops->initialize = [](SUNLinearSolver) { return static_cast<int>(SUNLS_SUCCESS); };
+  S->ops->setup = &BlockSetup;
+  S->ops->solve = &BlockSolve;
+  S->ops->lastflag = [](SUNLinearSolver S) { return Content(S).last_flag; };
+  S->ops->free = [](SUNLinearSolver S) {
+    if (S == nullptr) return static_cast<int>(SUNLS_SUCCESS);
+    delete static_cast<BlockSolverContent*>(S->content);
+    S->content = nullptr;
+    SUNLinSolFreeEmpty(S);
+    return static_cast<int>(SUNLS_SUCCESS);
+  };
+  return S;
 }
 
 }  // namespace
@@ -159,12 +223,13 @@ struct Integrator::Impl {
     const double* x = N_VGetArrayPointer(y);
     const double* atol = N_VGetArrayPointer(self->abstol);
     double* w = N_VGetArrayPointer(ewt);
-    const std::size_t n = self->reference.size();
-    for (std::size_t i = 0; i < n; ++i) {
-      const double scale = self->rtol * std::abs(x[i] - self->reference[i]) + atol[i];
-      if (!(scale > 0.0)) return -1;
-      w[i] = 1.0 / scale;
-    }
+    const Eigen::Index n = static_cast<Eigen::Index>(self->reference.size());
+    // Whole-array expressions, so the compiler vectorises the divisions (once per step).
+    const Eigen::Map<const Eigen::ArrayXd> xs(x, n), ref(self->reference.data(), n), at(atol, n);
+    Eigen::Map<Eigen::ArrayXd> weights(w, n);
+    weights = self->rtol * (xs - ref).abs() + at;
+    if (!(weights > 0.0).all()) return -1;  // also false for NaN
+    weights = weights.inverse();
     return 0;
   }
 
@@ -242,7 +307,11 @@ Integrator::Integrator(OdeSystem& system, double t0, const double* x0,
 
   m.A = CheckPtr(SUNSparseMatrix(n_, n_, pattern.nnz(), CSR_MAT, m.ctx), "SUNSparseMatrix");
   internal::InstallFastSparseOps(m.A);
-  m.LS = CheckPtr(SUNLinSol_KLU(m.y, m.A, m.ctx), "SUNLinSol_KLU");
+  const BlockStructure* blocks = system.Blocks();
+  const bool use_blocks =
+      blocks != nullptr && options.linear_solver == IntegratorOptions::LinearSolver::kBlock;
+  m.LS = use_blocks ? MakeBlockLinearSolver(pattern, *blocks, m.ctx)
+                    : CheckPtr(SUNLinSol_KLU(m.y, m.A, m.ctx), "SUNLinSol_KLU");
   m.klu_setup = m.LS->ops->setup;
   m.klu_solve = m.LS->ops->solve;
   m.LS->ops->setup = &Impl::TimedSetup;
@@ -257,7 +326,7 @@ Integrator::Integrator(OdeSystem& system, double t0, const double* x0,
   // the Newton matrices I - gamma J have a unit diagonal in every row whatever the state's
   // unit, since J holds rates. Measured on the thesis line-6 case: the same step count
   // within 0.4 %, 8 % faster (benchmarks/README.md).
-  SUNLinSol_KLUGetCommon(m.LS)->scale = -1;
+  if (!use_blocks) SUNLinSol_KLUGetCommon(m.LS)->scale = -1;
 }
 
 Integrator::~Integrator() = default;

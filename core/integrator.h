@@ -1,5 +1,6 @@
 // A thin RAII adapter over SUNDIALS CVODE (variable-order BDF, Newton iteration) with the
-// KLU sparse direct solver and an analytic Jacobian supplied by an OdeSystem.
+// block solver of core/block_solver.h (or the KLU sparse direct solver) and an analytic
+// Jacobian supplied by an OdeSystem.
 #pragma once
 
 #include <memory>
@@ -22,6 +23,10 @@ struct IntegratorOptions {
   int max_order = 5;  ///< BDF order cap, 1..5
   bool stability_limit_detection = true;
   double max_step = 0.0;  ///< [s], 0 = unlimited
+  /// The Newton systems' solver: kBlock uses BorderedBlockSolver when the system describes
+  /// its block structure (OdeSystem::Blocks()) and KLU otherwise; kKlu always uses KLU.
+  enum class LinearSolver { kBlock, kKlu };
+  LinearSolver linear_solver = LinearSolver::kBlock;
   long max_steps_per_call = 200000;
 };
 
@@ -38,8 +43,8 @@ struct IntegratorStats {
   long stability_order_reductions = 0;
   double last_step = 0.0;
   int last_order = 0;
-  /// Wall time [s] inside the right-hand side, the Jacobian, KLU's numerical factorisation
-  /// (linear solver setup) and KLU's solves; the rest of CVODE's time is everything else.
+  /// Wall time [s] inside the right-hand side, the Jacobian, the linear solver's numerical
+  /// factorisations (its setup) and its solves; the rest of CVODE's time is everything else.
   double rhs_seconds = 0.0;
   double jacobian_seconds = 0.0;
   double linear_setup_seconds = 0.0;

@@ -64,6 +64,8 @@ IntegratorOptions MakeIntegratorOptions(const SolverSettings& solver,
   o.stability_limit_detection = solver.stability_limit_detection;
   o.max_step = solver.max_step;
   o.max_steps_per_call = solver.max_steps;
+  o.linear_solver = solver.linear_solver == "klu" ? IntegratorOptions::LinearSolver::kKlu
+                                                  : IntegratorOptions::LinearSolver::kBlock;
   for (char kind : mooring.StateKinds()) {
     o.atol.push_back(kind == 'p' ? solver.atol_position : solver.atol_velocity);
   }

@@ -48,6 +48,7 @@ class PrescribedMotionSystem : public OdeSystem {
   int StateSize() const override { return mooring_.StateSize(); }
   void Derivatives(double t, const double* x, double* xdot) override;
   const SparsityPattern& JacobianPattern() const override { return mooring_.JacobianPattern(); }
+  const BlockStructure* Blocks() const override { return &mooring_.Blocks(); }
   void Jacobian(double t, const double* x, const double* xdot, double* values) override;
 
   /// Fairlead kinematics of every line at time t.

@@ -13,6 +13,7 @@ class MooringAttachment final : public AttachedSubsystem {
 
   int StateSize() const override { return mooring_.StateSize(); }
   const SparsityPattern& JacobianPattern() const override { return mooring_.JacobianPattern(); }
+  const BlockStructure* Blocks() const override { return &mooring_.Blocks(); }
   int NumAttachments() const override { return mooring_.num_lines(); }
   Vec3 AttachmentPoint(int i) const override { return mooring_.line(i).fairlead_body; }
   bool Attached(int i) const override { return mooring_.attached(i); }

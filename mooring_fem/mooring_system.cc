@@ -46,6 +46,14 @@ struct HalfSegmentDrag {
   Mat3 d_dl;
 };
 
+// The force alone, for the right-hand side (inlined: it runs twice per node per evaluation).
+inline Vec3 DragForce(const Vec3& u, const Vec3& t, double L, double c_n, double c_t) {
+  const double s = u.dot(t);
+  const Vec3 u_n = u - s * t;
+  const double h = 0.5 * L;
+  return -(c_n * h * u_n.norm()) * u_n - (c_t * h * std::abs(s) * s) * t;
+}
+
 HalfSegmentDrag Drag(const Vec3& u, const Vec3& t, double L, double c_n, double c_t,
                      bool with_jacobian) {
   HalfSegmentDrag d;
@@ -53,7 +61,7 @@ HalfSegmentDrag Drag(const Vec3& u, const Vec3& t, double L, double c_n, double 
   const Vec3 u_n = u - s * t;
   const double un = u_n.norm();
   const double h = 0.5 * L;
-  d.force = -c_n * h * un * u_n - c_t * h * std::abs(s) * s * t;
+  d.force = DragForce(u, t, L, c_n, c_t);
   if (!with_jacobian) return d;
   const Mat3 I = Mat3::Identity();
   const Mat3 Pn = I - t * t.transpose();
@@ -158,8 +166,10 @@ void MooringSystem::BuildPattern() {
   p.size = state_size_;
   p.row_start.assign(1, 0);
   p.column.clear();
+  blocks_.chains.clear();
   for (const Chain& c : chains_) {
     const int S = c.num_state_nodes();
+    if (S > 0) blocks_.chains.push_back({c.state_offset, S});
     for (int i = 0; i < S; ++i) {
       const int base = c.state_offset + 6 * i;
       for (int comp = 0; comp < 3; ++comp) {  // r' = v rows: the diagonal and v_comp
@@ -231,7 +241,7 @@ void MooringSystem::NodeForce(const Chain& c, int k, Vec3* F_out, Mat3* M_out) c
   auto add_segment = [&](const SegmentState& g, double sign) {
     F += sign * g.T * g.t;
     M += (0.5 * lp.added_mass_per_length * g.L) * (Mat3::Identity() - g.t * g.t.transpose());
-    F += Drag(u, g.t, g.L, lp.drag_normal, lp.drag_tangential, false).force;
+    F += DragForce(u, g.t, g.L, lp.drag_normal, lp.drag_tangential);
   };
   if (has_above) add_segment(seg_[k], +1.0);
   if (has_below) add_segment(seg_[k - 1], -1.0);

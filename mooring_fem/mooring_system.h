@@ -127,6 +127,8 @@ class MooringSystem {
 
   /// CSR pattern of df/dx for the current topology.
   const SparsityPattern& JacobianPattern() const { return pattern_; }
+  /// The pattern's block structure: one node chain per piece of line, no border.
+  const BlockStructure& Blocks() const { return blocks_; }
   /// df/dx values in pattern order.
   void Jacobian(const double* x, std::span<const PointKinematics> fairleads, double* values);
 
@@ -186,6 +188,7 @@ class MooringSystem {
   CurrentField current_;
   int state_size_ = 0;
   SparsityPattern pattern_;
+  BlockStructure blocks_;
 
   // Scratch for one chain (sized for the longest), reused by every call.
   std::vector<Vec3> pos_, vel_;

@@ -96,6 +96,10 @@ struct SolverSettings {
   /// Steps CVODE may take between two stops (events, output instants) before it gives up
   /// with CV_TOO_MUCH_WORK: a run that crawls fails in seconds instead of hours.
   int max_steps = 200000;
+  /// The Newton systems' linear solver: "block" (the lines' block-tridiagonal structure with
+  /// the vessel as a dense border, core/block_solver.h) or "klu" (general sparse LU, the same
+  /// solutions to rounding; kept for comparison).
+  std::string linear_solver = "block";
 };
 
 }  // namespace moorsim::mooring_fem

@@ -138,8 +138,8 @@ void ParseMooring(const Reader& r, Scenario& scenario) {
 void ParseName(const Reader& r, Scenario& scenario) { scenario.name = r.As<std::string>(); }
 
 void ParseSolver(const Reader& r, Scenario& scenario) {
-  r.CheckKeys({"atol_position", "atol_velocity", "max_order", "max_step", "max_steps", "rtol",
-               "stability_limit_detection"});
+  r.CheckKeys({"atol_position", "atol_velocity", "linear_solver", "max_order", "max_step",
+               "max_steps", "rtol", "stability_limit_detection"});
   SolverSpec& solver = scenario.solver;
   r.Optional("rtol", solver.rtol);
   r.Optional("atol_position", solver.atol_position);
@@ -148,6 +148,7 @@ void ParseSolver(const Reader& r, Scenario& scenario) {
   r.Optional("stability_limit_detection", solver.stability_limit_detection);
   r.Optional("max_step", solver.max_step);
   r.Optional("max_steps", solver.max_steps);
+  r.Optional("linear_solver", solver.linear_solver);
 }
 
 // Angles under *_deg keys.
@@ -819,6 +820,10 @@ void CheckSolver(const Checker& check, const SolverSpec& solver) {
   }
   check.AtMost("solver.max_step", solver.max_step, kMaxTime, "s");
   check.InRange("solver.max_steps", solver.max_steps, 1, 100'000'000);
+  if (solver.linear_solver != "block" && solver.linear_solver != "klu") {
+    check.Fail("solver.linear_solver",
+               "unknown linear solver '" + solver.linear_solver + "' (known: block, klu)");
+  }
 }
 
 void Probability(const Checker& check, const std::string& path, double value) {

@@ -57,6 +57,7 @@
 //     stability_limit_detection: false
 //     max_step: 0                    # [s], 0 = no limit
 //     max_steps: 200000              # steps between two stops before CV_TOO_MUCH_WORK
+//     linear_solver: block           # block (structured) or klu (general sparse LU)
 //   vessel:                          # optional (`run` needs it); besides the keys listed
 //                                    # in scenarios/README.md, the hull and the windage:
 //     hull: {length: 200, beam: 44, draught: 12, displaced_volume: 97961,

@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   CLI::App app{std::string("moorsim ") + moorsim::kVersion +
-               " - turret-moored FPSO mooring simulator (lumped-mass FEM lines on CVODE/KLU)"};
+               " - turret-moored FPSO mooring simulator (lumped-mass FEM lines on CVODE)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", moorsim::kVersion);
   // In registration order, which is also the order of the help listing.

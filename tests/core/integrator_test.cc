@@ -1,4 +1,5 @@
-// The CVODE/KLU adapter on systems with known solutions, and its failure reporting.
+// The CVODE adapter (KLU here: these systems have no block structure) on systems with known
+// solutions, and its failure reporting.
 #include "core/integrator.h"
 
 #include <gtest/gtest.h>

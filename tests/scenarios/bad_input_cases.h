@@ -66,6 +66,7 @@ solver:
   max_order: 4
   stability_limit_detection: false
   max_step: 0.5
+  linear_solver: klu
 vessel:
   hydrodynamics: )" MOORSIM_SOURCE_DIR R"(/data/fpso_wamit/fpso
   length_scale: 1
@@ -216,8 +217,8 @@ inline const BadInput kParseErrors[] = {
      "mooring.current.profile: [] must hold at least one {depth, speed} point"},
     {"CurrentDirectionInRadians", "", "direction_deg: 90", "direction: 1.57",
      "direction:", "mooring.current: unknown key 'direction' (known: direction_deg, profile)"},
-    {"SecondDocument", "", "max_step: 0.5\n", "max_step: 0.5\n---\nname: other\n", "name: other",
-     "a scenario file holds one YAML document; this is a second one"},
+    {"SecondDocument", "", "linear_solver: klu\n", "linear_solver: klu\n---\nname: other\n",
+     "name: other", "a scenario file holds one YAML document; this is a second one"},
     // The coupled-simulation sections (issue 3).
     {"VesselUnknownKey", "vessel:", "mass: 1.0041e8", "mas: 1.0041e8", "mas",
      "vessel: unknown key 'mas' (known: centre_of_gravity, damping, hull, hydrodynamics, "
@@ -463,6 +464,8 @@ inline const BadInput kValidationErrors[] = {
      "atol_position: ^0", "solver.atol_position: 0 m must be > 0"},
     {"VelocityToleranceNotPositive", "", "atol_velocity: 2.0e-3", "atol_velocity: -0.5", "-0.5",
      "solver.atol_velocity: -0.5 m/s must be > 0"},
+    {"UnknownLinearSolver", "", "linear_solver: klu", "linear_solver: lu", "linear_solver: ^lu",
+     "solver.linear_solver: unknown linear solver 'lu' (known: block, klu)"},
     {"MaxOrderZero", "", "max_order: 4", "max_order: 0", "max_order: ^0",
      "solver.max_order: 0 must be in 1..5"},
     {"MaxOrderAboveFive", "", "max_order: 4", "max_order: 6", "max_order: ^6",

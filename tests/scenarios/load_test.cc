@@ -143,6 +143,7 @@ TEST(ParseScenario, ReadsEveryKeyOfTheBaseText) {
   EXPECT_EQ(s.solver.max_order, 4);
   EXPECT_FALSE(s.solver.stability_limit_detection);
   EXPECT_EQ(s.solver.max_step, 0.5);
+  EXPECT_EQ(s.solver.linear_solver, "klu");
   EXPECT_EQ(s.detection.training_seed, 3u);
 }
 

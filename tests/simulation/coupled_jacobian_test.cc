@@ -6,6 +6,9 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/LU>
+
+#include "core/block_solver.h"
 #include "tests/simulation/test_scenarios.h"
 #include "tools/simulation/simulation.h"
 
@@ -58,6 +61,38 @@ void CheckJacobian(Simulation& sim, std::vector<double> x, double t) {
   EXPECT_EQ(failures, 0);
 }
 
+// The Newton matrices I - gamma J of the coupled system solved by the block solver (the
+// vessel as the border, the lines' chains after it) against a dense LU, at CVODE's step
+// sizes and far beyond them.
+void CheckBlockSolve(Simulation& sim, const std::vector<double>& x, double t) {
+  CoupledSystem& system = sim.system();
+  const int n = system.StateSize();
+  const SparsityPattern& pattern = system.JacobianPattern();
+  ASSERT_NE(system.Blocks(), nullptr);
+  BorderedBlockSolver solver(pattern, *system.Blocks());
+  std::vector<double> f(n), jacobian(pattern.nnz());
+  system.Derivatives(t, x.data(), f.data());
+  system.Jacobian(t, x.data(), f.data(), jacobian.data());
+  for (const double gamma : {0.01, 0.1, 1.0}) {
+    std::vector<double> values(jacobian.size());
+    Eigen::MatrixXd dense = Eigen::MatrixXd::Identity(n, n);
+    for (int r = 0; r < n; ++r) {
+      for (int64_t j = pattern.row_start[r]; j < pattern.row_start[r + 1]; ++j) {
+        values[j] = (pattern.column[j] == r ? 1.0 : 0.0) - gamma * jacobian[j];
+        dense(r, pattern.column[j]) = values[j];
+      }
+    }
+    ASSERT_TRUE(solver.Factor(values.data())) << "gamma " << gamma;
+    Eigen::VectorXd b(n);
+    for (int i = 0; i < n; ++i) b[i] = std::sin(0.7 * i) * (i < 12 ? 1.0 : 1e-2);
+    const Eigen::VectorXd reference = dense.partialPivLu().solve(b);
+    Eigen::VectorXd solution(n);
+    solver.Solve(b.data(), solution.data());
+    EXPECT_LT((solution - reference).norm(), 1e-9 * reference.norm()) << "gamma " << gamma;
+    EXPECT_LT((dense * solution - b).norm(), 1e-9 * b.norm()) << "gamma " << gamma;
+  }
+}
+
 // A state away from rest in all six DOFs, with body velocities, thrust, node velocities and
 // (with a turning turret) a turret angle and a relative rate `turret_rate`.
 std::vector<double> AwayFromRest(Simulation& sim, double turret_rate = 0.0) {
@@ -86,6 +121,27 @@ TEST(CoupledJacobian, MatchesFiniteDifferencesAwayFromRest) {
   for (auto& line : scenario.mooring.lines) line.segments = 10;  // a small system, same blocks
   Simulation sim(scenario, 1);
   CheckJacobian(sim, AwayFromRest(sim), 10.0);
+  CheckBlockSolve(sim, AwayFromRest(sim), 10.0);
+}
+
+TEST(CoupledJacobian, BlockSolverAfterLinesPart) {
+  // Line 6 parted at its fairlead (an anchored chain with a free top: not coupled), line 2
+  // at an internal node (an anchored lower piece and an upper piece hanging from the vessel
+  // with a free lower end), line 3's anchor let go (a free lower end, coupled on top).
+  const std::pair<const char*, std::size_t> cases[] = {
+      {"failure: {line: 6, time: 0.5, mode: fairlead}", 8},
+      {"failure: {line: 2, time: 0.5, mode: node, node: 4}", 9},
+      {"failure: {line: 3, time: 0.5, mode: anchor}", 8}};
+  for (const auto& [failure, chains] : cases) {
+    scenarios::Scenario scenario = testing::SeedVesselScenario(failure);
+    for (auto& line : scenario.mooring.lines) line.segments = 10;
+    Simulation sim(scenario, 1);
+    sim.AdvanceTo(1.0);
+    SCOPED_TRACE(failure);
+    ASSERT_NE(sim.system().Blocks(), nullptr);
+    EXPECT_EQ(sim.system().Blocks()->chains.size(), chains);
+    CheckBlockSolve(sim, AwayFromRest(sim), 1.0);
+  }
 }
 
 // A turret on its bearing adds two states (angle, rate) after the thrust; the fairleads
@@ -112,6 +168,7 @@ TEST_P(TurretJacobian, MatchesFiniteDifferences) {
   Simulation sim(scenario, 1);
   ASSERT_TRUE(sim.plant().turret_turns());
   CheckJacobian(sim, AwayFromRest(sim, GetParam().relative_rate), 10.0);
+  CheckBlockSolve(sim, AwayFromRest(sim, GetParam().relative_rate), 10.0);
 }
 
 INSTANTIATE_TEST_SUITE_P(

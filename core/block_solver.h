@@ -1,0 +1,94 @@
+// A direct solver for the Newton matrices M = I - gamma J of a rigid body carrying chains of
+// lumped masses (the vessel and its mooring lines), exploiting their structure instead of a
+// general sparse LU:
+//
+//   * each chain node has states [r (3), v (3)] and its position rows are r' = v, so the
+//     rows of r in M hold only a diagonal p and the entry q in the column of v. Substituting
+//     dr = (b_r - q dv) / p leaves one 3x3 block per node pair in the unknowns dv (the Schur
+//     complement of the kinematic rows, half the size);
+//   * each node's velocity rows couple to its two neighbours only: the reduced chain is block
+//     tridiagonal and is factored by block Gaussian elimination from the chain's first node
+//     to its last (the block Thomas algorithm), with no fill-in;
+//   * a dense border (the body's states) couples to the last node of each chain only (the
+//     node next to the fairlead), so the pivot left at the last node is exactly that node's
+//     Schur complement and the border's reduced matrix is its own block minus one 3x3
+//     correction per chain, factored densely with partial pivoting.
+//
+// No pivoting across nodes: every pivot block is checked (a singular or non-finite one makes
+// Factor() return false, which the integrator reports to CVODE as a recoverable failure, so
+// it retries with a smaller step). The structure is validated against the Jacobian's pattern
+// once: an entry the structure does not allow is an error.
+#pragma once
+
+#include <Eigen/LU>
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/ode_system.h"
+#include "core/types.h"
+
+namespace moorsim {
+
+class BorderedBlockSolver {
+ public:
+  /// Throws ContractError naming the first pattern entry the structure does not allow, or a
+  /// state the structure leaves out.
+  BorderedBlockSolver(const SparsityPattern& pattern, const BlockStructure& structure);
+
+  /// Factors M given by its values in the pattern's order. False if a pivot block (a node's
+  /// 3x3 or the border's) is singular or not finite.
+  bool Factor(const double* values);
+  /// x = M^{-1} b with the last successful factorisation; b and x may be the same array.
+  void Solve(const double* b, double* x);
+
+ private:
+  using Mat3X = Eigen::Matrix<double, 3, Eigen::Dynamic>;
+  using MatX3 = Eigen::Matrix<double, Eigen::Dynamic, 3>;
+  static constexpr int64_t kAbsent = -1;
+
+  // Where each entry of a node's rows sits in the values array (kAbsent: structurally zero).
+  struct NodeSlots {
+    int state = 0;                    // first state (r) of the node
+    std::array<int64_t, 3> p{}, q{};  // (r_a, r_a) and (r_a, v_a)
+    // (v_a, column c of node k + j - 1) for j = 0, 1, 2 (previous, this, next), c = 0..5.
+    std::array<int64_t, 3 * 3 * 6> v{};
+  };
+  struct ChainSlots {
+    int first_node = 0;  // index into nodes_
+    int nodes = 0;
+    bool coupled = false;              // the last node couples to the border
+    std::vector<int64_t> node_border;  // (v_a of the last node, border column b): 3 x nb
+    std::vector<int64_t> border_node;  // (border row b, column c of the last node): nb x 6
+  };
+  // The factorisation, per node: the pivot's inverse G, the multiplier E = L G_prev, the
+  // upper block U (coupling to the next node), the right-hand side transforms W_j = M_vr(j)
+  // diag(1 / p_j) of the three neighbours, and the kinematic rows' p and q.
+  struct NodeFactor {
+    Mat3 G, E, U;
+    std::array<Mat3, 3> W;
+    Vec3 p, q, p_inverse, q_over_p;
+  };
+  struct ChainFactor {
+    Mat3X C;   // the last node's velocity rows in the border columns (3 x nb)
+    MatX3 B;   // the border rows in the last node's reduced unknowns dv (nb x 3)
+    MatX3 Wb;  // the border rows' transform of the last node's b_r (nb x 3)
+  };
+
+  int size_ = 0;
+  int border_ = 0;
+  std::vector<int64_t> border_slots_;  // (border row, border column): nb x nb
+  std::vector<NodeSlots> nodes_;
+  std::vector<ChainSlots> chains_;
+  std::vector<NodeFactor> node_factors_;
+  std::vector<ChainFactor> chain_factors_;
+  MatX border_matrix_;  // the border's reduced matrix, factored into border_lu_
+  Mat3X gc_;            // scratch: G C of one chain
+  Eigen::PartialPivLU<MatX> border_lu_;
+  // Scratch for Solve(): the reduced right-hand sides y, then the velocity unknowns.
+  std::vector<Vec3> y_;
+  VecX border_rhs_;
+};
+
+}  // namespace moorsim
