@@ -132,17 +132,19 @@ void BM_Jacobian(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
-// The Newton matrix M = I - gamma J of the lines at gamma = 0.067 (a 0.1 s BDF2 step), as
-// CVODE hands it to the linear solver.
+// gamma = h beta of a 0.1 s BDF2 step.
+constexpr double kNewtonGamma = 0.1 * 2.0 / 3.0;
+
+// The Newton matrix M = I - gamma J of the lines, as CVODE forms it for KLU (the block
+// solver takes J and gamma; f.jacobian holds J after this).
 std::vector<double> NewtonMatrix(Fixture& f) {
   const std::span<const PointKinematics> fairleads(f.fairleads);
   f.mooring.Jacobian(f.x.data(), fairleads, f.jacobian.data());
   const moorsim::SparsityPattern& p = f.mooring.JacobianPattern();
   std::vector<double> m(f.jacobian.size());
-  const double gamma = 0.1 * 2.0 / 3.0;
   for (int r = 0; r < p.size; ++r) {
     for (int64_t j = p.row_start[r]; j < p.row_start[r + 1]; ++j) {
-      m[j] = (p.column[j] == r ? 1.0 : 0.0) - gamma * f.jacobian[j];
+      m[j] = (p.column[j] == r ? 1.0 : 0.0) - kNewtonGamma * f.jacobian[j];
     }
   }
   return m;
@@ -187,7 +189,7 @@ void BM_NewtonFactor(benchmark::State& state) {
     for (auto _ : state) benchmark::DoNotOptimize(SUNLinSolSetup(klu.LS, klu.A));
   } else {
     moorsim::BorderedBlockSolver block(p, f.mooring.Blocks());
-    for (auto _ : state) benchmark::DoNotOptimize(block.Factor(m.data()));
+    for (auto _ : state) benchmark::DoNotOptimize(block.Factor(f.jacobian.data(), kNewtonGamma));
   }
   state.SetLabel(state.range(2) == 0 ? "klu" : "block");
   state.counters["state"] = f.mooring.StateSize();
@@ -208,7 +210,7 @@ void BM_NewtonSolve(benchmark::State& state) {
     }
   } else {
     moorsim::BorderedBlockSolver block(p, f.mooring.Blocks());
-    block.Factor(m.data());
+    block.Factor(f.jacobian.data(), kNewtonGamma);
     for (auto _ : state) {
       block.Solve(rhs.data(), out.data());
       benchmark::DoNotOptimize(out.data());

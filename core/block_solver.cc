@@ -18,7 +18,13 @@ int64_t Find(const SparsityPattern& p, int row, int col) {
   return (it != end && *it == col) ? it - p.column.begin() : -1;
 }
 
-double At(const double* values, int64_t slot) { return slot < 0 ? 0.0 : values[slot]; }
+// Entries of M = I - gamma J: off the diagonal, and on it.
+double OffDiagonal(const double* jacobian, int64_t slot, double gamma) {
+  return slot < 0 ? 0.0 : -gamma * jacobian[slot];
+}
+double OnDiagonal(const double* jacobian, int64_t slot, double gamma) {
+  return 1.0 + OffDiagonal(jacobian, slot, gamma);
+}
 
 // Inverse of a 3x3 pivot block; false if it is singular or not finite.
 bool Invert(const Mat3& a, Mat3* inverse) {
@@ -134,11 +140,15 @@ BorderedBlockSolver::BorderedBlockSolver(const SparsityPattern& pattern,
   border_rhs_ = VecX::Zero(nb);
 }
 
-bool BorderedBlockSolver::Factor(const double* values) {
+bool BorderedBlockSolver::Factor(const double* jacobian, double gamma) {
   const int nb = border_;
   MatX& border = border_matrix_;
   for (int r = 0; r < nb; ++r) {
-    for (int c = 0; c < nb; ++c) border(r, c) = At(values, border_slots_[r * nb + c]);
+    for (int c = 0; c < nb; ++c) {
+      const int64_t slot = border_slots_[r * nb + c];
+      border(r, c) =
+          r == c ? OnDiagonal(jacobian, slot, gamma) : OffDiagonal(jacobian, slot, gamma);
+    }
   }
   for (std::size_t ci = 0; ci < chains_.size(); ++ci) {
     const ChainSlots& cs = chains_[ci];
@@ -147,8 +157,8 @@ bool BorderedBlockSolver::Factor(const double* values) {
       const NodeSlots& node = nodes_[cs.first_node + k];
       NodeFactor& f = node_factors_[cs.first_node + k];
       for (int a = 0; a < 3; ++a) {
-        f.p[a] = values[node.p[a]];
-        f.q[a] = At(values, node.q[a]);
+        f.p[a] = OnDiagonal(jacobian, node.p[a], gamma);
+        f.q[a] = OffDiagonal(jacobian, node.q[a], gamma);
       }
       if (!(f.p.cwiseAbs().minCoeff() > 0.0) || !f.q.allFinite()) return false;
       f.p_inverse = f.p.cwiseInverse();
@@ -169,8 +179,9 @@ bool BorderedBlockSolver::Factor(const double* values) {
         const NodeFactor& nf = node_factors_[cs.first_node + neighbour];
         for (int a = 0; a < 3; ++a) {
           for (int c = 0; c < 3; ++c) {
-            const double m_vr = At(values, node.v[(a * 3 + j) * 6 + c]);
-            const double m_vv = At(values, node.v[(a * 3 + j) * 6 + 3 + c]);
+            const double m_vr = OffDiagonal(jacobian, node.v[(a * 3 + j) * 6 + c], gamma);
+            double m_vv = OffDiagonal(jacobian, node.v[(a * 3 + j) * 6 + 3 + c], gamma);
+            if (j == 1 && c == a) m_vv += 1.0;  // the diagonal of M
             f.W[j](a, c) = m_vr * nf.p_inverse[c];
             reduced[j](a, c) = m_vv - m_vr * nf.q_over_p[c];
           }
@@ -189,12 +200,14 @@ bool BorderedBlockSolver::Factor(const double* values) {
     if (!cs.coupled) continue;
     const NodeFactor& lf = node_factors_[cs.first_node + cs.nodes - 1];
     for (int a = 0; a < 3; ++a) {
-      for (int b = 0; b < nb; ++b) cf.C(a, b) = At(values, cs.node_border[a * nb + b]);
+      for (int b = 0; b < nb; ++b) {
+        cf.C(a, b) = OffDiagonal(jacobian, cs.node_border[a * nb + b], gamma);
+      }
     }
     for (int b = 0; b < nb; ++b) {
       for (int c = 0; c < 3; ++c) {
-        const double m_br = At(values, cs.border_node[b * 6 + c]);
-        const double m_bv = At(values, cs.border_node[b * 6 + 3 + c]);
+        const double m_br = OffDiagonal(jacobian, cs.border_node[b * 6 + c], gamma);
+        const double m_bv = OffDiagonal(jacobian, cs.border_node[b * 6 + 3 + c], gamma);
         cf.Wb(b, c) = m_br * lf.p_inverse[c];
         cf.B(b, c) = m_bv - m_br * lf.q_over_p[c];
       }

@@ -37,9 +37,10 @@ class BorderedBlockSolver {
   /// state the structure leaves out.
   BorderedBlockSolver(const SparsityPattern& pattern, const BlockStructure& structure);
 
-  /// Factors M given by its values in the pattern's order. False if a pivot block (a node's
-  /// 3x3 or the border's) is singular or not finite.
-  bool Factor(const double* values);
+  /// Factors M = I - gamma J, J given by its values in the pattern's order (M is formed
+  /// entry by entry as the blocks are read; no copy of the matrix is made). False if a pivot
+  /// block (a node's 3x3 or the border's) is singular or not finite.
+  bool Factor(const double* jacobian, double gamma);
   /// x = M^{-1} b with the last successful factorisation; b and x may be the same array.
   void Solve(const double* b, double* x);
 

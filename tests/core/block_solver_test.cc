@@ -12,15 +12,26 @@
 namespace moorsim {
 namespace {
 
-// A matrix with the Newton structure of a body carrying chains: border rows dense among
-// themselves and coupled to the last node of the coupled chains; position rows p r + q v;
+// A Newton matrix M = I - gamma J with the structure of a body carrying chains: border rows dense
+// among themselves and coupled to the last node of the coupled chains; position rows p r + q v;
 // velocity rows coupled to the neighbouring nodes (all 6 columns) and, at a coupled chain's
 // last node, to the border. Random values, diagonally dominant velocity blocks.
 struct Bordered {
   SparsityPattern pattern;
   BlockStructure structure;
-  std::vector<double> values;
-  MatX dense;
+  std::vector<double> values;  // M in the pattern's order
+  MatX dense;                  // M
+  double gamma = 0.4;
+  // J = (I - M) / gamma in the pattern's order, what the solver takes.
+  std::vector<double> Jacobian(const std::vector<double>& m) const {
+    std::vector<double> j(m.size());
+    for (int r = 0; r < pattern.size; ++r) {
+      for (int64_t s = pattern.row_start[r]; s < pattern.row_start[r + 1]; ++s) {
+        j[s] = ((pattern.column[s] == r ? 1.0 : 0.0) - m[s]) / gamma;
+      }
+    }
+    return j;
+  }
 };
 
 Bordered MakeBordered(int border, const std::vector<int>& chain_nodes,
@@ -95,7 +106,7 @@ TEST(BorderedBlockSolver, MatchesDenseLuOnBorderedChains) {
   for (unsigned seed = 1; seed <= 5; ++seed) {
     Bordered m = MakeBordered(14, {1, 2, 5, 40, 7}, {true, true, true, true, false}, seed);
     BorderedBlockSolver solver(m.pattern, m.structure);
-    ASSERT_TRUE(solver.Factor(m.values.data()));
+    ASSERT_TRUE(solver.Factor(m.Jacobian(m.values).data(), m.gamma));
     std::mt19937 rng(seed + 100);
     std::normal_distribution<double> g;
     VecX b(m.pattern.size);
@@ -119,12 +130,12 @@ TEST(BorderedBlockSolver, WorksWithoutABorderAndRefactors) {
   BorderedBlockSolver solver(m.pattern, m.structure);
   const VecX b = VecX::LinSpaced(m.pattern.size, -1.0, 2.0);
   VecX x(b.size());
-  ASSERT_TRUE(solver.Factor(m.values.data()));
+  ASSERT_TRUE(solver.Factor(m.Jacobian(m.values).data(), m.gamma));
   solver.Solve(b.data(), x.data());
   EXPECT_LT(RelativeError(x, m.dense.fullPivLu().solve(b)), 1e-12);
   // New values, same pattern: the factorisation is the new matrix's.
   for (double& v : m.values) v *= 1.5;
-  ASSERT_TRUE(solver.Factor(m.values.data()));
+  ASSERT_TRUE(solver.Factor(m.Jacobian(m.values).data(), m.gamma));
   solver.Solve(b.data(), x.data());
   EXPECT_LT(RelativeError(x, (1.5 * m.dense).fullPivLu().solve(b)), 1e-12);
 }
@@ -134,17 +145,17 @@ TEST(BorderedBlockSolver, SingularOrNonFinitePivotsAreReported) {
   BorderedBlockSolver solver(m.pattern, m.structure);
   std::vector<double> values = m.values;
   values[m.pattern.row_start[3]] = 0.0;  // p of the first node's first position row
-  EXPECT_FALSE(solver.Factor(values.data()));
+  EXPECT_FALSE(solver.Factor(m.Jacobian(values).data(), m.gamma));
   values = m.values;
   for (double& v : values) v = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_FALSE(solver.Factor(values.data()));
+  EXPECT_FALSE(solver.Factor(m.Jacobian(values).data(), m.gamma));
   // A velocity block that is exactly singular: the first node's velocity rows zeroed.
   values = m.values;
   for (int r = 3 + 3; r < 3 + 6; ++r) {
     for (int64_t s = m.pattern.row_start[r]; s < m.pattern.row_start[r + 1]; ++s) values[s] = 0.0;
   }
-  EXPECT_FALSE(solver.Factor(values.data()));
-  EXPECT_TRUE(solver.Factor(m.values.data()));
+  EXPECT_FALSE(solver.Factor(m.Jacobian(values).data(), m.gamma));
+  EXPECT_TRUE(solver.Factor(m.Jacobian(m.values).data(), m.gamma));
 }
 
 TEST(BorderedBlockSolver, RefusesAPatternOutsideItsStructure) {
