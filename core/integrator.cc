@@ -132,6 +132,19 @@ double Now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
+/// Adds the wall time of its scope to a total.
+class ScopedSeconds {
+ public:
+  explicit ScopedSeconds(double& total) : total_(total), start_(Now()) {}
+  ~ScopedSeconds() { total_ += Now() - start_; }
+  ScopedSeconds(const ScopedSeconds&) = delete;
+  ScopedSeconds& operator=(const ScopedSeconds&) = delete;
+
+ private:
+  double& total_;
+  double start_;
+};
+
 }  // namespace
 
 struct Integrator::Impl {
@@ -193,12 +206,7 @@ struct Integrator::Impl {
 
   static int Rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
     auto* self = static_cast<Impl*>(user_data);
-    const double start = Now();
-    struct Clock {
-      Impl* self;
-      double start;
-      ~Clock() { self->rhs_seconds += Now() - start; }
-    } clock{self, start};
+    const ScopedSeconds clock(self->rhs_seconds);
     return Guarded(self, [&] {
       self->system->Derivatives(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
       const double* d = N_VGetArrayPointer(ydot);
@@ -232,12 +240,7 @@ struct Integrator::Impl {
   static int Jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void* user_data, N_Vector,
                  N_Vector, N_Vector) {
     auto* self = static_cast<Impl*>(user_data);
-    const double start = Now();
-    struct Clock {
-      Impl* self;
-      double start;
-      ~Clock() { self->jacobian_seconds += Now() - start; }
-    } clock{self, start};
+    const ScopedSeconds clock(self->jacobian_seconds);
     return Guarded(self, [&] {
       // CVODE zeroes the whole sparse matrix (pattern included) before each call, so the
       // fixed pattern is written back every time; KLU then only refactors numerically.
@@ -267,12 +270,7 @@ struct Integrator::Impl {
       return 0;
     }
     *jcur = SUNTRUE;
-    const double start = Now();
-    struct Clock {
-      Impl* self;
-      double start;
-      ~Clock() { self->jacobian_seconds += Now() - start; }
-    } clock{self, start};
+    const ScopedSeconds clock(self->jacobian_seconds);
     ++block.jacobian_evals;
     return Guarded(self, [&] {
       self->system->Jacobian(t, N_VGetArrayPointer(y), N_VGetArrayPointer(fy),
