@@ -226,7 +226,43 @@ void MooringSystem::ComputeSegments(const Chain& c) {
   }
 }
 
-void MooringSystem::NodeForce(const Chain& c, int k, Vec3* F_out, Mat3* M_out) const {
+void NodeMass::Add(double added, const Vec3& direction) {
+  a[segments] = added;
+  t[segments] = direction;
+  ++segments;
+}
+
+Mat3 NodeMass::Matrix() const {
+  Mat3 M = m * Mat3::Identity();
+  for (int i = 0; i < segments; ++i) M += a[i] * (Mat3::Identity() - t[i] * t[i].transpose());
+  return M;
+}
+
+Vec3 NodeMass::Solve(const Vec3& F) const {
+  // M = alpha I - U D U^T with alpha = m + sum a_i, U = [t_i], D = diag(a_i), so
+  // M^{-1} F = (F + U (alpha D^{-1} - U^T U)^{-1} U^T F) / alpha. The bracket is positive
+  // definite (alpha / a_i - 1 > a_j / a_i and |t_1 . t_2| <= 1) when m > 0.
+  double alpha = m;
+  for (int i = 0; i < segments; ++i) alpha += a[i];
+  const bool both = segments == 2 && a[0] > 0.0 && a[1] > 0.0;
+  if (!both) {
+    // Zero or one half segment with added mass: Sherman-Morrison, (alpha - a) = m + others.
+    Vec3 x = F;
+    for (int i = 0; i < segments; ++i) {
+      if (a[i] > 0.0) x += (a[i] * t[i].dot(F) / (alpha - a[i])) * t[i];
+    }
+    return x / alpha;
+  }
+  const double c = t[0].dot(t[1]);
+  const double k00 = alpha / a[0] - 1.0, k11 = alpha / a[1] - 1.0;
+  const double y0 = t[0].dot(F), y1 = t[1].dot(F);
+  const double det = k00 * k11 - c * c;
+  const double z0 = (k11 * y0 + c * y1) / det;
+  const double z1 = (c * y0 + k00 * y1) / det;
+  return (F + z0 * t[0] + z1 * t[1]) / alpha;
+}
+
+void MooringSystem::NodeForce(const Chain& c, int k, Vec3* F_out, NodeMass* M_out) const {
   const LineProperties& lp = lines_[c.line];
   const double l0 = lp.segment_length;
   const bool has_below = k > 0;
@@ -236,11 +272,12 @@ void MooringSystem::NodeForce(const Chain& c, int k, Vec3* F_out, Mat3* M_out) c
   const Vec3& v = vel_[k];
   const Vec3 u = v - current_.VelocityAt(r.z());
 
-  Mat3 M = (lp.mass_per_length * share) * Mat3::Identity();
+  NodeMass M;
+  M.m = lp.mass_per_length * share;
   Vec3 F = (lp.weight_per_length * share) * kDown;
   auto add_segment = [&](const SegmentState& g, double sign) {
     F += sign * g.T * g.t;
-    M += (0.5 * lp.added_mass_per_length * g.L) * (Mat3::Identity() - g.t * g.t.transpose());
+    M.Add(0.5 * lp.added_mass_per_length * g.L, g.t);
     F += DragForce(u, g.t, g.L, lp.drag_normal, lp.drag_tangential);
   };
   if (has_above) add_segment(seg_[k], +1.0);
@@ -376,16 +413,16 @@ void MooringSystem::Derivatives(const double* x, std::span<const PointKinematics
     ComputeSegments(c);
     if (!forces.empty() && c.upper == EndCondition::kFairlead) {
       Vec3 F;
-      Mat3 M;
+      NodeMass M;
       NodeForce(c, c.segments, &F, &M);
-      forces[c.line] = F - M * fairleads[c.line].acceleration;
+      forces[c.line] = F - M.Matrix() * fairleads[c.line].acceleration;
     }
     const int first = c.first_state_node();
     for (int k = first; k <= c.last_state_node(); ++k) {
       Vec3 F;
-      Mat3 M;
+      NodeMass M;
       NodeForce(c, k, &F, &M);
-      const Vec3 a = M.inverse() * F;
+      const Vec3 a = M.Solve(F);
       double* out = xdot + c.state_offset + 6 * (k - first);
       out[0] = vel_[k].x();
       out[1] = vel_[k].y();
@@ -414,9 +451,9 @@ void MooringSystem::Jacobian(const double* x, std::span<const PointKinematics> f
         v[1] = 1.0;
       }
       Vec3 F;
-      Mat3 M;
+      NodeMass M;
       NodeForce(c, k, &F, &M);
-      const Mat3 Minv = M.inverse();
+      const Mat3 Minv = M.Matrix().inverse();
       const Vec3 a = Minv * F;
       NodeForceJacobian(c, k, a, &J);
       for (int comp = 0; comp < 3; ++comp) {
@@ -441,10 +478,10 @@ void MooringSystem::FairleadForces(const double* x, std::span<const PointKinemat
     GatherChain(c, x, fairleads);
     ComputeSegments(c);
     Vec3 F;
-    Mat3 M;
+    NodeMass M;
     NodeForce(c, c.segments, &F, &M);
     // The node's equation M a = F + F_body gives the line's force on the body F - M a.
-    forces[c.line] = F - M * fairleads[c.line].acceleration;
+    forces[c.line] = F - M.Matrix() * fairleads[c.line].acceleration;
   }
 }
 
@@ -482,9 +519,9 @@ FairleadCoupling MooringSystem::FairleadJacobian(const double* x,
   out.J_force_fairlead_vel = J.dF_dv[kSelf];
   if (n - 1 >= c.first_state_node()) {  // a one-segment chain has no free node
     Vec3 F;
-    Mat3 M;
+    NodeMass M;
     NodeForce(c, n - 1, &F, &M);
-    const Mat3 Minv = M.inverse();
+    const Mat3 Minv = M.Matrix().inverse();
     NodeForceJacobian(c, n - 1, Minv * F, &J);
     out.node_state = c.state_offset + 6 * (n - 1 - c.first_state_node());
     out.J_accel_fairlead_pos = Minv * (J.dF_dr[kAbove] - J.dMa_dr[kAbove]);
@@ -542,8 +579,9 @@ double MooringSystem::MechanicalEnergy(const double* x,
     }
     for (int k = c.first_state_node(); k <= c.last_state_node(); ++k) {
       Vec3 F;
-      Mat3 M;
-      NodeForce(c, k, &F, &M);
+      NodeMass mass;
+      NodeForce(c, k, &F, &mass);
+      const Mat3 M = mass.Matrix();
       const int n_seg = (k > 0 ? 1 : 0) + (k < c.segments ? 1 : 0);
       const double share = 0.5 * lp.segment_length * n_seg;
       energy += 0.5 * vel_[k].dot(M * vel_[k]);
@@ -627,7 +665,7 @@ double MooringSystem::SettleStatic(std::span<const Vec3> fairlead_positions, dou
       }
       for (int i = 0; i < S; ++i) {
         Vec3 F;
-        Mat3 M;
+        NodeMass M;
         NodeForce(c, first + i, &F, &M);
         residual.segment<3>(3 * i) = F;
       }

@@ -72,6 +72,21 @@ struct Chain {
   int num_state_nodes() const { return last_state_node() - first_state_node() + 1; }
 };
 
+/// A node's mass matrix M = m I + sum_i a_i (I - t_i t_i^T): its share of the line's mass and,
+/// for each of its (at most two) half segments of direction t_i, the normal added mass a_i.
+struct NodeMass {
+  double m = 0.0;
+  int segments = 0;
+  double a[2] = {0.0, 0.0};
+  Vec3 t[2] = {Vec3::Zero(), Vec3::Zero()};
+
+  void Add(double added, const Vec3& direction);
+  Mat3 Matrix() const;
+  /// M^{-1} F without forming or inverting M (Sherman-Morrison-Woodbury: M is m' I minus a
+  /// rank-2 term), the right-hand side's acceleration.
+  Vec3 Solve(const Vec3& F) const;
+};
+
 enum class FailureMode { kFairlead, kNode, kAnchor };
 
 /// A line parts at its fairlead, at an internal node (1..n-1, counted from the anchor), or
@@ -177,8 +192,8 @@ class MooringSystem {
   void BuildPattern();
   void GatherChain(const Chain& chain, const double* x, std::span<const PointKinematics> fairleads);
   void ComputeSegments(const Chain& chain);
-  /// Net force F and mass matrix M of chain node k from the gathered state.
-  void NodeForce(const Chain& chain, int k, Vec3* F, Mat3* M) const;
+  /// Net force F and mass M of chain node k from the gathered state.
+  void NodeForce(const Chain& chain, int k, Vec3* F, NodeMass* M) const;
   /// Adds the node's force derivatives; needs the node's acceleration for d(M a)/dr.
   void NodeForceJacobian(const Chain& chain, int k, const Vec3& accel, NodeJacobian* J) const;
 

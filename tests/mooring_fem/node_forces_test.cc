@@ -14,6 +14,33 @@
 namespace moorsim::mooring_fem {
 namespace {
 
+// The structured solve of a node's mass matrix against the inverse of the matrix it stands
+// for: no, one or two half segments, with and without added mass, segments in line, at a
+// right angle and folded back on each other.
+TEST(NodeMass, SolveEqualsTheInverseOfTheMatrix) {
+  const Vec3 F(3.0e4, -1.2e4, 7.5e4);
+  const Vec3 dirs[] = {Vec3(1, 0, 0),  Vec3(0, 0, 1),        Vec3(0.6, 0.0, 0.8),
+                       Vec3(-1, 0, 0), Vec3(0.6, 0.0, -0.8), Vec3(0, 1, 0)};
+  int cases = 0;
+  for (double added : {0.0, 400.0, 2.0e5}) {
+    for (int segments = 0; segments <= 2; ++segments) {
+      for (const Vec3& t0 : dirs) {
+        for (const Vec3& t1 : dirs) {
+          NodeMass mass;
+          mass.m = 12375.0;
+          if (segments >= 1) mass.Add(added, t0);
+          if (segments == 2) mass.Add(0.5 * added, t1);
+          const Vec3 reference = mass.Matrix().inverse() * F;
+          EXPECT_LT((mass.Solve(F) - reference).norm(), 1e-13 * reference.norm())
+              << "added " << added << " segments " << segments;
+          ++cases;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(cases, 3 * 3 * 36);
+}
+
 constexpr double kRho = 1025.0, kG = 9.81, kD = 0.08, kMass = 275.0;
 constexpr double kCdn = 0.3, kCdt = 1.0, kCmn = 1.5;
 constexpr int kSegments = 4;
