@@ -209,6 +209,7 @@ void MooringSystem::GatherChain(const Chain& c, const double* x,
 void MooringSystem::ComputeSegments(const Chain& c) {
   const LineProperties& lp = lines_[c.line];
   const double l0 = lp.segment_length;
+  const double inverse_l0 = 1.0 / l0;  // multiplications, not divisions, in the loop
   for (int s = 0; s < c.segments; ++s) {
     const Vec3 l = pos_[s + 1] - pos_[s];
     const double L = l.norm();
@@ -218,10 +219,10 @@ void MooringSystem::ComputeSegments(const Chain& c) {
       throw RecoverableStateError(msg.str());
     }
     SegmentState& g = seg_[s];
-    g.t = l / L;
+    g.t = l * (1.0 / L);
     g.L = L;
-    g.rate = g.t.dot(vel_[s + 1] - vel_[s]) / l0;
-    const double strain = L / l0 - 1.0;
+    g.rate = g.t.dot(vel_[s + 1] - vel_[s]) * inverse_l0;
+    const double strain = L * inverse_l0 - 1.0;
     g.T = strain > 0.0 ? lp.axial_stiffness * strain + lp.axial_damping * g.rate : 0.0;
   }
 }
@@ -239,27 +240,24 @@ Mat3 NodeMass::Matrix() const {
 }
 
 Vec3 NodeMass::Solve(const Vec3& F) const {
-  // M = alpha I - U D U^T with alpha = m + sum a_i, U = [t_i], D = diag(a_i), so
-  // M^{-1} F = (F + U (alpha D^{-1} - U^T U)^{-1} U^T F) / alpha. The bracket is positive
-  // definite (alpha / a_i - 1 > a_j / a_i and |t_1 . t_2| <= 1) when m > 0.
-  double alpha = m;
-  for (int i = 0; i < segments; ++i) alpha += a[i];
-  const bool both = segments == 2 && a[0] > 0.0 && a[1] > 0.0;
-  if (!both) {
-    // Zero or one half segment with added mass: Sherman-Morrison, (alpha - a) = m + others.
-    Vec3 x = F;
-    for (int i = 0; i < segments; ++i) {
-      if (a[i] > 0.0) x += (a[i] * t[i].dot(F) / (alpha - a[i])) * t[i];
-    }
-    return x / alpha;
-  }
-  const double c = t[0].dot(t[1]);
-  const double k00 = alpha / a[0] - 1.0, k11 = alpha / a[1] - 1.0;
-  const double y0 = t[0].dot(F), y1 = t[1].dot(F);
-  const double det = k00 * k11 - c * c;
-  const double z0 = (k11 * y0 + c * y1) / det;
-  const double z1 = (c * y0 + k00 * y1) / det;
-  return (F + z0 * t[0] + z1 * t[1]) / alpha;
+  // M = alpha I - U D U^T with alpha = m + a_0 + a_1, U = [t_0 t_1], D = diag(a_0, a_1) (an
+  // absent half segment has a = 0), so by Woodbury M^{-1} F = (F + U z) / alpha with
+  // z = (alpha I - D U^T U)^{-1} D U^T F. That 2x2 matrix N has det N = (alpha - a_0)
+  // (alpha - a_1) - a_0 a_1 c^2 > 0 for m > 0 (c = t_0 . t_1, |c| <= 1). One division.
+  const double a0 = segments > 0 ? a[0] : 0.0;
+  const double a1 = segments > 1 ? a[1] : 0.0;
+  const double alpha = m + a0 + a1;
+  const double c = segments > 1 ? t[0].dot(t[1]) : 0.0;
+  const double y0 = segments > 0 ? a0 * t[0].dot(F) : 0.0;
+  const double y1 = segments > 1 ? a1 * t[1].dot(F) : 0.0;
+  const double det = (alpha - a0) * (alpha - a1) - a0 * a1 * c * c;
+  const double inverse = 1.0 / (alpha * det);  // 1 / (alpha det N)
+  const double z0 = ((alpha - a1) * y0 + a0 * c * y1) * alpha * inverse;
+  const double z1 = (a1 * c * y0 + (alpha - a0) * y1) * alpha * inverse;
+  Vec3 x = F;
+  if (segments > 0) x += z0 * t[0];
+  if (segments > 1) x += z1 * t[1];
+  return x * (det * inverse);
 }
 
 void MooringSystem::NodeForce(const Chain& c, int k, Vec3* F_out, NodeMass* M_out) const {
