@@ -54,6 +54,12 @@ int ScaleAddMulti(int nvec, sunrealtype* a, N_Vector x, N_Vector* Y, N_Vector* Z
   return 0;
 }
 
+// Z[i] = c[i] X[i] (CVODE rescales its history with it at every step-size change).
+int ScaleVectorArray(int nvec, sunrealtype* c, N_Vector* X, N_Vector* Z) {
+  for (int i = 0; i < nvec; ++i) A(Z[i]) = c[i] * A(X[i]);
+  return 0;
+}
+
 int SparseZero(SUNMatrix m) {
   const sunindextype nnz = SUNSparseMatrix_NNZ(m);
   std::memset(SUNSparseMatrix_Data(m), 0, nnz * sizeof(sunrealtype));
@@ -136,6 +142,7 @@ void InstallFastSerialOps(N_Vector v) {
   v->ops->nvwrmsnorm = &WrmsNorm;
   v->ops->nvlinearcombination = &LinearCombination;
   v->ops->nvscaleaddmulti = &ScaleAddMulti;
+  v->ops->nvscalevectorarray = &ScaleVectorArray;
 }
 
 }  // namespace moorsim::internal

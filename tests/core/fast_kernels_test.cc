@@ -105,6 +105,13 @@ TEST_F(FastKernels, FusedOperationsMatchTheLibraryWithAliasing) {
   ASSERT_EQ(N_VScaleAddMulti(2, coef, a1, ys1, ys1), 0);
   ExpectSame(b0, b1);
   ExpectSame(c0, c1);
+  // Z[i] = c[i] X[i], in place as CVODE rescales its history.
+  N_Vector xs0[2] = {b0, c0};
+  N_Vector xs1[2] = {b1, c1};
+  ASSERT_EQ(N_VScaleVectorArray(2, coef + 1, xs0, xs0), 0);
+  ASSERT_EQ(N_VScaleVectorArray(2, coef + 1, xs1, xs1), 0);
+  ExpectSame(b0, b1);
+  ExpectSame(c0, c1);
 }
 
 // A random n x n CSR matrix: a band of width 3 around the diagonal, the diagonal itself
