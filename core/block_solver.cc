@@ -138,6 +138,7 @@ BorderedBlockSolver::BorderedBlockSolver(const SparsityPattern& pattern,
   border_matrix_ = MatX::Zero(nb, nb);
   gc_ = Mat3X::Zero(3, nb);
   border_rhs_ = VecX::Zero(nb);
+  border_x_ = VecX::Zero(nb);
 }
 
 bool BorderedBlockSolver::Factor(const double* jacobian, double gamma) {
@@ -156,13 +157,14 @@ bool BorderedBlockSolver::Factor(const double* jacobian, double gamma) {
     for (int k = 0; k < cs.nodes; ++k) {
       const NodeSlots& node = nodes_[cs.first_node + k];
       NodeFactor& f = node_factors_[cs.first_node + k];
+      Vec3 p, q;
       for (int a = 0; a < 3; ++a) {
-        f.p[a] = OnDiagonal(jacobian, node.p[a], gamma);
-        f.q[a] = OffDiagonal(jacobian, node.q[a], gamma);
+        p[a] = OnDiagonal(jacobian, node.p[a], gamma);
+        q[a] = OffDiagonal(jacobian, node.q[a], gamma);
       }
-      if (!(f.p.cwiseAbs().minCoeff() > 0.0) || !f.q.allFinite()) return false;
-      f.p_inverse = f.p.cwiseInverse();
-      f.q_over_p = f.q.cwiseProduct(f.p_inverse);
+      if (!(p.cwiseAbs().minCoeff() > 0.0) || !q.allFinite()) return false;
+      f.p_inverse = p.cwiseInverse();
+      f.q_over_p = q.cwiseProduct(f.p_inverse);
     }
     for (int k = 0; k < cs.nodes; ++k) {
       const NodeSlots& node = nodes_[cs.first_node + k];
@@ -218,8 +220,7 @@ bool BorderedBlockSolver::Factor(const double* jacobian, double gamma) {
   if (nb > 0) {
     if (!border.allFinite()) return false;
     border_lu_.compute(border);
-    const VecX diagonal = border_lu_.matrixLU().diagonal();
-    if (!(diagonal.cwiseAbs().minCoeff() > 0.0)) return false;
+    if (!(border_lu_.matrixLU().diagonal().cwiseAbs().minCoeff() > 0.0)) return false;
   }
   return true;
 }
@@ -250,7 +251,7 @@ void BorderedBlockSolver::Solve(const double* b, double* x) {
       border_rhs_.noalias() -= cf.B * (node_factors_[g].G * y_[g]);
     }
   }
-  if (nb > 0) border_rhs_ = border_lu_.solve(border_rhs_);
+  if (nb > 0) border_x_ = border_lu_.solve(border_rhs_);
   // Backward: dv_k = G_k (y_k - U_k dv_{k+1}) (the last node: y - C x_border), then
   // dr_k = (b_r,k - q_k dv_k) / p_k. y_ is overwritten by dv; b is read before x is written
   // at each node (b_r of a node is only needed by itself here).
@@ -261,7 +262,7 @@ void BorderedBlockSolver::Solve(const double* b, double* x) {
       const NodeFactor& f = node_factors_[g];
       Vec3 rhs = y_[g];
       if (k == cs.nodes - 1) {
-        if (cs.coupled) rhs.noalias() -= chain_factors_[ci].C * border_rhs_;
+        if (cs.coupled) rhs.noalias() -= chain_factors_[ci].C * border_x_;
       } else {
         rhs.noalias() -= f.U * y_[g + 1];
       }
@@ -276,7 +277,7 @@ void BorderedBlockSolver::Solve(const double* b, double* x) {
       }
     }
   }
-  for (int i = 0; i < nb; ++i) x[i] = border_rhs_[i];
+  for (int i = 0; i < nb; ++i) x[i] = border_x_[i];
 }
 
 }  // namespace moorsim

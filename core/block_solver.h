@@ -65,11 +65,11 @@ class BorderedBlockSolver {
   };
   // The factorisation, per node: the pivot's inverse G, the multiplier E = L G_prev, the
   // upper block U (coupling to the next node), the right-hand side transforms W_j = M_vr(j)
-  // diag(1 / p_j) of the three neighbours, and the kinematic rows' p and q.
+  // diag(1 / p_j) of the three neighbours, and 1 / p and q / p of the kinematic rows.
   struct NodeFactor {
     Mat3 G, E, U;
     std::array<Mat3, 3> W;
-    Vec3 p, q, p_inverse, q_over_p;
+    Vec3 p_inverse, q_over_p;
   };
   struct ChainFactor {
     Mat3X C;   // the last node's velocity rows in the border columns (3 x nb)
@@ -89,7 +89,8 @@ class BorderedBlockSolver {
   Eigen::PartialPivLU<MatX> border_lu_;
   // Scratch for Solve(): the reduced right-hand sides y, then the velocity unknowns.
   std::vector<Vec3> y_;
-  VecX border_rhs_;
+  VecX border_rhs_;  // the border's reduced right-hand side
+  VecX border_x_;    // and its solution
 };
 
 }  // namespace moorsim
