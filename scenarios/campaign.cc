@@ -97,7 +97,7 @@ std::vector<std::string> ParseSet(const Reader& r, const YAML::Node& node) {
 
 // Integer number of steps from `from` to `to` (inclusive), tolerant of rounding.
 std::vector<std::string> ExpandRange(const Reader& r) {
-  r.CheckKeys({"from", "to", "step"});
+  r.CheckKeys();
   const double from = r.Required<double>("from");
   const double to = r.Required<double>("to");
   const double step = r.Required<double>("step");
@@ -125,8 +125,7 @@ void ReadInterval(const Reader& r, const std::string& shape, CampaignFactor& f) 
 }
 
 CampaignFactor ParseFactor(const Reader& r, const YAML::Node& node) {
-  r.CheckKeys({"key", "values", "range", "uniform", "normal", "choice", "follows", "add", "modulo",
-               "function", "scale"});
+  r.CheckKeys();
   CampaignFactor f;
   f.mark = r.mark();
   f.key = r.Required<std::string>("key");
@@ -166,7 +165,7 @@ CampaignFactor ParseFactor(const Reader& r, const YAML::Node& node) {
     f.values = ExpandRange(*range);
   } else if (r.Find("follows")) {
     f.kind = CampaignFactor::Kind::kFollows;
-    f.follows = r.Required<std::string>("follows");
+    f.follows = r.Child("follows").As<std::string>();
     if (const std::optional<Reader> add = r.Find("add")) {
       if (!add->IsList()) {
         f.low = f.high = add->As<double>();
@@ -179,14 +178,9 @@ CampaignFactor ParseFactor(const Reader& r, const YAML::Node& node) {
       if (!(f.modulo > 0.0)) modulo->Fail(Number(f.modulo) + " must be > 0");
     }
     if (const std::optional<Reader> function = r.Find("function")) {
-      const std::string name = function->As<std::string>();
-      if (name == "cos") {
-        f.function = CampaignFactor::Function::kCos;
-      } else if (name == "sin") {
-        f.function = CampaignFactor::Function::kSin;
-      } else {
-        function->Fail("'" + name + "' must be cos or sin (of the followed value in degrees)");
-      }
+      // cos or sin (the schema's choices) of the followed value in degrees.
+      f.function = function->As<std::string>() == "cos" ? CampaignFactor::Function::kCos
+                                                        : CampaignFactor::Function::kSin;
     }
     if (const std::optional<Reader> scale = r.Find("scale")) {
       f.scale = scale->As<double>();
@@ -197,7 +191,7 @@ CampaignFactor ParseFactor(const Reader& r, const YAML::Node& node) {
     ReadInterval(*uniform, "[low, high]", f);
   } else {
     const Reader normal = *r.Find("normal");
-    normal.CheckKeys({"mean", "std_dev", "min", "max"});
+    normal.CheckKeys();
     f.kind = CampaignFactor::Kind::kNormal;
     f.mean = normal.Required<double>("mean");
     f.std_dev = normal.Required<double>("std_dev");
@@ -233,7 +227,7 @@ void CheckFollows(const Reader& r, std::span<const CampaignFactor> earlier,
 }
 
 CampaignBlock ParseBlock(const Reader& r, const YAML::Node& node) {
-  r.CheckKeys({"name", "set", "factors", "combine", "seeds"});
+  r.CheckKeys();
   CampaignBlock b;
   b.mark = r.mark();
   b.name = r.Required<std::string>("name");
@@ -256,13 +250,11 @@ CampaignBlock ParseBlock(const Reader& r, const YAML::Node& node) {
     }
   }
   if (const std::optional<Reader> combine = r.Find("combine")) {
-    const std::string c = combine->As<std::string>();
-    if (c != "grid" && c != "zip") combine->Fail("'" + c + "' must be grid or zip");
-    b.zip = c == "zip";
+    b.zip = combine->As<std::string>() == "zip";  // or grid (the schema's choices)
   }
   const Reader seeds = r.Child("seeds");
   if (seeds.IsMap()) {
-    seeds.CheckKeys({"from", "to"});
+    seeds.CheckKeys();
     b.first_seed = seeds.Required<std::uint64_t>("from");
     b.last_seed = seeds.Required<std::uint64_t>("to");
     if (*b.last_seed < *b.first_seed) {
@@ -301,7 +293,7 @@ void CheckZip(const std::string& file, const CampaignBlock& b, const std::string
 }
 
 void ParseDocument(const Reader& root, const YAML::Node& document, Campaign& c) {
-  root.CheckKeys({"name", "scenario", "seed", "set", "blocks"});
+  root.CheckKeys();
   root.Optional("name", c.name);
   if (!IsBlockName(c.name)) {
     root.Child("name").Fail("'" + c.name + "' must be letters, digits, '_' or '-'");
@@ -500,7 +492,10 @@ Campaign ParseCampaign(const std::string& yaml_text, const std::string& source_n
     ThrowAt(source_name, MarkOfOffset(yaml_text, *bad), "", InvalidUtf8(yaml_text, *bad));
   }
   std::map<std::string, SourceMark> marks;
-  ParseContext context{source_name, &marks, {}, &yaml_text};
+  ParseContext context;
+  context.file = source_name;
+  context.marks = &marks;
+  context.text = &yaml_text;
   try {
     const std::vector<YAML::Node> documents = YAML::LoadAll(yaml_text);
     if (documents.empty() || documents[0].IsNull()) {
@@ -510,7 +505,8 @@ Campaign ParseCampaign(const std::string& yaml_text, const std::string& source_n
       ThrowAt(source_name, ToSourceMark(documents[1].Mark()), "",
               "a campaign file holds one YAML document; this is a second one");
     }
-    const Reader root(context, documents[0], "", ToSourceMark(documents[0].Mark()));
+    const Reader root(context, documents[0], "", ToSourceMark(documents[0].Mark()),
+                      &schema::Campaign());
     ParseDocument(root, documents[0], c);
   } catch (const YAML::ParserException& error) {
     ThrowAt(source_name, ToSourceMark(error.mark), "", "YAML syntax error: " + error.msg);

@@ -313,6 +313,9 @@ struct Scenario {
   /// Where each value was written, by key path ("mooring.lines[3].length", list indices
   /// 1-based), so checks after parsing can point at the offending text.
   std::map<std::string, SourceMark> marks;
+  /// Key paths whose values were written in another file (a base scenario, `base:`), with
+  /// that file; the deepest path wins. Empty when the scenario has no base.
+  std::map<std::string, std::string> origins;
 };
 
 }  // namespace moorsim::scenarios

@@ -208,15 +208,194 @@ void CheckOverrideUntagged(const YAML::Node& node, const std::string& text,
 // ---------------------------------------------------------------------------------------
 // Strict reading of one YAML node at a key path.
 
+bool UnderPath(const std::string& path, const std::string& prefix) {
+  if (prefix.empty()) return true;
+  return path == prefix ||
+         (path.size() > prefix.size() && path.compare(0, prefix.size(), prefix) == 0 &&
+          (path[prefix.size()] == '.' || path[prefix.size()] == '['));
+}
+
+namespace {
+
+const ParseContext::Origin* DeepestOrigin(const ParseContext& context, const std::string& path) {
+  const ParseContext::Origin* found = nullptr;
+  for (const ParseContext::Origin& origin : context.origins) {
+    if (UnderPath(path, origin.path) &&
+        (found == nullptr || origin.path.size() > found->path.size())) {
+      found = &origin;
+    }
+  }
+  return found;
+}
+
+}  // namespace
+
+const std::string& ParseContext::FileOf(const std::string& path) const {
+  const Origin* origin = DeepestOrigin(*this, path);
+  return origin ? origin->file : file;
+}
+
+const std::string* ParseContext::TextOf(const std::string& path) const {
+  const Origin* origin = DeepestOrigin(*this, path);
+  return origin ? origin->text : text;
+}
+
+void ParseContext::Record(const std::string& message) const {
+  if (std::find(errors->begin(), errors->end(), message) == errors->end()) {
+    errors->push_back(message);
+  }
+}
+
 // Whether `path` is an overridden key path or lies under one.
 bool Overridden(const ParseContext& context, const std::string& path) {
   for (const std::string& o : context.overridden) {
-    if (path == o || (path.size() > o.size() && path.compare(0, o.size(), o) == 0 &&
-                      (path[o.size()] == '.' || path[o.size()] == '['))) {
-      return true;
-    }
+    if (UnderPath(path, o)) return true;
   }
   return false;
+}
+
+// ---------------------------------------------------------------------------------------
+// Keys and values against the schema.
+
+std::string Reader::KeyName(const YAML::Node& key) const {
+  const SourceMark key_mark = ToSourceMark(key.Mark());
+  if (!key.IsScalar())
+    ThrowAt(context_->FileOf(path_), key_mark, path_, "keys must be plain names");
+  if (!overridden_) {
+    const std::string child = KeyPath(path_, key.Scalar());
+    if (const std::optional<std::string> tag = ExplicitTag(key, context_->TextOf(child))) {
+      ThrowAt(context_->FileOf(child), key_mark, path_,
+              "tagged key '" + *tag + "' (tags are not accepted; write the plain name)");
+    }
+  }
+  return key.Scalar();
+}
+
+void Reader::FailAtKey(const YAML::Node& key, const std::string& name,
+                       const std::string& what) const {
+  ThrowAt(context_->FileOf(KeyPath(path_, name)), ToSourceMark(key.Mark()), path_, what);
+}
+
+std::vector<std::string> Reader::Keys() const {
+  CheckUntagged("the plain map");
+  std::vector<std::string> keys;
+  for (const auto& entry : node_) {
+    const std::string name = KeyName(entry.first);
+    if (std::find(keys.begin(), keys.end(), name) != keys.end()) {
+      FailAtKey(entry.first, name, "duplicate key '" + name + "'");
+    }
+    keys.push_back(name);
+  }
+  return keys;
+}
+
+void Reader::CheckKeys() const {
+  if (block_ == nullptr) throw ContractError("CheckKeys at '" + path_ + "' without a schema");
+  CheckUntagged("the plain map");
+  if (!node_.IsMap()) Fail(Describe(node_) + " must be a map");
+  context_->checked.insert(path_);
+  std::vector<std::string> seen, suggested;
+  for (const auto& entry : node_) {
+    context_->Attempt([&] {
+      const std::string name = KeyName(entry.first);
+      if (block_->Find(name) == nullptr && !block_->open_numbers) {
+        const std::string nearest = schema::NearestKey(*block_, name);
+        suggested.push_back(nearest);
+        std::vector<std::string> known;
+        for (const schema::Key& key : block_->keys) known.emplace_back(key.name);
+        FailAtKey(entry.first, name,
+                  "unknown key '" + name + "' " +
+                      (nearest.empty() ? "(known: " + JoinSorted(known) + ")"
+                                       : "(did you mean '" + nearest + "'?)"));
+      }
+      if (std::find(seen.begin(), seen.end(), name) != seen.end()) {
+        FailAtKey(entry.first, name, "duplicate key '" + name + "'");
+      }
+      seen.push_back(name);
+    });
+  }
+  // A required key that an unknown key's message already suggests is not missing twice.
+  for (const schema::Key& key : block_->keys) {
+    if (key.required && std::find(seen.begin(), seen.end(), key.name) == seen.end() &&
+        std::find(suggested.begin(), suggested.end(), key.name) == suggested.end()) {
+      context_->Attempt([&] { Fail("required key '" + std::string(key.name) + "' is missing"); });
+    }
+  }
+}
+
+Reader Reader::Under(const YAML::Node& value, std::string path, SourceMark mark,
+                     const schema::Key* key) const {
+  Reader child(*context_, value, std::move(path), mark, key ? key->block : nullptr);
+  child.key_ = key;
+  return child;
+}
+
+std::optional<Reader> Reader::Find(std::string_view key) const {
+  const schema::Key* known = nullptr;
+  if (block_ != nullptr) {
+    known = block_->Find(key);
+    if (known == nullptr && !block_->open_numbers) {
+      throw ContractError("the loader reads '" + KeyPath(path_, key) +
+                          "', which the schema does not list");
+    }
+  }
+  for (const auto& entry : node_) {
+    if (entry.first.IsScalar() && entry.first.Scalar() == key) {
+      // yaml-cpp puts an empty value's mark on the next token, possibly lines later;
+      // the key is where the user looks.
+      const YAML::Mark& mark = entry.second.IsNull() ? entry.first.Mark() : entry.second.Mark();
+      return Under(entry.second, KeyPath(path_, key), ToSourceMark(mark), known);
+    }
+  }
+  return std::nullopt;
+}
+
+std::vector<Reader> Reader::Items() const {
+  CheckUntagged("the plain list");
+  if (!node_.IsSequence()) Fail(Describe(node_) + " must be a list");
+  std::vector<Reader> items;
+  for (std::size_t i = 0; i < node_.size(); ++i) {
+    items.push_back(Under(node_[i], ItemPath(path_, i), ToSourceMark(node_[i].Mark()), key_));
+  }
+  return items;
+}
+
+void Reader::CheckRange(double value) const {
+  if (key_ == nullptr || (!key_->minimum && !key_->maximum)) return;
+  const std::optional<schema::Bound>& low = key_->minimum;
+  const std::optional<schema::Bound>& high = key_->maximum;
+  const bool below = low && (low->exclusive ? !(value > low->value) : !(value >= low->value));
+  const bool above = high && (high->exclusive ? !(value < high->value) : !(value <= high->value));
+  if (!below && !above) return;
+  const auto why = [](std::string_view text) {
+    return text.empty() ? std::string() : " (" + std::string(text) + ")";
+  };
+  if (key_->kind == schema::Kind::kInteger) {
+    const auto whole = [](double v) { return std::to_string(static_cast<long long>(v)); };
+    const std::string shown = whole(value);
+    if (low && high) Fail(shown + " must be in " + whole(low->value) + ".." + whole(high->value));
+    Fail(shown +
+         (below ? " must be >= " + whole(low->value) : " must be <= " + whole(high->value)));
+  }
+  const std::string shown = WithUnit(value, key_->unit);
+  if (key_->interval && low && high) {
+    Fail(shown + " must be in " + (low->exclusive ? "(" : "[") + Number(low->value) + ", " +
+         Number(high->value) + (high->exclusive ? ")" : "]") +
+         why(high->why.empty() ? low->why : high->why));
+  }
+  if (below) {
+    Fail(shown + " must be " + (low->exclusive ? "> " : ">= ") + Number(low->value) +
+         why(low->why));
+  }
+  Fail(shown + " must be " + (high->exclusive ? "< " : "<= ") + Number(high->value) +
+       why(high->why));
+}
+
+void Reader::CheckChoice(const std::string& value) const {
+  if (key_ == nullptr || key_->choices.empty()) return;
+  if (std::find(key_->choices.begin(), key_->choices.end(), value) != key_->choices.end()) return;
+  Fail("unknown " + std::string(key_->choice_noun) + " '" + value +
+       "' (known: " + JoinSorted({key_->choices.begin(), key_->choices.end()}) + ")");
 }
 
 std::string Describe(const YAML::Node& node) {
@@ -245,12 +424,15 @@ template <>
 double Reader::As<double>() const {
   const double value = Decode<double>("a number", "the plain number");
   if (!std::isfinite(value)) Fail(Describe(node_) + " must be a finite number");
+  CheckRange(value);
   return value;
 }
 
 template <>
 int Reader::As<int>() const {
-  return Decode<int>("an integer", "the plain integer");
+  const int value = Decode<int>("an integer", "the plain integer");
+  CheckRange(value);
+  return value;
 }
 
 template <>
@@ -262,6 +444,7 @@ template <>
 std::string Reader::As<std::string>() const {
   CheckUntagged("the plain text");
   if (!node_.IsScalar()) Fail(Describe(node_) + " must be a string");
+  CheckChoice(node_.Scalar());
   return node_.Scalar();
 }
 

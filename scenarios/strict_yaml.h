@@ -11,12 +11,15 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "core/error.h"
 #include "core/types.h"
 #include "scenarios/scenario.h"
+#include "scenarios/schema.h"
 
 namespace moorsim::scenarios::strict_yaml {
 
@@ -74,12 +77,59 @@ std::string Describe(const YAML::Node& node);
 /// of file in messages ("scenario"). Throws InputError.
 std::string ReadInputFile(const std::string& path, std::size_t max_bytes, std::string_view what);
 
+/// Whether `path` is `prefix` or lies under it ("a.b[2]" lies under "a.b" and "a").
+bool UnderPath(const std::string& path, const std::string& prefix);
+
+/// Thrown, when collecting errors, where the problem has been recorded already (a missing
+/// required key that CheckKeys reported): it ends the value's reading and records nothing.
+class AlreadyReported : public InputError {
+ public:
+  AlreadyReported() : InputError("(reported)") {}
+};
+
 /// What every Reader of one document shares.
 struct ParseContext {
   std::string file;
-  std::map<std::string, SourceMark>* marks;  // filled with the position of every node read
-  std::vector<std::string> overridden;       // key paths set from the command line
-  const std::string* text = nullptr;         // the YAML text the marks point into
+  std::map<std::string, SourceMark>* marks =
+      nullptr;                          // filled with the position of every node read
+  std::vector<std::string> overridden;  // key paths set from the command line
+  const std::string* text = nullptr;    // the YAML text the marks point into
+  /// Values written in another file (a scenario's base): the key path under which every
+  /// value comes from `file`, whose text the marks there point into. The deepest wins.
+  struct Origin {
+    std::string path;
+    std::string file;
+    const std::string* text = nullptr;
+  };
+  std::vector<Origin> origins;
+  /// Null: the first error is thrown. Otherwise every error is collected here, one located
+  /// line each, and reading goes on with the next value (Reader::Attempt).
+  std::vector<std::string>* errors = nullptr;
+  /// Maps whose keys CheckKeys has checked (and whose missing required keys it reported).
+  mutable std::set<std::string> checked;
+
+  /// The file and text the value at `path` was written in.
+  const std::string& FileOf(const std::string& path) const;
+  const std::string* TextOf(const std::string& path) const;
+  /// Runs `body`; when collecting, an InputError it throws is recorded (once) and false
+  /// returned instead.
+  template <class Body>
+  bool Attempt(Body&& body) const {
+    if (errors == nullptr) {
+      body();
+      return true;
+    }
+    try {
+      body();
+      return true;
+    } catch (const AlreadyReported&) {
+      return false;
+    } catch (const InputError& error) {
+      Record(error.what());
+      return false;
+    }
+  }
+  void Record(const std::string& message) const;
 };
 
 /// Whether `path` is an overridden key path or lies under one.
@@ -88,8 +138,15 @@ bool Overridden(const ParseContext& context, const std::string& path);
 /// One node at a key path, read strictly (see the top of this file).
 class Reader {
  public:
-  Reader(const ParseContext& context, YAML::Node node, std::string path, SourceMark mark)
-      : context_(&context), node_(std::move(node)), path_(std::move(path)), mark_(mark) {
+  /// `block`: the schema of this map (its known and required keys), or null for a value
+  /// read without one.
+  Reader(const ParseContext& context, YAML::Node node, std::string path, SourceMark mark,
+         const schema::Block* block = nullptr)
+      : context_(&context),
+        node_(std::move(node)),
+        path_(std::move(path)),
+        mark_(mark),
+        block_(block) {
     // A value from --set has no place in the file: messages name the key path only.
     overridden_ = Overridden(*context_, path_);
     if (overridden_) mark_ = {};
@@ -101,77 +158,49 @@ class Reader {
   bool IsList() const { return node_.IsSequence(); }
   std::string Text() const { return Describe(node_); }
   /// The keys of a map, in order; duplicate keys and non-scalar keys are errors.
-  std::vector<std::string> Keys() const {
-    CheckUntagged("the plain map");
-    std::vector<std::string> keys;
-    for (const auto& entry : node_) {
-      const SourceMark key_mark = ToSourceMark(entry.first.Mark());
-      if (!entry.first.IsScalar())
-        ThrowAt(context_->file, key_mark, path_, "keys must be plain names");
-      CheckKeyUntagged(entry.first, key_mark);
-      const std::string& name = entry.first.Scalar();
-      if (std::find(keys.begin(), keys.end(), name) != keys.end()) {
-        ThrowAt(context_->file, key_mark, path_, "duplicate key '" + name + "'");
-      }
-      keys.push_back(name);
-    }
-    return keys;
-  }
+  std::vector<std::string> Keys() const;
 
   [[noreturn]] void Fail(const std::string& what) const {
-    ThrowAt(context_->file, mark_, path_, what);
+    ThrowAt(context_->FileOf(path_), mark_, path_, what);
   }
 
-  /// Requires a map whose keys are all in `known`, each at most once.
-  void CheckKeys(std::vector<std::string_view> known) const {
-    CheckUntagged("the plain map");
-    if (!node_.IsMap()) Fail(Describe(node_) + " must be a map");
-    std::vector<std::string> seen;
-    for (const auto& entry : node_) {
-      const YAML::Node& key = entry.first;
-      const SourceMark key_mark = ToSourceMark(key.Mark());
-      if (!key.IsScalar()) ThrowAt(context_->file, key_mark, path_, "keys must be plain names");
-      CheckKeyUntagged(key, key_mark);
-      const std::string& name = key.Scalar();
-      if (std::find(known.begin(), known.end(), name) == known.end()) {
-        ThrowAt(context_->file, key_mark, path_,
-                "unknown key '" + name + "' (known: " +
-                    JoinSorted(std::vector<std::string>(known.begin(), known.end())) + ")");
-      }
-      if (std::find(seen.begin(), seen.end(), name) != seen.end()) {
-        ThrowAt(context_->file, key_mark, path_, "duplicate key '" + name + "'");
-      }
-      seen.push_back(name);
-    }
-  }
+  /// Requires a map whose keys are all in the schema's block, each at most once, with
+  /// every required key present. An unknown key's message suggests the nearest known one.
+  /// When collecting errors, every problem is recorded and the known keys stay readable.
+  void CheckKeys() const;
 
   /// The value under `key` of this map (CheckKeys first), or nothing if the key is absent.
-  std::optional<Reader> Find(std::string_view key) const {
-    for (const auto& entry : node_) {
-      if (entry.first.IsScalar() && entry.first.Scalar() == key) {
-        // yaml-cpp puts an empty value's mark on the next token, possibly lines later;
-        // the key is where the user looks.
-        const YAML::Mark& mark = entry.second.IsNull() ? entry.first.Mark() : entry.second.Mark();
-        return Reader(*context_, entry.second, KeyPath(path_, key), ToSourceMark(mark));
-      }
-    }
-    return std::nullopt;
-  }
+  std::optional<Reader> Find(std::string_view key) const;
 
   Reader Child(std::string_view key) const {
     std::optional<Reader> child = Find(key);
-    if (!child) Fail("required key '" + std::string(key) + "' is missing");
+    if (!child) {
+      const schema::Key* known = block_ ? block_->Find(key) : nullptr;
+      if (context_->errors != nullptr && known != nullptr && known->required &&
+          context_->checked.contains(path_)) {
+        throw AlreadyReported();  // by CheckKeys
+      }
+      Fail("required key '" + std::string(key) + "' is missing");
+    }
     return *child;
   }
 
-  std::vector<Reader> Items() const {
-    CheckUntagged("the plain list");
-    if (!node_.IsSequence()) Fail(Describe(node_) + " must be a list");
-    std::vector<Reader> items;
-    for (std::size_t i = 0; i < node_.size(); ++i) {
-      items.emplace_back(*context_, node_[i], ItemPath(path_, i), ToSourceMark(node_[i].Mark()));
+  std::vector<Reader> Items() const;
+
+  /// Runs `body` for each entry of this list; when collecting errors, an entry that fails
+  /// is recorded and the next one read.
+  template <class Body>
+  void ForEachItem(Body&& body) const {
+    const std::vector<Reader> items = Items();
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      context_->Attempt([&] { body(items[i], i); });
     }
-    return items;
+  }
+
+  /// Runs `body`; when collecting errors, records what it throws (see ParseContext).
+  template <class Body>
+  bool Attempt(Body&& body) const {
+    return context_->Attempt(std::forward<Body>(body));
   }
 
   template <class T>
@@ -182,20 +211,35 @@ class Reader {
   void CheckUntagged(std::string_view plain) const {
     // A --set value was checked, with its own text, when it was applied.
     if (overridden_) return;
-    if (const std::optional<std::string> tag = ExplicitTag(node_, context_->text)) {
+    if (const std::optional<std::string> tag = ExplicitTag(node_, context_->TextOf(path_))) {
       Fail("tagged value '" + *tag + "' (tags are not accepted; write " + std::string(plain) + ")");
     }
   }
 
+  /// A key the schema marks required (a ContractError otherwise: the schema and the loader
+  /// must agree). When collecting errors, a bad value is recorded and T{} returned.
   template <class T>
   T Required(std::string_view key) const {
-    return Child(key).As<T>();
+    if (block_ != nullptr) {
+      const schema::Key* known = block_->Find(key);
+      if (known == nullptr || !known->required) {
+        throw ContractError("the loader requires '" + KeyPath(path_, key) +
+                            "' but the schema does not");
+      }
+    }
+    T value{};
+    context_->Attempt([&] { value = Child(key).As<T>(); });
+    return value;
   }
 
+  /// The value if the key is present (and readable, when collecting errors).
   template <class T>
   std::optional<T> Maybe(std::string_view key) const {
-    if (std::optional<Reader> child = Find(key)) return child->As<T>();
-    return std::nullopt;
+    std::optional<T> value;
+    context_->Attempt([&] {
+      if (std::optional<Reader> child = Find(key)) value = child->As<T>();
+    });
+    return value;
   }
 
   /// Overwrites `field` (which holds the default) if the key is present.
@@ -205,13 +249,14 @@ class Reader {
   }
 
  private:
-  void CheckKeyUntagged(const YAML::Node& key, SourceMark key_mark) const {
-    if (overridden_) return;
-    if (const std::optional<std::string> tag = ExplicitTag(key, context_->text)) {
-      ThrowAt(context_->file, key_mark, path_,
-              "tagged key '" + *tag + "' (tags are not accepted; write the plain name)");
-    }
-  }
+  // A key's name, checked: a plain scalar without a tag. Throws at the key.
+  std::string KeyName(const YAML::Node& key) const;
+  // Where the key `name` of this map was written.
+  [[noreturn]] void FailAtKey(const YAML::Node& key, const std::string& name,
+                              const std::string& what) const;
+  // The reader of a value under `key` (this map's schema entry for it, if any).
+  Reader Under(const YAML::Node& value, std::string path, SourceMark mark,
+               const schema::Key* key) const;
 
   // A plain scalar (not quoted) that yaml-cpp's own conversion accepts.
   template <class T>
@@ -224,11 +269,17 @@ class Reader {
     return value;
   }
 
+  // The schema's range and choices for a value of the key this reader is under.
+  void CheckRange(double value) const;
+  void CheckChoice(const std::string& value) const;
+
   const ParseContext* context_;
   YAML::Node node_;
   std::string path_;
   SourceMark mark_;
   bool overridden_ = false;
+  const schema::Block* block_ = nullptr;  // this map's keys
+  const schema::Key* key_ = nullptr;      // the key this value (or list entry) is under
 };
 
 template <>

@@ -1,6 +1,7 @@
 // moorsim command-line entry point: wires the subcommands and turns errors into one line
 // on stderr with exit code 2 (bad input) or 1 (a run that failed).
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -71,7 +72,9 @@ int main(int argc, char** argv) {
     }
     return 2;
   } catch (const moorsim::InputError& e) {
-    std::cerr << "moorsim: " << e.what() << "\n";
+    // One located line per problem (a scenario reports all of its errors at once).
+    std::istringstream lines(e.what());
+    for (std::string line; std::getline(lines, line);) std::cerr << "moorsim: " << line << "\n";
     return 2;
   } catch (const std::exception& e) {
     std::cerr << "moorsim: " << e.what() << "\n";

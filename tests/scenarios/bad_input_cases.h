@@ -177,11 +177,9 @@ struct BadInput {
 inline void PrintTo(const BadInput& input, std::ostream* out) { *out << input.name; }
 inline const BadInput kParseErrors[] = {
     {"UnknownKeyInLine", "- id: 2", "length: 2250", "lenght: 2250", "lenght",
-     "mooring.lines[2]: unknown key 'lenght' (known: anchor, fairlead, id, length, segments, "
-     "type)"},
+     "mooring.lines[2]: unknown key 'lenght' (did you mean 'length'?)"},
     {"UnknownTopLevelSection", "", "solver:\n", "vessels: {}\nsolver:\n", "vessels",
-     "unknown key 'vessels' (known: controller, detection, detectors, environment, failure, "
-     "mooring, name, sensors, simulation, solver, vessel)"},
+     "unknown key 'vessels' (did you mean 'vessel'?)"},
     {"UnknownKeyInFlowMap", "", "gravity: 9.81", "gravity: 9.81, salinity: 35", "salinity",
      "mooring.water: unknown key 'salinity' (known: density, depth, gravity)"},
     {"DuplicateKey", "- name: chain", "diameter: 0.08\n", "diameter: 0.08\n      diameter: 0.09\n",
@@ -216,13 +214,12 @@ inline const BadInput kParseErrors[] = {
      "profile:", "\n      - {depth: 0, speed: 0.2}\n      - {depth: 500, speed: 0.1}", " []", "[]",
      "mooring.current.profile: [] must hold at least one {depth, speed} point"},
     {"CurrentDirectionInRadians", "", "direction_deg: 90", "direction: 1.57",
-     "direction:", "mooring.current: unknown key 'direction' (known: direction_deg, profile)"},
+     "direction:", "mooring.current: unknown key 'direction' (did you mean 'direction_deg'?)"},
     {"SecondDocument", "", "linear_solver: klu\n", "linear_solver: klu\n---\nname: other\n",
      "name: other", "a scenario file holds one YAML document; this is a second one"},
     // The coupled-simulation sections (issue 3).
     {"VesselUnknownKey", "vessel:", "mass: 1.0041e8", "mas: 1.0041e8", "mas",
-     "vessel: unknown key 'mas' (known: centre_of_gravity, damping, hull, hydrodynamics, "
-     "initial_pose, length_scale, mass, radii_of_gyration, thrusters, turret, windage)"},
+     "vessel: unknown key 'mas' (did you mean 'mass'?)"},
     {"HullUnknownKey", "hull:", "beam: 44", "breadth: 44", "breadth",
      "vessel.hull: unknown key 'breadth' (known: beam, cross_flow_drag_coefficient, "
      "displaced_volume, draught, form_factor, kinematic_viscosity, length, wetted_surface)"},
@@ -537,7 +534,7 @@ inline const BadInput kValidationErrors[] = {
      "about 2e6 N)"},
     {"ThrusterMinThrustHuge", "name: aft_port", "min_thrust: -6.0e5", "min_thrust: -6.0e9",
      "-6.0e9",
-     "vessel.thrusters[1].min_thrust: -6e+09 N must be in [-1e+08, 0] (the largest thrusters "
+     "vessel.thrusters[1].min_thrust: -6e+09 N must be >= -1e+08 (the largest thrusters "
      "give about 2e6 N)"},
     {"ThrusterWeightHuge", "name: aft_port", "weight: 1", "weight: 1e7", "1e7",
      "vessel.thrusters[1].weight: 1e+07 must be <= 1e+06"},
@@ -591,7 +588,7 @@ inline const BadInput kValidationErrors[] = {
     {"GyroRateAboveOneKilohertz", "gyro:", "rate_hz: 1", "rate_hz: 1e6", "rate_hz: ^1e6",
      "sensors.gyro.rate_hz: 1e+06 Hz must be <= 1000"},
     {"CellFaultModeUnknown", "faults:", "mode: drift", "mode: broken", "mode: ^broken",
-     "sensors.tension_cells.faults[1].mode: 'broken' is not a cell fault (known: dead, drift, "
+     "sensors.tension_cells.faults[1].mode: unknown cell fault 'broken' (known: dead, drift, "
      "stuck)"},
     {"CellFaultLineBeyondTheMooring", "faults:", "line: 3", "line: 9", "line: ^9",
      "sensors.tension_cells.faults[1].line: 9 must be in 1..3"},
@@ -683,9 +680,7 @@ inline const BadInput kValidationErrors[] = {
      "bias_time_constant: [1000, 0, 1000]", "bias_time_constant: [1000, ^0",
      "detection.model.bias_time_constant[2]: 0 s must be > 0"},
     {"DetectionModelUnknownKey", "detection:", "force_noise:", "force_noises:", "^force_noises:",
-     "detection.model: unknown key 'force_noises' (known: bias_std, bias_time_constant, "
-     "force_noise, "
-     "mooring_damping_ratio, wave_motion_std)"},
+     "detection.model: unknown key 'force_noises' (did you mean 'force_noise'?)"},
     {"SimulationDurationZero", "simulation:", "duration: 1000", "duration: 0", "duration: ^0",
      "simulation.duration: 0 s must be > 0"},
     {"SimulationDurationHuge", "simulation:", "duration: 1000", "duration: 2e7", "2e7",

@@ -280,7 +280,7 @@ std::vector<CampaignError> Errors() {
   const std::string& b = kCampaign;
   return {
       {"UnknownTopKey", Replace(b, "seed: 11", "seed: 11\nseeds: 3"), "seeds: 3",
-       "unknown key 'seeds' (known: blocks, name, scenario, seed, set)"},
+       "unknown key 'seeds' (did you mean 'seed'?)"},
       {"MissingSeed", Replace(b, "seed: 11\n", ""), "name: test", "required key 'seed' is missing"},
       {"NegativeSeed", Replace(b, "seed: 11", "seed: -1"), "-1",
        "seed: -1 must be a non-negative integer"},
@@ -336,9 +336,7 @@ std::vector<CampaignError> Errors() {
       {"FunctionUnknown",
        Replace(b, "{key: failure.time, uniform: [100, 200]}",
                "{key: failure.time, follows: failure.line, function: tan}"),
-       "tan}",
-       "blocks[1].factors[3].function: 'tan' must be cos or sin (of the followed value "
-       "in degrees)"},
+       "tan}", "blocks[1].factors[3].function: unknown function 'tan' (known: cos, sin)"},
       {"ScaleAlone", Replace(b, "uniform: [100, 200]}", "uniform: [100, 200], scale: 2}"), "2}",
        "blocks[1].factors[3].scale: scale goes with follows"},
       {"ScaleNotFinite",
@@ -373,7 +371,7 @@ std::vector<CampaignError> Errors() {
        "blocks[1].factors: combine: zip needs lists of one length: "
        "'environment.current.profile[1].speed' has 2 values, 'failure.line' 3"},
       {"Combine", Replace(b, "seeds: 2\n", "combine: cross\n    seeds: 2\n"), "cross",
-       "blocks[1].combine: 'cross' must be grid or zip"},
+       "blocks[1].combine: unknown combination 'cross' (known: grid, zip)"},
       {"SeedsZero", Replace(b, "seeds: 2", "seeds: 0"), "0\n  - name: intact",
        "blocks[1].seeds: 0 must be in [1, 10000000] (or {from: A, to: B})"},
       {"SeedsBackwards", Replace(b, "{from: 5, to: 7}", "{from: 7, to: 5}"), "5}",

@@ -349,8 +349,11 @@ TEST(BadScenarioText, CurrentDepthsAndSpeedsDifferInNumber) {
 TEST(BadScenarioText, ValuesWithoutPositionAreNamedByPathOnly) {
   Scenario s = ParseScenario(kBase, "test.yaml");
   s.marks.clear();
-  s.mooring.lines[2].segments = 1;
-  EXPECT_EQ(ValidateError(s), "test.yaml: mooring.lines[3].segments: 1 must be in 2..10000");
+  s.failure = {};
+  s.mooring.lines[2].length = 100.0;
+  EXPECT_EQ(ValidateError(s),
+            "test.yaml: mooring.lines[3].length: 100 m is shorter than the anchor-fairlead "
+            "distance 2168.2 m");
 }
 
 // ---------------------------------------------------------------------------------------

@@ -1,0 +1,1150 @@
+#include "scenarios/schema.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "scenarios/scenario.h"
+#include "scenarios/strict_yaml.h"
+
+// The tables name only the members a key sets (designated initializers); the rest keep
+// Key's defaults on purpose. GCC 12 warns for every member left out.
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+
+namespace moorsim::scenarios::schema {
+namespace {
+
+// ---------------------------------------------------------------------------------------
+// Defaults: JSON text of a spec struct's member, so the schema shows what the loader uses.
+
+std::string Json(double value) { return strict_yaml::Number(value); }
+std::string Json(int value) { return std::to_string(value); }
+std::string Json(std::uint64_t value) { return std::to_string(value); }
+std::string Json(bool value) { return value ? "true" : "false"; }
+std::string Json(const std::string& value) { return nlohmann::json(value).dump(); }
+std::string Json(const Vec3& v) {
+  return "[" + Json(v.x()) + ", " + Json(v.y()) + ", " + Json(v.z()) + "]";
+}
+
+// A default read from a spec struct's member: `+[] { return Json(<expression>); }`.
+#define MOORSIM_DEFAULT(expression) (+[]() -> std::string { return Json(expression); })
+
+// ---------------------------------------------------------------------------------------
+// Physical bounds. Beyond them a value is a typo or a unit mistake (a mass in tonnes, a
+// period in minutes, 1e308) that would otherwise overflow or stall the solvers deep in a
+// run.
+
+constexpr double kMaxDepth = 12000.0;          // [m]
+constexpr double kMaxLineLength = 20000.0;     // [m]
+constexpr double kMaxCoefficient = 10.0;       // drag, added-mass, friction: of order 1
+constexpr double kMaxTime = 1e7;               // [s], 116 days: run lengths, time constants
+constexpr double kMaxRate = 1000.0;            // [Hz]: sample and output rates
+constexpr double kMaxOffset = 1e5;             // [m]: vessel positions in the field
+constexpr double kMaxBodyCoordinate = 1000.0;  // [m]: points on the vessel
+
+constexpr std::string_view kDepthWhy = "the deepest ocean is 11 km";
+constexpr std::string_view kCoefficientWhy = "a dimensionless coefficient, of order 1";
+constexpr std::string_view kVesselPointWhy = "a point on the vessel";
+constexpr std::string_view kThrustWhy = "the largest thrusters give about 2e6 N";
+
+constexpr Bound Above(double v) { return {v, true, {}}; }
+constexpr Bound AtLeast(double v, std::string_view why = {}) { return {v, false, why}; }
+constexpr Bound Below(double v, std::string_view why = {}) { return {v, true, why}; }
+constexpr Bound AtMost(double v, std::string_view why = {}) { return {v, false, why}; }
+
+// Keys of one common shape.
+constexpr Key Positive(std::string_view name, std::string_view unit, double high,
+                       std::string_view description, std::string_view why = {}) {
+  return {.name = name,
+          .unit = unit,
+          .description = description,
+          .minimum = Above(0.0),
+          .maximum = AtMost(high, why)};
+}
+constexpr Key NonNegative(std::string_view name, std::string_view unit, double high,
+                          std::string_view description, std::string_view why = {}) {
+  return {.name = name,
+          .unit = unit,
+          .description = description,
+          .minimum = AtLeast(0.0),
+          .maximum = AtMost(high, why)};
+}
+constexpr Key Probability(std::string_view name, std::string_view description) {
+  return {.name = name,
+          .description = description,
+          .minimum = AtLeast(0.0),
+          .maximum = Below(1.0),
+          .interval = true};
+}
+constexpr Key Angle(std::string_view name, std::string_view description, bool required) {
+  return {.name = name,
+          .unit = "deg",
+          .description = description,
+          .required = required,
+          .minimum = AtLeast(-360.0),
+          .maximum = AtMost(360.0),
+          .interval = true};
+}
+constexpr Key Rate(std::string_view name, std::string_view description) {
+  return Positive(name, "Hz", kMaxRate, description);
+}
+constexpr Key Map(std::string_view name, const Block& block, std::string_view description,
+                  bool required = false) {
+  return {.name = name,
+          .kind = Kind::kMap,
+          .description = description,
+          .required = required,
+          .block = &block};
+}
+constexpr Key List(std::string_view name, const Block& block, std::string_view description,
+                   bool required = false, int min_items = 0) {
+  return {.name = name,
+          .kind = Kind::kList,
+          .description = description,
+          .required = required,
+          .block = &block,
+          .min_items = min_items};
+}
+
+// Chained settings.
+constexpr Key Required(Key key) {
+  key.required = true;
+  return key;
+}
+constexpr Key WithDefault(Key key, std::string (*json)()) {
+  key.default_json = json;
+  return key;
+}
+
+// ---------------------------------------------------------------------------------------
+// mooring
+
+constexpr Key kWaterKeys[] = {
+    WithDefault({.name = "density",
+                 .unit = "kg/m^3",
+                 .description = "Sea water density.",
+                 .minimum = AtLeast(900.0),
+                 .maximum = AtMost(1100.0, "water: fresh 1000, sea about 1025"),
+                 .interval = true},
+                MOORSIM_DEFAULT(Water{}.density)),
+    Required(Positive("depth", "m", kMaxDepth, "Water depth: the flat seabed's z (NED, down).",
+                      kDepthWhy)),
+    WithDefault({.name = "gravity",
+                 .unit = "m/s^2",
+                 .description = "Acceleration of gravity.",
+                 .minimum = AtLeast(9.7),
+                 .maximum = AtMost(9.9, "Earth's gravity"),
+                 .interval = true},
+                MOORSIM_DEFAULT(Water{}.gravity)),
+};
+constexpr Block kWater{"The water and the flat seabed's depth.", kWaterKeys};
+
+constexpr Key kSeabedKeys[] = {
+    WithDefault(Positive("contact_smoothing", "m", 10.0,
+                         "Penetration over which the contact stiffness ramps up (smooth contact)."),
+                MOORSIM_DEFAULT(Seabed{}.contact_smoothing)),
+    WithDefault(
+        NonNegative("damping", "N s/m^3", 1e10, "Contact damping per unit of contact area."),
+        MOORSIM_DEFAULT(Seabed{}.damping)),
+    WithDefault(Positive("friction_velocity", "m/s", 10.0,
+                         "Sliding speed below which Coulomb friction is regularised."),
+                MOORSIM_DEFAULT(Seabed{}.friction_velocity)),
+    WithDefault(
+        Positive("stiffness", "N/m^3", 1e10, "Penalty contact stiffness per unit of contact area.",
+                 "stiffer than rock"),
+        MOORSIM_DEFAULT(Seabed{}.stiffness)),
+};
+constexpr Block kSeabed{"Penalty contact with the seabed (smooth, regularised friction).",
+                        kSeabedKeys};
+
+constexpr Key kCurrentPointKeys[] = {
+    Required(NonNegative("depth", "m", kMaxDepth, "Depth of the point; strictly increasing.",
+                         kDepthWhy)),
+    Required(NonNegative("speed", "m/s", 5.0, "Current speed at that depth.",
+                         "the strongest ocean currents run at about 2.5 m/s")),
+};
+constexpr Block kCurrentPoint{"One point of the current profile.", kCurrentPointKeys};
+
+constexpr Key kCurrentKeys[] = {
+    Angle("direction_deg", "Direction the water flows TOWARD, from north, clockwise (east = 90).",
+          true),
+    List("profile", kCurrentPoint,
+         "Speed against depth, piecewise linear, held constant beyond the end points.", true, 1),
+};
+constexpr Block kCurrent{"A steady current; omitted = no current.", kCurrentKeys};
+
+constexpr Key kLineTypeKeys[] = {
+    {.name = "added_mass_normal",
+     .description = "Added-mass coefficient C_MN.",
+     .required = true,
+     .minimum = AtLeast(0.0),
+     .maximum = AtMost(kMaxCoefficient, kCoefficientWhy)},
+    NonNegative("axial_damping", "N s", 1e10,
+                "Axial damping c (force = c x strain rate); not with axial_damping_ratio."),
+    {.name = "axial_damping_ratio",
+     .description = "Fraction of one segment's critical axial damping; not with axial_damping. "
+                    "Neither given = 0.5.",
+     .minimum = AtLeast(0.0),
+     .maximum = AtMost(10.0),
+     .interval = true},
+    Required(Positive("axial_stiffness", "N", 1e11, "Axial stiffness EA.",
+                      "a solid steel bar 0.8 m thick")),
+    Required(Positive("diameter", "m", 1.0, "Hydrodynamic and displacement diameter.",
+                      "the thickest mooring lines are about 0.3 m")),
+    {.name = "drag_normal",
+     .description = "Normal drag coefficient C_DN.",
+     .required = true,
+     .minimum = AtLeast(0.0),
+     .maximum = AtMost(kMaxCoefficient, kCoefficientWhy)},
+    {.name = "drag_tangential",
+     .description = "Tangential drag coefficient C_DT.",
+     .required = true,
+     .minimum = AtLeast(0.0),
+     .maximum = AtMost(kMaxCoefficient, kCoefficientWhy)},
+    WithDefault({.name = "friction_axial",
+                 .description = "Seabed Coulomb friction coefficient along the line.",
+                 .minimum = AtLeast(0.0),
+                 .maximum = AtMost(kMaxCoefficient, kCoefficientWhy)},
+                MOORSIM_DEFAULT(mooring_fem::LineType{}.friction_axial)),
+    WithDefault({.name = "friction_lateral",
+                 .description = "Seabed Coulomb friction coefficient across the line.",
+                 .minimum = AtLeast(0.0),
+                 .maximum = AtMost(kMaxCoefficient, kCoefficientWhy)},
+                MOORSIM_DEFAULT(mooring_fem::LineType{}.friction_lateral)),
+    {.name = "mass_per_length",
+     .unit = "kg/m",
+     .description = "Dry mass per unit length; more than the water it displaces.",
+     .required = true,
+     .maximum = AtMost(10000.0, "the heaviest chains weigh about 1000 kg/m")},
+    {.name = "name",
+     .kind = Kind::kString,
+     .description = "Unique name that lines refer to in their `type`.",
+     .required = true},
+};
+constexpr Block kLineType{"A line type: the cable's properties.", kLineTypeKeys};
+
+constexpr Key kDefaultsKeys[] = {
+    WithDefault({.name = "segments",
+                 .kind = Kind::kInteger,
+                 .description = "Segments per line unless the line says otherwise.",
+                 .minimum = AtLeast(2.0),
+                 .maximum = AtMost(10000.0)},
+                MOORSIM_DEFAULT(LineDefaults{}.segments)),
+};
+constexpr Block kDefaults{"Values that apply to every line unless it says otherwise.",
+                          kDefaultsKeys};
+
+constexpr Key kLineKeys[] = {
+    {.name = "anchor",
+     .kind = Kind::kVector,
+     .unit = "m",
+     .description = "Anchor, Earth frame NED (z down: on a 1000 m seabed z = +1000).",
+     .required = true},
+    {.name = "fairlead",
+     .kind = Kind::kVector,
+     .unit = "m",
+     .description = "Fairlead, body frame (x forward, y starboard, z down).",
+     .required = true,
+     .minimum = AtLeast(-kMaxBodyCoordinate),
+     .maximum = AtMost(kMaxBodyCoordinate, kVesselPointWhy),
+     .interval = true},
+    {.name = "id",
+     .kind = Kind::kInteger,
+     .description = "Line number, 1..N in any order; default: the position in the list."},
+    Required(Positive("length", "m", kMaxLineLength,
+                      "Unstretched length; the line must reach its fairlead without lying slack.")),
+    {.name = "segments",
+     .kind = Kind::kInteger,
+     .description = "Number of segments; default mooring.defaults.segments.",
+     .minimum = AtLeast(2.0),
+     .maximum = AtMost(10000.0)},
+    {.name = "type", .kind = Kind::kString, .description = "A line_types name.", .required = true},
+};
+constexpr Block kLine{"One mooring line.", kLineKeys};
+
+constexpr Key kMooringKeys[] = {
+    Map("current", kCurrent, "A steady current (or give it under environment.current)."),
+    Map("defaults", kDefaults, "Values that apply to every line unless it says otherwise."),
+    List("line_types", kLineType, "The cable types the lines use.", true),
+    List("lines", kLine, "The mooring lines, numbered 1..N.", true),
+    Map("seabed", kSeabed, "Seabed contact and friction."),
+    Map("water", kWater, "Water density, gravity and depth.", true),
+};
+constexpr Block kMooring{"The mooring: water, seabed, line types and lines.", kMooringKeys};
+
+// ---------------------------------------------------------------------------------------
+// solver
+
+constexpr std::string_view kLinearSolvers[] = {"block", "klu"};
+
+constexpr Key kSolverKeys[] = {
+    WithDefault(Positive("atol_position", "m", 1.0, "Absolute tolerance of positions."),
+                MOORSIM_DEFAULT(SolverSpec{}.atol_position)),
+    WithDefault(Positive("atol_velocity", "m/s", 1.0, "Absolute tolerance of velocities."),
+                MOORSIM_DEFAULT(SolverSpec{}.atol_velocity)),
+    WithDefault({.name = "linear_solver",
+                 .kind = Kind::kString,
+                 .description = "Newton solver: block (the mooring's block structure) or klu "
+                                "(general sparse LU).",
+                 .choices = kLinearSolvers,
+                 .choice_noun = "linear solver"},
+                MOORSIM_DEFAULT(SolverSpec{}.linear_solver)),
+    WithDefault({.name = "max_order",
+                 .kind = Kind::kInteger,
+                 .description = "Highest BDF order (orders above 2 are not A-stable).",
+                 .minimum = AtLeast(1.0),
+                 .maximum = AtMost(5.0)},
+                MOORSIM_DEFAULT(SolverSpec{}.max_order)),
+    WithDefault({.name = "max_step",
+                 .unit = "s",
+                 .description = "Longest step; 0 = no limit.",
+                 .minimum = AtLeast(0.0, "0 = no limit"),
+                 .maximum = AtMost(kMaxTime)},
+                MOORSIM_DEFAULT(SolverSpec{}.max_step)),
+    WithDefault({.name = "max_steps",
+                 .kind = Kind::kInteger,
+                 .description = "Steps allowed between two stops before the solver gives up.",
+                 .minimum = AtLeast(1.0),
+                 .maximum = AtMost(1e8)},
+                MOORSIM_DEFAULT(SolverSpec{}.max_steps)),
+    WithDefault({.name = "rtol",
+                 .description = "Relative tolerance.",
+                 .minimum = Above(0.0),
+                 .maximum = Below(1.0),
+                 .interval = true},
+                MOORSIM_DEFAULT(SolverSpec{}.rtol)),
+    WithDefault({.name = "stability_limit_detection",
+                 .kind = Kind::kBoolean,
+                 .description = "CVODE's BDF stability-limit detection."},
+                MOORSIM_DEFAULT(SolverSpec{}.stability_limit_detection)),
+};
+constexpr Block kSolver{"Integrator settings (CVODE BDF).", kSolverKeys};
+
+// ---------------------------------------------------------------------------------------
+// vessel
+
+constexpr Key kDampingKeys[] = {
+    WithDefault(Probability("heave_ratio", "Heave damping, fraction of critical."),
+                MOORSIM_DEFAULT(LowFrequencyDampingSpec{}.heave_ratio)),
+    WithDefault(Probability("pitch_ratio", "Pitch damping, fraction of critical."),
+                MOORSIM_DEFAULT(LowFrequencyDampingSpec{}.pitch_ratio)),
+    WithDefault(Probability("roll_ratio", "Roll damping, fraction of critical."),
+                MOORSIM_DEFAULT(LowFrequencyDampingSpec{}.roll_ratio)),
+    WithDefault(Positive("surge_time", "s", kMaxTime, "Surge damping time: B_11 = (M + A)_11 / T."),
+                MOORSIM_DEFAULT(LowFrequencyDampingSpec{}.surge_time)),
+    WithDefault(Positive("sway_time", "s", kMaxTime, "Sway damping time: B_22 = (M + A)_22 / T."),
+                MOORSIM_DEFAULT(LowFrequencyDampingSpec{}.sway_time)),
+    WithDefault(Positive("yaw_time", "s", kMaxTime, "Yaw damping time: B_66 = (M + A)_66 / T."),
+                MOORSIM_DEFAULT(LowFrequencyDampingSpec{}.yaw_time)),
+};
+constexpr Block kDamping{"Low-frequency hull damping.", kDampingKeys};
+
+constexpr Key Offset(std::string_view name, std::string_view description) {
+  return {.name = name,
+          .unit = "m",
+          .description = description,
+          .minimum = AtLeast(-kMaxOffset),
+          .maximum = AtMost(kMaxOffset),
+          .interval = true};
+}
+
+constexpr Key kPoseKeys[] = {
+    Angle("heading_deg", "Heading, from north, clockwise.", false),
+    Offset("x", "North position."),
+    Offset("y", "East position."),
+};
+constexpr Block kPose{"Low-frequency start; heave, roll and pitch start at the moored equilibrium.",
+                      kPoseKeys};
+
+constexpr Key BodyCoordinate(std::string_view name, std::string_view description) {
+  return {.name = name,
+          .unit = "m",
+          .description = description,
+          .required = true,
+          .minimum = AtLeast(-kMaxBodyCoordinate),
+          .maximum = AtMost(kMaxBodyCoordinate, kVesselPointWhy),
+          .interval = true};
+}
+
+constexpr Key kThrusterKeys[] = {
+    Angle("angle_deg", "Thrust direction from the bow toward starboard.", false),
+    WithDefault({.name = "azimuth",
+                 .kind = Kind::kBoolean,
+                 .description = "true: the allocation chooses the direction."},
+                MOORSIM_DEFAULT(ThrusterEntry{}.azimuth)),
+    Required(Positive("max_thrust", "N", 1e8, "Largest thrust ahead.", kThrustWhy)),
+    WithDefault({.name = "min_thrust",
+                 .unit = "N",
+                 .description = "Largest thrust astern, as a negative number (or 0).",
+                 .minimum = AtLeast(-1e8, kThrustWhy),
+                 .maximum = AtMost(0.0)},
+                MOORSIM_DEFAULT(ThrusterEntry{}.min_thrust)),
+    {.name = "name", .kind = Kind::kString, .description = "Unique name.", .required = true},
+    WithDefault(NonNegative("rate_limit", "N/s", 1e9, "Rate limit of the command; 0 = none."),
+                MOORSIM_DEFAULT(ThrusterEntry{}.rate_limit)),
+    WithDefault(Positive("time_constant", "s", 1000.0, "First-order thrust response."),
+                MOORSIM_DEFAULT(ThrusterEntry{}.time_constant)),
+    WithDefault(Positive("weight", "", 1e6, "Allocation weight."),
+                MOORSIM_DEFAULT(ThrusterEntry{}.weight)),
+    BodyCoordinate("x", "Position, body frame (forward)."),
+    BodyCoordinate("y", "Position, body frame (starboard)."),
+};
+constexpr Block kThruster{"One thruster.", kThrusterKeys};
+
+constexpr Key kHullKeys[] = {
+    WithDefault(Positive("beam", "m", kMaxBodyCoordinate, "Beam B."),
+                MOORSIM_DEFAULT(HullSpec{}.beam)),
+    WithDefault(NonNegative("cross_flow_drag_coefficient", "", kMaxCoefficient,
+                            "Cross-flow drag C_d2D; 0 = Hoerner's curve at beam / (2 draught).",
+                            kCoefficientWhy),
+                MOORSIM_DEFAULT(HullSpec{}.cross_flow_drag_coefficient)),
+    WithDefault({.name = "displaced_volume",
+                 .unit = "m^3",
+                 .description = "Displaced volume, at most length x beam x draught.",
+                 .minimum = Above(0.0)},
+                MOORSIM_DEFAULT(HullSpec{}.displaced_volume)),
+    WithDefault(Positive("draught", "m", kMaxBodyCoordinate, "Draught T."),
+                MOORSIM_DEFAULT(HullSpec{}.draught)),
+    {.name = "form_factor",
+     .description = "k of (1 + k) C_F; omitted = Watanabe's regression from the hull's "
+                    "dimensions.",
+     .minimum = Above(-1.0),
+     .maximum = AtMost(kMaxCoefficient, "k of (1 + k) C_F; ships 0.1 to 0.5"),
+     .interval = true},
+    WithDefault({.name = "kinematic_viscosity",
+                 .unit = "m^2/s",
+                 .description = "Kinematic viscosity of the water.",
+                 .minimum = AtLeast(1e-7),
+                 .maximum = AtMost(1e-5, "water: 1.8e-6 at 0 deg C, 0.7e-6 at 40 deg C"),
+                 .interval = true},
+                MOORSIM_DEFAULT(HullSpec{}.kinematic_viscosity)),
+    WithDefault(Positive("length", "m", kMaxBodyCoordinate, "Length between perpendiculars L."),
+                MOORSIM_DEFAULT(HullSpec{}.length)),
+    WithDefault(NonNegative("wetted_surface", "m^2", 1e6,
+                            "Wetted surface; 0 = the Denny-Mumford estimate."),
+                MOORSIM_DEFAULT(HullSpec{}.wetted_surface)),
+};
+constexpr Block kHull{"The hull for the current load; omitted = the seed FPSO's.", kHullKeys};
+
+constexpr Key kWindageKeys[] = {
+    WithDefault({.name = "air_density",
+                 .unit = "kg/m^3",
+                 .description = "Air density.",
+                 .minimum = AtLeast(1.0),
+                 .maximum = AtMost(1.5, "air: 1.226 at sea level and 15 deg C"),
+                 .interval = true},
+                MOORSIM_DEFAULT(WindageSpec{}.air_density)),
+    WithDefault(Positive("frontal_area", "m^2", 1e6, "Projected area seen from ahead."),
+                MOORSIM_DEFAULT(WindageSpec{}.frontal_area)),
+    WithDefault(Positive("lateral_area", "m^2", 1e6, "Projected area seen from the side."),
+                MOORSIM_DEFAULT(WindageSpec{}.lateral_area)),
+    WithDefault({.name = "lateral_centroid",
+                 .unit = "m",
+                 .description = "The lateral area's centroid forward of midship, within half "
+                                "the windage length."},
+                MOORSIM_DEFAULT(WindageSpec{}.lateral_centroid)),
+    Positive("length", "m", kMaxBodyCoordinate, "Length of the yaw moment; omitted = hull.length."),
+};
+constexpr Block kWindage{"Areas above water for the wind load; omitted = the seed FPSO's.",
+                         kWindageKeys};
+
+constexpr std::string_view kBearings[] = {"free", "friction", "locked"};
+
+constexpr Key kTurretKeys[] = {
+    WithDefault({.name = "bearing",
+                 .kind = Kind::kString,
+                 .description = "locked (fixed to the hull), free, or friction.",
+                 .choices = kBearings,
+                 .choice_noun = "turret bearing"},
+                MOORSIM_DEFAULT(TurretSpec{}.bearing)),
+    Positive("bearing_radius", "m", kMaxBodyCoordinate,
+             "friction: lever arm of the friction force; omitted = radius."),
+    WithDefault(NonNegative("damping", "N m s/rad", 1e13, "Viscous bearing moment."),
+                MOORSIM_DEFAULT(TurretSpec{}.damping)),
+    WithDefault(NonNegative("friction_coefficient", "", 1.0,
+                            "friction: Coulomb coefficient of the bearing.",
+                            "a bearing's friction coefficient is about 0.001-0.1"),
+                MOORSIM_DEFAULT(TurretSpec{}.friction_coefficient)),
+    WithDefault(Positive("inertia", "kg m^2", 1e12, "Inertia about its axis."),
+                MOORSIM_DEFAULT(TurretSpec{}.inertia)),
+    Angle("initial_heading_deg",
+          "free / friction: the turret's heading at the start; omitted = the hull's.", false),
+    {.name = "radius",
+     .unit = "m",
+     .description = "Turret radius; omitted = the fairleads' largest distance from the centre.",
+     .minimum = Above(0.0)},
+    WithDefault(
+        Positive("slip_rate", "rad/s", 0.1, "friction: regularisation rate of the Coulomb moment.",
+                 "the regularisation must be far below the rates a turret turns at"),
+        MOORSIM_DEFAULT(TurretSpec{}.slip_rate)),
+    WithDefault({.name = "x", .unit = "m", .description = "Turret centre, body frame."},
+                MOORSIM_DEFAULT(TurretSpec{}.x)),
+    WithDefault({.name = "y", .unit = "m", .description = "Turret centre, body frame."},
+                MOORSIM_DEFAULT(TurretSpec{}.y)),
+};
+constexpr Block kTurret{"The turret that carries the fairleads; omitted = locked at the origin.",
+                        kTurretKeys};
+
+constexpr Key kVesselKeys[] = {
+    WithDefault({.name = "centre_of_gravity",
+                 .kind = Kind::kVector,
+                 .unit = "m",
+                 .description = "Centre of gravity, body frame.",
+                 .minimum = AtLeast(-kMaxBodyCoordinate),
+                 .maximum = AtMost(kMaxBodyCoordinate, kVesselPointWhy),
+                 .interval = true},
+                MOORSIM_DEFAULT(VesselSpec{}.centre_of_gravity)),
+    Map("damping", kDamping, "Low-frequency damping."),
+    Map("hull", kHull, "Hull particulars for the current load."),
+    {.name = "hydrodynamics",
+     .kind = Kind::kString,
+     .description = "WAMIT output stem (.1 and .hst required; .3 .4 .9 optional), relative to "
+                    "this file's folder.",
+     .required = true},
+    Map("initial_pose", kPose, "Low-frequency start."),
+    WithDefault(Positive("length_scale", "m", kMaxBodyCoordinate, "WAMIT ULEN."),
+                MOORSIM_DEFAULT(VesselSpec{}.length_scale)),
+    WithDefault(Positive("mass", "kg", 1e9, "Mass.",
+                         "the largest floating structures displace about 6e8 kg"),
+                MOORSIM_DEFAULT(VesselSpec{}.mass)),
+    WithDefault({.name = "radii_of_gyration",
+                 .kind = Kind::kVector,
+                 .unit = "m",
+                 .description = "Roll, pitch and yaw radii of gyration about the CG.",
+                 .minimum = Above(0.0),
+                 .maximum = AtMost(kMaxBodyCoordinate)},
+                MOORSIM_DEFAULT(VesselSpec{}.radii_of_gyration)),
+    List("thrusters", kThruster, "Thrusters; omitted = the seed layout.", false, 1),
+    Map("turret", kTurret, "The turret."),
+    Map("windage", kWindage, "Areas for the wind load."),
+};
+constexpr Block kVessel{"The 6-DOF vessel.", kVesselKeys};
+
+// ---------------------------------------------------------------------------------------
+// environment
+
+constexpr Key kWavesKeys[] = {
+    WithDefault({.name = "components",
+                 .kind = Kind::kInteger,
+                 .description = "Frequency components (>= 200 keeps Hs within 2 %).",
+                 .minimum = AtLeast(1.0),
+                 .maximum = AtMost(100000.0)},
+                MOORSIM_DEFAULT(WavesSpec{}.components)),
+    Angle("direction_toward_deg", "Mean direction the waves travel TOWARD.", true),
+    WithDefault({.name = "gamma",
+                 .description = "JONSWAP peak enhancement.",
+                 .minimum = AtLeast(1.0),
+                 .maximum = AtMost(10.0),
+                 .interval = true},
+                MOORSIM_DEFAULT(WavesSpec{}.gamma)),
+    Required(
+        Positive("hs", "m", 30.0, "Significant wave height.", "the highest sea states measured")),
+    NonNegative("spreading", "", 100.0, "cos-2s spreading exponent s; omitted = long-crested.",
+                "s = 75 is narrow swell; omit it for long-crested waves"),
+    {.name = "tp",
+     .unit = "s",
+     .description = "Peak period.",
+     .required = true,
+     .minimum = AtLeast(1.0),
+     .maximum = AtMost(40.0, "wind sea and swell"),
+     .interval = true},
+};
+constexpr Block kWaves{"An irregular JONSWAP sea; omitted = calm water.", kWavesKeys};
+
+constexpr Key kWindKeys[] = {
+    WithDefault({.name = "components",
+                 .kind = Kind::kInteger,
+                 .description = "Frequency components of the gust.",
+                 .minimum = AtLeast(1.0),
+                 .maximum = AtMost(100000.0)},
+                MOORSIM_DEFAULT(WindSpec{}.components)),
+    Angle("direction_from_deg", "Where the wind comes FROM (meteorological).", true),
+    WithDefault({.name = "gust",
+                 .kind = Kind::kBoolean,
+                 .description = "NPD (ISO 19901-1) gust spectrum on top of the mean."},
+                MOORSIM_DEFAULT(WindSpec{}.gust)),
+    Required(NonNegative("speed", "m/s", 80.0, "1-hour mean speed at 10 m.",
+                         "above any hurricane's 1-hour mean")),
+};
+constexpr Block kWind{"Wind; omitted = no wind.", kWindKeys};
+
+constexpr Key kEnvironmentKeys[] = {
+    Map("current", kCurrent, "A steady current (or give it under mooring.current)."),
+    WithDefault({.name = "hull_viscous_drag",
+                 .kind = Kind::kBoolean,
+                 .description = "Quadratic hull drag on the velocity relative to the water."},
+                MOORSIM_DEFAULT(EnvironmentSpec{}.hull_viscous_drag)),
+    Map("waves", kWaves, "Irregular waves."),
+    Map("wind", kWind, "Wind."),
+};
+constexpr Block kEnvironment{"Waves, wind and current.", kEnvironmentKeys};
+
+// ---------------------------------------------------------------------------------------
+// controller
+
+constexpr std::string_view kControllerTypes[] = {"none", "observer_pid", "pi"};
+
+constexpr Key kHeadingLoopKeys[] = {
+    Required(Positive("damping_ratio", "", 10.0, "Damping ratio of the heading loop.")),
+    Required(Positive("natural_period", "s", 10000.0, "Natural period of the heading loop.")),
+};
+constexpr Block kHeadingLoop{
+    "pi: yaw gains by pole placement on the yaw inertia and damping (replace kp/ki/kd[3]).",
+    kHeadingLoopKeys};
+
+constexpr Key kSetpointKeys[] = {
+    Angle("heading_deg", "Heading to hold.", true),
+    Required(Offset("x", "North position to hold.")),
+    Required(Offset("y", "East position to hold.")),
+};
+constexpr Block kSetpoint{"Position and heading to hold; omitted = the initial pose.",
+                          kSetpointKeys};
+
+constexpr Key Gains(std::string_view name, std::string_view description, std::string (*json)()) {
+  return {.name = name,
+          .kind = Kind::kVector,
+          .description = description,
+          .minimum = AtLeast(0.0),
+          .maximum = AtMost(1e12),
+          .default_json = json};
+}
+
+constexpr Key kControllerKeys[] = {
+    WithDefault(NonNegative("damping_ratio", "", 10.0, "observer_pid: zeta; 0 = its default."),
+                MOORSIM_DEFAULT(ControllerSpec{}.damping_ratio)),
+    Map("heading", kHeadingLoop, "pi: the heading loop by pole placement."),
+    Gains("kd", "pi: derivative gains [N s/m, N s/m, N m s/rad].",
+          MOORSIM_DEFAULT(ControllerSpec{}.kd)),
+    Gains("ki", "pi: integral gains [N/(m s), N/(m s), N m/(rad s)].",
+          MOORSIM_DEFAULT(ControllerSpec{}.ki)),
+    Gains("kp", "pi: proportional gains [N/m, N/m, N m/rad].",
+          MOORSIM_DEFAULT(ControllerSpec{}.kp)),
+    WithDefault(NonNegative("natural_period", "s", 10000.0,
+                            "observer_pid: 2 pi / omega_n; 0 = its default."),
+                MOORSIM_DEFAULT(ControllerSpec{}.natural_period)),
+    WithDefault(Rate("rate_hz", "Sample rate."), MOORSIM_DEFAULT(ControllerSpec{}.rate)),
+    Map("setpoint", kSetpoint, "Position and heading to hold."),
+    {.name = "type",
+     .kind = Kind::kString,
+     .description = "none, pi or observer_pid.",
+     .required = true,
+     .choices = kControllerTypes,
+     .choice_noun = "controller"},
+};
+constexpr Block kController{"The position-mooring controller.", kControllerKeys};
+
+// ---------------------------------------------------------------------------------------
+// sensors
+
+// One noise channel: its unit and the largest sensible size of its values.
+constexpr std::array<Key, 6> NoiseKeys(std::string_view unit, std::string_view walk_unit,
+                                       double scale, std::string (*std_dev_default)()) {
+  return {{
+      WithDefault(NonNegative("bias_time_constant", "s", kMaxTime,
+                              "Bias time constant; 0 = a random walk."),
+                  MOORSIM_DEFAULT(ChannelNoiseSpec{}.bias_time_constant)),
+      WithDefault(NonNegative("bias_walk", walk_unit, scale, "Bias random-walk intensity."),
+                  MOORSIM_DEFAULT(ChannelNoiseSpec{}.bias_walk)),
+      WithDefault({.name = "initial_bias",
+                   .unit = unit,
+                   .description = "Bias at the start.",
+                   .minimum = AtLeast(-scale),
+                   .maximum = AtMost(scale),
+                   .interval = true},
+                  MOORSIM_DEFAULT(ChannelNoiseSpec{}.initial_bias)),
+      WithDefault(Probability("outlier_probability", "Chance that a sample is an outlier."),
+                  MOORSIM_DEFAULT(ChannelNoiseSpec{}.outlier_probability)),
+      WithDefault(NonNegative("outlier_std_dev", unit, scale, "Standard deviation of outliers."),
+                  MOORSIM_DEFAULT(ChannelNoiseSpec{}.outlier_std_dev)),
+      WithDefault(NonNegative("std_dev", unit, scale, "White-noise standard deviation."),
+                  std_dev_default),
+  }};
+}
+
+constexpr auto kPositionNoiseKeys =
+    NoiseKeys("m", "m/sqrt(s)", 1000.0, MOORSIM_DEFAULT(SensorsSpec{}.north.std_dev));
+constexpr auto kHeadingNoiseKeys = NoiseKeys("rad", "rad/sqrt(s)", std::numbers::pi,
+                                             MOORSIM_DEFAULT(SensorsSpec{}.heading.std_dev));
+constexpr auto kTensionNoiseKeys =
+    NoiseKeys("N", "N/sqrt(s)", 1e8, MOORSIM_DEFAULT(SensorsSpec{}.tension_noise.std_dev));
+constexpr Block kPositionNoise{"Errors of one position channel.", kPositionNoiseKeys};
+constexpr Block kHeadingNoise{"Errors of the heading channel.", kHeadingNoiseKeys};
+constexpr Block kTensionNoise{"Errors of every load cell.", kTensionNoiseKeys};
+
+constexpr Key kGnssKeys[] = {
+    WithDefault(NonNegative("dropout_mean_duration", "s", kMaxTime,
+                            "Mean length of a dropout; 0 = one sample."),
+                MOORSIM_DEFAULT(SensorsSpec{}.gnss_dropout_mean_duration)),
+    WithDefault(
+        Probability("dropout_probability", "Chance per sample of a dropout (x and y together)."),
+        MOORSIM_DEFAULT(SensorsSpec{}.gnss_dropout_probability)),
+    Map("east", kPositionNoise, "East channel."),
+    Map("north", kPositionNoise, "North channel."),
+    WithDefault(Rate("rate_hz", "Sample rate."), MOORSIM_DEFAULT(SensorsSpec{}.gnss_rate)),
+};
+constexpr Block kGnss{"The position sensor.", kGnssKeys};
+
+constexpr Key kGyroKeys[] = {
+    WithDefault(Probability("dropout_probability", "Chance per sample of a dropout."),
+                MOORSIM_DEFAULT(SensorsSpec{}.gyro_dropout_probability)),
+    Map("heading", kHeadingNoise, "Heading channel."),
+    WithDefault(Rate("rate_hz", "Sample rate."), MOORSIM_DEFAULT(SensorsSpec{}.gyro_rate)),
+};
+constexpr Block kGyro{"The heading sensor.", kGyroKeys};
+
+constexpr std::string_view kCellFaults[] = {"dead", "drift", "stuck"};
+
+constexpr Key kCellFaultKeys[] = {
+    {.name = "line",
+     .kind = Kind::kInteger,
+     .description = "The line whose cell goes wrong.",
+     .required = true},
+    {.name = "mode",
+     .kind = Kind::kString,
+     .description = "stuck (repeats its last reading), drift (adds rate x time), dead (reads "
+                    "its noise about zero).",
+     .required = true,
+     .choices = kCellFaults,
+     .choice_noun = "cell fault"},
+    {.name = "rate",
+     .unit = "N/s",
+     .description = "drift: the rate; nonzero.",
+     .minimum = AtLeast(-1e6),
+     .maximum = AtMost(1e6),
+     .interval = true},
+    Required(NonNegative("time", "s", kMaxTime, "When the fault starts.")),
+};
+constexpr Block kCellFault{"A load cell that goes wrong during the run.", kCellFaultKeys};
+
+constexpr Key kTensionCellsKeys[] = {
+    List("faults", kCellFault, "Cells that go wrong during the run."),
+    Map("noise", kTensionNoise, "The cells' errors."),
+    WithDefault(Rate("rate_hz", "Sample rate."), MOORSIM_DEFAULT(SensorsSpec{}.tension_rate)),
+};
+constexpr Block kTensionCells{"Fairlead load cells; omitted = none.", kTensionCellsKeys};
+
+constexpr Key kSensorsKeys[] = {
+    Map("gnss", kGnss, "Position sensor."),
+    Map("gyro", kGyro, "Heading sensor."),
+    Map("tension_cells", kTensionCells, "Fairlead load cells."),
+};
+constexpr Block kSensors{"The sensors the detectors read.", kSensorsKeys};
+
+// ---------------------------------------------------------------------------------------
+// failure, detection, detectors, simulation
+
+constexpr std::string_view kFailureModes[] = {"anchor", "fairlead", "node"};
+
+constexpr Key kFailureKeys[] = {
+    {.name = "arc_length",
+     .unit = "m",
+     .description = "mode node: unstretched length from the anchor (or give node)."},
+    {.name = "line",
+     .kind = Kind::kInteger,
+     .description = "The line that parts (1..N).",
+     .required = true},
+    WithDefault({.name = "mode",
+                 .kind = Kind::kString,
+                 .description = "Where the line parts: fairlead, node or anchor.",
+                 .choices = kFailureModes,
+                 .choice_noun = "failure mode"},
+                MOORSIM_DEFAULT(FailureSpec{}.mode)),
+    {.name = "node",
+     .kind = Kind::kInteger,
+     .description = "mode node: node index from the anchor, 1..segments - 1 (or give "
+                    "arc_length)."},
+    Required(NonNegative("time", "s", kMaxTime, "When it parts; before the end of the run.")),
+};
+constexpr Block kFailure{"A line that parts; omitted = no failure.", kFailureKeys};
+
+constexpr std::string_view kObservers[] = {"ekf", "passive"};
+
+constexpr Key ModelVector(std::string_view name, std::string_view unit,
+                          std::string_view description, Bound minimum, double maximum) {
+  return {.name = name,
+          .kind = Kind::kVector,
+          .unit = unit,
+          .description = description,
+          .minimum = minimum,
+          .maximum = AtMost(maximum)};
+}
+
+constexpr Key kModelKeys[] = {
+    ModelVector("bias_std", "", "Bias force standard deviation per DOF [N, N, N m].", AtLeast(0.0),
+                1e12),
+    ModelVector("bias_time_constant", "s", "Bias time constant per DOF.", Above(0.0), kMaxTime),
+    ModelVector("force_noise", "", "Force noise per DOF [N sqrt(s), N sqrt(s), N m sqrt(s)].",
+                AtLeast(0.0), 1e12),
+    ModelVector("mooring_damping_ratio", "", "Mooring damping per DOF, fraction of critical.",
+                AtLeast(0.0), 10.0),
+    ModelVector("wave_motion_std", "", "Wave-frequency motion per DOF [m, m, rad].", AtLeast(0.0),
+                1000.0),
+};
+constexpr Block kModel{"The observers' disturbance model per DOF; omitted = the defaults.",
+                       kModelKeys};
+
+constexpr Key kDetectionKeys[] = {
+    WithDefault(
+        Positive("measurement_variance", "", 1e4, "The observers' R per DOF [m^2, m^2, rad^2]."),
+        MOORSIM_DEFAULT(DetectionSpec{}.measurement_variance)),
+    Map("model", kModel, "The observers' disturbance model."),
+    WithDefault({.name = "observer",
+                 .kind = Kind::kString,
+                 .description = "ekf (one EKF per hypothesis) or passive (trained).",
+                 .choices = kObservers,
+                 .choice_noun = "observer"},
+                MOORSIM_DEFAULT(DetectionSpec{}.observer)),
+    WithDefault({.name = "pairs",
+                 .kind = Kind::kBoolean,
+                 .description = "Also every pair of failed lines."},
+                MOORSIM_DEFAULT(DetectionSpec{}.pairs)),
+    NonNegative("switch_rate", "1/s", kMaxRate, "ekf: IMM mixing rate; 0 = independent filters."),
+    WithDefault({.name = "training_seed",
+                 .kind = Kind::kCount,
+                 .description = "passive: seed of the training runs."},
+                MOORSIM_DEFAULT(DetectionSpec{}.training_seed)),
+};
+constexpr Block kDetection{"How the hypothesis bank and its observers are built.", kDetectionKeys};
+
+constexpr Key kDetectorKeys[] = {
+    {.name = "label",
+     .kind = Kind::kString,
+     .description = "Unique name in the outputs; default: the type."},
+    {.name = "plugin",
+     .kind = Kind::kString,
+     .description = "Shared library that provides the type, relative to this file's folder."},
+    {.name = "type",
+     .kind = Kind::kString,
+     .description = "Detector type (dht, mle, glr, deficit, or a plugin's).",
+     .required = true},
+};
+constexpr Block kDetector{
+    "One detector: its type and its parameters (numbers; `moorsim run --help` lists them).",
+    kDetectorKeys, true};
+
+constexpr Key kSimulationKeys[] = {
+    WithDefault(Positive("duration", "s", kMaxTime, "Simulated time.", "116 days"),
+                MOORSIM_DEFAULT(SimulationSpec{}.duration)),
+    WithDefault(Rate("output_rate_hz", "run.h5 rows per second."),
+                MOORSIM_DEFAULT(SimulationSpec{}.output_rate)),
+    WithDefault({.name = "seed",
+                 .kind = Kind::kCount,
+                 .description = "Run seed: every random stream derives from it."},
+                MOORSIM_DEFAULT(SimulationSpec{}.seed)),
+};
+constexpr Block kSimulation{"Run length, output rate and seed.", kSimulationKeys};
+
+constexpr Key kScenarioKeys[] = {
+    {.name = "base",
+     .kind = Kind::kString,
+     .description = "A scenario this one starts from (relative to this file's folder); the "
+                    "keys here override its keys, maps merged key by key, lists replaced "
+                    "whole."},
+    Map("controller", kController, "The position-mooring controller."),
+    Map("detection", kDetection, "The hypothesis bank."),
+    {.name = "detectors",
+     .kind = Kind::kList,
+     .description = "Detectors run side by side.",
+     .block = &kDetector},
+    Map("environment", kEnvironment, "Waves, wind and current."),
+    Map("failure", kFailure, "A line that parts."),
+    Map("mooring", kMooring, "The mooring.", true),
+    {.name = "name",
+     .kind = Kind::kString,
+     .description = "Scenario name; default: the file name without extension."},
+    Map("sensors", kSensors, "The sensors."),
+    Map("simulation", kSimulation, "Run length, output rate and seed."),
+    Map("solver", kSolver, "Integrator settings."),
+    Map("vessel", kVessel, "The vessel (needed by run, controller, sensors, failure)."),
+};
+constexpr Block kScenario{"A moorsim scenario.", kScenarioKeys};
+
+// ---------------------------------------------------------------------------------------
+// campaign
+
+constexpr Key kRangeKeys[] = {
+    {.name = "from", .description = "First value.", .required = true},
+    {.name = "step", .description = "Step, > 0.", .required = true},
+    {.name = "to", .description = "Last value (inclusive, within rounding).", .required = true},
+};
+constexpr Block kRange{"Evenly spaced values from `from` to `to`.", kRangeKeys};
+
+constexpr Key kNormalKeys[] = {
+    {.name = "max", .description = "Upper end of the window (draws beyond are repeated)."},
+    {.name = "mean", .description = "Mean.", .required = true},
+    {.name = "min", .description = "Lower end of the window."},
+    {.name = "std_dev", .description = "Standard deviation, > 0.", .required = true},
+};
+constexpr Block kNormal{"A normal draw per run, optionally within [min, max].", kNormalKeys};
+
+constexpr std::string_view kFunctions[] = {"cos", "sin"};
+
+constexpr Key kFactorKeys[] = {
+    {.name = "add",
+     .kind = Kind::kValue,
+     .description = "follows: a number, or [low, high] for a uniform draw, added."},
+    {.name = "choice",
+     .kind = Kind::kList,
+     .description = "A value drawn per run from these.",
+     .item = Kind::kValue,
+     .min_items = 1},
+    {.name = "follows",
+     .kind = Kind::kString,
+     .description = "The key of a factor listed above it whose value this one takes."},
+    {.name = "function",
+     .kind = Kind::kString,
+     .description = "follows: cos or sin of the followed value in degrees, before adding.",
+     .choices = kFunctions,
+     .choice_noun = "function"},
+    {.name = "key",
+     .kind = Kind::kString,
+     .description = "The scenario key path to vary.",
+     .required = true},
+    {.name = "modulo", .description = "follows: reduce the result to [-modulo/2, modulo/2)."},
+    {.name = "normal",
+     .kind = Kind::kMap,
+     .description = "A normal draw per run.",
+     .block = &kNormal},
+    {.name = "range", .kind = Kind::kMap, .description = "Evenly spaced values.", .block = &kRange},
+    {.name = "scale", .description = "follows with function: the factor s of s cos(v)."},
+    {.name = "uniform",
+     .kind = Kind::kList,
+     .description = "[low, high]: a uniform draw per run.",
+     .item = Kind::kNumber,
+     .min_items = 2,
+     .max_items = 2},
+    {.name = "values",
+     .kind = Kind::kList,
+     .description = "The values, in order.",
+     .item = Kind::kValue,
+     .min_items = 1},
+};
+constexpr Block kFactor{"One varied key and how its values come.", kFactorKeys};
+
+constexpr Key kSeedRangeKeys[] = {
+    {.name = "from", .kind = Kind::kCount, .description = "First seed.", .required = true},
+    {.name = "to", .kind = Kind::kCount, .description = "Last seed (inclusive).", .required = true},
+};
+constexpr Block kSeedRange{"These seeds, from `from` to `to`.", kSeedRangeKeys};
+
+constexpr std::string_view kCombines[] = {"grid", "zip"};
+
+constexpr Key kCampaignBlockKeys[] = {
+    {.name = "combine",
+     .kind = Kind::kString,
+     .description = "grid (every combination, the first factor slowest) or zip (the i-th "
+                    "value of each).",
+     .choices = kCombines,
+     .choice_noun = "combination"},
+    {.name = "factors",
+     .kind = Kind::kList,
+     .description = "The keys varied in this block.",
+     .block = &kFactor},
+    {.name = "name",
+     .kind = Kind::kString,
+     .description = "Unique block name: letters, digits, _ and -.",
+     .required = true},
+    {.name = "seeds",
+     .kind = Kind::kValue,
+     .description = "Per point: a count, or {from: A, to: B} for these seeds.",
+     .required = true,
+     .block = &kSeedRange},
+    {.name = "set", .kind = Kind::kValueMap, .description = "Overrides for this block."},
+};
+constexpr Block kCampaignBlock{"A block of runs.", kCampaignBlockKeys};
+
+constexpr Key kCampaignKeys[] = {
+    {.name = "blocks",
+     .kind = Kind::kList,
+     .description = "The blocks of runs.",
+     .required = true,
+     .block = &kCampaignBlock,
+     .min_items = 1},
+    {.name = "name",
+     .kind = Kind::kString,
+     .description = "Campaign name; default: the file name without extension."},
+    {.name = "scenario",
+     .kind = Kind::kString,
+     .description = "The base scenario, relative to this file's folder.",
+     .required = true},
+    {.name = "seed", .kind = Kind::kCount, .description = "The campaign seed.", .required = true},
+    {.name = "set",
+     .kind = Kind::kValueMap,
+     .description = "Overrides for every run: scenario key paths and values."},
+};
+constexpr Block kCampaign{"A moorsim campaign.", kCampaignKeys};
+
+#undef MOORSIM_DEFAULT
+
+// ---------------------------------------------------------------------------------------
+// JSON Schema.
+
+using nlohmann::ordered_json;
+
+std::string Described(const Key& key) {
+  std::string text(key.description);
+  if (!key.unit.empty()) text += " [" + std::string(key.unit) + "]";
+  return text;
+}
+
+void AddBounds(const Key& key, ordered_json& out) {
+  if (key.minimum)
+    out[key.minimum->exclusive ? "exclusiveMinimum" : "minimum"] = key.minimum->value;
+  if (key.maximum)
+    out[key.maximum->exclusive ? "exclusiveMaximum" : "maximum"] = key.maximum->value;
+}
+
+ordered_json BlockSchema(const Block& block);
+
+ordered_json ScalarSchema(Kind kind) {
+  switch (kind) {
+    case Kind::kNumber:
+      return {{"type", "number"}};
+    case Kind::kInteger:
+      return {{"type", "integer"}};
+    case Kind::kCount:
+      return {{"type", "integer"}, {"minimum", 0}};
+    case Kind::kBoolean:
+      return {{"type", "boolean"}};
+    case Kind::kString:
+      return {{"type", "string"}};
+    default:
+      return ordered_json::object();
+  }
+}
+
+ordered_json KeySchema(const Key& key) {
+  ordered_json out;
+  out["description"] = Described(key);
+  switch (key.kind) {
+    case Kind::kMap:
+      out.update(BlockSchema(*key.block));
+      out["description"] = Described(key);
+      break;
+    case Kind::kList: {
+      out["type"] = "array";
+      out["items"] = key.block ? BlockSchema(*key.block) : ScalarSchema(key.item);
+      if (key.min_items > 0) out["minItems"] = key.min_items;
+      if (key.max_items > 0) out["maxItems"] = key.max_items;
+      break;
+    }
+    case Kind::kVector: {
+      out["type"] = "array";
+      ordered_json item = {{"type", "number"}};
+      AddBounds(key, item);
+      out["items"] = item;
+      out["minItems"] = 3;
+      out["maxItems"] = 3;
+      break;
+    }
+    case Kind::kValueMap:
+      out["type"] = "object";
+      break;
+    case Kind::kValue:
+      // Any value; one with a block is a count or that map (a campaign block's seeds).
+      if (key.block) {
+        out["anyOf"] = {{{"type", "integer"}, {"minimum", 1}}, BlockSchema(*key.block)};
+      }
+      break;
+    default:
+      out.update(ScalarSchema(key.kind));
+      AddBounds(key, out);
+      break;
+  }
+  if (!key.choices.empty())
+    out["enum"] = std::vector<std::string>(key.choices.begin(), key.choices.end());
+  if (key.default_json) out["default"] = ordered_json::parse(key.default_json());
+  return out;
+}
+
+ordered_json BlockSchema(const Block& block) {
+  ordered_json out;
+  out["type"] = "object";
+  out["description"] = block.description;
+  ordered_json properties = ordered_json::object();
+  std::vector<std::string> required;
+  for (const Key& key : block.keys) {
+    properties[std::string(key.name)] = KeySchema(key);
+    if (key.required) required.emplace_back(key.name);
+  }
+  out["properties"] = properties;
+  if (!required.empty()) out["required"] = required;
+  out["additionalProperties"] =
+      block.open_numbers ? ordered_json({{"type", "number"}}) : ordered_json(false);
+  return out;
+}
+
+}  // namespace
+
+const Key* Block::Find(std::string_view name) const {
+  for (const Key& key : keys) {
+    if (key.name == name) return &key;
+  }
+  return nullptr;
+}
+
+const Block& Scenario() { return kScenario; }
+const Block& Campaign() { return kCampaign; }
+
+std::string JsonSchema(const Block& root, std::string_view title) {
+  ordered_json out;
+  out["$schema"] = "http://json-schema.org/draft-07/schema#";
+  out["title"] = title;
+  out.update(BlockSchema(root));
+  return out.dump(2) + "\n";
+}
+
+int EditDistance(std::string_view a, std::string_view b) {
+  const std::size_t n = a.size(), m = b.size();
+  std::vector<std::vector<int>> d(n + 1, std::vector<int>(m + 1, 0));
+  for (std::size_t i = 0; i <= n; ++i) d[i][0] = static_cast<int>(i);
+  for (std::size_t j = 0; j <= m; ++j) d[0][j] = static_cast<int>(j);
+  for (std::size_t i = 1; i <= n; ++i) {
+    for (std::size_t j = 1; j <= m; ++j) {
+      const int cost = a[i - 1] == b[j - 1] ? 0 : 1;
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) {
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+      }
+    }
+  }
+  return d[n][m];
+}
+
+std::string NearestKey(const Block& block, std::string_view name) {
+  // A unit suffix left out: "direction" for "direction_deg", "rate" for "rate_hz".
+  std::string extended;
+  int extensions = 0;
+  for (const Key& key : block.keys) {
+    if (key.name.size() > name.size() + 1 && key.name.substr(0, name.size()) == name &&
+        key.name[name.size()] == '_') {
+      extended = key.name;
+      ++extensions;
+    }
+  }
+  if (extensions == 1) return extended;
+  // A misspelling: at most a third of the word changed (one edit for short words, two from
+  // six letters), and one candidate closer than the rest.
+  const int allowed = std::max(1, static_cast<int>(name.size()) / 3);
+  std::string best;
+  int best_distance = allowed + 1;
+  bool tie = false;
+  for (const Key& key : block.keys) {
+    const int distance = EditDistance(name, key.name);
+    if (distance < best_distance) {
+      best = key.name;
+      best_distance = distance;
+      tie = false;
+    } else if (distance == best_distance) {
+      tie = true;
+    }
+  }
+  return best_distance <= allowed && !tie ? best : "";
+}
+
+}  // namespace moorsim::scenarios::schema
