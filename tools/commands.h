@@ -14,6 +14,8 @@ using Command = std::function<int()>;
 Command AddStaticCommand(CLI::App& app);
 Command AddSimulateLinesCommand(CLI::App& app);
 Command AddValidateCommand(CLI::App& app);
+/// `moorsim schema`: the scenario or campaign format as a JSON Schema.
+Command AddSchemaCommand(CLI::App& app);
 Command AddRunCommand(CLI::App& app);
 Command AddAnalyzeCommand(CLI::App& app);
 Command AddDetectCommand(CLI::App& app);

@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
   add(&moorsim::cli::AddRunCommand);
   add(&moorsim::cli::AddSimulateLinesCommand);
   add(&moorsim::cli::AddValidateCommand);
+  add(&moorsim::cli::AddSchemaCommand);
   add(&moorsim::cli::AddAnalyzeCommand);
   add(&moorsim::cli::AddDetectCommand);
   {

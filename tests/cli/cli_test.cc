@@ -274,6 +274,32 @@ TEST_F(CliTest, ValidateAcceptsTheSeed) {
   EXPECT_EQ(r.out, kSeed + ": ok (seed_tapm, 8 lines)\n");
 }
 
+TEST_F(CliTest, ValidateReportsEveryErrorOfTheFileEachOnItsOwnLine) {
+  std::string text = ReadWholeFile(kSeed);
+  for (const auto& [old_text, new_text] :
+       {std::pair<std::string, std::string>{"depth: 1000}", "dept: 1000}"},
+        {"diameter: 0.08", "diameter: -0.08"},
+        {"max_order: 2", "max_order: 9"}}) {
+    const std::size_t at = text.find(old_text);
+    ASSERT_NE(at, std::string::npos) << old_text;
+    text.replace(at, old_text.size(), new_text);
+  }
+  const std::string stem = "../../data/fpso_wamit/fpso";
+  text.replace(text.find(stem), stem.size(), MOORSIM_SOURCE_DIR "/data/fpso_wamit/fpso");
+  const std::string path = (dir_.path() / "three.yaml").string();
+  WriteWholeFile(path, text);
+  const CliResult r = Run({"validate", path});
+  EXPECT_EQ(r.exit_code, 2) << r.Describe();
+  EXPECT_EQ(r.out, "");
+  const auto at = [&](const std::string& what) {
+    return "moorsim: " + path + ":" + LineCol(text, text.find(what)) + ": ";
+  };
+  EXPECT_EQ(r.err, at("dept: 1000}") +
+                       "mooring.water: unknown key 'dept' (did you mean 'depth'?)\n" + at("-0.08") +
+                       "mooring.line_types[1].diameter: -0.08 m must be > 0\n" + at("9\n") +
+                       "solver.max_order: 9 must be in 1..5\n");
+}
+
 // ---------------------------------------------------------------------------------------
 // 2. Flag errors: exit 2 and one line that names the flag and the value.
 
