@@ -269,6 +269,7 @@ Outputs ReadCampaignTables(const std::string& path_a, const std::string& path_b)
     if (!only_b.empty())
       d.detail += (d.detail.empty() ? "" : "; ") + RunList(only_b) + " only in B";
     d.excess = kInfinity;
+    d.difference = kInfinity;
     outputs.runs_difference = d;
   }
 
