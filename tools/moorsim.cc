@@ -41,6 +41,7 @@ int main(int argc, char** argv) {
     moorsim::cli::Command command = moorsim::cli::AddBatchCommand(app, argc, argv);
     commands.emplace_back(app.get_subcommands({})[before], std::move(command));
   }
+  add(&moorsim::cli::AddCompareCommand);
   // CLI11 would only say "A subcommand is required" for a misspelt command.
   if (argc > 1 && argv[1][0] != '-') {
     const std::string name = argv[1];

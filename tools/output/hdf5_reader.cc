@@ -2,7 +2,9 @@
 
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <utility>
 
 #include "core/error.h"
 
@@ -41,6 +43,11 @@ class Attribute {
 };
 
 }  // namespace
+
+bool IsHdf5File(const std::string& path) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  return H5Fis_hdf5(path.c_str()) > 0;
+}
 
 Hdf5Reader::Hdf5Reader(const std::string& path) : path_(path) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
@@ -96,25 +103,167 @@ double Hdf5Reader::NumberAttribute(const std::string& object_path, const std::st
   return value;
 }
 
+bool Hdf5Reader::HasAttribute(const std::string& object_path, const std::string& name) const {
+  return H5Aexists_by_name(static_cast<hid_t>(file_), object_path.c_str(), name.c_str(),
+                           H5P_DEFAULT) > 0;
+}
+
+namespace {
+
+// An open dataset with its type and dimensions; throws "<where>: missing" or
+// "<where>: not a dataset".
+class Dataset {
+ public:
+  Dataset(const Hdf5Reader& reader, hid_t file, const std::string& path)
+      : dataset(reader.Has(path) ? H5Dopen2(file, path.c_str(), H5P_DEFAULT) : -1, H5Dclose),
+        type(dataset.id >= 0 ? H5Dget_type(dataset.id) : -1, H5Tclose),
+        space(dataset.id >= 0 ? H5Dget_space(dataset.id) : -1, H5Sclose),
+        where_(reader.path() + ": " + path) {
+    if (!reader.Has(path)) throw InputError(where_ + ": missing");
+    if (dataset.id < 0) throw InputError(where_ + ": not a dataset");
+    const int rank = H5Sget_simple_extent_ndims(space.id);
+    if (rank < 0) throw InputError(where_ + ": unreadable dataspace");
+    dims.resize(static_cast<std::size_t>(rank));
+    if (rank > 0) H5Sget_simple_extent_dims(space.id, dims.data(), nullptr);
+  }
+
+  std::size_t Count() const {
+    std::size_t n = 1;
+    for (const hsize_t d : dims) n *= d;
+    return n;
+  }
+
+  bool Numeric() const {
+    const H5T_class_t kind = H5Tget_class(type.id);
+    return kind == H5T_FLOAT || kind == H5T_INTEGER;
+  }
+
+  /// Reads every element converted to `memory_type` into `out` (Count() elements).
+  void Read(hid_t memory_type, void* out) const {
+    if (Count() > 0 && H5Dread(dataset.id, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out) < 0) {
+      throw InputError(where_ + ": unreadable (damaged, or a filter this HDF5 lacks)");
+    }
+  }
+
+  /// Every element of a numeric dataset, converted to `memory_type` (which must be T's);
+  /// throws "<where>: not numeric" for any other dataset.
+  template <class T>
+  std::vector<T> ReadNumbers(hid_t memory_type) const {
+    if (!Numeric()) throw InputError(where_ + ": not numeric");
+    std::vector<T> values(Count());
+    Read(memory_type, values.data());
+    return values;
+  }
+
+  Handle dataset;
+  Handle type;
+  Handle space;
+  std::vector<hsize_t> dims;
+
+ private:
+  std::string where_;
+};
+
+}  // namespace
+
 TableData Hdf5Reader::ReadTable(const std::string& dataset_path) const {
   const std::string where = path_ + ": " + dataset_path;
-  if (!Has(dataset_path)) throw InputError(where + ": missing");
-  Handle dataset{H5Dopen2(static_cast<hid_t>(file_), dataset_path.c_str(), H5P_DEFAULT), H5Dclose};
-  if (dataset.id < 0) throw InputError(where + ": not a dataset");
-  Handle space{H5Dget_space(dataset.id), H5Sclose};
-  const int rank = H5Sget_simple_extent_ndims(space.id);
-  if (rank != 1 && rank != 2) throw InputError(where + ": not a one- or two-dimensional table");
-  hsize_t dims[2] = {0, 1};
-  H5Sget_simple_extent_dims(space.id, dims, nullptr);
-  TableData table;
-  table.rows = dims[0];
-  table.columns = rank == 2 ? dims[1] : 1;
-  table.values.resize(table.rows * table.columns);
-  if (!table.values.empty() && H5Dread(dataset.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
-                                       table.values.data()) < 0) {
-    throw InputError(where + ": unreadable (damaged, or a filter this HDF5 lacks)");
+  const Dataset d(*this, static_cast<hid_t>(file_), dataset_path);
+  if (d.dims.size() != 1 && d.dims.size() != 2) {
+    throw InputError(where + ": not a one- or two-dimensional table");
   }
+  return ReadArray(dataset_path);
+}
+
+TableData Hdf5Reader::ReadArray(const std::string& dataset_path) const {
+  const Dataset d(*this, static_cast<hid_t>(file_), dataset_path);
+  TableData table;
+  table.rows = d.dims.empty() ? 1 : d.dims[0];
+  table.columns = 1;
+  for (std::size_t i = 1; i < d.dims.size(); ++i) table.columns *= d.dims[i];
+  table.values = d.ReadNumbers<double>(H5T_NATIVE_DOUBLE);
   return table;
+}
+
+std::vector<std::int64_t> Hdf5Reader::ReadSignedIntegers(const std::string& dataset_path) const {
+  return Dataset(*this, static_cast<hid_t>(file_), dataset_path)
+      .ReadNumbers<std::int64_t>(H5T_NATIVE_INT64);
+}
+
+std::vector<std::uint64_t> Hdf5Reader::ReadUnsignedIntegers(const std::string& dataset_path) const {
+  return Dataset(*this, static_cast<hid_t>(file_), dataset_path)
+      .ReadNumbers<std::uint64_t>(H5T_NATIVE_UINT64);
+}
+
+std::vector<std::string> Hdf5Reader::ReadStrings(const std::string& dataset_path) const {
+  const std::string where = path_ + ": " + dataset_path;
+  const Dataset d(*this, static_cast<hid_t>(file_), dataset_path);
+  if (H5Tget_class(d.type.id) != H5T_STRING) throw InputError(where + ": not a string dataset");
+  const std::size_t n = d.Count();
+  std::vector<std::string> values;
+  values.reserve(n);
+  Handle memory{H5Tcopy(H5T_C_S1), H5Tclose};
+  if (H5Tis_variable_str(d.type.id) > 0) {
+    H5Tset_size(memory.id, H5T_VARIABLE);
+    H5Tset_cset(memory.id, H5Tget_cset(d.type.id));
+    std::vector<char*> texts(n, nullptr);
+    d.Read(memory.id, texts.data());
+    for (char* text : texts) {
+      values.emplace_back(text == nullptr ? "" : text);
+      H5free_memory(text);
+    }
+    return values;
+  }
+  const std::size_t size = H5Tget_size(d.type.id);
+  H5Tset_size(memory.id, size);
+  H5Tset_cset(memory.id, H5Tget_cset(d.type.id));
+  std::vector<char> buffer(n * size);
+  d.Read(memory.id, buffer.data());
+  for (std::size_t i = 0; i < n; ++i) {
+    const char* text = buffer.data() + i * size;
+    std::size_t length = 0;
+    while (length < size && text[length] != '\0') ++length;
+    values.emplace_back(text, length);
+  }
+  return values;
+}
+
+std::vector<DatasetInfo> Hdf5Reader::ListDatasets() const {
+  std::vector<std::string> names;
+  H5Lvisit(
+      static_cast<hid_t>(file_), H5_INDEX_NAME, H5_ITER_INC,
+      [](hid_t, const char* name, const H5L_info_t*, void* data) -> herr_t {
+        static_cast<std::vector<std::string>*>(data)->push_back(std::string("/") + name);
+        return 0;
+      },
+      &names);
+  std::vector<DatasetInfo> datasets;
+  for (const std::string& name : names) {
+    const Handle object{H5Oopen(static_cast<hid_t>(file_), name.c_str(), H5P_DEFAULT), H5Oclose};
+    if (object.id < 0 || H5Iget_type(object.id) != H5I_DATASET) continue;
+    const Dataset d(*this, static_cast<hid_t>(file_), name);
+    DatasetInfo info;
+    info.path = name;
+    info.dims.assign(d.dims.begin(), d.dims.end());
+    switch (H5Tget_class(d.type.id)) {
+      case H5T_FLOAT:
+        info.element = ElementClass::kFloat;
+        break;
+      case H5T_INTEGER:
+        info.element = H5Tget_sign(d.type.id) == H5T_SGN_NONE ? ElementClass::kUnsignedInteger
+                                                              : ElementClass::kSignedInteger;
+        break;
+      case H5T_STRING:
+        info.element = ElementClass::kString;
+        break;
+      default:
+        info.element = ElementClass::kOther;
+    }
+    datasets.push_back(std::move(info));
+  }
+  std::sort(datasets.begin(), datasets.end(),
+            [](const DatasetInfo& a, const DatasetInfo& b) { return a.path < b.path; });
+  return datasets;
 }
 
 }  // namespace moorsim::output

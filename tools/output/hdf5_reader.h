@@ -1,10 +1,12 @@
-// Reading back what Hdf5File wrote (run.h5): string and numeric attributes and whole
-// numeric tables, for `moorsim detect`, which replays a run's recorded detection input.
+// Reading back what Hdf5File wrote (run.h5, campaign.h5): string and numeric attributes,
+// whole numeric tables and string datasets, and the list of every dataset in a file, for
+// `moorsim detect`, which replays a run's recorded detection input, and `moorsim compare`.
 // Every failure is an InputError naming the file and the object, since the file is the
 // user's input here.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,25 @@ struct TableData {
   std::vector<double> values;
   double at(std::size_t row, std::size_t column) const { return values[row * columns + column]; }
 };
+
+/// How a dataset's elements are stored.
+enum class ElementClass {
+  kFloat,
+  kSignedInteger,
+  kUnsignedInteger,
+  kString,
+  kOther,  ///< compound, enum, opaque, reference, ...: nothing this reader converts
+};
+
+/// One dataset of a file, as ListDatasets finds it.
+struct DatasetInfo {
+  std::string path;  ///< absolute, "/vessel/pose_true"
+  ElementClass element = ElementClass::kOther;
+  std::vector<std::size_t> dims;  ///< empty for a scalar dataset
+};
+
+/// Whether `path` is an existing HDF5 file (its signature checked, nothing else).
+bool IsHdf5File(const std::string& path);
 
 class Hdf5Reader {
  public:
@@ -35,8 +56,22 @@ class Hdf5Reader {
   std::string StringAttribute(const std::string& object_path, const std::string& name) const;
   /// A numeric attribute, converted to double (integers of up to 2^53 exactly).
   double NumberAttribute(const std::string& object_path, const std::string& name) const;
+  /// Whether `object_path` (which must exist) has the attribute `name`.
+  bool HasAttribute(const std::string& object_path, const std::string& name) const;
   /// The whole one- or two-dimensional dataset at `dataset_path`, converted to double.
   TableData ReadTable(const std::string& dataset_path) const;
+  /// A numeric dataset of any rank, converted to double: rows = the first dimension (1 for a
+  /// scalar), columns = the product of the others (1 for a one-dimensional dataset).
+  TableData ReadArray(const std::string& dataset_path) const;
+  /// A numeric dataset of any rank, flattened row-major, converted to 64-bit integers
+  /// (exact for every integer type; a float is truncated, so read floats with ReadArray).
+  std::vector<std::int64_t> ReadSignedIntegers(const std::string& dataset_path) const;
+  std::vector<std::uint64_t> ReadUnsignedIntegers(const std::string& dataset_path) const;
+  /// A string dataset of any rank (fixed or variable length), flattened row-major.
+  std::vector<std::string> ReadStrings(const std::string& dataset_path) const;
+  /// Every dataset of the file, reached through hard or soft links from the root, in path
+  /// order; a path that names no dataset (a dangling link, a group) is left out.
+  std::vector<DatasetInfo> ListDatasets() const;
 
  private:
   std::string path_;

@@ -1,0 +1,69 @@
+// Tests of the CSV reader (tools/output/csv_table.h): RFC 4180 quoting, the line each row
+// starts on, and the errors of tables that are not tables.
+#include "tools/output/csv_table.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "tests/support/scratch_directory.h"
+
+namespace moorsim::output {
+namespace {
+
+class CsvTableTest : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = moorsim::testing::FreshDirectory("csv_table_test"); }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  std::string Write(const std::string& text) {
+    const std::string path = (dir_ / "t.csv").string();
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+  }
+
+  /// The InputError's message of reading `text`, or "" if it reads.
+  std::string ErrorOf(const std::string& text) {
+    const std::string path = Write(text);
+    try {
+      ReadCsvTable(path);
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      return message.substr(0, path.size()) == path ? message.substr(path.size()) : message;
+    }
+    return "";
+  }
+
+  std::filesystem::path dir_;
+};
+
+TEST_F(CsvTableTest, QuotedFieldsHoldCommasQuotesAndLineBreaks) {
+  const CsvTable t =
+      ReadCsvTable(Write("run,command,error\r\n"
+                         "0,\"moorsim run \"\"a,b.yaml\"\"\",\r\n"
+                         "1,\"two\nlines\",\"\"\n"
+                         "2,plain,last without a line break"));
+  EXPECT_EQ(t.header, (std::vector<std::string>{"run", "command", "error"}));
+  ASSERT_EQ(t.rows.size(), 3u);
+  EXPECT_EQ(t.rows[0], (std::vector<std::string>{"0", "moorsim run \"a,b.yaml\"", ""}));
+  EXPECT_EQ(t.rows[1], (std::vector<std::string>{"1", "two\nlines", ""}));
+  EXPECT_EQ(t.rows[2], (std::vector<std::string>{"2", "plain", "last without a line break"}));
+  // The second row spans lines 3 and 4.
+  EXPECT_EQ(t.row_lines, (std::vector<std::size_t>{2, 3, 5}));
+}
+
+TEST_F(CsvTableTest, WhatIsNotATableIsAnErrorThatPlacesIt) {
+  EXPECT_EQ(ErrorOf(""), ": empty (no header line)");
+  EXPECT_EQ(ErrorOf(std::string("run\n0\0\n", 7)), ": not a text table");
+  EXPECT_EQ(ErrorOf("run,a\n0,\"x\ny\"\n1\n"), ":4: 1 fields, the header has 2");
+  EXPECT_EQ(ErrorOf("run,a\n0,1\n1,\"open\n"), ":3: a quote never closed");
+  EXPECT_EQ(ErrorOf("run,a\n0,1\n"), "");
+  EXPECT_EQ(ErrorOf("run,a\n\n"), ":2: 1 fields, the header has 2");  // an empty line
+}
+
+}  // namespace
+}  // namespace moorsim::output
