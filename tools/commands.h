@@ -17,6 +17,8 @@ Command AddValidateCommand(CLI::App& app);
 Command AddRunCommand(CLI::App& app);
 Command AddAnalyzeCommand(CLI::App& app);
 Command AddDetectCommand(CLI::App& app);
+/// `moorsim template`: a starting scenario with its anchors placed from the catenary.
+Command AddTemplateCommand(CLI::App& app);
 /// `moorsim batch`; argc/argv are recorded in the campaign's results.
 Command AddBatchCommand(CLI::App& app, int argc, char** argv);
 
