@@ -132,9 +132,10 @@ Command AddTemplateCommand(CLI::App& app) {
       "or at --radius with the resulting pretension written in a comment; give exactly one.\n"
       "The pretension must lie in the touchdown range: above the weight in water of the line\n"
       "hanging straight down to the seabed (below it the line lies slack), at most the tension\n"
-      "that lifts the whole line off the seabed (beyond it the anchor is pulled up); --radius\n"
-      "likewise. The rest (waves, the thesis PI, sensors, 1000 s, seed 1, no failure) as in the\n"
-      "library scenarios; the file loads and runs as it is. The WAMIT path is written absolute.\n"
+      "that lifts the whole line off the seabed (beyond it the anchor is pulled up) or, for a\n"
+      "short line in deep water, pulls it straight; --radius likewise. The rest (waves, the\n"
+      "thesis PI, sensors, 1000 s, seed 1, no failure) as in the library scenarios; the file\n"
+      "loads and runs as it is. The WAMIT path is written absolute.\n"
       "Without --out the scenario goes to stdout; --out does not replace an existing file\n"
       "unless --force.\n"
       "Units: N, m.");
