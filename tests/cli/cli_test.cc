@@ -254,7 +254,7 @@ TEST_F(CliTest, TopLevelHelpListsEachCommandOnOneLine) {
     commands.push_back(line.substr(2, line.find(' ', 2) - 2));
   }
   EXPECT_EQ(commands, (std::vector<std::string>{"static", "run", "simulate-lines", "validate",
-                                                "analyze", "detect", "batch"}));
+                                                "analyze", "detect", "template", "batch"}));
 }
 
 TEST_F(CliTest, AnEndlessInputIsRejectedNotReadForever) {
