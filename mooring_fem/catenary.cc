@@ -407,6 +407,59 @@ CatenarySolution SolveCatenary(const CatenaryLineProperties& line, double span, 
   return solution;
 }
 
+TouchdownRange SolveTouchdownRange(const CatenaryLineProperties& line, double height) {
+  CheckLine(line);
+  const double len = line.length;
+  const double w = line.weight_per_length;
+  const double ea = line.axial_stiffness;
+  if (!std::isfinite(height) || height <= 0.0) {
+    throw Error(Describe(line, 0.0, height) + ": the fairlead must be above the seabed");
+  }
+  const double hanging = VerticalHangingLength(line, height);
+  if (!(len > hanging)) {
+    std::ostringstream out;
+    out << "a line of " << len << " m hanging straight down from " << height
+        << " m above the seabed does not reach it (it needs more than " << hanging
+        << " m, stretched by its own weight)";
+    throw Error(out.str());
+  }
+  TouchdownRange range;
+  range.min_span = len - hanging;
+  range.min_tension = w * hanging;
+  // Lift-off (V = w L, no grounded length): the closed form SolveCatenary uses to pick its
+  // regime, a = H/w from sqrt(a^2 + L^2) - a = height - w L^2 / (2 EA).
+  // A line whose own weight stretches it by more than the height never lifts off.
+  const double reduced_height = height - w * len * len / (2.0 * ea);
+  const double a = (len * len - reduced_height * reduced_height) / (2.0 * reduced_height);
+  range.max_span = a * std::asinh(len / a) + w * a * len / ea;
+  range.max_tension = w * std::hypot(a, len);
+  if (!(reduced_height > 0.0) || !(range.max_tension <= kMaxStrain * ea)) {
+    std::ostringstream out;
+    out << "a line of " << len << " m with its fairlead " << height
+        << " m above the seabed does not lift off below a fairlead strain of " << 100.0 * kMaxStrain
+        << " %";
+    throw Error(out.str());
+  }
+  return range;
+}
+
+double SpanForFairleadTension(const CatenaryLineProperties& line, double height, double tension) {
+  const TouchdownRange range = SolveTouchdownRange(line, height);
+  if (!(tension > range.min_tension && tension <= range.max_tension)) {
+    std::ostringstream out;
+    out << "catenary: a fairlead tension of " << tension << " N is outside the touchdown range ("
+        << range.min_tension << ", " << range.max_tension << "] N";
+    throw Error(out.str());
+  }
+  double lo = range.min_span;
+  double hi = range.max_span;
+  for (int i = 0; i < 200 && hi - lo > 1e-12 * hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (SolveCatenary(line, mid, height).fairlead_tension < tension ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
 Eigen::Vector2d CatenaryPointAt(const CatenaryLineProperties& line,
                                 const CatenarySolution& solution, double s) {
   CheckLine(line);

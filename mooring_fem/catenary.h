@@ -39,6 +39,27 @@ struct CatenarySolution {
 /// the anchor. Throws moorsim::Error if no solution exists (e.g. the line cannot reach).
 CatenarySolution SolveCatenary(const CatenaryLineProperties& line, double span, double height);
 
+/// Where a line hangs with touchdown, for a fairlead at a given height above the seabed:
+/// between a slack line (H = 0: hanging straight down onto its grounded part) and lift-off
+/// (the whole line suspended, touching the seabed only at the anchor, which then carries
+/// no vertical force). Within it the fairlead tension rises strictly with the span.
+struct TouchdownRange {
+  double min_span = 0.0;     ///< span of the slack line, L - (hanging length) [m]
+  double max_span = 0.0;     ///< span at lift-off [m]
+  double min_tension = 0.0;  ///< fairlead tension of the slack line: w x hanging length [N]
+  double max_tension = 0.0;  ///< fairlead tension at lift-off, sqrt(H^2 + (w L)^2) [N]
+};
+
+/// The touchdown range of `line` with its fairlead `height` [m] (> 0) above the seabed.
+/// Throws moorsim::Error if the line hanging straight down does not reach the seabed (no
+/// touchdown at any span) or if lift-off needs more strain than SolveCatenary accepts.
+TouchdownRange SolveTouchdownRange(const CatenaryLineProperties& line, double height);
+
+/// The span [m] at which the fairlead tension is `tension` [N], for a line with touchdown
+/// (bisection on SolveCatenary, to 1e-12 of the span). Throws moorsim::Error unless
+/// min_tension < tension <= max_tension of SolveTouchdownRange(line, height).
+double SpanForFairleadTension(const CatenaryLineProperties& line, double height, double tension);
+
 /// Position of the material point at unstretched arc length s (0 = anchor, L = fairlead)
 /// in the line's vertical plane: x horizontal from the anchor toward the fairlead, z up
 /// from the anchor [m].

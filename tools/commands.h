@@ -21,6 +21,8 @@ Command AddAnalyzeCommand(CLI::App& app);
 Command AddDetectCommand(CLI::App& app);
 /// `moorsim compare A B`: two outputs channel by channel, exit 0 (equal) or 1 (differ).
 Command AddCompareCommand(CLI::App& app);
+/// `moorsim template`: a starting scenario with its anchors placed from the catenary.
+Command AddTemplateCommand(CLI::App& app);
 /// `moorsim batch`; argc/argv are recorded in the campaign's results.
 Command AddBatchCommand(CLI::App& app, int argc, char** argv);
 

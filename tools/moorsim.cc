@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
   add(&moorsim::cli::AddSchemaCommand);
   add(&moorsim::cli::AddAnalyzeCommand);
   add(&moorsim::cli::AddDetectCommand);
+  add(&moorsim::cli::AddTemplateCommand);
   {
     const std::size_t before = app.get_subcommands({}).size();
     moorsim::cli::Command command = moorsim::cli::AddBatchCommand(app, argc, argv);

@@ -258,8 +258,9 @@ TEST_F(CliTest, TopLevelHelpListsEachCommandOnOneLine) {
     ASSERT_NE(line[2], ' ') << "a continuation line: " << line;
     commands.push_back(line.substr(2, line.find(' ', 2) - 2));
   }
-  EXPECT_EQ(commands, (std::vector<std::string>{"static", "run", "simulate-lines", "validate",
-                                                "analyze", "detect", "batch", "compare"}));
+  EXPECT_EQ(commands,
+            (std::vector<std::string>{"static", "run", "simulate-lines", "validate", "schema",
+                                      "analyze", "detect", "template", "batch", "compare"}));
 }
 
 TEST_F(CliTest, AnEndlessInputIsRejectedNotReadForever) {

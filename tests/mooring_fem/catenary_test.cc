@@ -770,5 +770,64 @@ TEST(NodePositionsTest, RejectsZeroSegments) {
   EXPECT_THROW(lc.NodePositions(0), Error);
 }
 
+// --- Touchdown range and the span for a pretension ---------------------------------------
+
+TEST(TouchdownRangeTest, EndsAreTheSlackLineAndLiftOff) {
+  const CatenaryLineProperties line = SeedLine();
+  const double w = line.weight_per_length;
+  const TouchdownRange range = SolveTouchdownRange(line, kSeedHeight);
+  // Slack end: a vertical hanging length Ls with Ls + w Ls^2 / (2 EA) = height, the rest on
+  // the seabed.
+  const double hanging = range.min_tension / w;
+  EXPECT_NEAR(hanging + w * hanging * hanging / (2.0 * line.axial_stiffness), kSeedHeight, 1e-9);
+  EXPECT_NEAR(range.min_span, line.length - hanging, 1e-9);
+  // Lift-off end, checked on the printed textbook equations: V = w L, and (H, V) put the
+  // fairlead at (max_span, height).
+  const double v = w * line.length;
+  const double h = std::sqrt(range.max_tension * range.max_tension - v * v);
+  const Eigen::Vector2d end = TextbookEndpoint(line, h, v * (1.0 - 1e-15));
+  EXPECT_NEAR(end.x(), range.max_span, 1e-6);
+  EXPECT_NEAR(end.y(), kSeedHeight, 1e-6);
+  // The seed line's anchors (1930 m from their fairleads) lie inside.
+  EXPECT_LT(range.min_span, kSeedSpan);
+  EXPECT_GT(range.max_span, kSeedSpan);
+  const CatenarySolution at_lift_off = SolveCatenary(line, range.max_span, kSeedHeight);
+  EXPECT_NEAR(at_lift_off.fairlead_tension, range.max_tension, 1e-9 * range.max_tension);
+  EXPECT_NEAR(at_lift_off.grounded_length, 0.0, 1e-6);
+}
+
+TEST(TouchdownRangeTest, SpanForTensionGivesThatTension) {
+  const CatenaryLineProperties line = SeedLine();
+  const TouchdownRange range = SolveTouchdownRange(line, kSeedHeight);
+  for (double fraction : {1e-6, 0.01, 0.3, 0.7, 0.999, 1.0}) {
+    const double tension = range.min_tension + fraction * (range.max_tension - range.min_tension);
+    const double span = SpanForFairleadTension(line, kSeedHeight, tension);
+    EXPECT_GE(span, range.min_span);
+    EXPECT_LE(span, range.max_span);
+    EXPECT_NEAR(SolveCatenary(line, span, kSeedHeight).fairlead_tension, tension, 1e-6 * tension)
+        << "fraction " << fraction;
+  }
+  // The seed span gives back its own tension.
+  const double seed_tension = SolveCatenary(line, kSeedSpan, kSeedHeight).fairlead_tension;
+  EXPECT_NEAR(SpanForFairleadTension(line, kSeedHeight, seed_tension), kSeedSpan, 1e-6);
+}
+
+TEST(TouchdownRangeTest, RejectsTensionsOutsideAndLinesThatCannotTouchDown) {
+  const CatenaryLineProperties line = SeedLine();
+  const TouchdownRange range = SolveTouchdownRange(line, kSeedHeight);
+  EXPECT_THROW(SpanForFairleadTension(line, kSeedHeight, range.min_tension), Error);
+  EXPECT_THROW(SpanForFairleadTension(line, kSeedHeight, range.max_tension * 1.001), Error);
+  EXPECT_THROW(SpanForFairleadTension(line, kSeedHeight, std::nan("")), Error);
+  CatenaryLineProperties short_line = line;
+  // Hanging straight down it needs 982.4 m to reach 988 m below (stretched by its weight).
+  short_line.length = 980.0;
+  EXPECT_THROW(SolveTouchdownRange(short_line, kSeedHeight), Error);
+  EXPECT_THROW(SolveTouchdownRange(line, 0.0), Error);
+  // 20 km in 1000 m of water: lift-off only beyond 10 % strain.
+  CatenaryLineProperties long_line = line;
+  long_line.length = 20000.0;
+  EXPECT_THROW(SolveTouchdownRange(long_line, kSeedHeight), Error);
+}
+
 }  // namespace
 }  // namespace moorsim::mooring_fem

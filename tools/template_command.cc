@@ -1,0 +1,156 @@
+// `moorsim template`: writes a commented starting scenario whose anchors are placed from
+// the elastic catenary (scenarios/template.h), checked by the loader before it is written.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "core/error.h"
+#include "scenarios/load.h"
+#include "scenarios/template.h"
+#include "tools/commands.h"
+
+namespace moorsim::cli {
+namespace {
+
+struct TemplateOptions {
+  std::string kind;
+  std::string lines;
+  std::string depth;
+  std::string length;
+  std::optional<std::string> pretension;
+  std::optional<std::string> radius;
+  std::optional<std::string> out;
+  std::optional<std::string> hydrodynamics;
+  bool force = false;
+};
+
+/// The seed FPSO's WAMIT data in the source tree (the data are not installed).
+const char* const kSeedHydrodynamics = MOORSIM_SEED_HYDRODYNAMICS;
+
+/// A YAML double-quoted scalar: a path may hold ": ", " #" or a leading "*" or "&".
+std::string Quoted(const std::string& text) {
+  std::string quoted = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') quoted += '\\';
+    quoted += c;
+  }
+  return quoted + "\"";
+}
+
+int RunTemplate(const TemplateOptions& o) {
+  scenarios::TemplateRequest request;
+  request.kind = o.kind;
+  const double lines = ParseNumber("--lines", o.lines);
+  if (lines != std::floor(lines) || std::abs(lines) > 1e9) {
+    throw InputError("--lines: '" + o.lines + "' must be a whole number");
+  }
+  request.lines = static_cast<int>(lines);
+  request.depth = ParseNumber("--depth", o.depth);
+  request.length = ParseNumber("--length", o.length);
+  std::string command = "moorsim template " + o.kind + " --lines " + o.lines + " --depth " +
+                        o.depth + " --length " + o.length;
+  if (o.pretension) {
+    request.pretension = ParseNumber("--pretension", *o.pretension);
+    command += " --pretension " + *o.pretension;
+  }
+  if (o.radius) {
+    request.radius = ParseNumber("--radius", *o.radius);
+    command += " --radius " + *o.radius;
+  }
+  const scenarios::TemplateLayout layout = scenarios::PlanTemplate(request);
+
+  // Written absolute, so that the file loads wherever it is written or moved to.
+  const std::string stem =
+      o.hydrodynamics ? RequireText("--hydrodynamics", *o.hydrodynamics) : kSeedHydrodynamics;
+  const std::string absolute = std::filesystem::absolute(stem).lexically_normal().string();
+  for (const char* extension : {".1", ".hst"}) {
+    std::error_code ignored;
+    if (!std::filesystem::is_regular_file(absolute + extension, ignored)) {
+      throw InputError("--hydrodynamics: '" + stem + "': no WAMIT file '" + absolute + extension +
+                       "' (give the stem of the vessel's WAMIT output; the seed FPSO's is "
+                       "data/fpso_wamit/fpso in moorsim's source tree)");
+    }
+  }
+  request.hydrodynamics = Quoted(absolute);
+  if (o.hydrodynamics) command += " --hydrodynamics " + *o.hydrodynamics;
+
+  std::string source_name = "template.yaml";
+  if (o.out) {
+    source_name = RequireText("--out", *o.out);
+    std::error_code ignored;
+    if (std::filesystem::exists(source_name, ignored) && !o.force) {
+      throw InputError("--out: '" + source_name + "' exists (give --force to overwrite it)");
+    }
+    const std::filesystem::path folder = std::filesystem::path(source_name).parent_path();
+    if (!folder.empty() && !std::filesystem::is_directory(folder, ignored)) {
+      throw InputError("--out: folder '" + folder.string() + "' does not exist");
+    }
+  }
+  const std::string text = scenarios::WriteTemplate(request, layout, command);
+  try {
+    scenarios::ParseScenario(text, source_name);
+  } catch (const InputError& e) {  // the template's own fault, not the user's
+    throw Error(std::string("the written scenario does not load: ") + e.what());
+  }
+  if (!o.out) {
+    std::cout << text;
+    return 0;
+  }
+  {
+    std::ofstream file(source_name, std::ios::binary | std::ios::trunc);
+    file << text;
+    file.close();
+    if (!file) throw Error("--out: cannot write '" + source_name + "'");
+  }
+  std::printf("%s: %s mooring, %zu lines, pretension %.1f kN, anchors %.1f m from the vessel\n",
+              source_name.c_str(), o.kind.c_str(), layout.lines.size(), layout.pretension / 1e3,
+              layout.anchor_radius);
+  return 0;
+}
+
+}  // namespace
+
+Command AddTemplateCommand(CLI::App& app) {
+  auto o = std::make_shared<TemplateOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "template", "write a commented starting scenario, anchors placed from the catenary");
+  std::string kinds;
+  for (const scenarios::TemplateKind& kind : scenarios::kTemplateKinds) {
+    kinds += "  " + std::string(kind.name) + ": " + std::string(kind.description) + "\n";
+  }
+  sub->footer(
+      "\nKinds:\n" + kinds +
+      "\nThe seed FPSO on N identical lines of the seed chain (80 mm, 275 kg/m, EA 2.28785e8 N),\n"
+      "bearings 360/N deg apart, each line radial from the vessel's reference point, fairleads\n"
+      "12 m deep. Every anchor is placed on the seabed where the elastic catenary (seabed\n"
+      "contact, stretch, the chain's weight in water) gives the fairlead tension --pretension,\n"
+      "or at --radius with the resulting pretension written in a comment; give exactly one.\n"
+      "The pretension must lie in the touchdown range: above the weight in water of the line\n"
+      "hanging straight down to the seabed (below it the line lies slack), at most the tension\n"
+      "that lifts the whole line off the seabed (beyond it the anchor is pulled up) or, for a\n"
+      "short line in deep water, pulls it straight; --radius likewise. The rest (waves, the\n"
+      "thesis PI, sensors, 1000 s, seed 1, no failure) as in the library scenarios; the file\n"
+      "loads and runs as it is. The WAMIT path is written absolute.\n"
+      "Without --out the scenario goes to stdout; --out does not replace an existing file\n"
+      "unless --force.\n"
+      "Units: N, m.");
+  sub->add_option("kind", o->kind, "spread or turret")->required();
+  sub->add_option("--lines", o->lines, "number of lines N (3..64)")->required();
+  sub->add_option("--depth", o->depth, "water depth [m]")->required();
+  sub->add_option("--length", o->length, "unstretched length of every line [m]")->required();
+  sub->add_option("--pretension", o->pretension, "fairlead tension of every line at rest [N]");
+  sub->add_option("--radius", o->radius,
+                  "anchors' horizontal distance from the vessel's reference point [m]");
+  sub->add_option("--out", o->out, "write the scenario to this file (default: stdout)");
+  sub->add_flag("--force", o->force, "with --out: replace an existing file");
+  sub->add_option("--hydrodynamics", o->hydrodynamics,
+                  "WAMIT output stem of the vessel (default: the seed FPSO's data)");
+  return [o] { return RunTemplate(*o); };
+}
+
+}  // namespace moorsim::cli
