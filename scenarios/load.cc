@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -991,6 +992,178 @@ std::string ApplyOverride(YAML::Node& root, const std::string& assignment) {
   return canonical;
 }
 
+// The one YAML document of a scenario file's text, or a located error: text that is not
+// UTF-8, a syntax error, no document or a second one.
+YAML::Node LoadDocument(const std::string& text, const std::string& file) {
+  // Bytes that are not UTF-8 would pass as text and stop the JSON writer after the run.
+  if (const std::optional<std::size_t> bad = FirstInvalidUtf8(text)) {
+    ThrowAt(file, MarkOfOffset(text, *bad), "", InvalidUtf8(text, *bad));
+  }
+  try {
+    const std::vector<YAML::Node> documents = YAML::LoadAll(text);
+    if (documents.empty() || documents[0].IsNull()) {
+      ThrowAt(file, {}, "", "the scenario is empty (expected a map with 'mooring')");
+    }
+    if (documents.size() > 1) {
+      ThrowAt(file, ToSourceMark(documents[1].Mark()), "",
+              "a scenario file holds one YAML document; this is a second one");
+    }
+    return documents[0];
+  } catch (const YAML::ParserException& error) {
+    ThrowAt(file, ToSourceMark(error.mark), "", "YAML syntax error: " + error.msg);
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// Includes: `base: other.yaml` at the top of a scenario. The base (itself possibly with a
+// base) is read first; this file's keys override its keys, maps merged key by key, lists
+// and scalars replaced whole, a key set to null (`failure: ~`) removing the base's. Every
+// value keeps the position in the file it was written in, for messages.
+
+// A scenario file and the texts its values were written in.
+struct Included {
+  std::string file;
+  const std::string* text = nullptr;
+  // Subtrees written in a base file (the deepest entry wins), as ParseContext::origins.
+  std::vector<ParseContext::Origin> origins;
+
+  const ParseContext::Origin& OriginOf(const std::string& path) const {
+    const ParseContext::Origin* found = nullptr;
+    for (const ParseContext::Origin& origin : origins) {
+      if (UnderPath(path, origin.path) &&
+          (found == nullptr || origin.path.size() > found->path.size())) {
+        found = &origin;
+      }
+    }
+    static thread_local ParseContext::Origin own;
+    if (found != nullptr) return *found;
+    own = {path, file, text};
+    return own;
+  }
+};
+
+// The value under `key` of map `node`, or an invalid node (without creating the key).
+YAML::Node Lookup(const YAML::Node& node, const std::string& key) {
+  for (const auto& entry : node) {
+    if (entry.first.IsScalar() && entry.first.Scalar() == key) return entry.second;
+  }
+  return YAML::Node(YAML::NodeType::Undefined);
+}
+
+// Merges map `base` (of `from`) under map `top` at key path `path`: what `top` lacks is
+// taken from `base` (with its origin), maps in both are merged, a null in `top` removes.
+void MergeBase(YAML::Node top, const YAML::Node& base, const std::string& path,
+               const Included& from, Included& into) {
+  for (const auto& entry : base) {
+    if (!entry.first.IsScalar()) continue;  // the loader reports it where it is read
+    const std::string& name = entry.first.Scalar();
+    // A scenario is named by its own file (or its own `name`), never by its base's.
+    if (path.empty() && (name == "base" || name == "name")) continue;
+    const std::string child = KeyPath(path, name);
+    YAML::Node own = Lookup(top, name);
+    if (!own.IsDefined()) {
+      top.force_insert(entry.first, entry.second);  // the key and value keep their marks
+      const ParseContext::Origin& origin = from.OriginOf(child);
+      into.origins.push_back({child, origin.file, origin.text});
+      for (const ParseContext::Origin& deeper : from.origins) {
+        if (deeper.path != child && UnderPath(deeper.path, child)) into.origins.push_back(deeper);
+      }
+    } else if (own.IsNull()) {
+      top.remove(name);
+    } else if (own.IsMap() && entry.second.IsMap()) {
+      MergeBase(own, entry.second, child, from, into);
+    }
+  }
+}
+
+// Where a relative path written in `file` points, relative to `top_file`'s folder.
+std::string Rebased(const std::string& value, const std::string& file,
+                    const std::string& top_file) {
+  namespace fs = std::filesystem;
+  if (value.empty() || fs::path(value).is_absolute()) return value;
+  const fs::path from = fs::path(file).parent_path(), to = fs::path(top_file).parent_path();
+  if (from == to) return value;
+  const fs::path target = (from / value).lexically_normal();
+  const fs::path relative = target.lexically_relative(to.empty() ? fs::path(".") : to);
+  return relative.empty() ? target.string() : relative.string();
+}
+
+// Reads the base chain of `document` (the text of `self.file`) into it. `chain` holds the
+// files being read, outermost first (a file met twice is a cycle); `texts` keeps the bases'
+// texts alive for the marks. Throws a located InputError at the `base:` value.
+void ResolveBase(YAML::Node document, Included& self, std::vector<std::string>& chain,
+                 std::deque<std::string>& texts) {
+  namespace fs = std::filesystem;
+  if (!document.IsMap()) return;
+  const YAML::Node base = Lookup(document, "base");
+  if (!base.IsDefined()) return;
+  const SourceMark at = ToSourceMark(base.Mark());
+  if (!base.IsScalar() || base.Scalar().empty()) {
+    ThrowAt(self.file, at, "base", Describe(base) + " must be a file name (a scenario)");
+  }
+  if (const std::optional<std::string> tag = ExplicitTag(base, self.text)) {
+    ThrowAt(self.file, at, "base",
+            "tagged value '" + *tag + "' (tags are not accepted; write the plain text)");
+  }
+  const std::string name = base.Scalar();
+  const fs::path path = (fs::path(self.file).parent_path() / name).lexically_normal();
+  std::error_code error;
+  const fs::path canonical = fs::weakly_canonical(path, error);
+  const std::string key = error ? path.string() : canonical.string();
+  if (std::find(chain.begin(), chain.end(), key) != chain.end()) {
+    std::string cycle;
+    bool in = false;
+    for (const std::string& file : chain) {
+      in = in || file == key;
+      if (in) cycle += fs::path(file).filename().string() + " -> ";
+    }
+    ThrowAt(self.file, at, "base",
+            "'" + name + "' includes itself: " + cycle + fs::path(key).filename().string());
+  }
+  if (!fs::exists(path, error)) {
+    ThrowAt(self.file, at, "base", "'" + name + "': no such file (" + path.string() + ")");
+  }
+  constexpr std::size_t kMaxScenarioBytes = 4 << 20;
+  try {
+    texts.push_back(ReadInputFile(path.string(), kMaxScenarioBytes, "scenario"));
+  } catch (const InputError& failure) {
+    ThrowAt(self.file, at, "base", "'" + name + "': " + failure.what());
+  }
+  Included parent{path.string(), &texts.back(), {}};
+  YAML::Node parent_document = LoadDocument(texts.back(), parent.file);
+  if (!parent_document.IsMap()) {
+    ThrowAt(parent.file, ToSourceMark(parent_document.Mark()), "",
+            Describe(parent_document) + " must be a map");
+  }
+  chain.push_back(key);
+  ResolveBase(parent_document, parent, chain, texts);
+  chain.pop_back();
+  document.remove("base");
+  MergeBase(document, parent_document, "", parent, self);
+}
+
+// Relative paths in values written in a base in another folder, made relative to the top
+// file's folder (where the loader resolves them, and where the resolved text is read).
+void RebasePaths(YAML::Node document, const Included& top) {
+  const auto rebase = [&](YAML::Node value, const std::string& path) {
+    if (!value.IsDefined() || !value.IsScalar()) return;
+    const ParseContext::Origin& origin = top.OriginOf(path);
+    if (origin.file != top.file) value = Rebased(value.Scalar(), origin.file, top.file);
+  };
+  const YAML::Node vessel = Lookup(document, "vessel");
+  if (vessel.IsDefined() && vessel.IsMap()) {
+    rebase(Lookup(vessel, "hydrodynamics"), "vessel.hydrodynamics");
+  }
+  const YAML::Node detectors = Lookup(document, "detectors");
+  if (detectors.IsDefined() && detectors.IsSequence()) {
+    for (std::size_t i = 0; i < detectors.size(); ++i) {
+      if (detectors[i].IsMap()) {
+        rebase(Lookup(detectors[i], "plugin"), ItemPath("detectors", i) + ".plugin");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 Scenario ParseScenario(const std::string& yaml_text, const std::string& source_name) {
@@ -1004,10 +1177,6 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source_n
   scenario.text = yaml_text;
   scenario.overrides = overrides;
   scenario.name = std::filesystem::path(source_name).stem().string();
-  // Bytes that are not UTF-8 would pass as text and stop the JSON writer after the run.
-  if (const std::optional<std::size_t> bad = FirstInvalidUtf8(yaml_text)) {
-    ThrowAt(source_name, MarkOfOffset(yaml_text, *bad), "", InvalidUtf8(yaml_text, *bad));
-  }
   for (const std::string& assignment : overrides) {
     if (const std::optional<std::size_t> bad = FirstInvalidUtf8(assignment)) {
       throw InputError("--set " + EscapeInvalidUtf8(assignment) + ": not valid UTF-8 (byte " +
@@ -1021,16 +1190,27 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source_n
   context.marks = &scenario.marks;
   context.text = &yaml_text;
   context.errors = &errors;
+  std::deque<std::string> base_texts;
   try {
-    const std::vector<YAML::Node> documents = YAML::LoadAll(yaml_text);
-    if (documents.empty() || documents[0].IsNull()) {
-      ThrowAt(source_name, {}, "", "the scenario is empty (expected a map with 'mooring')");
+    YAML::Node document = LoadDocument(yaml_text, source_name);
+    Included top{source_name, &yaml_text, {}};
+    std::error_code ignored;
+    std::vector<std::string> chain = {
+        std::filesystem::weakly_canonical(source_name, ignored).string()};
+    ResolveBase(document, top, chain, base_texts);
+    if (!top.origins.empty()) {
+      RebasePaths(document, top);
+      context.origins = top.origins;
+      for (const ParseContext::Origin& origin : top.origins) {
+        scenario.origins[origin.path] = origin.file;
+      }
+      // Outputs record the whole scenario, so that a run repeats without its bases.
+      YAML::Emitter emitter;
+      emitter << document;
+      scenario.text = "# " + source_name +
+                      " with its bases merged (moorsim validate --resolved)\n" + emitter.c_str() +
+                      "\n";
     }
-    if (documents.size() > 1) {
-      ThrowAt(source_name, ToSourceMark(documents[1].Mark()), "",
-              "a scenario file holds one YAML document; this is a second one");
-    }
-    YAML::Node document = documents[0];
     for (const std::string& assignment : overrides) {
       context.overridden.push_back(ApplyOverride(document, assignment));
     }

@@ -843,8 +843,8 @@ constexpr Key kScenarioKeys[] = {
     {.name = "base",
      .kind = Kind::kString,
      .description = "A scenario this one starts from (relative to this file's folder); the "
-                    "keys here override its keys, maps merged key by key, lists replaced "
-                    "whole."},
+                    "keys here override its keys: maps merged key by key, lists and values "
+                    "replaced whole, a key set to null (~) removed. Its name is not taken."},
     Map("controller", kController, "The position-mooring controller."),
     Map("detection", kDetection, "The hypothesis bank."),
     {.name = "detectors",
@@ -999,7 +999,7 @@ void AddBounds(const Key& key, ordered_json& out) {
     out[key.maximum->exclusive ? "exclusiveMaximum" : "maximum"] = key.maximum->value;
 }
 
-ordered_json BlockSchema(const Block& block);
+ordered_json BlockSchema(const Block& block, bool required);
 
 ordered_json ScalarSchema(Kind kind) {
   switch (kind) {
@@ -1018,17 +1018,17 @@ ordered_json ScalarSchema(Kind kind) {
   }
 }
 
-ordered_json KeySchema(const Key& key) {
+ordered_json KeySchema(const Key& key, bool required) {
   ordered_json out;
   out["description"] = Described(key);
   switch (key.kind) {
     case Kind::kMap:
-      out.update(BlockSchema(*key.block));
+      out.update(BlockSchema(*key.block, required));
       out["description"] = Described(key);
       break;
     case Kind::kList: {
       out["type"] = "array";
-      out["items"] = key.block ? BlockSchema(*key.block) : ScalarSchema(key.item);
+      out["items"] = key.block ? BlockSchema(*key.block, required) : ScalarSchema(key.item);
       if (key.min_items > 0) out["minItems"] = key.min_items;
       if (key.max_items > 0) out["maxItems"] = key.max_items;
       break;
@@ -1048,7 +1048,7 @@ ordered_json KeySchema(const Key& key) {
     case Kind::kValue:
       // Any value; one with a block is a count or that map (a campaign block's seeds).
       if (key.block) {
-        out["anyOf"] = {{{"type", "integer"}, {"minimum", 1}}, BlockSchema(*key.block)};
+        out["anyOf"] = {{{"type", "integer"}, {"minimum", 1}}, BlockSchema(*key.block, required)};
       }
       break;
     default:
@@ -1062,18 +1062,20 @@ ordered_json KeySchema(const Key& key) {
   return out;
 }
 
-ordered_json BlockSchema(const Block& block) {
+// `required`: list each block's required keys (a whole file); not in a file that starts
+// from a base, where any key may come from the base.
+ordered_json BlockSchema(const Block& block, bool required) {
   ordered_json out;
   out["type"] = "object";
   out["description"] = block.description;
   ordered_json properties = ordered_json::object();
-  std::vector<std::string> required;
+  std::vector<std::string> names;
   for (const Key& key : block.keys) {
-    properties[std::string(key.name)] = KeySchema(key);
-    if (key.required) required.emplace_back(key.name);
+    properties[std::string(key.name)] = KeySchema(key, required);
+    if (key.required) names.emplace_back(key.name);
   }
   out["properties"] = properties;
-  if (!required.empty()) out["required"] = required;
+  if (required && !names.empty()) out["required"] = names;
   out["additionalProperties"] =
       block.open_numbers ? ordered_json({{"type", "number"}}) : ordered_json(false);
   return out;
@@ -1095,7 +1097,18 @@ std::string JsonSchema(const Block& root, std::string_view title) {
   ordered_json out;
   out["$schema"] = "http://json-schema.org/draft-07/schema#";
   out["title"] = title;
-  out.update(BlockSchema(root));
+  if (root.Find("base") == nullptr) {
+    out.update(BlockSchema(root, true));
+  } else {
+    // A file with a base may leave out any key (the base gives it): required keys only
+    // without one.
+    out["description"] = root.description;
+    out["if"] = {{"required", {"base"}}};
+    out["then"] = {{"$ref", "#/definitions/override"}};
+    out["else"] = {{"$ref", "#/definitions/whole"}};
+    out["definitions"] = {{"whole", BlockSchema(root, true)},
+                          {"override", BlockSchema(root, false)}};
+  }
   return out.dump(2) + "\n";
 }
 

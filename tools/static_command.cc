@@ -183,14 +183,27 @@ Command AddStaticCommand(CLI::App& app) {
 
 Command AddValidateCommand(CLI::App& app) {
   auto path = std::make_shared<std::string>();
-  CLI::App* sub = app.add_subcommand("validate", "load and check a scenario, then exit");
+  auto resolved = std::make_shared<bool>(false);
+  CLI::App* sub = app.add_subcommand(
+      "validate", "load and check a scenario, report every error in it, then exit");
   sub->add_option("scenario", *path, "scenario YAML file")->required();
+  sub->add_flag("--resolved", *resolved,
+                "print the scenario with its bases (`base:`) merged, as runs record it");
   AddPluginOption(sub);
-  sub->footer("\n" + detectors::DetectorHelp());
-  return [path] {
+  sub->footer(
+      "\nEvery error of the file is one line \"<file>:<line>:<col>: <key>: <what>\" (exit 2),\n"
+      "in the file where the value was written (a base's or this one's). Checks between\n"
+      "values (a line that must reach its fairlead, ...) run once every value reads.\n\n" +
+      detectors::DetectorHelp());
+  return [path, resolved] {
     const scenarios::Scenario s = scenarios::LoadScenario(*path);
     simulation::CheckDetectors(s);
-    std::printf("%s: ok (%s, %zu lines)\n", path->c_str(), s.name.c_str(), s.mooring.lines.size());
+    if (*resolved) {
+      std::fwrite(s.text.data(), 1, s.text.size(), stdout);
+    } else {
+      std::printf("%s: ok (%s, %zu lines)\n", path->c_str(), s.name.c_str(),
+                  s.mooring.lines.size());
+    }
     return 0;
   };
 }

@@ -301,6 +301,31 @@ TEST_F(CliTest, ValidateReportsEveryErrorOfTheFileEachOnItsOwnLine) {
                        "solver.max_order: 9 must be in 1..5\n");
 }
 
+TEST_F(CliTest, ValidateRejectsACircularOrMissingBaseWithOneLocatedLine) {
+  const std::string a = (dir_.path() / "a.yaml").string(), b = (dir_.path() / "b.yaml").string();
+  WriteWholeFile(a, "base: b.yaml\n");
+  WriteWholeFile(b, "# the other half\nbase: a.yaml\n");
+  CliResult r = Run({"validate", a});
+  EXPECT_EQ(r.exit_code, 2) << r.Describe();
+  EXPECT_EQ(r.err,
+            "moorsim: " + b + ":2:7: base: 'a.yaml' includes itself: a.yaml -> b.yaml -> a.yaml\n");
+  WriteWholeFile(a, "base: gone.yaml\n");
+  r = Run({"validate", a});
+  EXPECT_EQ(r.exit_code, 2) << r.Describe();
+  EXPECT_EQ(r.err, "moorsim: " + a + ":1:7: base: 'gone.yaml': no such file (" +
+                       (dir_.path() / "gone.yaml").string() + ")\n");
+}
+
+TEST_F(CliTest, ValidateResolvedPrintsTheMergedScenario) {
+  const CliResult r = Run(
+      {"validate", "--resolved", kSeed.substr(0, kSeed.rfind('/')) + "/thesis_line6_current.yaml"});
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  EXPECT_EQ(r.out.find("base:"), std::string::npos);
+  EXPECT_NE(r.out.find("failure: {line: 6, time: 400, mode: fairlead}"), std::string::npos);
+  EXPECT_NE(r.out.find("direction_deg: 315"), std::string::npos);
+  EXPECT_NE(r.out.find("line_types:"), std::string::npos);
+}
+
 // ---------------------------------------------------------------------------------------
 // 2. Flag errors: exit 2 and one line that names the flag and the value.
 

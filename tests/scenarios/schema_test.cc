@@ -117,8 +117,12 @@ TEST(Schema, BlocksAreSortedWithUniqueNamesAndDescribed) {
 }
 
 TEST(Schema, JsonSchemaHasEveryKeyWithItsRangeAndDefault) {
-  const nlohmann::json s = nlohmann::json::parse(schema::JsonSchema(schema::Scenario(), "t"));
-  EXPECT_EQ(s["$schema"], "http://json-schema.org/draft-07/schema#");
+  const nlohmann::json root = nlohmann::json::parse(schema::JsonSchema(schema::Scenario(), "t"));
+  EXPECT_EQ(root["$schema"], "http://json-schema.org/draft-07/schema#");
+  // A file with a base may leave anything out; a whole file must have its required keys.
+  EXPECT_EQ(root["if"]["required"], nlohmann::json({"base"}));
+  EXPECT_EQ(root["definitions"]["override"].count("required"), 0u);
+  const nlohmann::json& s = root["definitions"]["whole"];
   EXPECT_EQ(s["required"], nlohmann::json({"mooring"}));
   EXPECT_EQ(s["additionalProperties"], false);
   const nlohmann::json& depth =

@@ -118,6 +118,23 @@ for name, old, new, key, loader_says in BAD:
           and key in lines[0] and loader_says in lines[0],
           f"bad case '{name}': one located line naming {key} ({loader_says}): {result.stderr!r}")
 
+# A file with a base: every key may come from the base, but what it writes is checked.
+variant = os.path.join(WORK, "bad_variant.yaml")
+try:
+    with open(variant, "w", encoding="utf-8") as f:
+        f.write("base: " + os.path.join(SOURCE, "scenarios", "library", "thesis_no_failure.yaml")
+                + "\nfailure: {line: 6, time: 400, mode: snap}\n")
+    with open(variant, encoding="utf-8") as f:
+        found = errors_of(schemas["moorsim.schema.json"], load_yaml(f.read()))
+    check(len(found) == 1 and list(found[0].path) == ["failure", "mode"],
+          f"a variant's bad choice is the schema's one error: {[e.message for e in found]}")
+    result = run("validate", variant)
+    check(result.returncode == 2 and result.stderr.count("\n") == 1 and
+          "failure.mode: unknown failure mode 'snap'" in result.stderr,
+          f"a variant's bad choice: one line from moorsim validate: {result.stderr!r}")
+finally:
+    os.remove(variant)
+
 if failures:
     print(f"{len(failures)} check(s) failed")
     sys.exit(1)
