@@ -696,9 +696,25 @@ void CheckTurret(const Checker& check, const Scenario& scenario) {
                "a locked turret turns with the hull: give bearing free or friction, or leave "
                "initial_heading_deg out");
   }
+  const double half_length = 0.5 * v.hull.length, half_beam = 0.5 * v.hull.beam;
+  if (t.bearing == "locked" && !t.radius) {
+    // No turret that turns: the fairleads are points of the hull (a spread mooring may have
+    // them at the bow and the stern), each within its waterplane rectangle L x B.
+    const std::vector<LineSpec>& lines = scenario.mooring.lines;
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      const Vec3& f = lines[i].fairlead_body;
+      if (!(std::abs(f.x()) <= half_length && std::abs(f.y()) <= half_beam)) {
+        check.Fail(LinePath(lines[i], i) + ".fairlead",
+                   "(" + Number(f.x()) + ", " + Number(f.y()) +
+                       ") m is off the hull: |x| must be <= hull.length / 2 = " +
+                       WithUnit(half_length, "m") +
+                       " and |y| <= hull.beam / 2 = " + WithUnit(half_beam, "m"));
+      }
+    }
+    return;
+  }
   const double radius = TurretRadius(scenario);
   // The turret's circle within the hull's waterplane rectangle L x B.
-  const double half_length = 0.5 * v.hull.length, half_beam = 0.5 * v.hull.beam;
   if (!(std::abs(t.x) + radius <= half_length)) {
     check.Fail("vessel.turret.x",
                WithUnit(t.x, "m") + " puts the turret (radius " + WithUnit(radius, "m") +

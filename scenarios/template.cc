@@ -302,9 +302,9 @@ std::string WriteTemplate(const TemplateRequest& request, const TemplateLayout& 
       << n
       << " deg, so that no line runs straight ahead. Each line is\n"
          "  # radial: equal pretension then puts no yaw moment on the hull. (A spread mooring\n"
-         "  # usually groups its fairleads at the bow and the stern; moorsim takes the\n"
-         "  # fairleads to lie on one circle within the hull's waterplane, at most half the\n"
-         "  # beam across.)\n";
+         "  # usually groups its fairleads at the bow and the stern: any point of the hull's\n"
+         "  # waterplane, |x| <= 100 m, |y| <= 22 m, will do; one circle keeps one pretension\n"
+         "  # for one anchor radius.)\n";
   }
   y << "  # Anchors: Earth frame [m] on the seabed (z = depth), with the vessel at the origin,\n"
        "  # heading 0 (north).\n"

@@ -500,5 +500,22 @@ TEST(LoadScenario, Directory) {
   EXPECT_EQ(LoadError(library), library + ": is a directory, not a scenario file");
 }
 
+// Without a turret that turns (bearing locked, no radius), the fairleads are hull points:
+// a spread mooring has them at the bow and the stern, anywhere within the waterplane.
+TEST(SpreadMooring, FairleadsAnywhereOnTheHullButNotOffIt) {
+  const std::string turret = kBase.substr(kBase.find("  turret:"));
+  std::string text = Edit(kBase, "", turret.substr(0, turret.find('\n') + 1), "");
+  text = Edit(text, "- id: 1", "fairlead: [20, 0, 12]", "fairlead: [95, 15, 12]");
+  text = Edit(text, "- id: 3", "fairlead: [-20, 0, 12]", "fairlead: [-95, -15, 12]");
+  const Scenario s = ParseScenario(text, "test.yaml");
+  EXPECT_EQ(s.vessel->turret.bearing, "locked");
+  EXPECT_EQ(s.mooring.lines[0].fairlead_body.x(), 95.0);
+  text = Edit(text, "- id: 1", "fairlead: [95, 15, 12]", "fairlead: [105, 15, 12]");
+  EXPECT_EQ(ErrorOf(text), "test.yaml:" + PositionOf(text, "- id: 1", "[105") +
+                               ": mooring.lines[1].fairlead: (105, 15) m is off the hull: |x| "
+                               "must be <= hull.length / 2 = 100 m and |y| <= hull.beam / 2 = "
+                               "22 m");
+}
+
 }  // namespace
 }  // namespace moorsim::scenarios
