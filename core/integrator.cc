@@ -64,6 +64,12 @@ N_Vector MakeStateVector(int n, SUNContext ctx) {
   return v;
 }
 
+}  // namespace
+
+// Named, not anonymous: Integrator::Impl holds a pointer to it (a class with linkage must not
+// hold a type of an anonymous namespace once unity builds put this file into another).
+namespace internal {
+
 // CVODE's view of BorderedBlockSolver: a direct SUNLinearSolver whose matrix CVODE never
 // forms. The integrator's linear-system function (CVodeSetLinSysFn, Impl::LinSys) keeps the
 // Jacobian's values here, re-evaluated only when CVODE asks for a new Jacobian, and the
@@ -77,6 +83,12 @@ struct BlockSolverContent {
   long jacobian_evals = 0;
   sunindextype last_flag = 0;
 };
+
+}  // namespace internal
+
+namespace {
+
+using internal::BlockSolverContent;
 
 BlockSolverContent& Content(SUNLinearSolver S) {
   return *static_cast<BlockSolverContent*>(S->content);
@@ -258,12 +270,12 @@ struct Integrator::Impl {
   // With the block solver: CVODE's linear-system function. It only records gamma and, when
   // CVODE does not accept the last Jacobian (jok false), evaluates a new one into the block
   // solver's own array; the solver's setup then factors I - gamma J (BlockSolverContent).
-  BlockSolverContent* block = nullptr;
+  internal::BlockSolverContent* block = nullptr;
   static int LinSys(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix, sunbooleantype jok,
                     sunbooleantype* jcur, sunrealtype gamma, void* user_data, N_Vector, N_Vector,
                     N_Vector) {
     auto* self = static_cast<Impl*>(user_data);
-    BlockSolverContent& block = *self->block;
+    internal::BlockSolverContent& block = *self->block;
     block.gamma = gamma;
     if (jok) {
       *jcur = SUNFALSE;

@@ -16,14 +16,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kLibrary = MOORSIM_SOURCE_DIR "/scenarios/library/";
+const std::string kLibraryDir = MOORSIM_SOURCE_DIR "/scenarios/library/";
 
-void Write(const fs::path& path, const std::string& text) {
+void WriteScenario(const fs::path& path, const std::string& text) {
   fs::create_directories(path.parent_path());
   std::ofstream(path) << text;
 }
 
-std::string ErrorOf(const fs::path& path) {
+std::string IncludeErrorOf(const fs::path& path) {
   try {
     LoadScenario(path.string());
   } catch (const InputError& error) {
@@ -33,9 +33,9 @@ std::string ErrorOf(const fs::path& path) {
 }
 
 TEST(Include, TheThesisVariantsAreTheBaseWithTheirOwnChanges) {
-  const Scenario base = LoadScenario(kLibrary + "thesis_no_failure.yaml");
-  const Scenario line6 = LoadScenario(kLibrary + "thesis_line6.yaml");
-  const Scenario line7_current = LoadScenario(kLibrary + "thesis_line7_current.yaml");
+  const Scenario base = LoadScenario(kLibraryDir + "thesis_no_failure.yaml");
+  const Scenario line6 = LoadScenario(kLibraryDir + "thesis_line6.yaml");
+  const Scenario line7_current = LoadScenario(kLibraryDir + "thesis_line7_current.yaml");
   // Named by their own files, not by the base.
   EXPECT_EQ(base.name, "thesis_no_failure");
   EXPECT_EQ(line6.name, "thesis_line6");
@@ -56,19 +56,19 @@ TEST(Include, TheThesisVariantsAreTheBaseWithTheirOwnChanges) {
   EXPECT_EQ(line7_current.vessel->hydrodynamics, base.vessel->hydrodynamics);
   ASSERT_EQ(line7_current.detectors.size(), base.detectors.size());
   // Where values came from: the failure in thesis_line7.yaml, the rest in the base.
-  EXPECT_EQ(line7_current.origins.at("failure"), kLibrary + "thesis_line7.yaml");
-  EXPECT_EQ(line7_current.origins.at("mooring"), kLibrary + "thesis_no_failure.yaml");
+  EXPECT_EQ(line7_current.origins.at("failure"), kLibraryDir + "thesis_line7.yaml");
+  EXPECT_EQ(line7_current.origins.at("mooring"), kLibraryDir + "thesis_no_failure.yaml");
   EXPECT_EQ(line7_current.origins.count("environment.current"), 0u);  // its own
 }
 
 TEST(Include, ListsAndValuesAreReplacedWholeAndNullRemoves) {
-  const fs::path dir = testing::FreshDirectory("include_replace");
-  Write(dir / "v.yaml", "base: " + kLibrary +
-                            "thesis_line6.yaml\n"
-                            "detectors: [{type: glr}]\n"
-                            "failure: ~\n"
-                            "mooring: {defaults: {segments: 20}}\n"
-                            "simulation: {duration: 50}\n");
+  const fs::path dir = moorsim::testing::FreshDirectory("include_replace");
+  WriteScenario(dir / "v.yaml", "base: " + kLibraryDir +
+                                    "thesis_line6.yaml\n"
+                                    "detectors: [{type: glr}]\n"
+                                    "failure: ~\n"
+                                    "mooring: {defaults: {segments: 20}}\n"
+                                    "simulation: {duration: 50}\n");
   const Scenario s = LoadScenario((dir / "v.yaml").string());
   ASSERT_EQ(s.detectors.size(), 1u);  // the list replaced, not appended to
   EXPECT_EQ(s.detectors[0].type, "glr");
@@ -82,37 +82,38 @@ TEST(Include, ListsAndValuesAreReplacedWholeAndNullRemoves) {
 }
 
 TEST(Include, ErrorsPointIntoTheFileWhereTheValueWasWritten) {
-  const fs::path dir = testing::FreshDirectory("include_errors");
-  std::ifstream in(kLibrary + "thesis_no_failure.yaml");
+  const fs::path dir = moorsim::testing::FreshDirectory("include_errors");
+  std::ifstream in(kLibraryDir + "thesis_no_failure.yaml");
   std::stringstream text;
   text << in.rdbuf();
   std::string base = text.str();
   base.replace(base.find("mass: 1.0041e8"), 14, "mass: -1.0e8");
   base.replace(base.find("../../data/fpso_wamit/fpso"), 26,
                MOORSIM_SOURCE_DIR "/data/fpso_wamit/fpso");
-  Write(dir / "bases" / "base.yaml", base);
-  Write(dir / "case.yaml", "base: bases/base.yaml\nsimulation: {duration: -5}\n");
+  WriteScenario(dir / "bases" / "base.yaml", base);
+  WriteScenario(dir / "case.yaml", "base: bases/base.yaml\nsimulation: {duration: -5}\n");
   const std::size_t at = base.find("-1.0e8");
   const auto line = 1 + std::count(base.begin(), base.begin() + static_cast<long>(at), '\n');
   const auto column = at - base.rfind('\n', at);
   // Ordered by file, then position.
-  EXPECT_EQ(ErrorOf(dir / "case.yaml"),
+  EXPECT_EQ(IncludeErrorOf(dir / "case.yaml"),
             (dir / "bases" / "base.yaml").string() + ":" + std::to_string(line) + ":" +
                 std::to_string(column) + ": vessel.mass: -1e+08 kg must be > 0\n" +
                 (dir / "case.yaml").string() + ":2:24: simulation.duration: -5 s must be > 0");
 }
 
 TEST(Include, RelativePathsInABaseElsewhereStayRelativeToTheBase) {
-  const fs::path dir = testing::FreshDirectory("include_paths");
+  const fs::path dir = moorsim::testing::FreshDirectory("include_paths");
   // The library's base names its WAMIT data relative to scenarios/library/.
-  Write(dir / "deep" / "er" / "case.yaml", "base: " + kLibrary + "thesis_no_failure.yaml\n");
+  WriteScenario(dir / "deep" / "er" / "case.yaml",
+                "base: " + kLibraryDir + "thesis_no_failure.yaml\n");
   const Scenario s = LoadScenario((dir / "deep" / "er" / "case.yaml").string());
   EXPECT_EQ(fs::weakly_canonical(s.vessel->hydrodynamics + ".1"),
             fs::weakly_canonical(MOORSIM_SOURCE_DIR "/data/fpso_wamit/fpso.1"));
 }
 
 TEST(Include, TheResolvedTextIsTheWholeScenarioAndLoadsAlone) {
-  const Scenario s = LoadScenario(kLibrary + "thesis_line8_current.yaml");
+  const Scenario s = LoadScenario(kLibraryDir + "thesis_line8_current.yaml");
   EXPECT_EQ(s.text.find("base:"), std::string::npos) << s.text;
   EXPECT_NE(s.text.find("line_types:"), std::string::npos);
   // Read back under the same name (outputs record the text; `detect` re-reads it).
@@ -127,27 +128,27 @@ TEST(Include, TheResolvedTextIsTheWholeScenarioAndLoadsAlone) {
 }
 
 TEST(Include, BadIncludesAreOneLocatedLine) {
-  const fs::path dir = testing::FreshDirectory("include_bad");
-  Write(dir / "a.yaml", "# first\nbase: b.yaml\n");
-  Write(dir / "b.yaml", "base: c.yaml\n");
-  Write(dir / "c.yaml", "name: c\nbase: a.yaml\n");
-  EXPECT_EQ(ErrorOf(dir / "a.yaml"), (dir / "c.yaml").string() +
-                                         ":2:7: base: 'a.yaml' includes itself: a.yaml -> "
-                                         "b.yaml -> c.yaml -> a.yaml");
-  Write(dir / "self.yaml", "base: self.yaml\n");
-  EXPECT_EQ(ErrorOf(dir / "self.yaml"), (dir / "self.yaml").string() +
-                                            ":1:7: base: 'self.yaml' includes itself: "
-                                            "self.yaml -> self.yaml");
-  Write(dir / "missing.yaml", "base: nothere.yaml\n");
-  EXPECT_EQ(ErrorOf(dir / "missing.yaml"), (dir / "missing.yaml").string() +
-                                               ":1:7: base: 'nothere.yaml': no such file (" +
-                                               (dir / "nothere.yaml").string() + ")");
-  Write(dir / "list.yaml", "base: [a.yaml]\n");
-  EXPECT_EQ(ErrorOf(dir / "list.yaml"),
+  const fs::path dir = moorsim::testing::FreshDirectory("include_bad");
+  WriteScenario(dir / "a.yaml", "# first\nbase: b.yaml\n");
+  WriteScenario(dir / "b.yaml", "base: c.yaml\n");
+  WriteScenario(dir / "c.yaml", "name: c\nbase: a.yaml\n");
+  EXPECT_EQ(IncludeErrorOf(dir / "a.yaml"), (dir / "c.yaml").string() +
+                                                ":2:7: base: 'a.yaml' includes itself: a.yaml -> "
+                                                "b.yaml -> c.yaml -> a.yaml");
+  WriteScenario(dir / "self.yaml", "base: self.yaml\n");
+  EXPECT_EQ(IncludeErrorOf(dir / "self.yaml"), (dir / "self.yaml").string() +
+                                                   ":1:7: base: 'self.yaml' includes itself: "
+                                                   "self.yaml -> self.yaml");
+  WriteScenario(dir / "missing.yaml", "base: nothere.yaml\n");
+  EXPECT_EQ(IncludeErrorOf(dir / "missing.yaml"), (dir / "missing.yaml").string() +
+                                                      ":1:7: base: 'nothere.yaml': no such file (" +
+                                                      (dir / "nothere.yaml").string() + ")");
+  WriteScenario(dir / "list.yaml", "base: [a.yaml]\n");
+  EXPECT_EQ(IncludeErrorOf(dir / "list.yaml"),
             (dir / "list.yaml").string() + ":1:7: base: [a.yaml] must be a file name (a scenario)");
-  Write(dir / "broken.yaml", "mooring: [\n");
-  Write(dir / "on_broken.yaml", "base: broken.yaml\n");
-  const std::string error = ErrorOf(dir / "on_broken.yaml");
+  WriteScenario(dir / "broken.yaml", "mooring: [\n");
+  WriteScenario(dir / "on_broken.yaml", "base: broken.yaml\n");
+  const std::string error = IncludeErrorOf(dir / "on_broken.yaml");
   EXPECT_EQ(error.rfind((dir / "broken.yaml").string() + ":", 0), 0u) << error;
   EXPECT_NE(error.find("YAML syntax error"), std::string::npos) << error;
 }

@@ -283,7 +283,7 @@ TEST(ParseScenario, OrdersLinesByIdAndNamesEntriesAsWritten) {
 }
 
 // ---------------------------------------------------------------------------------------
-class BadScenario : public testing::TestWithParam<BadInput> {};
+class BadScenario : public ::testing::TestWithParam<BadInput> {};
 
 TEST_P(BadScenario, GivesOneLineWithPlaceKeyValueAndRule) {
   const BadInput& input = GetParam();
@@ -292,7 +292,7 @@ TEST_P(BadScenario, GivesOneLineWithPlaceKeyValueAndRule) {
             "test.yaml:" + PositionOf(text, input.after, input.at) + ": " + input.message);
 }
 
-std::string CaseName(const testing::TestParamInfo<BadInput>& info) { return info.param.name; }
+std::string CaseName(const ::testing::TestParamInfo<BadInput>& info) { return info.param.name; }
 
 INSTANTIATE_TEST_SUITE_P(Parse, BadScenario, ::testing::ValuesIn(kParseErrors), CaseName);
 

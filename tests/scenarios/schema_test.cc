@@ -154,7 +154,7 @@ TEST(Schema, NearestKeyCatchesTyposAndMissingUnitSuffixes) {
   EXPECT_EQ(schema::EditDistance("", "abc"), 3);
 }
 
-std::string ErrorOf(const std::string& text) {
+std::string AllErrorsOf(const std::string& text) {
   try {
     ParseScenario(text, "test.yaml");
   } catch (const InputError& error) {
@@ -163,7 +163,7 @@ std::string ErrorOf(const std::string& text) {
   return "(no error)";
 }
 
-std::vector<std::string> Lines(const std::string& text) {
+std::vector<std::string> MessageLines(const std::string& text) {
   std::vector<std::string> lines;
   std::istringstream in(text);
   for (std::string line; std::getline(in, line);) lines.push_back(line);
@@ -179,8 +179,8 @@ TEST(AllErrors, EveryProblemOfTheFileOnItsOwnLineInFileOrder) {
   text = Edit(text, "", "depth: 1000}", "dept: 1000}");
   text = Edit(text, "solver:", "rtol: 1.0e-4", "rtol: 2");
   text = Edit(text, "- id: 2", "type: wire", "type: [wire]");
-  const std::vector<std::string> lines = Lines(ErrorOf(text));
-  ASSERT_EQ(lines.size(), 4u) << ErrorOf(text);
+  const std::vector<std::string> lines = MessageLines(AllErrorsOf(text));
+  ASSERT_EQ(lines.size(), 4u) << AllErrorsOf(text);
   // The misspelt required key: suggested, not also reported missing.
   EXPECT_EQ(lines[0], "test.yaml:" + PositionOf(text, "", "dept") +
                           ": mooring.water: unknown key 'dept' (did you mean 'depth'?)");
@@ -196,17 +196,17 @@ TEST(AllErrors, ChecksBetweenValuesWaitForValuesThatRead) {
   // A line too short (a check between values) is not reported while a value does not read:
   // with a bad value in the file, such checks would run on a stand-in.
   std::string text = Edit(kBase, "- id: 3", "length: 2250", "length: 100");
-  EXPECT_EQ(Lines(ErrorOf(text)).size(), 1u);
+  EXPECT_EQ(MessageLines(AllErrorsOf(text)).size(), 1u);
   text = Edit(text, "", "depth: 1000}", "depth: deep}");
-  EXPECT_EQ(ErrorOf(text), "test.yaml:" + PositionOf(text, "", "deep") +
-                               ": mooring.water.depth: deep must be a number");
+  EXPECT_EQ(AllErrorsOf(text), "test.yaml:" + PositionOf(text, "", "deep") +
+                                   ": mooring.water.depth: deep must be a number");
 }
 
 TEST(AllErrors, IndependentChecksBetweenValuesAreAllReported) {
   std::string text = Edit(kBase, "- id: 3", "length: 2250", "length: 100");
   text = Edit(text, "simulation:", "duration: 1000", "duration: 10");
-  const std::vector<std::string> lines = Lines(ErrorOf(text));
-  ASSERT_EQ(lines.size(), 2u) << ErrorOf(text);
+  const std::vector<std::string> lines = MessageLines(AllErrorsOf(text));
+  ASSERT_EQ(lines.size(), 2u) << AllErrorsOf(text);
   EXPECT_NE(lines[0].find("mooring.lines[3].length: 100 m is shorter"), std::string::npos);
   EXPECT_NE(lines[1].find("failure.time"), std::string::npos) << lines[1];
 }
@@ -214,8 +214,8 @@ TEST(AllErrors, IndependentChecksBetweenValuesAreAllReported) {
 TEST(AllErrors, TheSameMistakeTwiceIsTwoLines) {
   std::string text = Edit(kBase, "- name: chain", "drag_normal: 0.3", "drag_normal: -1");
   text = Edit(text, "- name: wire", "drag_normal: 1.2", "drag_normal: -1");
-  const std::vector<std::string> lines = Lines(ErrorOf(text));
-  ASSERT_EQ(lines.size(), 2u) << ErrorOf(text);
+  const std::vector<std::string> lines = MessageLines(AllErrorsOf(text));
+  ASSERT_EQ(lines.size(), 2u) << AllErrorsOf(text);
   EXPECT_NE(lines[0].find("line_types[1].drag_normal"), std::string::npos);
   EXPECT_NE(lines[1].find("line_types[2].drag_normal"), std::string::npos);
 }
