@@ -101,7 +101,6 @@ std::vector<std::string> ExpandRange(const Reader& r) {
   const double from = r.Required<double>("from");
   const double to = r.Required<double>("to");
   const double step = r.Required<double>("step");
-  if (!(step > 0.0)) r.Child("step").Fail(Number(step) + " must be > 0");
   if (!(to >= from)) r.Child("to").Fail(Number(to) + " must be >= from (" + Number(from) + ")");
   const double count = std::floor((to - from) / step * (1.0 + 1e-12) + 1e-9) + 1.0;
   if (count > static_cast<double>(kMaxValuesPerFactor)) {
@@ -174,8 +173,7 @@ CampaignFactor ParseFactor(const Reader& r, const YAML::Node& node) {
       }
     }
     if (const std::optional<Reader> modulo = r.Find("modulo")) {
-      f.modulo = modulo->As<double>();
-      if (!(f.modulo > 0.0)) modulo->Fail(Number(f.modulo) + " must be > 0");
+      f.modulo = modulo->As<double>();  // > 0 (the schema)
     }
     if (const std::optional<Reader> function = r.Find("function")) {
       // cos or sin (the schema's choices) of the followed value in degrees.
@@ -195,7 +193,6 @@ CampaignFactor ParseFactor(const Reader& r, const YAML::Node& node) {
     f.kind = CampaignFactor::Kind::kNormal;
     f.mean = normal.Required<double>("mean");
     f.std_dev = normal.Required<double>("std_dev");
-    if (!(f.std_dev > 0.0)) normal.Child("std_dev").Fail(Number(f.std_dev) + " must be > 0");
     f.min = normal.Maybe<double>("min");
     f.max = normal.Maybe<double>("max");
     const double low = f.min.value_or(-std::numeric_limits<double>::infinity());

@@ -869,7 +869,7 @@ constexpr Block kScenario{"A moorsim scenario.", kScenarioKeys};
 
 constexpr Key kRangeKeys[] = {
     {.name = "from", .description = "First value.", .required = true},
-    {.name = "step", .description = "Step, > 0.", .required = true},
+    {.name = "step", .description = "Step.", .required = true, .minimum = Above(0.0)},
     {.name = "to", .description = "Last value (inclusive, within rounding).", .required = true},
 };
 constexpr Block kRange{"Evenly spaced values from `from` to `to`.", kRangeKeys};
@@ -878,7 +878,10 @@ constexpr Key kNormalKeys[] = {
     {.name = "max", .description = "Upper end of the window (draws beyond are repeated)."},
     {.name = "mean", .description = "Mean.", .required = true},
     {.name = "min", .description = "Lower end of the window."},
-    {.name = "std_dev", .description = "Standard deviation, > 0.", .required = true},
+    {.name = "std_dev",
+     .description = "Standard deviation.",
+     .required = true,
+     .minimum = Above(0.0)},
 };
 constexpr Block kNormal{"A normal draw per run, optionally within [min, max].", kNormalKeys};
 
@@ -905,7 +908,9 @@ constexpr Key kFactorKeys[] = {
      .kind = Kind::kString,
      .description = "The scenario key path to vary.",
      .required = true},
-    {.name = "modulo", .description = "follows: reduce the result to [-modulo/2, modulo/2)."},
+    {.name = "modulo",
+     .description = "follows: reduce the result to [-modulo/2, modulo/2).",
+     .minimum = Above(0.0)},
     {.name = "normal",
      .kind = Kind::kMap,
      .description = "A normal draw per run.",
