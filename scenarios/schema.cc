@@ -1086,7 +1086,79 @@ ordered_json BlockSchema(const Block& block, bool required) {
   return out;
 }
 
+std::string KindName(const Key& key) {
+  switch (key.kind) {
+    case Kind::kNumber:
+      return "number";
+    case Kind::kInteger:
+      return "integer";
+    case Kind::kCount:
+      return "integer >= 0";
+    case Kind::kBoolean:
+      return "true/false";
+    case Kind::kString:
+      return key.choices.empty() ? "text" : "choice";
+    case Kind::kVector:
+      return "[x, y, z]";
+    case Kind::kMap:
+      return "map";
+    case Kind::kList:
+      return key.block ? "list of maps" : "list";
+    case Kind::kValue:
+      return "value";
+    case Kind::kValueMap:
+      return "map of values";
+  }
+  return "";
+}
+
+std::string RangeText(const Key& key) {
+  if (!key.choices.empty()) {
+    std::string text;
+    for (std::string_view choice : key.choices)
+      text += (text.empty() ? "" : ", ") + std::string(choice);
+    return text;
+  }
+  if (!key.minimum && !key.maximum) return "";
+  const auto number = [&](double v) {
+    return key.kind == Kind::kInteger ? std::to_string(static_cast<long long>(v))
+                                      : strict_yaml::Number(v);
+  };
+  std::string text = key.minimum ? (key.minimum->exclusive ? "(" : "[") + number(key.minimum->value)
+                                 : std::string("(-inf");
+  text += ", ";
+  text += key.maximum ? number(key.maximum->value) + (key.maximum->exclusive ? ")" : "]")
+                      : std::string("inf)");
+  for (const std::optional<Bound>& bound : {key.minimum, key.maximum}) {
+    if (bound && !bound->why.empty()) text += " (" + std::string(bound->why) + ")";
+  }
+  return text;
+}
+
+void MarkdownRows(const Block& block, const std::string& path, std::string& out) {
+  for (const Key& key : block.keys) {
+    const std::string here = (path.empty() ? "" : path + ".") + std::string(key.name);
+    std::string description(key.description);
+    for (char& c : description) {
+      if (c == '|') c = '/';
+    }
+    out += "| `" + here + "`" + (key.required ? " (required)" : "") + " | " + KindName(key) +
+           " | " + std::string(key.unit) + " | " + RangeText(key) + " | " +
+           (key.default_json ? "`" + key.default_json() + "`" : "") + " | " + description + " |\n";
+    if (key.block != nullptr) {
+      MarkdownRows(*key.block, here + (key.kind == Kind::kList ? "[]" : ""), out);
+    }
+  }
+}
+
 }  // namespace
+
+std::string MarkdownTable(const Block& root) {
+  std::string out =
+      "| key | kind | unit | range | default | what it is |\n|---|---|---|---|---|---|\n";
+  MarkdownRows(root, "", out);
+  return out;
+}
 
 const Key* Block::Find(std::string_view name) const {
   for (const Key& key : keys) {

@@ -83,6 +83,10 @@ const Block& Campaign();
 /// `root` as a JSON Schema (draft-07) document, pretty-printed; `title` names the format.
 std::string JsonSchema(const Block& root, std::string_view title);
 
+/// Every key of `root` as a Markdown table (key path, kind, unit, range, default, what it
+/// is), for the documentation: the same table the loader checks against.
+std::string MarkdownTable(const Block& root);
+
 /// The nearest name to `name` among the block's keys within a small edit distance (a
 /// likely misspelling), or "".
 std::string NearestKey(const Block& block, std::string_view name);

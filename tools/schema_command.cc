@@ -11,9 +11,12 @@ namespace moorsim::cli {
 
 Command AddSchemaCommand(CLI::App& app) {
   auto campaign = std::make_shared<bool>(false);
+  auto markdown = std::make_shared<bool>(false);
   CLI::App* sub = app.add_subcommand(
       "schema", "print the scenario format as a JSON Schema (draft-07), for editors");
   sub->add_flag("--campaign", *campaign, "the campaign format instead of the scenario format");
+  sub->add_flag("--markdown", *markdown,
+                "a Markdown table of every key instead (as in scenarios/README.md)");
   sub->footer(
       "\nEvery key with its kind, unit, description, range, choices and default, from the\n"
       "tables `moorsim validate` checks against. Save it next to your files and start each\n"
@@ -22,11 +25,13 @@ Command AddSchemaCommand(CLI::App& app) {
       "  # yaml-language-server: $schema=moorsim.schema.json\n"
       "The schema checks each key on its own; rules between values (a line that must reach\n"
       "its fairlead, waves too steep for their period) are left to `moorsim validate`.");
-  return [campaign] {
-    const std::string text =
-        *campaign
-            ? scenarios::schema::JsonSchema(scenarios::schema::Campaign(), "moorsim campaign")
-            : scenarios::schema::JsonSchema(scenarios::schema::Scenario(), "moorsim scenario");
+  return [campaign, markdown] {
+    const scenarios::schema::Block& root =
+        *campaign ? scenarios::schema::Campaign() : scenarios::schema::Scenario();
+    const std::string text = *markdown
+                                 ? scenarios::schema::MarkdownTable(root)
+                                 : scenarios::schema::JsonSchema(
+                                       root, *campaign ? "moorsim campaign" : "moorsim scenario");
     std::fwrite(text.data(), 1, text.size(), stdout);
     return 0;
   };

@@ -141,6 +141,22 @@ TEST(Schema, JsonSchemaHasEveryKeyWithItsRangeAndDefault) {
   EXPECT_EQ(s["properties"]["detectors"]["items"]["additionalProperties"]["type"], "number");
 }
 
+TEST(Schema, MarkdownTableHasARowPerKeyWithRangeAndDefault) {
+  const std::string table = schema::MarkdownTable(schema::Scenario());
+  int rows = 0, keys = 0;
+  for (char c : table) rows += c == '\n';
+  ForEachKey(schema::Scenario(), "", [&](const Key&, const std::string&) { ++keys; });
+  EXPECT_EQ(rows, keys + 2);  // the header and its rule
+  EXPECT_NE(table.find("| `mooring.water.depth` (required) | number | m | (0, 12000] (the deepest "
+                       "ocean is 11 km) |  | Water depth"),
+            std::string::npos)
+      << table;
+  EXPECT_NE(table.find("| `solver.linear_solver` | choice |  | block, klu | `\"block\"` |"),
+            std::string::npos);
+  EXPECT_NE(table.find("| `mooring.lines[].segments` | integer |  | [2, 10000] |"),
+            std::string::npos);
+}
+
 TEST(Schema, NearestKeyCatchesTyposAndMissingUnitSuffixes) {
   const Block& water = *schema::Scenario().Find("mooring")->block->Find("water")->block;
   EXPECT_EQ(schema::NearestKey(water, "dept"), "depth");

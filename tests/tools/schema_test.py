@@ -3,7 +3,8 @@
 
 1. The schema files in scenarios/ are what `moorsim schema` prints now (regenerate with
    `moorsim schema > scenarios/moorsim.schema.json` and
-   `moorsim schema --campaign > scenarios/moorsim-campaign.schema.json`).
+   `moorsim schema --campaign > scenarios/moorsim-campaign.schema.json`), and the key
+   table in scenarios/README.md what `moorsim schema --markdown` prints.
 2. Every library scenario and campaign carries the editors' modeline and validates against
    its schema (python3-jsonschema, draft-07).
 3. Known-bad scenarios are rejected by both the schema and `moorsim validate` (exit 2, one
@@ -65,6 +66,17 @@ for flag, name in (([], "moorsim.schema.json"), (["--campaign"], "moorsim-campai
     schema = json.loads(printed.stdout)
     jsonschema.Draft7Validator.check_schema(schema)
     schemas[name] = jsonschema.Draft7Validator(schema)
+
+# The key table in scenarios/README.md is what `moorsim schema --markdown` prints.
+table = run("schema", "--markdown")
+check(table.returncode == 0, "moorsim schema --markdown exits 0")
+with open(os.path.join(SOURCE, "scenarios", "README.md"), encoding="utf-8") as f:
+    readme = f.read()
+begin, end = "<!-- moorsim schema --markdown -->\n", "<!-- end of moorsim schema --markdown -->"
+check(begin in readme and end in readme
+      and readme[readme.index(begin) + len(begin):readme.index(end)] == table.stdout,
+      "scenarios/README.md holds the table `moorsim schema --markdown` prints (regenerate it)")
+check(table.stdout.count("\n| `") > 150, "the table has a row per key")
 
 
 def errors_of(validator, document):
