@@ -289,44 +289,66 @@ void CheckZip(const std::string& file, const CampaignBlock& b, const std::string
   }
 }
 
-void ParseDocument(const Reader& root, const YAML::Node& document, Campaign& c) {
+void BlocksOf(const Reader& root, const ParseContext& strict, const YAML::Node& document,
+              Campaign& c);
+
+// `root` collects its errors (every top-level problem, one per block); each block is read
+// with `strict`, which stops at the block's first problem (its factors build on each other).
+void ParseDocument(const Reader& root, const ParseContext& strict, const YAML::Node& document,
+                   Campaign& c) {
   root.CheckKeys();
-  root.Optional("name", c.name);
-  if (!IsBlockName(c.name)) {
-    root.Child("name").Fail("'" + c.name + "' must be letters, digits, '_' or '-'");
-  }
-  const Reader scenario = root.Child("scenario");
-  const std::string given = scenario.As<std::string>();
-  if (given.empty()) scenario.Fail("an empty path");
-  std::filesystem::path resolved(given);
-  if (resolved.is_relative()) {
-    resolved = std::filesystem::path(c.source_path).parent_path() / resolved;
-  }
-  c.scenario_path = resolved.lexically_normal().string();
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(c.scenario_path, error)) {
-    scenario.Fail("'" + given + "': no scenario file at " + c.scenario_path);
-  }
+  root.Attempt([&] {
+    root.Optional("name", c.name);
+    if (!IsBlockName(c.name)) {
+      root.Child("name").Fail("'" + c.name + "' must be letters, digits, '_' or '-'");
+    }
+  });
+  root.Attempt([&] {
+    const Reader scenario = root.Child("scenario");
+    const std::string given = scenario.As<std::string>();
+    if (given.empty()) scenario.Fail("an empty path");
+    std::filesystem::path resolved(given);
+    if (resolved.is_relative()) {
+      resolved = std::filesystem::path(c.source_path).parent_path() / resolved;
+    }
+    c.scenario_path = resolved.lexically_normal().string();
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(c.scenario_path, error)) {
+      scenario.Fail("'" + given + "': no scenario file at " + c.scenario_path);
+    }
+  });
   c.seed = root.Required<std::uint64_t>("seed");
-  if (const std::optional<Reader> set = root.Find("set")) c.set = ParseSet(*set, document["set"]);
+  root.Attempt([&] {
+    if (const std::optional<Reader> set = root.Find("set")) c.set = ParseSet(*set, document["set"]);
+  });
+  root.Attempt([&] { BlocksOf(root, strict, document, c); });
+}
+
+void BlocksOf(const Reader& root, const ParseContext& strict, const YAML::Node& document,
+              Campaign& c) {
   const Reader blocks = root.Child("blocks");
   const std::vector<Reader> items = blocks.Items();
   if (items.empty()) blocks.Fail("an empty list (a campaign has at least one block)");
+  const schema::Block* block_schema = schema::Campaign().Find("blocks")->block;
   std::int64_t runs = 0;
   for (std::size_t i = 0; i < items.size(); ++i) {
-    CampaignBlock b = ParseBlock(items[i], document["blocks"][i]);
-    CheckZip(c.source_path, b, ItemPath("blocks", i) + ".factors");
-    for (const CampaignBlock& earlier : c.blocks) {
-      if (earlier.name == b.name)
-        items[i].Child("name").Fail("duplicate block name '" + b.name + "'");
-    }
-    const double block_runs =
-        static_cast<double>(b.Points()) * static_cast<double>(b.SeedsPerPoint());
-    if (block_runs + static_cast<double>(runs) > static_cast<double>(kMaxRuns)) {
-      items[i].Fail("the campaign would have more than " + std::to_string(kMaxRuns) + " runs");
-    }
-    runs += b.Points() * b.SeedsPerPoint();
-    c.blocks.push_back(std::move(b));
+    root.Attempt([&] {
+      const Reader item(strict, document["blocks"][i], ItemPath("blocks", i), items[i].mark(),
+                        block_schema);
+      CampaignBlock b = ParseBlock(item, document["blocks"][i]);
+      CheckZip(c.source_path, b, ItemPath("blocks", i) + ".factors");
+      for (const CampaignBlock& earlier : c.blocks) {
+        if (earlier.name == b.name)
+          items[i].Child("name").Fail("duplicate block name '" + b.name + "'");
+      }
+      const double block_runs =
+          static_cast<double>(b.Points()) * static_cast<double>(b.SeedsPerPoint());
+      if (block_runs + static_cast<double>(runs) > static_cast<double>(kMaxRuns)) {
+        items[i].Fail("the campaign would have more than " + std::to_string(kMaxRuns) + " runs");
+      }
+      runs += b.Points() * b.SeedsPerPoint();
+      c.blocks.push_back(std::move(b));
+    });
   }
 }
 
@@ -489,10 +511,13 @@ Campaign ParseCampaign(const std::string& yaml_text, const std::string& source_n
     ThrowAt(source_name, MarkOfOffset(yaml_text, *bad), "", InvalidUtf8(yaml_text, *bad));
   }
   std::map<std::string, SourceMark> marks;
-  ParseContext context;
-  context.file = source_name;
-  context.marks = &marks;
-  context.text = &yaml_text;
+  ParseContext strict;
+  strict.file = source_name;
+  strict.marks = &marks;
+  strict.text = &yaml_text;
+  std::vector<std::string> errors;
+  ParseContext context = strict;
+  context.errors = &errors;
   try {
     const std::vector<YAML::Node> documents = YAML::LoadAll(yaml_text);
     if (documents.empty() || documents[0].IsNull()) {
@@ -504,12 +529,13 @@ Campaign ParseCampaign(const std::string& yaml_text, const std::string& source_n
     }
     const Reader root(context, documents[0], "", ToSourceMark(documents[0].Mark()),
                       &schema::Campaign());
-    ParseDocument(root, documents[0], c);
+    ParseDocument(root, strict, documents[0], c);
   } catch (const YAML::ParserException& error) {
     ThrowAt(source_name, ToSourceMark(error.mark), "", "YAML syntax error: " + error.msg);
   } catch (const YAML::Exception& error) {
     ThrowAt(source_name, ToSourceMark(error.mark), "", error.msg);
   }
+  ThrowCollected(std::move(errors));
   return c;
 }
 

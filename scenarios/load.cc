@@ -489,32 +489,6 @@ class Checker {
   const std::map<std::string, std::string>& origins_;
 };
 
-// One InputError for all the messages (one located line each, ordered by file and
-// position); nothing for none.
-void ThrowAll(std::vector<std::string> errors) {
-  if (errors.empty()) return;
-  // "<file>:<line>:<col>: ..." sorts by file, then numerically by line and column.
-  const auto key = [](const std::string& message) {
-    std::size_t colon = message.find(": ");
-    const std::string head = message.substr(0, colon);
-    int line = 0, column = 0;
-    const std::size_t second = head.rfind(':');
-    const std::size_t first = second == std::string::npos ? second : head.rfind(':', second - 1);
-    if (first != std::string::npos &&
-        std::from_chars(head.data() + first + 1, head.data() + second, line).ec == std::errc() &&
-        std::from_chars(head.data() + second + 1, head.data() + head.size(), column).ec ==
-            std::errc()) {
-      return std::tuple(head.substr(0, first), line, column);
-    }
-    return std::tuple(head, 0, 0);
-  };
-  std::stable_sort(errors.begin(), errors.end(),
-                   [&](const std::string& a, const std::string& b) { return key(a) < key(b); });
-  std::string joined;
-  for (const std::string& error : errors) joined += (joined.empty() ? "" : "\n") + error;
-  throw InputError(joined);
-}
-
 // Bounds between values (each key's own range is in the schema, scenarios/schema.cc).
 constexpr double kMaxOutputRows = 1e9;  // simulation.duration x output_rate_hz
 // An anchor lies on the seabed: the static catenary that starts every run and the
@@ -917,7 +891,7 @@ void Validate(const Scenario& scenario) {
       check.Fail(what, "needs a vessel section");
     }
   });
-  ThrowAll(std::move(errors));
+  ThrowCollected(std::move(errors));
 }
 
 namespace {
@@ -1256,7 +1230,7 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source_n
     ThrowAt(source_name, ToSourceMark(error.mark), "", error.msg);
   }
   // Checks between values run on a document whose every value could be read.
-  ThrowAll(std::move(errors));
+  ThrowCollected(std::move(errors));
   Validate(scenario);
   // Lines are numbered 1..N in any order in the file; consumers index lines[k - 1].
   std::stable_sort(scenario.mooring.lines.begin(), scenario.mooring.lines.end(),

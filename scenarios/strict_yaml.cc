@@ -8,6 +8,7 @@
 #include <fstream>
 #include <numbers>
 #include <system_error>
+#include <tuple>
 
 #include "core/error.h"
 
@@ -252,6 +253,32 @@ bool Overridden(const ParseContext& context, const std::string& path) {
     if (UnderPath(path, o)) return true;
   }
   return false;
+}
+
+// One InputError for all the messages (one located line each, ordered by file and
+// position); nothing for none.
+void ThrowCollected(std::vector<std::string> errors) {
+  if (errors.empty()) return;
+  // "<file>:<line>:<col>: ..." sorts by file, then numerically by line and column.
+  const auto key = [](const std::string& message) {
+    std::size_t colon = message.find(": ");
+    const std::string head = message.substr(0, colon);
+    int line = 0, column = 0;
+    const std::size_t second = head.rfind(':');
+    const std::size_t first = second == std::string::npos ? second : head.rfind(':', second - 1);
+    if (first != std::string::npos &&
+        std::from_chars(head.data() + first + 1, head.data() + second, line).ec == std::errc() &&
+        std::from_chars(head.data() + second + 1, head.data() + head.size(), column).ec ==
+            std::errc()) {
+      return std::tuple(head.substr(0, first), line, column);
+    }
+    return std::tuple(head, 0, 0);
+  };
+  std::stable_sort(errors.begin(), errors.end(),
+                   [&](const std::string& a, const std::string& b) { return key(a) < key(b); });
+  std::string joined;
+  for (const std::string& error : errors) joined += (joined.empty() ? "" : "\n") + error;
+  throw InputError(joined);
 }
 
 // ---------------------------------------------------------------------------------------

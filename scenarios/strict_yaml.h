@@ -132,6 +132,10 @@ struct ParseContext {
   void Record(const std::string& message) const;
 };
 
+/// Throws one InputError holding every collected message (one located line each, ordered by
+/// file, line and column); nothing for none.
+void ThrowCollected(std::vector<std::string> errors);
+
 /// Whether `path` is an overridden key path or lies under one.
 bool Overridden(const ParseContext& context, const std::string& path);
 

@@ -386,6 +386,21 @@ std::vector<CampaignError> Errors() {
   };
 }
 
+TEST(Campaign, EveryErrorAtOnceOnePerBlock) {
+  // A misspelt top-level key, a bad seed and a problem in each block: four lines in file
+  // order. A block stops at its first problem (its factors build on each other).
+  std::string text = Replace(kCampaign, "seed: 11", "seed: -11\nseeds: 3");
+  text = Replace(text, "uniform: [100, 200]", "uniform: [200, 100]");
+  text = Replace(text, "std_dev: 0.5, min", "std_dev: 0, min");
+  text = Replace(text, "seeds: {from: 5, to: 7}", "seeds: {from: 5, to: 7, by: 1}");
+  const std::string error = CampaignErrorOf(text);
+  EXPECT_EQ(error, At(text, "-11") + "seed: -11 must be a non-negative integer\n" +
+                       At(text, "seeds: 3") + "unknown key 'seeds' (did you mean 'seed'?)\n" +
+                       At(text, "100]") +
+                       "blocks[1].factors[3].uniform[2]: 100 must be > low (200)\n" +
+                       At(text, "0, min") + "blocks[2].factors[2].normal.std_dev: 0 must be > 0");
+}
+
 TEST(Campaign, EveryRuleIsOneLocatedLine) {
   for (const CampaignError& e : Errors()) {
     SCOPED_TRACE(e.name);
