@@ -437,14 +437,8 @@ class Checker {
     }
   }
 
-  // Upper bounds and two-sided ranges. `why` (may be empty) says where the bound comes
-  // from; it follows the rule in parentheses.
-  void AtMost(const std::string& path, double value, double high, std::string_view unit,
-              std::string_view why = {}) const {
-    if (!(value <= high))
-      Fail(path, WithUnit(value, unit) + " must be <= " + Number(high) + Why(why));
-  }
-
+  // A range that depends on other values (each key's own range is the schema's). `why`
+  // (may be empty) says where the bound comes from; it follows the rule in parentheses.
   void Between(const std::string& path, double value, double low, double high,
                std::string_view unit, std::string_view why = {}) const {
     if (!(value >= low && value <= high)) {
@@ -469,15 +463,9 @@ class Checker {
   }
 
   std::string FileOf(const std::string& path) const {
-    std::string file = file_;
-    std::size_t depth = 0;
-    for (const auto& [prefix, origin] : origins_) {
-      if (UnderPath(path, prefix) && prefix.size() >= depth) {
-        file = origin;
-        depth = prefix.size();
-      }
-    }
-    return file;
+    const auto* origin = DeepestUnder(
+        origins_, path, [](const auto& entry) -> const std::string& { return entry.first; });
+    return origin ? origin->second : file_;
   }
 
   static std::string Why(std::string_view why) {
@@ -1017,18 +1005,11 @@ struct Included {
   // Subtrees written in a base file (the deepest entry wins), as ParseContext::origins.
   std::vector<ParseContext::Origin> origins;
 
-  const ParseContext::Origin& OriginOf(const std::string& path) const {
-    const ParseContext::Origin* found = nullptr;
-    for (const ParseContext::Origin& origin : origins) {
-      if (UnderPath(path, origin.path) &&
-          (found == nullptr || origin.path.size() > found->path.size())) {
-        found = &origin;
-      }
-    }
-    static thread_local ParseContext::Origin own;
-    if (found != nullptr) return *found;
-    own = {path, file, text};
-    return own;
+  // The file (and text) the value at `path` was written in.
+  ParseContext::Origin OriginOf(const std::string& path) const {
+    const ParseContext::Origin* found = DeepestUnder(
+        origins, path, [](const ParseContext::Origin& o) -> const std::string& { return o.path; });
+    return found ? *found : ParseContext::Origin{path, file, text};
   }
 };
 
@@ -1053,7 +1034,7 @@ void MergeBase(YAML::Node top, const YAML::Node& base, const std::string& path,
     YAML::Node own = Lookup(top, name);
     if (!own.IsDefined()) {
       top.force_insert(entry.first, entry.second);  // the key and value keep their marks
-      const ParseContext::Origin& origin = from.OriginOf(child);
+      const ParseContext::Origin origin = from.OriginOf(child);
       into.origins.push_back({child, origin.file, origin.text});
       for (const ParseContext::Origin& deeper : from.origins) {
         if (deeper.path != child && UnderPath(deeper.path, child)) into.origins.push_back(deeper);
@@ -1137,8 +1118,8 @@ void ResolveBase(YAML::Node document, Included& self, std::vector<std::string>& 
 void RebasePaths(YAML::Node document, const Included& top) {
   const auto rebase = [&](YAML::Node value, const std::string& path) {
     if (!value.IsDefined() || !value.IsScalar()) return;
-    const ParseContext::Origin& origin = top.OriginOf(path);
-    if (origin.file != top.file) value = Rebased(value.Scalar(), origin.file, top.file);
+    const std::string written_in = top.OriginOf(path).file;
+    if (written_in != top.file) value = Rebased(value.Scalar(), written_in, top.file);
   };
   const YAML::Node vessel = Lookup(document, "vessel");
   if (vessel.IsDefined() && vessel.IsMap()) {

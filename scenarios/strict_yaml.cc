@@ -219,14 +219,8 @@ bool UnderPath(const std::string& path, const std::string& prefix) {
 namespace {
 
 const ParseContext::Origin* DeepestOrigin(const ParseContext& context, const std::string& path) {
-  const ParseContext::Origin* found = nullptr;
-  for (const ParseContext::Origin& origin : context.origins) {
-    if (UnderPath(path, origin.path) &&
-        (found == nullptr || origin.path.size() > found->path.size())) {
-      found = &origin;
-    }
-  }
-  return found;
+  return DeepestUnder(context.origins, path,
+                      [](const ParseContext::Origin& o) -> const std::string& { return o.path; });
 }
 
 }  // namespace

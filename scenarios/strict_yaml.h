@@ -80,6 +80,21 @@ std::string ReadInputFile(const std::string& path, std::size_t max_bytes, std::s
 /// Whether `path` is `prefix` or lies under it ("a.b[2]" lies under "a.b" and "a").
 bool UnderPath(const std::string& path, const std::string& prefix);
 
+/// The entry of `entries` whose key path (`path_of(entry)`) `path` lies under most deeply,
+/// or null: where a value was written, from the subtrees taken from other files.
+template <class Range, class PathOf>
+auto DeepestUnder(const Range& entries, const std::string& path, PathOf path_of)
+    -> decltype(&*std::begin(entries)) {
+  decltype(&*std::begin(entries)) found = nullptr;
+  for (const auto& entry : entries) {
+    const std::string& prefix = path_of(entry);
+    if (UnderPath(path, prefix) && (found == nullptr || prefix.size() > path_of(*found).size())) {
+      found = &entry;
+    }
+  }
+  return found;
+}
+
 /// Thrown, when collecting errors, where the problem has been recorded already (a missing
 /// required key that CheckKeys reported): it ends the value's reading and records nothing.
 class AlreadyReported : public InputError {
