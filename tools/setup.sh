@@ -18,7 +18,7 @@ packages=(
   nettle-dev               # SHA-256 of detector plugin libraries
   libopenmpi-dev openmpi-bin   # moorsim batch under mpirun
   python3-numpy python3-h5py python3-matplotlib   # tools/plot_run.py
-  python3-jsonschema       # tests: library scenarios against moorsim.schema.json
+  python3-jsonschema python3-yaml   # tests: library scenarios against moorsim.schema.json
   clang-format
 )
 
