@@ -1094,6 +1094,14 @@ void ResolveBase(YAML::Node document, Included& self, std::vector<std::string>& 
   if (!fs::exists(path, error)) {
     ThrowAt(self.file, at, "base", "'" + name + "': no such file (" + path.string() + ")");
   }
+  // A chain of bases is a few files deep; a longer one is a generated loop, not a scenario.
+  constexpr std::size_t kMaxBaseDepth = 32;
+  if (chain.size() >= kMaxBaseDepth) {
+    ThrowAt(self.file, at, "base",
+            "'" + name + "': more than " + std::to_string(kMaxBaseDepth) +
+                " files in the chain of bases (" + fs::path(chain.front()).filename().string() +
+                " -> ... -> " + fs::path(self.file).filename().string() + ")");
+  }
   constexpr std::size_t kMaxScenarioBytes = 4 << 20;
   try {
     texts.push_back(ReadInputFile(path.string(), kMaxScenarioBytes, "scenario"));

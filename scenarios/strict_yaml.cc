@@ -1,6 +1,7 @@
 #include "scenarios/strict_yaml.h"
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -499,10 +500,16 @@ std::string ReadInputFile(const std::string& path, std::size_t max_bytes, std::s
     const std::error_code error(errno, std::generic_category());
     throw InputError(path + ": cannot open the " + kind + " file: " + error.message());
   }
-  std::string text(max_bytes + 1, '\0');
-  file.read(text.data(), static_cast<std::streamsize>(text.size()));
+  // Read in chunks: the text holds what the file has, not the limit (every included file
+  // of a scenario is held while the chain is read).
+  std::string text;
+  std::array<char, 1 << 16> chunk{};
+  while (text.size() <= max_bytes) {
+    file.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+    text.append(chunk.data(), static_cast<std::size_t>(file.gcount()));
+    if (!file) break;
+  }
   if (file.bad()) throw InputError(path + ": cannot read the " + kind + " file");
-  text.resize(static_cast<std::size_t>(file.gcount()));
   if (text.size() > max_bytes) {
     throw InputError(path + ": larger than " + std::to_string(max_bytes >> 20) + " MiB, not a " +
                      kind + " file");

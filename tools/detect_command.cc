@@ -21,6 +21,7 @@
 #include "tools/output/hdf5_file.h"
 #include "tools/output/hdf5_reader.h"
 #include "tools/simulation/detection_tables.h"
+#include "tools/simulation/followed_file.h"
 #include "tools/simulation/pose_stream.h"
 #include "tools/simulation/run.h"
 #include "tools/simulation/simulation.h"
@@ -65,38 +66,38 @@ scenarios::Scenario RunScenarioOf(const std::string& path) {
   return scenarios::ParseScenario(text, source, overrides);
 }
 
-/// Lines of a stream; with `follow`, waits at its end for more (a file being appended)
-/// until a stop signal. A last line without its newline is kept until the newline comes.
+/// Lines of a finished stream (a file, or standard input until it closes); a last line
+/// without its newline counts. A followed file is read by simulation::FollowedFile.
 class LineSource {
  public:
-  LineSource(std::istream& in, bool follow) : in_(in), follow_(follow) {}
-  bool Next(std::string* line) {
-    for (;;) {
-      std::string chunk;
-      if (std::getline(in_, chunk)) {
-        if (!in_.eof()) {
-          *line = pending_ + chunk;
-          pending_.clear();
-          return true;
-        }
-        pending_ += chunk;  // the writer has not finished this line yet
-      }
-      if (!follow_ || simulation::StopSignal() != 0) {
-        if (pending_.empty()) return false;
-        line->swap(pending_);
-        pending_.clear();
-        return true;
-      }
-      in_.clear();
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-  }
+  explicit LineSource(std::istream& in) : in_(in) {}
+  bool Next(std::string* line) { return static_cast<bool>(std::getline(in_, *line)); }
 
  private:
   std::istream& in_;
-  bool follow_;
-  std::string pending_;
 };
+
+/// One line on stderr when a followed log rotates: what happened and what is read next.
+void ReportRotation(const std::string& path, simulation::Rotation rotation,
+                    std::size_t dropped_bytes) {
+  std::string what;
+  switch (rotation) {
+    case simulation::Rotation::kTruncated:
+    case simulation::Rotation::kRewritten:
+      what = std::string(simulation::RotationName(rotation)) + "; following it from its start";
+      break;
+    case simulation::Rotation::kReplaced:
+      what = "replaced by a new file; following the new file from its start";
+      break;
+    case simulation::Rotation::kMissing:
+      what = "moved or removed; reading on what was open and waiting for a file at this path";
+      break;
+  }
+  if (dropped_bytes > 0) {
+    what += " (an unfinished last line of " + std::to_string(dropped_bytes) + " bytes dropped)";
+  }
+  std::cerr << "moorsim detect: " << path << ": " << what << std::endl;
+}
 
 /// detect.h5: what tools/plot_run.py draws of a run that detection alone can give (the
 /// measured pose, the thrust given, the observers' load picture and every detector's
@@ -281,18 +282,30 @@ int Detect(const DetectOptions& o) {
       take(observation);
     }
   } else {
-    std::ifstream file;
-    if (!from_stdin) {
-      file.open(o.input);
-      if (!file) throw InputError(o.input + ": cannot be read");
-    }
-    if (o.follow && !from_stdin) simulation::InstallStopSignalHandlers();
-    LineSource source(from_stdin ? std::cin : file, o.follow && !from_stdin);
     simulation::CsvPoseStream stream(from_stdin ? "<stdin>" : o.input, lines, max_gap);
     std::string line;
     detectors::Observation observation;
-    while (source.Next(&line)) {
-      if (stream.Take(line, &observation)) take(observation);
+    if (o.follow && !from_stdin) {
+      simulation::InstallStopSignalHandlers();
+      simulation::FollowedFile followed(o.input);
+      const auto stop = [] { return simulation::StopSignal() != 0; };
+      const auto rotated = [&](simulation::Rotation rotation, std::size_t dropped_bytes) {
+        ReportRotation(o.input, rotation, dropped_bytes);
+        if (rotation != simulation::Rotation::kMissing) stream.Restart();
+      };
+      while (followed.Next(&line, stop, rotated)) {
+        if (stream.Take(line, &observation)) take(observation);
+      }
+    } else {
+      std::ifstream file;
+      if (!from_stdin) {
+        file.open(o.input);
+        if (!file) throw InputError(o.input + ": cannot be read");
+      }
+      LineSource source(from_stdin ? std::cin : file);
+      while (source.Next(&line)) {
+        if (stream.Take(line, &observation)) take(observation);
+      }
     }
     if (!stream.has_header()) {
       throw InputError((from_stdin ? std::string("<stdin>") : o.input) +
@@ -353,7 +366,8 @@ Command AddDetectCommand(CLI::App& app) {
                   "longest time step or channel dropout accepted [s] (default 60)");
   sub->add_flag("--follow", o->follow,
                 "at the end of a CSV file, wait for more rows (a log being appended) until "
-                "SIGINT/SIGTERM");
+                "SIGINT/SIGTERM; follows rotation as tail -F does (truncated, replaced or "
+                "rewritten: read again from its start, said on stderr)");
   sub->add_flag("--quiet", o->quiet, "no summary line on stderr");
   AddPluginOption(sub);
   sub->footer(

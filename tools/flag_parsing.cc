@@ -1,6 +1,7 @@
 // Number parsing for command-line flags: every failure is an InputError that names the
 // flag and the text it was given.
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -54,14 +55,12 @@ std::vector<double> ParseNumberList(const std::string& flag, const std::string& 
   for (std::size_t begin = 0;;) {
     const std::size_t comma = text.find(',', begin);
     const std::string item = text.substr(begin, comma == std::string::npos ? comma : comma - begin);
-    std::size_t used = 0;
-    double value = 0.0;
-    try {
-      value = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
     if (item.empty()) throw InputError(flag + ": empty item in '" + text + "'");
+    // strtod, not stod: a number too small for a normal double (1e-320) is read as the
+    // nearest double (underflow is not an error); one too large is infinite, refused below.
+    char* end = nullptr;
+    const double value = std::strtod(item.c_str(), &end);
+    const auto used = static_cast<std::size_t>(end - item.c_str());
     if (used == 0 || used != item.size() || !std::isfinite(value)) {
       throw InputError(flag + ": '" + item + "' in '" + text + "' is not a finite number");
     }

@@ -1,10 +1,14 @@
 // `moorsim simulate-lines`: the mooring lines alone with the turret on a prescribed
 // harmonic path; fairlead tensions vs time to CSV, wall time and integrator statistics.
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "core/error.h"
@@ -20,16 +24,23 @@ namespace {
 struct SimulateLinesOptions {
   std::string scenario;
   std::string motion;
-  double duration = 0.0;
-  std::string out;
-  double output_interval = 0.5;
-  int segments = 0;
-  double tolerance_scale = 1.0;
+  std::string duration;
+  std::optional<std::string> out;
+  std::string output_interval = "0.5";
+  std::string segments;
+  std::string tolerance_scale = "1";
   std::vector<std::string> parts;
   std::vector<std::string> sets;
   bool segments_given = false;
   bool quiet = false;
 };
+
+constexpr double kMinPeriod = 0.1;     // [s]
+constexpr double kMaxPeriod = 1e6;     // [s]
+constexpr double kMaxAmplitude = 1e4;  // [m]
+// The tolerances a --tolerance-scale may give: CVODE's error test needs a relative tolerance
+// well above round-off, and the scenario's own limits hold for the scaled values too.
+constexpr double kMinRtol = 1e-12;
 
 mooring_fem::HarmonicMotion ParseMotion(const std::string& text) {
   const std::string usage = "--motion: '" + text + "' must be surge:A1,T1[,A2,T2...] or sway:...";
@@ -47,10 +58,15 @@ mooring_fem::HarmonicMotion ParseMotion(const std::string& text) {
   const std::vector<double> numbers = ParseNumberList("--motion", text.substr(colon + 1));
   if (numbers.size() % 2 != 0) throw InputError(usage + " (amplitude/period pairs)");
   for (std::size_t i = 0; i < numbers.size(); i += 2) {
-    if (numbers[i + 1] <= 0.0) {
-      std::ostringstream msg;
-      msg << "--motion: period " << numbers[i + 1] << " s must be > 0";
-      throw InputError(msg.str());
+    // Periods from faster than any sea wave to slower than any drift; amplitudes within a
+    // mooring's reach. Outside these the integrator would fail on a nonsense path.
+    if (!(numbers[i + 1] >= kMinPeriod && numbers[i + 1] <= kMaxPeriod)) {
+      throw InputError("--motion: period " + FormatNumber(numbers[i + 1]) + " s must be in " +
+                       FormatNumber(kMinPeriod) + ".." + FormatNumber(kMaxPeriod) + " s");
+    }
+    if (!(std::abs(numbers[i]) <= kMaxAmplitude)) {
+      throw InputError("--motion: amplitude " + FormatNumber(numbers[i]) + " m must be within " +
+                       FormatNumber(kMaxAmplitude) + " m");
     }
     motion.components.push_back({numbers[i], numbers[i + 1]});
   }
@@ -90,40 +106,108 @@ ScheduledPart ParsePart(const std::string& text, const scenarios::Scenario& scen
   return p;
 }
 
+/// The CSV of --out: a regular file is written as FILE.partial and renamed to FILE once
+/// complete, so that a run that fails (a full disk, the solver, a signal) never leaves a
+/// truncated table under the name asked for; a device or a pipe (/dev/stdout) is written
+/// directly. A failed write ends the run at once (exit 1), naming the file.
+class CsvOutput {
+ public:
+  explicit CsvOutput(std::string path) : path_(std::move(path)) {
+    std::error_code ignored;
+    if (std::filesystem::is_directory(path_, ignored)) {
+      throw InputError("--out: '" + path_ + "' is a folder (give the CSV file's name)");
+    }
+    const bool direct = std::filesystem::exists(path_, ignored) &&
+                        !std::filesystem::is_regular_file(path_, ignored);
+    writing_ = direct ? path_ : path_ + ".partial";
+    stream_.open(writing_, std::ios::binary | std::ios::trunc);
+    if (!stream_) {
+      throw InputError("--out: cannot write '" + writing_ + "': " + std::strerror(errno));
+    }
+    created_ = !direct;
+  }
+  ~CsvOutput() {
+    if (created_) {
+      std::error_code ignored;
+      std::filesystem::remove(writing_, ignored);
+    }
+  }
+  CsvOutput(const CsvOutput&) = delete;
+  CsvOutput& operator=(const CsvOutput&) = delete;
+
+  std::ostream& stream() { return stream_; }
+  /// Throws if a write failed so far.
+  void Check() {
+    if (!stream_) Fail();
+  }
+  /// Flushes, closes and gives the file its name.
+  void Commit() {
+    stream_.flush();
+    Check();
+    stream_.close();
+    if (!stream_) Fail();
+    if (created_) {
+      std::error_code error;
+      std::filesystem::rename(writing_, path_, error);
+      if (error) throw Error("--out '" + path_ + "': rename failed: " + error.message());
+      created_ = false;
+    }
+  }
+
+ private:
+  [[noreturn]] void Fail() {
+    const int error = errno;
+    throw Error("--out '" + path_ + "': write failed" +
+                (error != 0 ? std::string(": ") + std::strerror(error) : std::string()) +
+                " (no CSV written)");
+  }
+  std::string path_;
+  std::string writing_;
+  std::ofstream stream_;
+  bool created_ = false;
+};
+
 int RunSimulateLines(const SimulateLinesOptions& o) {
   scenarios::Scenario scenario = scenarios::LoadScenario(o.scenario, o.sets);
-  if (!(o.duration > 0.0)) {
-    throw InputError("--duration: " + FormatNumber(o.duration) + " s must be > 0");
+  const double duration = ParseNumber("--duration", o.duration);
+  if (!(duration > 0.0)) throw InputError("--duration: " + o.duration + " s must be > 0");
+  const double output_interval = ParseNumber("--output-interval", o.output_interval);
+  if (!(output_interval > 0.0)) {
+    throw InputError("--output-interval: " + o.output_interval + " s must be > 0");
   }
-  if (!(o.output_interval > 0.0)) {
-    throw InputError("--output-interval: " + FormatNumber(o.output_interval) + " s must be > 0");
-  }
-  if (!(o.tolerance_scale > 0.0)) {
-    throw InputError("--tolerance-scale: " + FormatNumber(o.tolerance_scale) + " must be > 0");
+  const double tolerance_scale = ParseNumber("--tolerance-scale", o.tolerance_scale);
+  if (!(tolerance_scale > 0.0)) {
+    throw InputError("--tolerance-scale: " + o.tolerance_scale + " must be > 0");
   }
   // At most this many CSV rows: a smaller interval is a typo, not a request for terabytes.
   constexpr double kMaxRows = 1e7;
-  if (o.duration / o.output_interval > kMaxRows) {
-    throw InputError("--output-interval: " + FormatNumber(o.output_interval) + " s gives " +
-                     FormatNumber(std::floor(o.duration / o.output_interval)) +
-                     " rows over --duration " + FormatNumber(o.duration) + " s (at most 1e7)");
+  if (duration / output_interval > kMaxRows) {
+    throw InputError("--output-interval: " + o.output_interval + " s gives " +
+                     FormatNumber(std::floor(duration / output_interval)) +
+                     " rows over --duration " + o.duration + " s (at most 1e7)");
   }
   if (o.segments_given) {
-    if (o.segments < 2 || o.segments > 10000) {
-      throw InputError("--segments: " + std::to_string(o.segments) + " must be in 2..10000");
-    }
-    for (auto& line : scenario.mooring.lines) line.segments = o.segments;
+    const int segments = ParseInteger("--segments", o.segments, 2, 10000);
+    for (auto& line : scenario.mooring.lines) line.segments = segments;
   }
-  mooring_fem::ScaleTolerances(scenario.solver, o.tolerance_scale);
+  mooring_fem::ScaleTolerances(scenario.solver, tolerance_scale);
+  const auto within = [&](const char* name, double value, double low, double high) {
+    if (!(value >= low && value < high)) {
+      throw InputError("--tolerance-scale: " + o.tolerance_scale + " makes solver." + name + " " +
+                       FormatNumber(value) + " (it must stay in " + FormatNumber(low) + ".." +
+                       FormatNumber(high) + ")");
+    }
+  };
+  within("rtol", scenario.solver.rtol, kMinRtol, 1.0);
+  within("atol_position", scenario.solver.atol_position, 0.0, 1.0);
+  within("atol_velocity", scenario.solver.atol_velocity, 0.0, 1.0);
   const mooring_fem::HarmonicMotion motion = ParseMotion(o.motion);
   std::vector<ScheduledPart> parts;
   for (const std::string& p : o.parts) parts.push_back(ParsePart(p, scenario));
 
-  std::unique_ptr<std::ofstream> csv;
-  if (!o.out.empty()) {
-    csv = std::make_unique<std::ofstream>(o.out);
-    if (!*csv) throw InputError("--out: cannot write '" + o.out + "'");
-  }
+  std::optional<CsvOutput> output;
+  std::ostream* csv = nullptr;
+  if (o.out) csv = &output.emplace(RequireText("--out", *o.out)).stream();
 
   using Clock = std::chrono::steady_clock;
   const auto t_start = Clock::now();
@@ -138,13 +222,14 @@ int RunSimulateLines(const SimulateLinesOptions& o) {
     *csv << sim.time();
     for (const Vec3& f : forces) *csv << ',' << f.norm();
     *csv << '\n';
+    output->Check();
   };
   if (csv) {
     csv->precision(10);
     *csv << "# moorsim " << moorsim::kVersion << " simulate-lines scenario=" << o.scenario
-         << " motion=" << o.motion << " duration=" << o.duration
+         << " motion=" << o.motion << " duration=" << duration
          << " segments=" << scenario.mooring.lines.front().segments
-         << " rtol=" << scenario.solver.rtol << " tolerance_scale=" << o.tolerance_scale;
+         << " rtol=" << scenario.solver.rtol << " tolerance_scale=" << tolerance_scale;
     for (const std::string& p : o.parts) *csv << " part=" << p;
     *csv << "\n# fairlead tension = magnitude of the force each line exerts on the turret [N]\n";
     *csv << "time";
@@ -152,18 +237,19 @@ int RunSimulateLines(const SimulateLinesOptions& o) {
     *csv << '\n';
   }
   write_row();
-  const long steps = std::lround(o.duration / o.output_interval);
+  const long steps = std::lround(duration / output_interval);
   double last_report = 0.0;
   for (long i = 1; i <= steps; ++i) {
-    sim.AdvanceTo(std::min(o.duration, i * o.output_interval));
+    sim.AdvanceTo(std::min(duration, static_cast<double>(i) * output_interval));
     write_row();
     const double wall = std::chrono::duration<double>(Clock::now() - t_ready).count();
     if (!o.quiet && wall - last_report > 5.0) {
       std::fprintf(stderr, "simulate-lines: t = %.1f / %.1f s (%.0fx real time)\n", sim.time(),
-                   o.duration, sim.time() / wall);
+                   duration, sim.time() / wall);
       last_report = wall;
     }
   }
+  if (output) output->Commit();
   const auto t_end = Clock::now();
   const double init_s = std::chrono::duration<double>(t_ready - t_start).count();
   const double wall_s = std::chrono::duration<double>(t_end - t_ready).count();
@@ -173,7 +259,7 @@ int RunSimulateLines(const SimulateLinesOptions& o) {
       "segments %d, state size %zu, rtol %.2e; steps %ld, rhs %ld, jacobians %ld, "
       "linear setups %ld, newton iterations %ld, newton failures %ld, error-test failures %ld, "
       "stability order reductions %ld, last step %.4f s, last order %d\n",
-      o.duration, wall_s, init_s, o.duration / wall_s, scenario.mooring.lines.front().segments,
+      duration, wall_s, init_s, duration / wall_s, scenario.mooring.lines.front().segments,
       sim.state().size(), scenario.solver.rtol, s.steps, s.rhs_evals, s.jacobian_evals,
       s.linear_setups, s.newton_iterations, s.newton_failures, s.error_test_failures,
       s.stability_order_reductions, s.last_step, s.last_order);

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -13,6 +12,7 @@
 #include "scenarios/load.h"
 #include "scenarios/template.h"
 #include "tools/commands.h"
+#include "tools/simulation/run.h"
 
 namespace moorsim::cli {
 namespace {
@@ -83,6 +83,14 @@ int RunTemplate(const TemplateOptions& o) {
   if (o.out) {
     source_name = RequireText("--out", *o.out);
     std::error_code ignored;
+    if (std::filesystem::is_directory(source_name, ignored)) {
+      throw InputError("--out: '" + source_name + "' is a folder (give the scenario file's name)");
+    }
+    if (std::filesystem::exists(source_name, ignored) &&
+        !std::filesystem::is_regular_file(source_name, ignored)) {
+      throw InputError("--out: '" + source_name +
+                       "' is not a regular file (without --out the scenario goes to stdout)");
+    }
     if (std::filesystem::exists(source_name, ignored) && !o.force) {
       throw InputError("--out: '" + source_name + "' exists (give --force to overwrite it)");
     }
@@ -101,12 +109,8 @@ int RunTemplate(const TemplateOptions& o) {
     std::cout << text;
     return 0;
   }
-  {
-    std::ofstream file(source_name, std::ios::binary | std::ios::trunc);
-    file << text;
-    file.close();
-    if (!file) throw Error("--out: cannot write '" + source_name + "'");
-  }
+  // Written whole or not at all: on a full disk an existing file stays as it was.
+  simulation::WriteFileAtomically(source_name, text);
   std::printf("%s: %s mooring, %zu lines, pretension %.1f kN, anchors %.1f m from the vessel\n",
               source_name.c_str(), o.kind.c_str(), layout.lines.size(), layout.pretension / 1e3,
               layout.anchor_radius);

@@ -461,6 +461,48 @@ std::vector<FlagCase> FlagCases() {
        SimulateLines({"--motion", "surge:2,20"}),
        "--duration",
        {"required"}},
+      // Nonsense that would otherwise reach the integrator and come back as its failure.
+      {"SimulateLinesMotionVanishingPeriod",
+       SimulateLines({"--motion", "surge:5,1e-300", "--duration", "1"}),
+       "--motion",
+       {"period 1e-300 s must be in 0.1..1e+06 s"}},
+      {"SimulateLinesMotionHugeAmplitude",
+       SimulateLines({"--motion", "surge:1e9,20", "--duration", "1"}),
+       "--motion",
+       {"amplitude 1e+09 m"}},
+      {"SimulateLinesToleranceScaleInfinite",
+       SimulateLines({"--motion", "surge:2,20", "--duration", "1", "--tolerance-scale", "inf"}),
+       "--tolerance-scale",
+       {"'inf'"}},
+      {"SimulateLinesToleranceScaleHuge",
+       SimulateLines({"--motion", "surge:2,20", "--duration", "1", "--tolerance-scale", "1e300"}),
+       "--tolerance-scale",
+       {"1e300 makes solver.rtol"}},
+      {"SimulateLinesToleranceScaleTiny",
+       SimulateLines({"--motion", "surge:2,20", "--duration", "1", "--tolerance-scale", "1e-20"}),
+       "--tolerance-scale",
+       {"1e-20 makes solver.rtol"}},
+      // Empty values are errors, not zeros.
+      {"SimulateLinesEmptyDuration",
+       SimulateLines({"--motion", "surge:2,20", "--duration", ""}),
+       "--duration",
+       {"''"}},
+      {"SimulateLinesEmptyToleranceScale",
+       SimulateLines({"--motion", "surge:2,20", "--duration", "1", "--tolerance-scale", ""}),
+       "--tolerance-scale",
+       {"''"}},
+      {"SimulateLinesEmptySegments",
+       {"simulate-lines", "SEED", "--motion", "surge:2,20", "--duration", "1", "--segments", ""},
+       "--segments",
+       {"''"}},
+      {"SimulateLinesEmptyOut",
+       SimulateLines({"--motion", "surge:2,20", "--duration", "1", "--out", ""}),
+       "--out",
+       {"empty"}},
+      {"SimulateLinesOutIsAFolder",
+       SimulateLines({"--motion", "surge:2,20", "--duration", "1", "--out", "/tmp"}),
+       "--out",
+       {"'/tmp' is a folder"}},
   };
 }
 
@@ -690,6 +732,36 @@ TEST_F(CliTest, SimulateLinesWritesTensionCsv) {
       EXPECT_NEAR(tension, 6.06e6, 0.1 * 6.06e6) << "line " << c;
     }
   }
+}
+
+// A full disk (here /dev/full) is a failure naming the file, never exit 0 with a cut table.
+TEST_F(CliTest, SimulateLinesOnAFullDiskFailsNamingTheFile) {
+  const CliResult r = Run({"simulate-lines", kSeed, "--motion", "surge:2,20", "--duration", "20",
+                           "--out", "/dev/full", "--segments", "10", "--quiet"});
+  EXPECT_EQ(r.exit_code, 1) << r.Describe();
+  EXPECT_NE(r.err.find("--out '/dev/full': write failed: No space left on device"),
+            std::string::npos)
+      << r.Describe();
+}
+
+// A run that fails leaves no table under the name asked for (it is written aside and named
+// once complete).
+TEST_F(CliTest, SimulateLinesThatFailsLeavesNoCsv) {
+  const std::filesystem::path csv = Scratch("failed.csv");
+  // One solver step allowed between two rows: the solver gives up once the CSV is open.
+  const CliResult r =
+      Run({"simulate-lines", kSeed, "--motion", "surge:2,20", "--duration", "2", "--out",
+           csv.string(), "--segments", "10", "--quiet", "--set", "solver.max_steps=1"});
+  EXPECT_EQ(r.exit_code, 1) << r.Describe();
+  EXPECT_FALSE(std::filesystem::exists(csv));
+  EXPECT_FALSE(std::filesystem::exists(csv.string() + ".partial"));
+}
+
+// A number too small for a normal double is read as the nearest double, not refused as
+// "not a finite number".
+TEST_F(CliTest, ANumberBelowTheNormalRangeReadsAsTheNearestDouble) {
+  const CliResult r = Run({"static", kSeed, "--offset", "1e-320,0,0"});
+  EXPECT_EQ(r.exit_code, 0) << r.Describe();
 }
 
 // ---------------------------------------------------------------------------------------

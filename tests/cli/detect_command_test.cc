@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -217,21 +218,11 @@ TEST_F(DetectCommand, FollowingALogPrintsEachAlarmWhenItsRowArrives) {
   const std::filesystem::path log = dir.path() / "log.csv";
   WriteWholeFile(log, csv.substr(0, cut));
 
-  std::vector<std::string> args = {MOORSIM_CLI,     "detect",  log.string(),
-                                   "--follow",      "--quiet", "--scenario",
-                                   kDetectScenario, "--out",   (dir.path() / "d").string()};
-  args.insert(args.end(), kDetectSets.begin(), kDetectSets.end());
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
   const std::filesystem::path events_path = dir.path() / "events.jsonl";
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, events_path.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = 0;
-  ASSERT_EQ(posix_spawn(&pid, MOORSIM_CLI, &actions, nullptr, argv.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&actions);
+  const pid_t pid = StartCli(With({"detect", log.string(), "--follow", "--quiet", "--scenario",
+                                   kDetectScenario, "--out", (dir.path() / "d").string()},
+                                  kDetectSets),
+                             events_path, "");
 
   // The first alarm is printed while the log still ends at its row.
   EXPECT_GE(AwaitLines(events_path, 1), 1u);
@@ -320,6 +311,91 @@ TEST(DetectCommandInput, DropoutsWithinTheMaximumGapAreTakenAndBadFlagsRefused) 
              dir.path());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err, "moorsim: " + (dir.path() / "missing.csv").string() + ": no such file\n");
+}
+
+// Where process `pid` has read `path` to: the offset of its descriptor of that file, -1
+// while it has none.
+long ReadOffset(pid_t pid, const std::filesystem::path& path) {
+  const std::filesystem::path fds = "/proc/" + std::to_string(pid) + "/fd";
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(fds, error)) {
+    std::error_code link_error;
+    if (std::filesystem::read_symlink(entry.path(), link_error) != path) continue;
+    std::istringstream info(ReadWholeFile("/proc/" + std::to_string(pid) + "/fdinfo/" +
+                                          entry.path().filename().string()));
+    for (std::string key; info >> key;) {
+      long value = 0;
+      if (key == "pos:" && info >> value) return value;
+    }
+  }
+  return -1;
+}
+
+// Waits until `pid` has read `path` to `offset`; false if it ended or took two minutes.
+bool AwaitOffset(pid_t pid, const std::filesystem::path& path, long offset) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (ReadOffset(pid, path) != offset) {
+    int status = 0;
+    if (waitpid(pid, &status, WNOHANG) == pid) {
+      ADD_FAILURE() << "the process ended (status " << status << ") before reading to " << offset;
+      return false;
+    }
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return true;
+}
+
+// A followed log rotated while it is followed, as logrotate does it: by copy-and-truncate
+// (the logger goes on writing rows into the emptied file), then by a rewrite in place longer
+// than what was read (a new header and rows). Every row is read, none from the middle of a
+// line, and each rotation is said on stderr.
+TEST(DetectCommandInput, AFollowedLogIsFollowedThroughItsRotations) {
+  TempDirectory dir(::testing::TempDir());
+  const std::filesystem::path log = std::filesystem::canonical(dir.path()) / "log.csv";
+  const std::string all = Rows(90);
+  std::vector<std::size_t> row_end;  // where each line of `all` ends
+  for (std::size_t at = all.find('\n'); at != std::string::npos; at = all.find('\n', at + 1)) {
+    row_end.push_back(at + 1);
+  }
+  const std::string header = all.substr(0, row_end[0]);
+  // The header and rows 0..49; after the truncation rows 50..59 without a header; then the
+  // file rewritten with the header and rows 60..89, longer than anything read before.
+  const std::string first = all.substr(0, row_end[50]);
+  const std::string after_truncation = all.substr(row_end[50], row_end[60] - row_end[50]);
+  const std::string rewritten = header + all.substr(row_end[60]);
+  ASSERT_LT(after_truncation.size(), first.size());
+  ASSERT_GT(rewritten.size(), after_truncation.size());
+  WriteWholeFile(log, first);
+
+  const std::filesystem::path err_path = dir.path() / "stderr.txt";
+  const pid_t pid =
+      StartCli({"detect", log.string(), "--follow", "--scenario", kDetectScenario}, "", err_path);
+
+  ASSERT_TRUE(AwaitOffset(pid, log, static_cast<long>(first.size())));
+  WriteWholeFile(log, "");
+  Append(log, after_truncation);
+  EXPECT_TRUE(AwaitOffset(pid, log, static_cast<long>(after_truncation.size())));
+  {  // over the old bytes without truncating first: the file never looks shorter
+    std::ofstream over(log, std::ios::in | std::ios::out | std::ios::binary);
+    over << rewritten;
+  }
+  EXPECT_TRUE(AwaitOffset(pid, log, static_cast<long>(rewritten.size())));
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  const std::string err = ReadWholeFile(err_path);
+  ASSERT_TRUE(WIFEXITED(status)) << err;
+  EXPECT_EQ(WEXITSTATUS(status), 130) << err;
+  EXPECT_NE(
+      err.find("moorsim detect: " + log.string() + ": truncated; following it from its start\n"),
+      std::string::npos)
+      << err;
+  EXPECT_NE(
+      err.find("moorsim detect: " + log.string() + ": rewritten; following it from its start\n"),
+      std::string::npos)
+      << err;
+  EXPECT_NE(err.find("moorsim detect: 90 samples (0 s to 89 s)"), std::string::npos) << err;
 }
 
 }  // namespace

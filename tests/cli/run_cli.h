@@ -86,21 +86,21 @@ inline void WriteWholeFile(const std::filesystem::path& path, const std::string&
   if (!out) throw std::runtime_error("cannot write " + path.string());
 }
 
-/// Runs `program args...` with stdout and stderr captured through files in `scratch`.
-/// Throws std::runtime_error if the process cannot be started at all.
-inline CliResult RunProgram(const std::string& program, const std::vector<std::string>& args,
-                            const std::filesystem::path& scratch,
-                            std::chrono::seconds time_limit = std::chrono::seconds(60)) {
-  const std::filesystem::path out_path = scratch / "cli_stdout.txt";
-  const std::filesystem::path err_path = scratch / "cli_stderr.txt";
-
+/// Starts `program args...` in the background, stdin from /dev/null, stdout and stderr to
+/// the given files (created or emptied; an empty path is /dev/null); returns its pid. For
+/// tests that signal or feed a running command. Throws std::runtime_error if it cannot start.
+inline pid_t StartProgram(const std::string& program, const std::vector<std::string>& args,
+                          const std::filesystem::path& out_path,
+                          const std::filesystem::path& err_path) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out_path.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_path.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  const auto to = [&](int fd, const std::filesystem::path& path) {
+    posix_spawn_file_actions_addopen(&actions, fd, path.empty() ? "/dev/null" : path.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  };
+  to(STDOUT_FILENO, out_path);
+  to(STDERR_FILENO, err_path);
 
   std::vector<std::string> argv_text;
   argv_text.push_back(program);
@@ -115,6 +115,23 @@ inline CliResult RunProgram(const std::string& program, const std::vector<std::s
   if (spawned != 0) {
     throw std::runtime_error("posix_spawn(" + program + "): " + std::strerror(spawned));
   }
+  return pid;
+}
+
+/// Starts the built moorsim (MOORSIM_CLI) with `args`, as StartProgram does.
+inline pid_t StartCli(const std::vector<std::string>& args, const std::filesystem::path& out_path,
+                      const std::filesystem::path& err_path) {
+  return StartProgram(MOORSIM_CLI, args, out_path, err_path);
+}
+
+/// Runs `program args...` with stdout and stderr captured through files in `scratch`.
+/// Throws std::runtime_error if the process cannot be started at all.
+inline CliResult RunProgram(const std::string& program, const std::vector<std::string>& args,
+                            const std::filesystem::path& scratch,
+                            std::chrono::seconds time_limit = std::chrono::seconds(60)) {
+  const std::filesystem::path out_path = scratch / "cli_stdout.txt";
+  const std::filesystem::path err_path = scratch / "cli_stderr.txt";
+  const pid_t pid = StartProgram(program, args, out_path, err_path);
 
   CliResult result;
   int status = 0;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -185,6 +186,50 @@ TEST(TemplateCommand, OutRefusesToReplaceAFileUnlessForced) {
   const CliResult r = RunCli(forced, dir.path());
   ASSERT_EQ(r.exit_code, 0) << r.Describe();
   EXPECT_NO_THROW(scenarios::LoadScenario(path.string()));
+}
+
+// --force replaces a file only once the new one is whole: on a full disk (here a 1 kB file
+// size limit) the old file stays as it was and nothing else is left beside it.
+TEST(TemplateCommand, OnAFullDiskTheReplacedFileStaysWhole) {
+  TempDirectory dir(::testing::TempDir());
+  const std::filesystem::path path = dir.path() / "mine.yaml";
+  WriteWholeFile(path, "precious\n");
+  // The limit's signal is ignored here and so in the child: its write fails with EFBIG.
+  const auto saved = std::signal(SIGXFSZ, SIG_IGN);
+  const CliResult r = RunProgram(
+      "/usr/bin/prlimit",
+      {"--fsize=1000", MOORSIM_CLI, "template", "turret", "--lines", "3", "--depth", "1000",
+       "--length", "2250", "--pretension", "3e6", "--out", path.string(), "--force"},
+      dir.path());
+  std::signal(SIGXFSZ, saved);
+  EXPECT_EQ(r.exit_code, 1) << r.Describe();
+  EXPECT_NE(r.err.find(path.string() + ": write failed"), std::string::npos) << r.Describe();
+  EXPECT_EQ(ReadWholeFile(path), "precious\n");
+  std::size_t files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
+    files += entry.path().filename().string().rfind("cli_", 0) == 0 ? 0 : 1;
+  }
+  EXPECT_EQ(files, 1u);
+}
+
+TEST(TemplateCommand, OutMustBeARegularFile) {
+  TempDirectory dir(::testing::TempDir());
+  const std::vector<std::string> args = {"template",     "turret",   "--lines", "3",     "--depth",
+                                         "1000",         "--length", "2250",    "--out", "",
+                                         "--pretension", "3e6",      "--force"};
+  std::vector<std::string> folder = args;
+  folder[9] = dir.path().string();
+  const CliResult r = RunCli(folder, dir.path());
+  EXPECT_EQ(r.exit_code, 2) << r.Describe();
+  EXPECT_EQ(r.err, "moorsim: --out: '" + dir.path().string() +
+                       "' is a folder (give the scenario file's name)\n");
+  std::vector<std::string> device = args;
+  device[9] = "/dev/null";
+  const CliResult d = RunCli(device, dir.path());
+  EXPECT_EQ(d.exit_code, 2) << d.Describe();
+  EXPECT_EQ(d.err,
+            "moorsim: --out: '/dev/null' is not a regular file (without --out the scenario goes "
+            "to stdout)\n");
 }
 
 struct BadInput {

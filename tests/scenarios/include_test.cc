@@ -2,6 +2,7 @@
 // where errors point, and the bad includes (a cycle, a base that does not exist).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -9,6 +10,7 @@
 
 #include "core/error.h"
 #include "scenarios/load.h"
+#include "scenarios/strict_yaml.h"
 #include "tests/support/scratch_directory.h"
 
 namespace moorsim::scenarios {
@@ -151,6 +153,31 @@ TEST(Include, BadIncludesAreOneLocatedLine) {
   const std::string error = IncludeErrorOf(dir / "on_broken.yaml");
   EXPECT_EQ(error.rfind((dir / "broken.yaml").string() + ":", 0), 0u) << error;
   EXPECT_NE(error.find("YAML syntax error"), std::string::npos) << error;
+}
+
+// Every file of a chain of bases is held while the chain is read: each must cost what it
+// holds, not the 4 MiB limit a file may reach.
+TEST(Include, AFileReadHoldsItsTextNotTheSizeLimit) {
+  const fs::path dir = moorsim::testing::FreshDirectory("include_memory");
+  WriteScenario(dir / "small.yaml", "name: small\n");
+  const std::string text =
+      strict_yaml::ReadInputFile((dir / "small.yaml").string(), 4 << 20, "scenario");
+  EXPECT_EQ(text, "name: small\n");
+  // 64 KiB: the chunk the file is read in; the limit itself would be 4 MiB.
+  EXPECT_LE(text.capacity(), std::size_t{1} << 17);
+}
+
+TEST(Include, AChainOfBasesLongerThan32FilesIsOneLocatedLine) {
+  const fs::path dir = moorsim::testing::FreshDirectory("include_deep");
+  // Appended, not `"s" + std::to_string(i)`: GCC 12 at -O3 warns falsely about the latter.
+  const auto name = [](int i) { return std::string("s").append(std::to_string(i)) + ".yaml"; };
+  for (int i = 0; i < 40; ++i) WriteScenario(dir / name(i), "base: " + name(i + 1) + "\n");
+  const std::string error = IncludeErrorOf(dir / "s0.yaml");
+  const std::string at = (dir / "s31.yaml").string() + ":1:7: ";
+  EXPECT_EQ(error.substr(0, at.size()), at) << error;
+  EXPECT_EQ(error.substr(std::min(at.size(), error.size())),
+            "base: 's32.yaml': more than 32 files in the chain of bases (s0.yaml -> ... -> "
+            "s31.yaml)");
 }
 
 }  // namespace

@@ -133,6 +133,11 @@ void CsvPoseStream::Header(const std::vector<std::string>& cells) {
   have_header_ = true;
 }
 
+void CsvPoseStream::Restart() {
+  line_number_ = 0;
+  header_may_repeat_ = have_header_;
+}
+
 bool CsvPoseStream::Take(const std::string& line, detectors::Observation* observation) {
   ++line_number_;
   const std::string trimmed = Trim(line);
@@ -141,6 +146,10 @@ bool CsvPoseStream::Take(const std::string& line, detectors::Observation* observ
   if (!have_header_) {
     Header(cells);
     return false;
+  }
+  if (header_may_repeat_) {
+    header_may_repeat_ = false;
+    if (cells == header_) return false;
   }
   const std::string where = name_ + ":" + std::to_string(line_number_);
   if (cells.size() != header_.size()) {

@@ -62,7 +62,11 @@ class CsvPoseStream {
   /// and fills `observation` for a data row; false for the header, a comment or an empty
   /// line. Throws InputError "<name>:<line>: column '<name>': <what>" on bad input.
   bool Take(const std::string& line, detectors::Observation* observation);
-  /// Lines taken so far.
+  /// The stream goes on in a new file (a followed log was rotated): lines are numbered from
+  /// 1 again, and the new file may start with the same header line, which is then skipped.
+  /// The checks between rows (time increasing, gaps) go on across the rotation.
+  void Restart();
+  /// Lines taken so far (since the last Restart).
   long line_number() const { return line_number_; }
   /// Whether the header has been read.
   bool has_header() const { return have_header_; }
@@ -77,6 +81,7 @@ class CsvPoseStream {
   StreamChecks checks_;
   long line_number_ = 0;
   bool have_header_ = false;
+  bool header_may_repeat_ = false;
   std::vector<std::string> header_;
   // Column index of time, north, east, heading, thrust_surge, thrust_sway, thrust_yaw.
   std::array<int, 7> columns_ = {-1, -1, -1, -1, -1, -1, -1};
