@@ -190,8 +190,9 @@ void Append(const std::filesystem::path& path, const std::string& text) {
   out << text << std::flush;
 }
 
-// Starts `moorsim detect args...` with standard output on `stdout_fd`.
-pid_t StartDetect(std::vector<std::string> args, int stdout_fd) {
+// Starts `moorsim detect args...` with standard output on `stdout_fd` and standard input
+// on `stdin_fd` (-1: the test's).
+pid_t StartDetect(std::vector<std::string> args, int stdout_fd, int stdin_fd = -1) {
   args.insert(args.begin(), {MOORSIM_CLI, "detect"});
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
@@ -199,6 +200,7 @@ pid_t StartDetect(std::vector<std::string> args, int stdout_fd) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_adddup2(&actions, stdout_fd, STDOUT_FILENO);
+  if (stdin_fd >= 0) posix_spawn_file_actions_adddup2(&actions, stdin_fd, STDIN_FILENO);
   pid_t pid = 0;
   const int spawned = posix_spawn(&pid, MOORSIM_CLI, &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
@@ -336,6 +338,33 @@ TEST_F(DetectCommand, ALiveMonitorKilledOutrightKeepsEveryRowUpToItsLastFlush) {
   EXPECT_GT(printed, 0u);
   EXPECT_EQ(LinesOf(d / "alarms.csv").size(), 1 + printed);
   EXPECT_FALSE(std::filesystem::exists(d / "summary.json"));
+}
+
+// Standard input is a live input too: rows that came before the writer went quiet are
+// durable within a flush interval, though no further row arrives to trigger a flush.
+TEST_F(DetectCommand, ALiveMonitorOnStandardInputFlushesWhileItsInputIsQuiet) {
+  setenv("HDF5_USE_FILE_LOCKING", "FALSE", 1);  // read while the monitor writes
+  TempDirectory dir(::testing::TempDir());
+  const std::string csv = DetectionInputCsv((RunDir() / "run.h5").string());
+  const std::string head = csv.substr(0, csv.find('\n', csv.size() / 2) + 1);
+  const long rows = static_cast<long>(std::count(head.begin(), head.end(), '\n')) - 2;
+  int input[2];
+  ASSERT_EQ(::pipe(input), 0);
+  const int null_fd = ::open("/dev/null", O_WRONLY);
+  const std::filesystem::path d = dir.path() / "d";
+  const pid_t pid = StartDetect(With({"-", "--quiet", "--scenario", kDetectScenario, "--out",
+                                      d.string(), "--flush-interval", "0.2"},
+                                     kDetectSets),
+                                null_fd, input[0]);
+  ::close(null_fd);
+  ::close(input[0]);
+  ASSERT_EQ(::write(input[1], head.data(), head.size()), static_cast<ssize_t>(head.size()));
+  EXPECT_EQ(AwaitTimeRows(d / "detect.h5", rows), rows);
+  kill(pid, SIGKILL);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ::close(input[1]);
+  EXPECT_EQ(TimeRows(d / "detect.h5"), rows);
 }
 
 // `moorsim detect run.h5 --out d | head -1`: the first write to the closed pipe stops the
