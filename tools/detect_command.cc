@@ -2,14 +2,23 @@
 // stream, without the plant (tools/simulation/pose_stream.h has the input formats). Every
 // alarm event is printed as one JSON line on standard output the moment the sample that
 // raised it has been processed; --out DIR also keeps alarms.csv, detect.h5 (the figures of
-// tools/plot_run.py) and summary.json.
+// tools/plot_run.py) and summary.json (DetectOutputs says how they survive a kill).
+#include <fcntl.h>
+#include <poll.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <thread>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -18,6 +27,7 @@
 #include "detectors/registry.h"
 #include "scenarios/load.h"
 #include "tools/commands.h"
+#include "tools/output/directory_lock.h"
 #include "tools/output/hdf5_file.h"
 #include "tools/output/hdf5_reader.h"
 #include "tools/simulation/detection_tables.h"
@@ -38,11 +48,14 @@ struct DetectOptions {
   std::vector<std::string> sets;
   std::optional<std::string> out;
   std::optional<std::string> max_gap;
+  std::optional<std::string> flush_interval;
   bool follow = false;
   bool quiet = false;
 };
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+/// How much of a live monitor's detect.h5 and alarms.csv a kill may lose at most [s].
+constexpr double kDefaultFlushInterval = 10.0;
 
 bool IsHdf5(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -66,15 +79,33 @@ scenarios::Scenario RunScenarioOf(const std::string& path) {
   return scenarios::ParseScenario(text, source, overrides);
 }
 
-/// Lines of a finished stream (a file, or standard input until it closes); a last line
-/// without its newline counts. A followed file is read by simulation::FollowedFile.
+/// Lines of a stream read to its end (a file, or standard input until it closes); a last
+/// line without its newline counts. `waiting` is called about every 50 ms while the
+/// descriptor `poll_fd` (standard input, or -1) is quiet. A followed file is read by
+/// simulation::FollowedFile.
 class LineSource {
  public:
-  explicit LineSource(std::istream& in) : in_(in) {}
-  bool Next(std::string* line) { return static_cast<bool>(std::getline(in_, *line)); }
+  LineSource(std::istream& in, int poll_fd, std::function<void()> waiting)
+      : in_(in), poll_fd_(poll_fd), waiting_(std::move(waiting)) {}
+  bool Next(std::string* line) {
+    if (poll_fd_ >= 0) AwaitInput();
+    return static_cast<bool>(std::getline(in_, *line));
+  }
 
  private:
+  /// Returns once the stream has something buffered, or poll_fd_ is readable (or at its
+  /// end, or a signal came).
+  void AwaitInput() {
+    while (in_.rdbuf()->in_avail() == 0) {
+      pollfd ready = {poll_fd_, POLLIN, 0};
+      if (::poll(&ready, 1, 50) != 0) return;
+      waiting_();
+    }
+  }
+
   std::istream& in_;
+  int poll_fd_;
+  std::function<void()> waiting_;
 };
 
 /// One line on stderr when a followed log rotates: what happened and what is read next.
@@ -104,9 +135,9 @@ void ReportRotation(const std::string& path, simulation::Rotation rotation,
 /// verdict per sample), with the identity of the input and the scenario.
 class DetectWriter {
  public:
-  DetectWriter(const std::string& path, const scenarios::Scenario& scenario,
-               const std::string& input, const Detection& detection)
-      : file_(path) {
+  DetectWriter(output::Hdf5File file, const scenarios::Scenario& scenario, const std::string& input,
+               const Detection& detection)
+      : file_(std::move(file)) {
     file_.SetAttribute("/", "scenario", scenario.text);
     file_.SetAttribute("/", "scenario_name", scenario.name);
     file_.SetAttribute("/", "scenario_path", scenario.source_path);
@@ -131,6 +162,7 @@ class DetectWriter {
     Row(thrust_, o.tau_command);
     tables_->Append(file_, detection.bias(), detection.wave_motion(), detection.verdicts());
   }
+  void Flush() { file_.Flush(); }
   void Close() { file_.Close(); }
 
  private:
@@ -168,6 +200,171 @@ std::string CsvCell(const nlohmann::ordered_json& value) {
   if (value.is_number_integer()) return std::to_string(value.get<long long>());
   return FormatNumber(value.get<double>());
 }
+
+/// A text file written with write(2), every write checked (a full disk is an error, not a
+/// short file), that Sync makes durable.
+class TextFile {
+ public:
+  explicit TextFile(const fs::path& path)
+      : path_(path), fd_(::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644)) {
+    if (fd_ < 0) Fail("cannot create");
+  }
+  ~TextFile() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  TextFile(const TextFile&) = delete;
+  TextFile& operator=(const TextFile&) = delete;
+
+  void Write(const std::string& text) {
+    for (std::size_t written = 0; written < text.size();) {
+      const ssize_t n = ::write(fd_, text.data() + written, text.size() - written);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        if (n == 0) errno = ENOSPC;
+        Fail("write failed");
+      }
+      written += static_cast<std::size_t>(n);
+    }
+  }
+  void Sync() {
+    if (::fsync(fd_) != 0 && errno != EINVAL) Fail("fsync failed");
+  }
+  void Close() {
+    if (::close(std::exchange(fd_, -1)) != 0) Fail("close failed");
+  }
+
+ private:
+  [[noreturn]] void Fail(const char* what) const {
+    throw Error(path_.string() + ": " + what + ": " + std::strerror(errno));
+  }
+  fs::path path_;
+  int fd_;
+};
+
+/// DIR of `detect --out`: detect.h5, alarms.csv and summary.json, written by this process
+/// alone (output::DirectoryLock). The previous run's outputs go first, summary.json first,
+/// so DIR never mixes two runs.
+///
+/// A finite input (a file without --follow) writes detect.h5 and alarms.csv under ".partial"
+/// names and renames them into place when complete, then writes summary.json: a kill or a
+/// full disk leaves no partial file under a final name, and a failure removes the partial
+/// files. A live input (--follow, or standard input) writes them under their final names:
+/// detect.h5 appears once its tables exist and it opens, and both files are made durable
+/// (HDF5's metadata written only then, fsync) every flush interval and at every alarm
+/// before the alarm is printed, so a kill or a power loss loses at most the rows of the
+/// last flush interval.
+class DetectOutputs {
+ public:
+  DetectOutputs(const fs::path& dir, bool live, double flush_interval,
+                const scenarios::Scenario& scenario, const std::string& input,
+                const Detection& detection)
+      : dir_(dir), live_(live), flush_interval_(flush_interval), lock_(dir) {
+    for (const char* name :
+         {"summary.json", "detect.h5", "alarms.csv", "detect.h5.partial", "alarms.csv.partial"}) {
+      std::error_code error;
+      fs::remove(dir_ / name, error);
+      if (error) {
+        throw Error((dir_ / name).string() +
+                    ": cannot remove the previous run's file: " + error.message());
+      }
+    }
+    try {
+      output::Hdf5FileOptions options;
+      options.durable_flushes = live_;
+      output::Hdf5File file(Partial("detect.h5").string(), options);
+      created_ = true;
+      writer_.emplace(std::move(file), scenario, input, detection);
+      alarms_.emplace(live_ ? dir_ / "alarms.csv" : Partial("alarms.csv"));
+      alarms_->Write("time,detector,type,event,hypothesis,line,score\n");
+      if (live_) {
+        Flush();
+        Publish("detect.h5");
+      }
+    } catch (...) {
+      Abandon();
+      throw;
+    }
+  }
+  ~DetectOutputs() {
+    if (!finished_) Abandon();
+  }
+  DetectOutputs(const DetectOutputs&) = delete;
+  DetectOutputs& operator=(const DetectOutputs&) = delete;
+
+  /// One sample's rows and its new alarm events; live, durable at once if there are events
+  /// (the caller prints them after this returns) or the flush interval has passed.
+  void Take(const detectors::Observation& observation, const Detection& detection,
+            const std::vector<nlohmann::ordered_json>& events) {
+    writer_->Append(observation, detection);
+    for (const nlohmann::ordered_json& event : events) {
+      std::string line = CsvCell(event["time"]);
+      for (const char* key : {"detector", "type", "event", "hypothesis", "line", "score"}) {
+        line += ',' + CsvCell(event[key]);
+      }
+      alarms_->Write(line + '\n');
+    }
+    unflushed_ = true;
+    if (live_ && (!events.empty() || IntervalPassed())) Flush();
+  }
+  /// The input has nothing new: live, rows still only in memory become durable once the
+  /// flush interval has passed.
+  void Idle() {
+    if (live_ && unflushed_ && IntervalPassed()) Flush();
+  }
+  /// Closes both files, puts them in place and writes summary.json.
+  void Finish(const nlohmann::json& summary) {
+    writer_->Close();
+    alarms_->Close();
+    if (!live_) {
+      Publish("detect.h5");
+      Publish("alarms.csv");
+    }
+    finished_ = true;
+    simulation::WriteFileAtomically(dir_ / "summary.json", summary.dump(2) + "\n");
+  }
+
+ private:
+  fs::path Partial(const std::string& name) const { return dir_ / (name + ".partial"); }
+  bool IntervalPassed() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - last_flush_).count() >=
+           flush_interval_;
+  }
+  void Flush() {
+    writer_->Flush();
+    alarms_->Sync();
+    unflushed_ = false;
+    last_flush_ = std::chrono::steady_clock::now();
+  }
+  void Publish(const std::string& name) {
+    std::error_code error;
+    fs::rename(Partial(name), dir_ / name, error);
+    if (error) throw Error((dir_ / name).string() + ": rename failed: " + error.message());
+  }
+  /// After a failure: closes what is open (its own failures are not news) and removes the
+  /// partial files this run created. A live file stays: it holds the last flush.
+  void Abandon() noexcept {
+    try {
+      if (writer_) writer_->Close();
+    } catch (const std::exception&) {
+    }
+    const bool alarms_created = alarms_.has_value();
+    alarms_.reset();
+    std::error_code ignored;
+    if (!live_ && created_) fs::remove(Partial("detect.h5"), ignored);
+    if (!live_ && alarms_created) fs::remove(Partial("alarms.csv"), ignored);
+  }
+
+  fs::path dir_;
+  bool live_;
+  double flush_interval_;
+  output::DirectoryLock lock_;  // before the files: held until they are closed
+  bool created_ = false;        // detect.h5's file
+  bool finished_ = false;
+  bool unflushed_ = false;
+  std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
+  std::optional<DetectWriter> writer_;
+  std::optional<TextFile> alarms_;
+};
 
 /// Per-sample wall time of the observers and detectors [ms]: mean and max over every sample,
 /// the 99th percentile over the last kRecent (a day at 1 Hz), so that a live monitor that
@@ -209,6 +406,9 @@ class Latency {
 };
 
 int Detect(const DetectOptions& o) {
+  // std::cin then reads through a buffer of its own, whose fill in_avail() tells (stdio's
+  // is invisible): LineSource::AwaitInput relies on it.
+  std::ios::sync_with_stdio(false);
   const bool from_stdin = o.input == "-";
   if (!from_stdin && !fs::exists(o.input)) throw InputError(o.input + ": no such file");
   const bool hdf5 = !from_stdin && IsHdf5(o.input);
@@ -216,6 +416,19 @@ int Detect(const DetectOptions& o) {
   const double max_gap =
       o.max_gap ? ParseNumber("--max-gap", *o.max_gap) : simulation::kDefaultMaxGap;
   if (!(max_gap > 0.0)) throw InputError("--max-gap: '" + *o.max_gap + "' must be positive [s]");
+  const bool live = o.follow || from_stdin;
+  double flush_interval = kDefaultFlushInterval;
+  if (o.flush_interval) {
+    flush_interval = ParseNumber("--flush-interval", *o.flush_interval);
+    if (!(flush_interval > 0.0 && flush_interval < 1e9)) {
+      throw InputError("--flush-interval: '" + *o.flush_interval + "' must be positive [s]");
+    }
+    if (!o.out || !live) {
+      throw InputError(
+          "--flush-interval: paces the writes of --out DIR for a live input (--follow, or - "
+          "for standard input); a finite input's files are written whole at the end");
+    }
+  }
   scenarios::Scenario scenario;
   if (o.scenario) {
     scenario = scenarios::LoadScenario(RequireText("--scenario", *o.scenario), o.sets);
@@ -233,17 +446,15 @@ int Detect(const DetectOptions& o) {
   const std::vector<std::string> labels = detection->HypothesisLabels();
   const int lines = static_cast<int>(scenario.mooring.lines.size());
 
-  std::optional<DetectWriter> writer;
-  std::ofstream alarms_csv;
-  fs::path out;
+  std::optional<DetectOutputs> outputs;
   if (o.out) {
-    out = RequireText("--out", *o.out);
-    fs::create_directories(out);
-    writer.emplace((out / "detect.h5").string(), scenario, o.input, *detection);
-    alarms_csv.open(out / "alarms.csv");
-    if (!alarms_csv) throw Error((out / "alarms.csv").string() + ": cannot be written");
-    alarms_csv << "time,detector,type,event,hypothesis,line,score\n";
+    outputs.emplace(RequireText("--out", *o.out), live, flush_interval, scenario, o.input,
+                    *detection);
   }
+  // `moorsim detect ... | head -1`: a closed standard output stops the run like a signal,
+  // with every file finished, instead of killing it half-way through a write.
+  std::signal(SIGPIPE, SIG_IGN);
+  bool stdout_closed = false;
 
   std::vector<std::size_t> seen(detection->records().size(), 0);
   Latency latency;
@@ -257,43 +468,47 @@ int Detect(const DetectOptions& o) {
                     .count());
     if (samples++ == 0) first_time = observation.t;
     last_time = observation.t;
+    std::vector<nlohmann::ordered_json> events;
     for (std::size_t i = 0; i < seen.size(); ++i) {
       const simulation::DetectorRecord& record = detection->records()[i];
       for (; seen[i] < record.history.events().size(); ++seen[i]) {
-        const nlohmann::ordered_json event =
-            EventJson(record, record.history.events()[seen[i]], detection->verdicts()[i], labels,
-                      lines, latency.last());
-        std::cout << event.dump() << std::endl;  // flushed: a live reader sees it now
-        if (alarms_csv.is_open()) {
-          alarms_csv << CsvCell(event["time"]);
-          for (const char* key : {"detector", "type", "event", "hypothesis", "line", "score"}) {
-            alarms_csv << ',' << CsvCell(event[key]);
-          }
-          alarms_csv << '\n' << std::flush;
-        }
+        events.push_back(EventJson(record, record.history.events()[seen[i]],
+                                   detection->verdicts()[i], labels, lines, latency.last()));
       }
     }
-    if (writer) writer->Append(observation, *detection);
+    if (outputs) outputs->Take(observation, *detection, events);
+    for (const nlohmann::ordered_json& event : events) {
+      std::cout << event.dump() << std::endl;  // flushed: a live reader sees it now
+    }
+    if (!std::cout) stdout_closed = true;
   };
 
   if (hdf5) {
     for (const detectors::Observation& observation :
          simulation::ReadRunDetectionInput(o.input, max_gap)) {
       take(observation);
+      if (stdout_closed) break;
     }
   } else {
     simulation::CsvPoseStream stream(from_stdin ? "<stdin>" : o.input, lines, max_gap);
     std::string line;
     detectors::Observation observation;
+    const auto idle = [&] {
+      if (outputs) outputs->Idle();
+    };
     if (o.follow && !from_stdin) {
       simulation::InstallStopSignalHandlers();
       simulation::FollowedFile followed(o.input);
-      const auto stop = [] { return simulation::StopSignal() != 0; };
+      // Asked at the end of the file before each wait: the outputs' flush happens there.
+      const auto stop = [&] {
+        idle();
+        return simulation::StopSignal() != 0;
+      };
       const auto rotated = [&](simulation::Rotation rotation, std::size_t dropped_bytes) {
         ReportRotation(o.input, rotation, dropped_bytes);
         if (rotation != simulation::Rotation::kMissing) stream.Restart();
       };
-      while (followed.Next(&line, stop, rotated)) {
+      while (!stdout_closed && followed.Next(&line, stop, rotated)) {
         if (stream.Take(line, &observation)) take(observation);
       }
     } else {
@@ -302,8 +517,8 @@ int Detect(const DetectOptions& o) {
         file.open(o.input);
         if (!file) throw InputError(o.input + ": cannot be read");
       }
-      LineSource source(from_stdin ? std::cin : file);
-      while (source.Next(&line)) {
+      LineSource source(from_stdin ? std::cin : file, from_stdin ? STDIN_FILENO : -1, idle);
+      while (!stdout_closed && source.Next(&line)) {
         if (stream.Take(line, &observation)) take(observation);
       }
     }
@@ -333,17 +548,17 @@ int Detect(const DetectOptions& o) {
       simulation::DetectorsSummary(scenario, *detection, samples > 0 ? last_time : 0.0);
   summary["detection"] = {{"setup_seconds", detection->timing().setup_seconds},
                           {"latency", latency.Summary()}};
-  if (writer) {
-    writer->Close();
-    alarms_csv.close();
-    simulation::WriteFileAtomically(out / "summary.json", summary.dump(2) + "\n");
+  const int signal = stdout_closed ? SIGPIPE : simulation::StopSignal();
+  if (signal != 0) {
+    summary["stopped"] =
+        stdout_closed ? std::string("standard output closed") : "signal " + std::to_string(signal);
   }
+  if (outputs) outputs->Finish(summary);
   if (!o.quiet) {
     std::fprintf(stderr, "moorsim detect: %ld samples (%.6g s to %.6g s), %.3f ms per sample\n",
                  samples, samples > 0 ? first_time : 0.0, samples > 0 ? last_time : 0.0,
                  latency.mean());
   }
-  const int signal = simulation::StopSignal();
   return signal != 0 ? 128 + signal : 0;
 }
 
@@ -364,6 +579,10 @@ Command AddDetectCommand(CLI::App& app) {
   sub->add_option("--out", o->out, "also write DIR/alarms.csv, DIR/detect.h5, DIR/summary.json");
   sub->add_option("--max-gap", o->max_gap,
                   "longest time step or channel dropout accepted [s] (default 60)");
+  sub->add_option("--flush-interval", o->flush_interval,
+                  "live input with --out: DIR/detect.h5 and DIR/alarms.csv are made durable at "
+                  "least this often and at every alarm; a kill loses at most this much [s] "
+                  "(default 10)");
   sub->add_flag("--follow", o->follow,
                 "at the end of a CSV file, wait for more rows (a log being appended) until "
                 "SIGINT/SIGTERM; follows rotation as tail -F does (truncated, replaced or "
@@ -379,7 +598,13 @@ Command AddDetectCommand(CLI::App& app) {
       "latency_ms: the wall time of that sample in the observers and detectors} as soon\n"
       "as its sample is processed. The scenario's failure, if it has one, is the truth the\n"
       "summary scores the verdicts against. Exit codes: 0 ok, 1 failed, 2 bad input (one line\n"
-      "naming file, row and column), 128 + signal when --follow was stopped.\n\n" +
+      "naming file, row and column), 128 + signal when --follow was stopped, 141 when\n"
+      "standard output was closed (`| head`: the files are finished with what was read).\n\n"
+      "--out DIR is held by one moorsim at a time and starts empty of the previous run's\n"
+      "files. A file input's detect.h5 and alarms.csv are written as .partial and renamed\n"
+      "when complete. A live input's (--follow, -) are written under their final names and\n"
+      "made durable every --flush-interval and at each alarm before it is printed: after a\n"
+      "kill or a power loss detect.h5 opens and holds every row up to the last flush.\n\n" +
       detectors::DetectorHelp());
   return [o] { return Detect(*o); };
 }

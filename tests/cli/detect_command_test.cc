@@ -4,6 +4,7 @@
 // naming the file, row and column, with exit 2.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -190,6 +191,13 @@ void Append(const std::filesystem::path& path, const std::string& text) {
   out << text << std::flush;
 }
 
+// Starts `moorsim detect args...` with standard output on `stdout_fd` and standard input
+// on `stdin_fd` (-1: the test's).
+pid_t StartDetect(std::vector<std::string> args, int stdout_fd, int stdin_fd = -1) {
+  args.insert(args.begin(), "detect");
+  return StartCli(args, {.fd = stdout_fd}, {}, stdin_fd);
+}
+
 TEST_F(DetectCommand, FollowingALogPrintsEachAlarmWhenItsRowArrives) {
   TempDirectory dir(::testing::TempDir());
   const nlohmann::json run = ReadJsonFile(RunDir() / "summary.json");
@@ -219,10 +227,13 @@ TEST_F(DetectCommand, FollowingALogPrintsEachAlarmWhenItsRowArrives) {
   WriteWholeFile(log, csv.substr(0, cut));
 
   const std::filesystem::path events_path = dir.path() / "events.jsonl";
-  const pid_t pid = StartCli(With({"detect", log.string(), "--follow", "--quiet", "--scenario",
-                                   kDetectScenario, "--out", (dir.path() / "d").string()},
-                                  kDetectSets),
-                             events_path, "");
+  const int events_fd = ::open(events_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  ASSERT_GE(events_fd, 0);
+  const pid_t pid = StartDetect(With({log.string(), "--follow", "--quiet", "--scenario",
+                                      kDetectScenario, "--out", (dir.path() / "d").string()},
+                                     kDetectSets),
+                                events_fd);
+  ::close(events_fd);
 
   // The first alarm is printed while the log still ends at its row.
   EXPECT_GE(AwaitLines(events_path, 1), 1u);
@@ -240,6 +251,166 @@ TEST_F(DetectCommand, FollowingALogPrintsEachAlarmWhenItsRowArrives) {
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 130);
   EXPECT_EQ(ReadJsonFile(dir.path() / "d" / "summary.json")["detectors"], run["detectors"]);
+}
+
+// Rows of /time in the detect.h5 at `path` as HDF5 reads it now, -1 if it cannot.
+long TimeRows(const std::filesystem::path& path) {
+  try {
+    return static_cast<long>(output::Hdf5Reader(path.string()).ReadTable("/time").rows);
+  } catch (const std::exception&) {
+    return -1;
+  }
+}
+
+// Waits up to 60 s for TimeRows(path) to be `rows`; returns the last value seen.
+long AwaitTimeRows(const std::filesystem::path& path, long rows) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  long have = -1;
+  while ((have = TimeRows(path)) != rows && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  return have;
+}
+
+std::vector<std::string> FilesIn(const std::filesystem::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    names.push_back(entry.path().filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// A live monitor killed outright (SIGKILL, as a power loss would stop it) leaves a detect.h5
+// that opens and holds every row up to its last flush: here every row of the log, made
+// durable within a flush interval of the monitor going idle, and every alarm printed.
+TEST_F(DetectCommand, ALiveMonitorKilledOutrightKeepsEveryRowUpToItsLastFlush) {
+  // The test reads detect.h5 while the monitor holds it open for writing.
+  setenv("HDF5_USE_FILE_LOCKING", "FALSE", 1);
+  TempDirectory dir(::testing::TempDir());
+  const std::string csv = DetectionInputCsv((RunDir() / "run.h5").string());
+  const std::vector<std::string> lines = [&] {
+    std::vector<std::string> all;
+    std::istringstream in(csv);
+    for (std::string line; std::getline(in, line);) all.push_back(line + "\n");
+    return all;
+  }();
+  const long rows = static_cast<long>(lines.size()) - 2;  // a comment and the header
+  const long first_rows = rows / 2;
+  const std::filesystem::path log = dir.path() / "log.csv";
+  std::string head;
+  for (long k = 0; k < 2 + first_rows; ++k) head += lines[static_cast<std::size_t>(k)];
+  WriteWholeFile(log, head);
+  const std::filesystem::path d = dir.path() / "d";
+  const std::filesystem::path events_path = dir.path() / "events.jsonl";
+  const int events_fd = ::open(events_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  ASSERT_GE(events_fd, 0);
+  const pid_t pid =
+      StartDetect(With({log.string(), "--follow", "--quiet", "--scenario", kDetectScenario, "--out",
+                        d.string(), "--flush-interval", "0.2"},
+                       kDetectSets),
+                  events_fd);
+  ::close(events_fd);
+  EXPECT_EQ(AwaitTimeRows(d / "detect.h5", first_rows), first_rows);
+  Append(log, csv.substr(head.size()));
+  EXPECT_EQ(AwaitTimeRows(d / "detect.h5", rows), rows);
+  kill(pid, SIGKILL);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  const output::Hdf5Reader file((d / "detect.h5").string());
+  const output::TableData time = file.ReadTable("/time");
+  ASSERT_EQ(static_cast<long>(time.rows), rows);
+  EXPECT_EQ(file.ReadTable("/vessel/pose_measured").rows, time.rows);
+  const output::Hdf5Reader run((RunDir() / "run.h5").string());
+  EXPECT_EQ(time.values, run.ReadTable("/detection/input/time").values);
+  // Every alarm printed is in alarms.csv (made durable before it was printed).
+  const std::size_t printed = LinesOf(events_path).size();
+  EXPECT_GT(printed, 0u);
+  EXPECT_EQ(LinesOf(d / "alarms.csv").size(), 1 + printed);
+  EXPECT_FALSE(std::filesystem::exists(d / "summary.json"));
+}
+
+// Standard input is a live input too: rows that came before the writer went quiet are
+// durable within a flush interval, though no further row arrives to trigger a flush.
+TEST_F(DetectCommand, ALiveMonitorOnStandardInputFlushesWhileItsInputIsQuiet) {
+  setenv("HDF5_USE_FILE_LOCKING", "FALSE", 1);  // read while the monitor writes
+  TempDirectory dir(::testing::TempDir());
+  const std::string csv = DetectionInputCsv((RunDir() / "run.h5").string());
+  const std::string head = csv.substr(0, csv.find('\n', csv.size() / 2) + 1);
+  const long rows = static_cast<long>(std::count(head.begin(), head.end(), '\n')) - 2;
+  int input[2];
+  ASSERT_EQ(::pipe(input), 0);
+  const int null_fd = ::open("/dev/null", O_WRONLY);
+  const std::filesystem::path d = dir.path() / "d";
+  const pid_t pid = StartDetect(With({"-", "--quiet", "--scenario", kDetectScenario, "--out",
+                                      d.string(), "--flush-interval", "0.2"},
+                                     kDetectSets),
+                                null_fd, input[0]);
+  ::close(null_fd);
+  ::close(input[0]);
+  ASSERT_EQ(::write(input[1], head.data(), head.size()), static_cast<ssize_t>(head.size()));
+  EXPECT_EQ(AwaitTimeRows(d / "detect.h5", rows), rows);
+  kill(pid, SIGKILL);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ::close(input[1]);
+  EXPECT_EQ(TimeRows(d / "detect.h5"), rows);
+}
+
+// `moorsim detect run.h5 --out d | head -1`: the first write to the closed pipe stops the
+// replay there, with the files finished and consistent, exit 128 + SIGPIPE.
+TEST_F(DetectCommand, AClosedStandardOutputStopsTheReplayWithItsFilesFinished) {
+  TempDirectory dir(::testing::TempDir());
+  int fds[2];
+  ASSERT_EQ(::pipe(fds), 0);
+  ::close(fds[0]);  // nobody will read
+  const std::filesystem::path d = dir.path() / "d";
+  const pid_t pid =
+      StartDetect({(RunDir() / "run.h5").string(), "--quiet", "--out", d.string()}, fds[1]);
+  ::close(fds[1]);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGPIPE);
+  const nlohmann::json summary = ReadJsonFile(d / "summary.json");
+  EXPECT_EQ(summary["stopped"], "standard output closed");
+  const nlohmann::json run = ReadJsonFile(RunDir() / "summary.json");
+  EXPECT_LT(summary["last_time"].get<double>(), run["simulated_time"].get<double>());
+  EXPECT_EQ(TimeRows(d / "detect.h5"), summary["samples"].get<long>());
+  EXPECT_GE(LinesOf(d / "alarms.csv").size(), 2u);
+  EXPECT_EQ(FilesIn(d),
+            (std::vector<std::string>{"alarms.csv", "detect.h5", "moorsim.lock", "summary.json"}));
+}
+
+// A rerun starts by removing the previous run's files, so a failed rerun leaves none of
+// them beside its own; a finite input's files are written under temporary names, removed
+// when the run fails (here a bad row, then a disk that fills up).
+TEST_F(DetectCommand, AFailedRerunLeavesNeitherTheOldFilesNorPartialOnes) {
+  TempDirectory dir(::testing::TempDir());
+  const std::filesystem::path d = dir.path() / "d";
+  std::filesystem::create_directories(d);
+  for (const char* name : {"summary.json", "detect.h5", "alarms.csv"}) {
+    WriteWholeFile(d / name, "the previous run's\n");
+  }
+  std::string csv = DetectionInputCsv((RunDir() / "run.h5").string());
+  csv += "not a row\n";
+  WriteWholeFile(dir.path() / "log.csv", csv);
+  CliResult r = RunCli(With({"detect", (dir.path() / "log.csv").string(), "--quiet", "--scenario",
+                             kDetectScenario, "--out", d.string()},
+                            kDetectSets),
+                       dir.path());
+  EXPECT_EQ(r.exit_code, 2) << r.Describe();
+  EXPECT_EQ(FilesIn(d), std::vector<std::string>{"moorsim.lock"});
+
+  // The file size limit makes writes fail as a full disk does (EFBIG instead of ENOSPC).
+  std::string command = "trap '' XFSZ; ulimit -f 8; exec '" + std::string(MOORSIM_CLI) +
+                        "' detect '" + (RunDir() / "run.h5").string() + "' --quiet --out '" +
+                        d.string() + "' > /dev/null";
+  r = RunProgram("/bin/sh", {"-c", command}, dir.path());
+  EXPECT_EQ(r.exit_code, 1) << r.Describe();
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("File too large"), std::string::npos) << r.err;
+  EXPECT_EQ(FilesIn(d), std::vector<std::string>{"moorsim.lock"});
 }
 
 // One bad CSV: exit 2 and one line on stderr that starts "moorsim: <file>:<row>: ..." and
@@ -311,6 +482,45 @@ TEST(DetectCommandInput, DropoutsWithinTheMaximumGapAreTakenAndBadFlagsRefused) 
              dir.path());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err, "moorsim: " + (dir.path() / "missing.csv").string() + ": no such file\n");
+  r = RunCli({"detect", path, "--scenario", kDetectScenario, "--follow", "--out",
+              (dir.path() / "d").string(), "--flush-interval", "0"},
+             dir.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "moorsim: --flush-interval: '0' must be positive [s]\n");
+  r = RunCli({"detect", path, "--scenario", kDetectScenario, "--out", (dir.path() / "d").string(),
+              "--flush-interval", "5"},
+             dir.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--flush-interval: paces the writes of --out DIR for a live input"),
+            std::string::npos)
+      << r.err;
+}
+
+// --out that cannot be a directory to write in: one line naming it and why, exit 2.
+TEST(DetectCommandInput, AnOutputDirectoryThatCannotBeWrittenIsOneLine) {
+  TempDirectory dir(::testing::TempDir());
+  const std::string path = (dir.path() / "log.csv").string();
+  WriteWholeFile(path, Rows(5));
+  const auto refused = [&](const std::filesystem::path& out) {
+    return RunCli({"detect", path, "--scenario", kDetectScenario, "--quiet", "--out", out.string()},
+                  dir.path());
+  };
+  CliResult r = refused(path);
+  EXPECT_EQ(r.exit_code, 2) << r.Describe();
+  EXPECT_EQ(r.err, "moorsim: --out " + path + ": is a file, not a directory\n");
+  r = refused(path + "/d");
+  EXPECT_EQ(r.exit_code, 2) << r.Describe();
+  EXPECT_EQ(r.err, "moorsim: --out " + path + "/d: cannot create the directory: Not a directory\n");
+  if (::geteuid() != 0) {  // permissions do not stop root
+    const std::filesystem::path read_only = dir.path() / "read_only";
+    std::filesystem::create_directories(read_only);
+    std::filesystem::permissions(
+        read_only, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+    r = refused(read_only);
+    EXPECT_EQ(r.exit_code, 2) << r.Describe();
+    EXPECT_EQ(r.err, "moorsim: --out " + read_only.string() +
+                         ": cannot write in the directory: Permission denied\n");
+  }
 }
 
 // Where process `pid` has read `path` to: the offset of its descriptor of that file, -1
@@ -369,8 +579,8 @@ TEST(DetectCommandInput, AFollowedLogIsFollowedThroughItsRotations) {
   WriteWholeFile(log, first);
 
   const std::filesystem::path err_path = dir.path() / "stderr.txt";
-  const pid_t pid =
-      StartCli({"detect", log.string(), "--follow", "--scenario", kDetectScenario}, "", err_path);
+  const pid_t pid = StartCli({"detect", log.string(), "--follow", "--scenario", kDetectScenario},
+                             {"/dev/null"}, {err_path});
 
   ASSERT_TRUE(AwaitOffset(pid, log, static_cast<long>(first.size())));
   WriteWholeFile(log, "");

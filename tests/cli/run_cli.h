@@ -86,21 +86,35 @@ inline void WriteWholeFile(const std::filesystem::path& path, const std::string&
   if (!out) throw std::runtime_error("cannot write " + path.string());
 }
 
-/// Starts `program args...` in the background, stdin from /dev/null, stdout and stderr to
-/// the given files (created or emptied; an empty path is /dev/null); returns its pid. For
-/// tests that signal or feed a running command. Throws std::runtime_error if it cannot start.
+/// Where a started program's standard stream goes: a file (created or emptied), a
+/// descriptor of the test's own (a pipe's end), or, with neither, the test's own stream.
+struct Redirect {
+  std::filesystem::path file;
+  int fd = -1;
+};
+
+/// Starts `program args...` in the background with its stdout and stderr redirected, stdin
+/// from `stdin_fd` (-1: /dev/null); returns its pid. For tests that signal or feed a running
+/// command. Throws std::runtime_error if it cannot start.
 inline pid_t StartProgram(const std::string& program, const std::vector<std::string>& args,
-                          const std::filesystem::path& out_path,
-                          const std::filesystem::path& err_path) {
+                          const Redirect& out, const Redirect& err = {}, int stdin_fd = -1) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  const auto to = [&](int fd, const std::filesystem::path& path) {
-    posix_spawn_file_actions_addopen(&actions, fd, path.empty() ? "/dev/null" : path.c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (stdin_fd >= 0) {
+    posix_spawn_file_actions_adddup2(&actions, stdin_fd, STDIN_FILENO);
+  } else {
+    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  }
+  const auto to = [&](int fd, const Redirect& where) {
+    if (where.fd >= 0) {
+      posix_spawn_file_actions_adddup2(&actions, where.fd, fd);
+    } else if (!where.file.empty()) {
+      posix_spawn_file_actions_addopen(&actions, fd, where.file.c_str(),
+                                       O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    }
   };
-  to(STDOUT_FILENO, out_path);
-  to(STDERR_FILENO, err_path);
+  to(STDOUT_FILENO, out);
+  to(STDERR_FILENO, err);
 
   std::vector<std::string> argv_text;
   argv_text.push_back(program);
@@ -119,9 +133,9 @@ inline pid_t StartProgram(const std::string& program, const std::vector<std::str
 }
 
 /// Starts the built moorsim (MOORSIM_CLI) with `args`, as StartProgram does.
-inline pid_t StartCli(const std::vector<std::string>& args, const std::filesystem::path& out_path,
-                      const std::filesystem::path& err_path) {
-  return StartProgram(MOORSIM_CLI, args, out_path, err_path);
+inline pid_t StartCli(const std::vector<std::string>& args, const Redirect& out,
+                      const Redirect& err = {}, int stdin_fd = -1) {
+  return StartProgram(MOORSIM_CLI, args, out, err, stdin_fd);
 }
 
 /// Runs `program args...` with stdout and stderr captured through files in `scratch`.
@@ -131,7 +145,7 @@ inline CliResult RunProgram(const std::string& program, const std::vector<std::s
                             std::chrono::seconds time_limit = std::chrono::seconds(60)) {
   const std::filesystem::path out_path = scratch / "cli_stdout.txt";
   const std::filesystem::path err_path = scratch / "cli_stderr.txt";
-  const pid_t pid = StartProgram(program, args, out_path, err_path);
+  const pid_t pid = StartProgram(program, args, {out_path}, {err_path});
 
   CliResult result;
   int status = 0;

@@ -2,8 +2,10 @@
 // summary, bit-for-bit reproducibility per seed, --set overrides and their errors.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
 #include <hdf5.h>
 #include <spawn.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <algorithm>
 
@@ -388,9 +390,9 @@ TEST(RunCommand, ATenHertzControllerFinishes) {
   EXPECT_EQ(summary["simulated_time"], 20.0);
 }
 
-TEST(RunCommand, SigtermStopsTheRunClosesTheFileAndExits143) {
-  TempDirectory dir(::testing::TempDir());
-  const std::filesystem::path out = dir.path() / "r";
+// Starts a run that would take hours into `out` and returns its pid once run.h5.partial
+// exists (the stop handlers are in place and the run has started), or -1.
+pid_t StartLongRun(const std::filesystem::path& out) {
   std::string program = MOORSIM_CLI;
   std::vector<std::string> text = {program,  "run",   kThesisNoFailure, "--duration",
                                    "100000", "--out", out.string(),     "--quiet"};
@@ -398,14 +400,18 @@ TEST(RunCommand, SigtermStopsTheRunClosesTheFileAndExits143) {
   for (std::string& a : text) argv.push_back(a.data());
   argv.push_back(nullptr);
   pid_t pid = 0;
-  ASSERT_EQ(posix_spawn(&pid, program.c_str(), nullptr, nullptr, argv.data(), environ), 0);
-  // The partial file exists once the handlers are in place and the run has started.
+  if (posix_spawn(&pid, program.c_str(), nullptr, nullptr, argv.data(), environ) != 0) return -1;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
   while (!std::filesystem::exists(out / "run.h5.partial") &&
          std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  return pid;
+}
+
+// Stops the run `pid` started by StartLongRun with SIGTERM and checks that it closed its
+// files: exit 143, summary.json "interrupted" naming run.h5, run.h5 with every row reached.
+void ExpectSigtermStopsItWithItsFiles(pid_t pid, const std::filesystem::path& out) {
   kill(pid, SIGTERM);
   int status = 0;
   ASSERT_EQ(waitpid(pid, &status, 0), pid);
@@ -414,6 +420,7 @@ TEST(RunCommand, SigtermStopsTheRunClosesTheFileAndExits143) {
   const nlohmann::json summary = nlohmann::json::parse(ReadWholeFile(out / "summary.json"));
   EXPECT_EQ(summary["status"], "interrupted");
   EXPECT_EQ(summary["signal"], SIGTERM);
+  EXPECT_EQ(summary["outputs"]["run"], "run.h5");
   const double reached = summary["simulated_time"].get<double>();
   EXPECT_GT(reached, 0.0);
   EXPECT_LT(reached, 100000.0);
@@ -422,6 +429,76 @@ TEST(RunCommand, SigtermStopsTheRunClosesTheFileAndExits143) {
   ASSERT_GE(file, 0);
   EXPECT_EQ(Shape(file, "/time"), std::vector<hsize_t>{static_cast<hsize_t>(reached) + 1});
   H5Fclose(file);
+}
+
+TEST(RunCommand, SigtermStopsTheRunClosesTheFileAndExits143) {
+  TempDirectory dir(::testing::TempDir());
+  const std::filesystem::path out = dir.path() / "r";
+  const pid_t pid = StartLongRun(out);
+  ASSERT_GT(pid, 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  ExpectSigtermStopsItWithItsFiles(pid, out);
+}
+
+// A second run into the directory of a run in progress is refused with one line, and the
+// first run's files are untouched: it finishes (here: stops on SIGTERM) as if alone.
+TEST(RunCommand, ASecondRunIntoABusyDirectoryIsRefusedAndTheFirstIsIntact) {
+  TempDirectory dir(::testing::TempDir());
+  const std::filesystem::path out = dir.path() / "r";
+  const pid_t pid = StartLongRun(out);
+  ASSERT_GT(pid, 0);
+  const CliResult second =
+      RunCli({"run", kSeed, "--out", out.string(), "--duration", "1", "--quiet"}, dir.path());
+  EXPECT_EQ(second.exit_code, 2) << second.Describe();
+  EXPECT_EQ(second.err, "moorsim: --out " + out.string() + ": in use by another moorsim (pid " +
+                            std::to_string(pid) +
+                            "); wait for it to finish or choose another --out\n");
+  EXPECT_TRUE(std::filesystem::exists(out / "run.h5.partial"));
+  ExpectSigtermStopsItWithItsFiles(pid, out);
+}
+
+// The same lock serves every command that writes a directory: held here by the test itself.
+TEST(RunCommand, ADirectoryLockedByAnotherMoorsimIsRefusedForRunAndDetect) {
+  TempDirectory dir(::testing::TempDir());
+  const std::filesystem::path out = dir.path() / "busy";
+  std::filesystem::create_directories(out);
+  WriteWholeFile(out / "summary.json", "theirs\n");
+  WriteWholeFile(out / "run.h5.partial", "theirs\n");
+  const int fd = ::open((out / "moorsim.lock").c_str(), O_RDWR | O_CREAT, 0644);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+  const std::string message = "moorsim: --out " + out.string() +
+                              ": in use by another moorsim; wait for it to finish or choose "
+                              "another --out\n";
+  const CliResult run =
+      RunCli({"run", kSeed, "--out", out.string(), "--duration", "1", "--quiet"}, dir.path());
+  EXPECT_EQ(run.exit_code, 2) << run.Describe();
+  EXPECT_EQ(run.err, message);
+  WriteWholeFile(dir.path() / "log.csv",
+                 "time,north,east,heading,thrust_surge,thrust_sway,"
+                 "thrust_yaw\n0,0,0,0,0,0,0\n");
+  const CliResult detect = RunCli({"detect", (dir.path() / "log.csv").string(), "--scenario",
+                                   kThesisNoFailure, "--out", out.string(), "--quiet"},
+                                  dir.path());
+  EXPECT_EQ(detect.exit_code, 2) << detect.Describe();
+  EXPECT_EQ(detect.err, message);
+  ::close(fd);
+  EXPECT_EQ(ReadWholeFile(out / "summary.json"), "theirs\n");
+  EXPECT_EQ(ReadWholeFile(out / "run.h5.partial"), "theirs\n");
+}
+
+// summary.json names run.h5 only when run.h5 is there: here the rename into place fails (a
+// directory is in the way).
+TEST(RunCommand, TheSummaryNeverNamesARunFileThatIsNotThere) {
+  TempDirectory dir(::testing::TempDir());
+  const std::filesystem::path out = dir.path() / "r";
+  std::filesystem::create_directories(out / "run.h5" / "in_the_way");
+  const CliResult r =
+      RunCli({"run", kSeed, "--out", out.string(), "--duration", "1", "--quiet"}, dir.path());
+  EXPECT_EQ(r.exit_code, 1) << r.Describe();
+  const nlohmann::json summary = nlohmann::json::parse(ReadWholeFile(out / "summary.json"));
+  EXPECT_EQ(summary["status"], "failed");
+  EXPECT_TRUE(summary["outputs"]["run"].is_null()) << summary["outputs"];
 }
 
 TEST(RunCommand, TheSeedAttributeIsUnsigned) {

@@ -504,6 +504,37 @@ TEST(Hdf5FileDeathTest, FailedWriteIsReported) {
   EXPECT_EXIT(std::_Exit(WriteUntilTheFileIsTooLarge(path)), ::testing::ExitedWithCode(0), "");
 }
 
+constexpr int kDurableRows = 1030;
+constexpr int kDurableFlushEvery = 37;
+
+/// Writes /time (0, 1, 2, ...) and /pose in chunks of 16 rows with durable flushes every 37
+/// rows: the last at row 999, after which 31 rows more complete two chunks (written to the
+/// file, their index and the tables' extent only to the metadata cache); then it is killed
+/// outright.
+[[noreturn]] void WriteDurablyAndDie(const std::string& path) {
+  Hdf5File file(path, Hdf5FileOptions{.chunk_rows = 16, .durable_flushes = true});
+  const TableId time = file.CreateTable("/time", 0, "s");
+  const TableId pose = file.CreateTable("/pose", 3, "m,m,rad");
+  for (int k = 0; k < kDurableRows; ++k) {
+    file.Append(time, static_cast<double>(k));
+    file.Append(pose, std::vector<double>{1.0 * k, 2.0 * k, 3.0 * k});
+    if ((k + 1) % kDurableFlushEvery == 0) file.Flush();
+  }
+  std::raise(SIGKILL);
+  std::abort();
+}
+
+TEST(Hdf5FileDeathTest, ADurableFileKilledOutrightHoldsTheRowsOfItsLastFlush) {
+  const TempFile temp("durable.h5");
+  const std::string& path = temp.path();
+  EXPECT_EXIT(WriteDurablyAndDie(path), ::testing::KilledBySignal(SIGKILL), "");
+  const Id file = OpenForReading(path);
+  std::vector<double> expected(kDurableRows / kDurableFlushEvery * kDurableFlushEvery);
+  for (std::size_t k = 0; k < expected.size(); ++k) expected[k] = static_cast<double>(k);
+  EXPECT_EQ(ReadAll<double>(file.get(), "/time", H5T_NATIVE_DOUBLE), expected);
+  EXPECT_EQ(ReadAll<double>(file.get(), "/pose", H5T_NATIVE_DOUBLE).size(), 3 * expected.size());
+}
+
 TEST(Hdf5File, MovedFileKeepsWriting) {
   const TempFile temp("moved.h5");
   const std::string& path = temp.path();

@@ -230,15 +230,13 @@ TEST_F(BatchTest, ShardsMergeToTheWholeCampaign) {
 TEST_F(BatchTest, ALockedOrForeignDirectoryIsRefused) {
   const fs::path out = *root_ / "locked";
   fs::create_directories(out);
-  const int fd = ::open((out / "campaign.lock").c_str(), O_RDWR | O_CREAT, 0644);
+  const int fd = ::open((out / "moorsim.lock").c_str(), O_RDWR | O_CREAT, 0644);
   ASSERT_GE(fd, 0);
   ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
   const BatchResult locked = RunBatch(Options(*campaign_, out, 1));
   ::close(fd);
   EXPECT_EQ(locked.exit_code, 2);
-  EXPECT_NE(locked.message.find("another moorsim batch is writing this directory"),
-            std::string::npos)
-      << locked.message;
+  EXPECT_NE(locked.message.find("in use by another moorsim"), std::string::npos) << locked.message;
 
   const fs::path foreign = FreshDirectory("batch_foreign");
   const fs::path campaign = WriteCampaign(foreign, CampaignText() + "# another text\n");

@@ -2,15 +2,45 @@
 
 #include <hdf5.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
+#include <cerrno>
+#include <cstring>
 #include <iostream>
 #include <limits>
 #include <utility>
 
 #include "core/error.h"
+#include "tools/output/hdf5_library.h"
 
 namespace moorsim::output {
+namespace internal {
+
+// HDF5 prints its error stack to stderr on every failed call unless told not to. The
+// setting belongs to the calling thread's error stack (Debian's HDF5 is thread-safe), so
+// each thread that touches a file switches it off once.
+void PrepareHdf5() {
+  // HDF5 closes every file still open at exit. A file whose close failed (a full disk
+  // fails the final metadata flush) stays in its table, and HDF5 1.10 then crashes in that
+  // exit handler (seen: SIGSEGV in H5F__close_cb after "No space left on device"). Every
+  // file is closed explicitly, so the exit handler has nothing to do: switch it off,
+  // before the first HDF5 call of the process where possible (afterwards it is a no-op).
+  static const bool no_atexit = [] {
+    H5dont_atexit();
+    return true;
+  }();
+  (void)no_atexit;
+  thread_local bool silenced = false;
+  if (!silenced) {
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    silenced = true;
+  }
+}
+
+}  // namespace internal
+
 namespace {
 
 /// Owns one HDF5 identifier and closes it with the matching H5?close call.
@@ -48,27 +78,6 @@ class Handle {
   hid_t id_ = H5I_INVALID_HID;
   Closer closer_ = nullptr;
 };
-
-/// HDF5 prints its error stack to stderr on every failed call unless told not to. The
-/// setting belongs to the calling thread's error stack (Debian's HDF5 is thread-safe), so
-/// each thread that touches a file switches it off once.
-void SilenceHdf5Printing() {
-  // HDF5 closes every file still open at exit. A file whose close failed (a full disk
-  // fails the final metadata flush) stays in its table, and HDF5 1.10 then crashes in that
-  // exit handler (seen: SIGSEGV in H5F__close_cb after "No space left on device"). Every
-  // Hdf5File is closed explicitly, so the exit handler has nothing to do: switch it off,
-  // before the first HDF5 call of the process where possible (afterwards it is a no-op).
-  static const bool no_atexit = [] {
-    H5dont_atexit();
-    return true;
-  }();
-  (void)no_atexit;
-  thread_local bool silenced = false;
-  if (!silenced) {
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-    silenced = true;
-  }
-}
 
 /// The outermost and innermost messages of the thread's HDF5 error stack (the innermost
 /// one carries the useful detail, e.g. the errno text of a failed open or write) on one
@@ -151,7 +160,10 @@ class Hdf5File::Impl {
     if (options_.gzip_level < 0 || options_.gzip_level > 9) {
       Fail("", "gzip_level " + std::to_string(options_.gzip_level) + " must be in 0..9");
     }
-    compress_ = options_.gzip_level > 0 && DeflateEncoderAvailable();
+    // A compressed chunk rewritten larger moves, and HDF5 may hand its old place to the
+    // next allocation before the next flush, under the rows the file on disk still points
+    // to; an uncompressed chunk is rewritten in place.
+    compress_ = options_.gzip_level > 0 && !options_.durable_flushes && DeflateEncoderAvailable();
 
     // A dataset records its creation and modification times unless told not to, and two
     // runs with the same seed would then give different files. Groups (and the root
@@ -163,7 +175,20 @@ class Hdf5File::Impl {
         Make(H5Pcreate(H5P_GROUP_CREATE), H5Pclose, "H5Pcreate(H5P_GROUP_CREATE)", "");
     Check(H5Pset_obj_track_times(group_creation_.get(), false), "H5Pset_obj_track_times", "");
 
-    file_ = Make(H5Fcreate(path_.c_str(), H5F_ACC_TRUNC, fcpl.get(), H5P_DEFAULT), H5Fclose,
+    Handle fapl = Make(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate(H5P_FILE_ACCESS)", "");
+    if (options_.durable_flushes) {
+      // No metadata-cache evictions (and so no adaptive resizing, which needs them): the
+      // file's metadata are written only by H5Fflush, never half-way between two flushes.
+      H5AC_cache_config_t config;
+      config.version = H5AC__CURR_CACHE_CONFIG_VERSION;
+      Check(H5Pget_mdc_config(fapl.get(), &config), "H5Pget_mdc_config", "");
+      config.evictions_enabled = false;
+      config.incr_mode = H5C_incr__off;
+      config.flash_incr_mode = H5C_flash_incr__off;
+      config.decr_mode = H5C_decr__off;
+      Check(H5Pset_mdc_config(fapl.get(), &config), "H5Pset_mdc_config", "");
+    }
+    file_ = Make(H5Fcreate(path_.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get()), H5Fclose,
                  "H5Fcreate", "");
   }
 
@@ -333,6 +358,13 @@ class Hdf5File::Impl {
   void Flush() {
     for (Table& table : tables_) WriteBuffered(table);
     Check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "H5Fflush", "");
+    if (options_.durable_flushes) {
+      void* handle = nullptr;
+      Check(H5Fget_vfd_handle(file_.get(), H5P_DEFAULT, &handle), "H5Fget_vfd_handle", "");
+      if (::fsync(*static_cast<int*>(handle)) != 0) {
+        Fail("", std::string("fsync failed: ") + std::strerror(errno));
+      }
+    }
   }
 
   /// Writes what is left and closes every identifier, even after a failure; throws the
@@ -512,7 +544,7 @@ class Hdf5File::Impl {
 };
 
 Hdf5File::Hdf5File(const std::string& path, const Hdf5FileOptions& options) : path_(path) {
-  SilenceHdf5Printing();
+  internal::PrepareHdf5();
   impl_ = std::make_unique<Impl>(path, options);
 }
 
@@ -540,7 +572,7 @@ Hdf5File& Hdf5File::operator=(Hdf5File&& other) noexcept {
 const std::string& Hdf5File::path() const { return path_; }
 
 Hdf5File::Impl& Hdf5File::Live() {
-  SilenceHdf5Printing();
+  internal::PrepareHdf5();
   if (!impl_) throw Error(path_ + ": the file is closed");
   return *impl_;
 }
@@ -620,7 +652,7 @@ void Hdf5File::Flush() { Live().Flush(); }
 
 void Hdf5File::Close() {
   if (!impl_) return;
-  SilenceHdf5Printing();
+  internal::PrepareHdf5();
   // Closed from here on, whatever happens: a failed close is not retried.
   const std::unique_ptr<Impl> impl = std::move(impl_);
   impl->Close();

@@ -44,6 +44,13 @@ struct Hdf5FileOptions {
   /// slowly varying sign and exponent bytes compress well (on a simulated 3-hour run the
   /// file was 15 % smaller and written faster). Ignored without compression.
   bool shuffle = true;
+  /// For a file written for months and killed at any moment (a live monitor): HDF5's
+  /// metadata reach the file only at Flush (metadata-cache evictions off), every Flush ends
+  /// with an fsync, and tables are stored uncompressed (gzip_level is ignored) so that a
+  /// chunk rewritten by a later Flush keeps its place. After the first Flush the file then
+  /// opens whenever the process is killed or the power fails, and holds every row up to the
+  /// last Flush.
+  bool durable_flushes = false;
 };
 
 /// An HDF5 file being written. Every failure (the file cannot be created, an HDF5 call

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "tools/output/hdf5_library.h"
 
 namespace moorsim::output {
 
@@ -45,12 +46,12 @@ class Attribute {
 }  // namespace
 
 bool IsHdf5File(const std::string& path) {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  internal::PrepareHdf5();
   return H5Fis_hdf5(path.c_str()) > 0;
 }
 
 Hdf5Reader::Hdf5Reader(const std::string& path) : path_(path) {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  internal::PrepareHdf5();
   if (H5Fis_hdf5(path.c_str()) <= 0) {
     throw InputError(path + ": not a readable HDF5 file");
   }

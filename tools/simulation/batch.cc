@@ -15,14 +15,11 @@
 #include <sstream>
 #include <thread>
 
-#include <fcntl.h>
-#include <sys/file.h>
-#include <unistd.h>
-
 #include "core/error.h"
 #include "core/version.h"
 #include "detectors/plugin_detector.h"
 #include "scenarios/load.h"
+#include "tools/output/directory_lock.h"
 #include "tools/output/hdf5_file.h"
 
 namespace moorsim::simulation {
@@ -69,35 +66,6 @@ std::string ReadSmallFile(const std::filesystem::path& path) {
   if (in.bad()) throw Error(path.string() + ": cannot read");
   return text.str();
 }
-
-/// An exclusive flock on DIR/campaign.lock for the batch's lifetime.
-class DirectoryLock {
- public:
-  explicit DirectoryLock(const std::filesystem::path& directory) {
-    const std::filesystem::path path = directory / "campaign.lock";
-    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (fd_ < 0) throw Error(path.string() + ": cannot create the lock file");
-    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-      ::close(fd_);
-      fd_ = -1;
-      throw InputError("--out " + directory.string() +
-                       ": another moorsim batch is writing this directory (" + path.string() +
-                       " is locked); wait for it or choose another --out");
-    }
-    const std::string pid = std::to_string(::getpid()) + "\n";
-    if (::ftruncate(fd_, 0) != 0 || ::write(fd_, pid.data(), pid.size()) < 0) {
-      // The pid is only informative; the lock is what matters.
-    }
-  }
-  ~DirectoryLock() {
-    if (fd_ >= 0) ::close(fd_);  // releases the lock
-  }
-  DirectoryLock(const DirectoryLock&) = delete;
-  DirectoryLock& operator=(const DirectoryLock&) = delete;
-
- private:
-  int fd_ = -1;
-};
 
 /// One updating line on stderr: runs done / total, failures, elapsed, ETA, throughput.
 /// The ETA weighs runs by their simulated duration (an intact hour counts 4.5 failure runs
@@ -813,13 +781,13 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
     }
 
     // 2. Rank 0 (or the only process) owns the directory.
+    const output::DirectoryLock lock(result.directory);
     std::error_code error;
     std::filesystem::create_directories(result.directory / "rows", error);
     if (error) {
       throw InputError("--out " + result.directory.string() +
                        ": cannot create the directory: " + error.message());
     }
-    const DirectoryLock lock(result.directory);
     const std::filesystem::path recorded = result.directory / "campaign.yaml";
     if (std::filesystem::exists(recorded, error)) {
       if (ReadSmallFile(recorded) != c.text) {
@@ -934,10 +902,10 @@ void MergeCampaigns(const std::vector<std::filesystem::path>& directories,
   }
   const nlohmann::json meta =
       nlohmann::json::parse(ReadSmallFile(directories.front() / "campaign.json"));
+  const output::DirectoryLock lock(out);
   std::error_code error;
   std::filesystem::create_directories(out / "rows", error);
   if (error) throw InputError("--out " + out.string() + ": cannot create: " + error.message());
-  const DirectoryLock lock(out);
   WriteFileAtomically(out / "campaign.yaml", text);
   WriteFileAtomically(out / "campaign.json", meta.dump(2) + "\n");
   std::vector<nlohmann::json> all;

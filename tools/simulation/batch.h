@@ -5,7 +5,8 @@
 // Output directory DIR:
 //   campaign.yaml     the campaign text (a rerun with another text into DIR is refused)
 //   campaign.json     its name, path, seed and factor keys (for --merge)
-//   campaign.lock     held (flock) while a batch writes DIR: two campaigns never share it
+//   moorsim.lock      held (output::DirectoryLock) while a batch writes DIR: no other
+//                     moorsim process (batch, run, detect) writes DIR meanwhile
 //   rows/NNNNNNNN.json  one row per finished run, written atomically (temporary name, then
 //                     rename): a row is whole or absent, so a rerun of the same command
 //                     resumes, skipping runs that have a row

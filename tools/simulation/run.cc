@@ -19,6 +19,7 @@
 #include "core/sample_clock.h"
 #include "core/version.h"
 #include "scenarios/load.h"
+#include "tools/output/directory_lock.h"
 #include "tools/output/hdf5_file.h"
 #include "tools/simulation/detection_tables.h"
 
@@ -34,8 +35,8 @@ std::string Join(const std::vector<std::string>& items) {
 /// The tables of run.h5 (docs/design.md section 7) and how each sample fills them.
 class RunWriter {
  public:
-  RunWriter(const std::string& path, const scenarios::Scenario& scenario, Simulation& sim)
-      : file_(path) {
+  RunWriter(output::Hdf5File file, const scenarios::Scenario& scenario, Simulation& sim)
+      : file_(std::move(file)) {
     file_.SetAttribute("/", "scenario", scenario.text);
     file_.SetAttribute("/", "scenario_name", scenario.name);
     file_.SetAttribute("/", "scenario_path", scenario.source_path);
@@ -266,7 +267,7 @@ void WriteFileAtomically(const std::filesystem::path& path, const std::string& t
     throw Error(path.string() + ": " + what + ": " + SystemError(error));
   };
   const int fd = ::open(partial.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) fail("cannot create", errno);
+  if (fd < 0) throw Error(path.string() + ": cannot create: " + SystemError(errno));
   std::size_t written = 0;
   while (written < text.size()) {
     const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
@@ -302,19 +303,16 @@ int StopSignal() { return g_stop_signal; }
 
 RunResult RunScenario(const RunRequest& request) noexcept {
   RunResult result;
-  // 1. Everything about the input, before anything is simulated or written.
+  // 1. Everything about the input, before anything is simulated or written. The output
+  // directory is this process's alone until it returns.
   std::optional<scenarios::Scenario> loaded;
+  std::optional<output::DirectoryLock> lock;
   try {
     loaded.emplace(scenarios::LoadScenario(request.scenario_path, request.overrides));
     CheckDetectors(*loaded);
     result.directory =
         request.out.empty() ? std::filesystem::path("out") / loaded->name : request.out;
-    std::error_code error;
-    if (request.write_files) std::filesystem::create_directories(result.directory, error);
-    if (error) {
-      throw InputError("--out " + result.directory.string() +
-                       ": cannot create the directory: " + error.message());
-    }
+    if (request.write_files) lock.emplace(result.directory);
   } catch (const InputError& e) {
     result.status = RunStatus::kRejected;
     result.message = e.what();
@@ -334,6 +332,7 @@ RunResult RunScenario(const RunRequest& request) noexcept {
   std::unique_ptr<Simulation> sim;
   std::unique_ptr<RunWriter> writer;
   bool run_file_broken = false;
+  bool partial_created = false;  // only a file this run created is ever removed
   result.status = RunStatus::kOk;
   try {
     try {
@@ -345,7 +344,9 @@ RunResult RunScenario(const RunRequest& request) noexcept {
     }
     try {
       if (request.write_files) {
-        writer = std::make_unique<RunWriter>(Partial(run_path).string(), scenario, *sim);
+        output::Hdf5File file(Partial(run_path).string());
+        partial_created = true;
+        writer = std::make_unique<RunWriter>(std::move(file), scenario, *sim);
       }
     } catch (const Error&) {
       run_file_broken = true;
@@ -423,12 +424,14 @@ RunResult RunScenario(const RunRequest& request) noexcept {
   if (!request.write_files) {
     // Nothing on disk.
   } else if (run_file_broken) {
-    RemoveQuietly(Partial(run_path));
+    // The previous run's run.h5 goes too: summary.json would not describe it.
+    if (partial_created) RemoveQuietly(Partial(run_path));
     RemoveQuietly(run_path);
   } else if (sim) {
     std::error_code error;
     std::filesystem::rename(Partial(run_path), run_path, error);
     if (error) {
+      run_file_broken = true;  // summary.json names no run.h5
       result.status = RunStatus::kFailed;
       result.message = run_path.string() + ": rename failed: " + error.message();
     }

@@ -3,6 +3,9 @@
 // summary.json, and returns a status; no exception escapes.
 //
 // Outputs are never a lie (docs/design.md section 7):
+// * the output directory is held (output::DirectoryLock, DIR/moorsim.lock) for the whole
+//   run: a second moorsim writing the same directory is refused with kRejected, and a run
+//   removes only files it created or the previous run's outputs in the directory it holds;
 // * run.h5 and summary.json are written under temporary names (".partial") and renamed into
 //   place at the end, the old summary.json removed first, so an old complete result is
 //   never paired with a new partial one: a run.h5 without a summary.json is incomplete;
@@ -12,7 +15,8 @@
 //   next output row: the file is closed with every row so far and summary.json says
 //   "interrupted" with the simulated time reached;
 // * every write is checked; when run.h5 cannot be written (disk full) the run stops, the
-//   broken file is removed, and summary.json says "failed" with the reason if it fits.
+//   broken file is removed, and summary.json says "failed" with the reason if it fits;
+//   summary.json names run.h5 only once run.h5 is in place.
 #pragma once
 
 #include <chrono>
