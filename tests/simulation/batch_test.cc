@@ -381,6 +381,29 @@ TEST(CampaignIdentity, AChangedBaseScenarioIsRefusedOnResume) {
   fs::remove_all(dir);
 }
 
+TEST(CampaignIdentity, AnotherReleasesDirectoryIsRefused) {
+  const auto [dir, c, out] = Recorded("identity_release");
+  nlohmann::json record = nlohmann::json::parse(ReadText(out / "campaign.json"));
+  nlohmann::json& identity = record.at("identity");
+  ASSERT_EQ(identity.at("inputs")[0].at("what"), "moorsim release");
+  identity.at("inputs")[0]["path"] = "0.0.1";
+  identity.at("inputs")[0]["sha256"] = std::string(64, '0');
+  identity["sha256"] = std::string(64, '1');
+  WriteText(out / "campaign.json", record.dump());
+  ExpectRefused(RecordOnly(c.campaign, out), out,
+                out.string() + " was started by moorsim 0.0.1, this is moorsim ");
+  // A directory of a moorsim that recorded no identity cannot be told apart: refused too.
+  record.erase("identity");
+  WriteText(out / "campaign.json", record.dump());
+  const BatchResult r = RecordOnly(c.campaign, out);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.message, "--out " + out.string() +
+                           ": was started by an earlier moorsim, which did not record its "
+                           "campaign's identity; finish it with that moorsim or choose another "
+                           "directory");
+  fs::remove_all(dir);
+}
+
 TEST(CampaignIdentity, TheSameCampaignTextBesideAnotherScenarioIsRefused) {
   const fs::path dir = FreshDirectory("identity_tree");
   const auto [a, b] = TwoCopies(dir);
@@ -438,6 +461,7 @@ TEST(CampaignIdentity, ARowThatIsNotOneOfTheCampaignsRunsIsAnError) {
       {"00000001.json", "{\"run\": 1, \"sta", "not a row of moorsim batch (damaged:"},
       {"00000001.json", row(0, identity), "holds run 0, not run 1"},
       {"00000001.json", row(1, std::string(64, 'a')), "a row of another campaign"},
+      {"notes.json", "{}", "not a row of moorsim batch (rows are files named NNNNNNNN.json)"},
   };
   for (const auto& k : cases) {
     SCOPED_TRACE(k.name + ": " + k.text);

@@ -457,13 +457,14 @@ nlohmann::json ReadCampaignRecord(const std::filesystem::path& directory, const 
   return record;
 }
 
-// Empty when the identities `recorded` (DIR's) and `now` (as IdentityJson) are one, else
-// which input differs, in words: "the base scenario X changed since DIR was started".
-// Inputs are paired by kind and order, not by path, so that a file found elsewhere is
-// compared with the one it replaces.
+// Empty when the identities `recorded` (DIR's) and `now` (as IdentityJson; the campaign
+// resuming DIR, else the one merged into it) are one, else which input differs, in words:
+// "the base scenario X changed since DIR was started". Inputs are paired by kind and
+// order, not by path, so that a file found elsewhere is compared with the one it replaces.
 std::string IdentityDifference(const nlohmann::json& recorded, const nlohmann::json& now,
-                               const std::string& directory) {
+                               const std::string& directory, bool resuming) {
   if (recorded.at("sha256") == now.at("sha256")) return "";
+  const std::string campaign = resuming ? "this campaign" : "the merged campaign";
   // The input of `inputs[i]`'s kind and order in `other`, or nullptr.
   const auto counterpart = [](const nlohmann::json& inputs, std::size_t i,
                               const nlohmann::json& other) -> const nlohmann::json* {
@@ -481,7 +482,7 @@ std::string IdentityDifference(const nlohmann::json& recorded, const nlohmann::j
     const std::string what = is[i].at("what"), path = is[i].at("path");
     const nlohmann::json* old = counterpart(is, i, was);
     if (old == nullptr) {
-      return "this campaign reads the " + what + " " + path + ", which " + directory +
+      return campaign + " reads the " + what + " " + path + ", which " + directory +
              " was not started with";
     }
     if (old->at("sha256") == is[i].at("sha256")) continue;
@@ -490,26 +491,29 @@ std::string IdentityDifference(const nlohmann::json& recorded, const nlohmann::j
       return directory + " was started by moorsim " + old_path + ", this is moorsim " + path +
              " (a campaign is finished by the release that started it)";
     }
-    if (old_path == path)
-      return "the " + what + " " + path + " changed since " + directory + " was started";
+    if (old_path == path) {
+      return "the " + what + " " + path +
+             (resuming ? " changed since " + directory + " was started"
+                       : " differs from the one " + directory + " was started with");
+    }
     return "the " + what + " " + path + " differs from " + old_path + ", which " + directory +
            " was started with";
   }
   for (std::size_t i = 0; i < was.size(); ++i) {
     if (counterpart(was, i, is) == nullptr) {
       return directory + " was started with the " + was[i].at("what").get<std::string>() + " " +
-             was[i].at("path").get<std::string>() + " too, which this campaign does not read";
+             was[i].at("path").get<std::string>() + " too, which " + campaign + " does not read";
     }
   }
-  return "its campaign identity " + recorded.at("sha256").get<std::string>() +
-         " is not this campaign's " + now.at("sha256").get<std::string>();
+  return "its campaign identity " + recorded.at("sha256").get<std::string>() + " is not " +
+         campaign + "'s " + now.at("sha256").get<std::string>();
 }
 
 // Under DIR's lock: checks that DIR holds nothing of a campaign or the results of the one
 // `record` (as CampaignMeta) describes, and records that campaign there if DIR is new.
-// Throws InputError "--out DIR: ..." naming what differs.
+// Throws InputError "--out DIR: ..." naming what differs. `resuming`: by a batch, not a merge.
 void ClaimDirectory(const std::filesystem::path& directory, const nlohmann::json& record,
-                    const std::string& campaign_text) {
+                    const std::string& campaign_text, bool resuming) {
   const std::string where = "--out " + directory.string() + ": ";
   const std::string refused = where + "holds the results of another campaign: ";
   const std::string advice = "; choose another --out or remove the directory";
@@ -517,8 +521,8 @@ void ClaimDirectory(const std::filesystem::path& directory, const nlohmann::json
   std::error_code error;
   if (std::filesystem::exists(directory / "campaign.json", error)) {
     const nlohmann::json recorded = ReadCampaignRecord(directory, "--out");
-    const std::string difference =
-        IdentityDifference(recorded.at("identity"), record.at("identity"), directory.string());
+    const std::string difference = IdentityDifference(
+        recorded.at("identity"), record.at("identity"), directory.string(), resuming);
     if (!difference.empty()) throw InputError(refused + difference + advice);
   } else {
     // No record: a new directory, or one whose first batch stopped before it wrote one
@@ -1045,7 +1049,7 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
     // 2. Rank 0 (or the only process) owns the directory: this campaign's or a new one.
     CreateDirectory(result.directory);
     const DirectoryLock lock(result.directory);
-    ClaimDirectory(result.directory, CampaignMeta(p), c.text);
+    ClaimDirectory(result.directory, CampaignMeta(p), c.text, true);
     CreateDirectory(result.directory / "rows");
 
     // 3. What is left to do in this shard.
@@ -1147,7 +1151,7 @@ void MergeCampaigns(const std::vector<std::filesystem::path>& directories,
       text = ReadSmallFile(recorded);
     }
     const std::string difference = IdentityDifference(meta.at("identity"), record.at("identity"),
-                                                      directories.front().string());
+                                                      directories.front().string(), false);
     if (!difference.empty()) {
       throw InputError("--merge " + dir.string() + ": holds another campaign than " +
                        directories.front().string() + ": " + difference);
@@ -1160,7 +1164,7 @@ void MergeCampaigns(const std::vector<std::filesystem::path>& directories,
   }
   CreateDirectory(out);
   const DirectoryLock lock(out);
-  ClaimDirectory(out, meta, text);
+  ClaimDirectory(out, meta, text, false);
   CreateDirectory(out / "rows");
   // The rows `out` holds already (an earlier merge, a shard merged into itself) stay rows.
   for (nlohmann::json& row : ReadRowsOf(out, meta.at("identity").at("sha256").get<std::string>(),
