@@ -475,6 +475,9 @@ TEST(CampaignIdentity, ARowThatIsNotOneOfTheCampaignsRunsIsAnError) {
     EXPECT_EQ(table.find("\n99,"), std::string::npos) << table;
     fs::remove(file);
   }
+  // A row that a killed batch left half written (under its temporary name) is no row.
+  WriteText(out / "rows" / "00000001.json.partial", "{\"run\": 1, \"sta");
+  EXPECT_EQ(RecordOnly(c.campaign, out).exit_code, 128 + SIGINT);
   // Nor does it reach a merge's table.
   WriteText(out / "rows" / "00000099.json", row(99, identity));
   EXPECT_THROW(MergeCampaigns({out}, dir / "merged", "test"), InputError);
