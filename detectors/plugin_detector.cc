@@ -1,17 +1,16 @@
 #include "detectors/plugin_detector.h"
 
 #include <dlfcn.h>
-#include <nettle/sha2.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <mutex>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/sha256.h"
 
 namespace moorsim::detectors {
 
@@ -180,28 +179,6 @@ std::vector<DetectorParameter> Table(const std::string& path, const moorsim_dete
   return table;
 }
 
-// SHA-256 of the file at `path`, lower-case hex; empty if it cannot be read.
-std::string FileSha256(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return "";
-  sha256_ctx context;
-  sha256_init(&context);
-  char buffer[1 << 16];
-  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
-    sha256_update(&context, static_cast<std::size_t>(in.gcount()),
-                  reinterpret_cast<const std::uint8_t*>(buffer));
-  }
-  std::uint8_t digest[SHA256_DIGEST_SIZE];
-  sha256_digest(&context, SHA256_DIGEST_SIZE, digest);
-  static const char kHex[] = "0123456789abcdef";
-  std::string hex;
-  for (std::uint8_t byte : digest) {
-    hex += kHex[byte >> 4];
-    hex += kHex[byte & 15];
-  }
-  return hex;
-}
-
 // The libraries of --plugin, in order.
 struct Registered {
   std::mutex mutex;
@@ -222,7 +199,7 @@ std::shared_ptr<const PluginLibrary> PluginLibrary::Load(const std::string& path
   dlerror();
   library->handle_ = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (library->handle_ == nullptr) throw fail("cannot load (" + Reason(dlerror(), "?") + ")");
-  library->sha256_ = FileSha256(path);
+  library->sha256_ = FileSha256(path).value_or("");
   const auto symbol = [&](const char* name) {
     void* address = dlsym(library->handle_, name);
     if (address == nullptr) {

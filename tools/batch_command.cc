@@ -116,7 +116,10 @@ Command AddBatchCommand(CLI::App& app, int argc, char** argv) {
   sub->footer(
       "\nWrites DIR/runs.csv and DIR/campaign.h5 (one row per run), DIR/rows/ (a file per\n"
       "finished run: rerunning the same command resumes) and, with --keep-runs, every run's\n"
-      "run.h5 under DIR/runs/. tools/report.py DIR writes the report. Exit codes: 0 every run\n"
+      "run.h5 under DIR/runs/. DIR/campaign.json identifies the campaign by the SHA-256 of\n"
+      "its files (campaign, scenarios, WAMIT data, plugins): a directory of another campaign,\n"
+      "or of one whose files changed, is refused (exit 2), by a batch and by --merge.\n"
+      "tools/report.py DIR writes the report. Exit codes: 0 every run\n"
       "ok, 1 some run failed or timed out (recorded in the table), 2 bad input, 130/143\n"
       "interrupted by SIGINT/SIGTERM (finished runs are kept; the same command resumes).\n\n" +
       detectors::DetectorHelp());

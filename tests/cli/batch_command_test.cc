@@ -79,6 +79,30 @@ TEST(BatchCommand, BadFlagsExitWithCode2AndOneLine) {
   }
 }
 
+TEST(BatchCommand, MergeOfADirectoryWithoutItsCampaignRecordIsOneLineAndExit2) {
+  TempDirectory dir(::testing::TempDir());
+  const std::filesystem::path shard = dir.path() / "shard";
+  const std::string merged = (dir.path() / "merged").string();
+  std::filesystem::create_directories(shard / "rows");
+  std::ofstream(shard / "campaign.yaml") << "seed: 1\n";
+  const struct {
+    std::string json;  // campaign.json's text; empty: no file
+    std::string message;
+  } cases[] = {
+      {"", ": no campaign.json (not a results directory of moorsim batch)\n"},
+      {"{\"name\": ", ": campaign.json is damaged (not the JSON moorsim batch writes)\n"},
+      {"[]", ": campaign.json is damaged (not the JSON moorsim batch writes)\n"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.json);
+    if (!c.json.empty()) std::ofstream(shard / "campaign.json") << c.json;
+    const CliResult r = RunCli({"batch", "--merge", shard.string(), "--out", merged}, dir.path());
+    EXPECT_EQ(r.exit_code, 2) << r.Describe();
+    EXPECT_EQ(r.err, "moorsim: --merge " + shard.string() + c.message);
+  }
+  EXPECT_FALSE(std::filesystem::exists(merged));
+}
+
 TEST(BatchCommand, WritesTheTableAndTheReportMatchesIt) {
   TempDirectory dir(::testing::TempDir());
   const std::string campaign = WriteCampaign(dir.path(), 80);

@@ -191,5 +191,38 @@ TEST(PluginCommand, WithPluginOnTheCommandLineItsTypesAreNamedAloneListedAndReco
       << r.err;
 }
 
+TEST(PluginCommand, ACampaignResumesOnlyWithTheSamePluginLibraries) {
+  // A plugin library is an input of a campaign (its identity, campaign.json): a resume with
+  // another library, one more, or the same file changed is refused, naming the library.
+  TempDirectory dir(::testing::TempDir());
+  const std::filesystem::path plugin = dir.path() / "libcopy.so";
+  std::filesystem::copy_file(MOORSIM_TEST_CUSUM_PLUGIN, plugin);
+  const std::filesystem::path campaign = dir.path() / "short.yaml";
+  std::ofstream(campaign) << "scenario: " << kPluginScenario
+                          << "\nseed: 3\nset: {simulation.duration: 1, detectors: []}\n"
+                             "blocks:\n  - name: intact\n    seeds: 1\n";
+  const std::string out = (dir.path() / "out").string();
+  const std::vector<std::string> batch = {"batch", campaign.string(), "--out", out, "--quiet"};
+  std::vector<std::string> with_plugin = batch;
+  with_plugin.insert(with_plugin.end(), {"--plugin", plugin.string()});
+  CliResult r = RunCli(batch, dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  r = RunCli(with_plugin, dir.path());
+  EXPECT_EQ(r.exit_code, 2) << r.Describe();
+  EXPECT_EQ(r.err, "moorsim: --out " + out +
+                       ": holds the results of another campaign: this campaign reads the plugin " +
+                       plugin.string() + ", which " + out +
+                       " was not started with; choose another --out or remove the directory\n");
+  std::filesystem::remove_all(out);
+  r = RunCli(with_plugin, dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  std::ofstream(plugin, std::ios::app) << "rebuilt";  // still loads: bytes past the ELF's end
+  r = RunCli(with_plugin, dir.path());
+  EXPECT_EQ(r.exit_code, 2) << r.Describe();
+  EXPECT_NE(r.err.find("the plugin " + plugin.string() + " changed since " + out + " was started"),
+            std::string::npos)
+      << r.err;
+}
+
 }  // namespace
 }  // namespace moorsim::testing

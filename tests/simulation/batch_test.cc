@@ -284,6 +284,262 @@ TEST_F(BatchTest, BadInputNamesTheRun) {
   fs::remove_all(dir);
 }
 
+// ---------------------------------------------------------------------------------------
+// A results directory belongs to one campaign: what determines its runs, not its text.
+
+std::string ReadText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void WriteText(const fs::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+// `text` with its one `from` replaced by `to`.
+std::string Replaced(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+// Copies of the thesis scenario and its base in `dir` (its WAMIT files where the library
+// has them, or in `wamit` when given), and a campaign of two 1-second runs without
+// detectors on them.
+struct CopiedCampaign {
+  fs::path campaign, scenario, base;
+};
+CopiedCampaign CopyThesisCampaign(const fs::path& dir, const std::string& seed = "3",
+                                  const fs::path& wamit = {}) {
+  const fs::path library = MOORSIM_SOURCE_DIR "/scenarios/library";
+  CopiedCampaign c{dir / "campaign.yaml", dir / "scenario.yaml", dir / "thesis_no_failure.yaml"};
+  fs::copy_file(library / "thesis_no_failure_current.yaml", c.scenario);
+  const fs::path stem = wamit.empty() ? fs::path(MOORSIM_SOURCE_DIR "/data/fpso_wamit") : wamit;
+  WriteText(c.base, Replaced(ReadText(library / "thesis_no_failure.yaml"),
+                             "hydrodynamics: ../../data/fpso_wamit/fpso",
+                             "hydrodynamics: " + (stem / "fpso").string()));
+  WriteText(c.campaign, "scenario: scenario.yaml\nseed: " + seed +
+                            "\nset: {simulation.duration: 1, detectors: []}\n"
+                            "blocks:\n  - name: intact\n    seeds: 2\n");
+  return c;
+}
+
+// Two copies of that campaign, in DIR/a and DIR/b.
+std::pair<CopiedCampaign, CopiedCampaign> TwoCopies(const fs::path& dir) {
+  fs::create_directories(dir / "a");
+  fs::create_directories(dir / "b");
+  return {CopyThesisCampaign(dir / "a"), CopyThesisCampaign(dir / "b")};
+}
+
+// A batch stopped before its first run: it records the campaign in `out` (or refuses the
+// directory) and runs nothing.
+BatchResult RecordOnly(const fs::path& campaign, const fs::path& out) {
+  BatchOptions o = Options(campaign, out, 1);
+  o.stop_requested = [] { return SIGINT; };
+  return RunBatch(o);
+}
+
+// A fresh directory `name` with a copy of the campaign, recorded in its out/.
+struct RecordedCampaign {
+  fs::path dir;
+  CopiedCampaign copy;
+  fs::path out;
+};
+RecordedCampaign Recorded(const std::string& name) {
+  RecordedCampaign r;
+  r.dir = FreshDirectory(name);
+  r.copy = CopyThesisCampaign(r.dir);
+  r.out = r.dir / "out";
+  EXPECT_EQ(RecordOnly(r.copy.campaign, r.out).exit_code, 128 + SIGINT);
+  return r;
+}
+
+// The one-line refusal of a results directory that holds another campaign.
+void ExpectRefused(const BatchResult& r, const fs::path& out, const std::string& what) {
+  EXPECT_EQ(r.exit_code, 2) << r.message;
+  EXPECT_EQ(
+      r.message.rfind("--out " + out.string() + ": holds the results of another campaign: ", 0), 0u)
+      << r.message;
+  EXPECT_NE(r.message.find(what), std::string::npos) << r.message;
+  EXPECT_EQ(r.message.find('\n'), std::string::npos) << r.message;
+}
+
+TEST(CampaignIdentity, AChangedBaseScenarioIsRefusedOnResume) {
+  const auto [dir, c, out] = Recorded("identity_base");
+  // Unchanged (a comment added to the campaign would change it): the same command resumes.
+  EXPECT_EQ(RecordOnly(c.campaign, out).exit_code, 128 + SIGINT);
+  // A heavier hull in the base scenario: the campaign's text is the same, its runs are not.
+  WriteText(c.base, Replaced(ReadText(c.base), "mass: 1.0041e8", "mass: 1.1e8"));
+  ExpectRefused(
+      RecordOnly(c.campaign, out), out,
+      "the base scenario " + c.base.string() + " changed since " + out.string() + " was started");
+  fs::remove_all(dir);
+}
+
+TEST(CampaignIdentity, AnotherReleasesDirectoryIsRefused) {
+  const auto [dir, c, out] = Recorded("identity_release");
+  nlohmann::json record = nlohmann::json::parse(ReadText(out / "campaign.json"));
+  nlohmann::json& identity = record.at("identity");
+  ASSERT_EQ(identity.at("inputs")[0].at("what"), "moorsim release");
+  identity.at("inputs")[0]["path"] = "0.0.1";
+  identity.at("inputs")[0]["sha256"] = std::string(64, '0');
+  identity["sha256"] = std::string(64, '1');
+  WriteText(out / "campaign.json", record.dump());
+  ExpectRefused(RecordOnly(c.campaign, out), out,
+                out.string() + " was started by moorsim 0.0.1, this is moorsim ");
+  // A directory of a moorsim that recorded no identity cannot be told apart: refused too.
+  record.erase("identity");
+  WriteText(out / "campaign.json", record.dump());
+  const BatchResult r = RecordOnly(c.campaign, out);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.message, "--out " + out.string() +
+                           ": was started by an earlier moorsim, which did not record its "
+                           "campaign's identity; finish it with that moorsim or choose another "
+                           "directory");
+  fs::remove_all(dir);
+}
+
+TEST(CampaignIdentity, TheSameCampaignTextBesideAnotherScenarioIsRefused) {
+  const fs::path dir = FreshDirectory("identity_tree");
+  const auto [a, b] = TwoCopies(dir);
+  const fs::path out = dir / "out";
+  ASSERT_EQ(RecordOnly(a.campaign, out).exit_code, 128 + SIGINT);
+  // The same files elsewhere are the same campaign.
+  EXPECT_EQ(RecordOnly(b.campaign, out).exit_code, 128 + SIGINT);
+  WriteText(b.scenario, Replaced(ReadText(b.scenario), "speed: 0.1}", "speed: 0.3}"));
+  ExpectRefused(RecordOnly(b.campaign, out), out, "the scenario " + b.scenario.string());
+  fs::remove_all(dir);
+}
+
+TEST(CampaignIdentity, AChangedHydrodynamicsFileIsRefusedOnResume) {
+  const fs::path dir = FreshDirectory("identity_wamit");
+  const fs::path wamit = dir / "wamit";
+  fs::create_directories(wamit);
+  for (const char* extension : {".1", ".hst", ".3", ".4", ".9"}) {
+    fs::copy_file(MOORSIM_SOURCE_DIR "/data/fpso_wamit/fpso" + std::string(extension),
+                  wamit / ("fpso" + std::string(extension)));
+  }
+  const CopiedCampaign c = CopyThesisCampaign(dir, "3", wamit);
+  const fs::path out = dir / "out";
+  ASSERT_EQ(RecordOnly(c.campaign, out).exit_code, 128 + SIGINT);
+  const fs::path hst = wamit / "fpso.hst";
+  WriteText(hst, ReadText(hst) + "     6     6   1.000000E+00\n");
+  ExpectRefused(
+      RecordOnly(c.campaign, out), out,
+      "the hydrodynamics file " + hst.string() + " changed since " + out.string() + " was started");
+  fs::remove_all(dir);
+}
+
+TEST(CampaignIdentity, ARowThatIsNotOneOfTheCampaignsRunsIsAnError) {
+  const auto [dir, c, out] = Recorded("identity_rows");
+  const nlohmann::json recorded = nlohmann::json::parse(ReadText(out / "campaign.json"));
+  const std::string identity =
+      recorded.value("identity", nlohmann::json::object()).value("sha256", "");
+  // A row as the batch writes it, of run `run` of the campaign `campaign`.
+  const auto row = [](int run, const std::string& campaign) {
+    return nlohmann::json{{"run", run},
+                          {"block", "intact"},
+                          {"seed", 1},
+                          {"status", "ok"},
+                          {"factors", nlohmann::json::object()},
+                          {"failure", nullptr},
+                          {"detectors", nlohmann::json::object()},
+                          {"error", ""},
+                          {"command", ""},
+                          {"campaign", campaign}}
+        .dump();
+  };
+  const struct {
+    std::string name, text, message;
+  } cases[] = {
+      {"00000099.json", row(99, identity), "run 99 is not one of the campaign's 2 runs (0..1)"},
+      {"00000001.json", "{\"run\": 1, \"sta", "not a row of moorsim batch (damaged:"},
+      {"00000001.json", row(0, identity), "holds run 0, not run 1"},
+      {"00000001.json", row(1, std::string(64, 'a')), "a row of another campaign"},
+      {"notes.json", "{}", "not a row of moorsim batch (rows are files named NNNNNNNN.json)"},
+  };
+  for (const auto& k : cases) {
+    SCOPED_TRACE(k.name + ": " + k.text);
+    const fs::path file = out / "rows" / k.name;
+    WriteText(file, k.text);
+    const BatchResult r = RecordOnly(c.campaign, out);
+    EXPECT_EQ(r.exit_code, 2) << r.message;
+    EXPECT_EQ(r.message.rfind(file.string() + ": ", 0), 0u) << r.message;
+    EXPECT_NE(r.message.find(k.message), std::string::npos) << r.message;
+    const std::string table = ReadText(out / "runs.csv");
+    EXPECT_EQ(table.find("\n99,"), std::string::npos) << table;
+    fs::remove(file);
+  }
+  // A row that a killed batch left half written (under its temporary name) is no row.
+  WriteText(out / "rows" / "00000001.json.partial", "{\"run\": 1, \"sta");
+  EXPECT_EQ(RecordOnly(c.campaign, out).exit_code, 128 + SIGINT);
+  // Nor does it reach a merge's table.
+  WriteText(out / "rows" / "00000099.json", row(99, identity));
+  EXPECT_THROW(MergeCampaigns({out}, dir / "merged", "test"), InputError);
+  EXPECT_FALSE(fs::exists(dir / "merged" / "runs.csv"));
+  fs::remove_all(dir);
+}
+
+TEST(CampaignMerge, AnOutOfAnotherCampaignIsRefused) {
+  const auto [dir, c, mine] = Recorded("merge_foreign");
+  fs::create_directories(dir / "other");
+  const CopiedCampaign other = CopyThesisCampaign(dir / "other", "4");
+  const fs::path foreign = dir / "foreign";
+  ASSERT_EQ(RecordOnly(other.campaign, foreign).exit_code, 128 + SIGINT);
+  const std::string recorded = ReadText(foreign / "campaign.json");
+  try {
+    MergeCampaigns({mine}, foreign, "test");
+    ADD_FAILURE() << "merged into another campaign's directory";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("--out " + foreign.string() +
+                                ": holds the results of another campaign: the campaign file " +
+                                c.campaign.string() + " differs from " + other.campaign.string() +
+                                ", which " + foreign.string() + " was started with",
+                            0),
+              0u)
+        << message;
+  }
+  EXPECT_EQ(ReadText(foreign / "campaign.json"), recorded);  // untouched
+  // Nor into a directory with rows but no record of their campaign.
+  const fs::path unrecorded = dir / "unrecorded";
+  fs::create_directories(unrecorded / "rows");
+  WriteText(unrecorded / "rows" / "00000000.json", "{}");
+  EXPECT_THROW(MergeCampaigns({mine}, unrecorded, "test"), InputError);
+  EXPECT_FALSE(fs::exists(unrecorded / "campaign.json"));
+  // Into a directory of the same campaign (a shard, an earlier merge) it goes.
+  MergeCampaigns({mine}, dir / "merged", "test");
+  MergeCampaigns({mine}, dir / "merged", "test");
+  MergeCampaigns({dir / "merged"}, mine, "test");
+  fs::remove_all(dir);
+}
+
+TEST(CampaignMerge, ShardsOfTheSameTextOnAnotherScenarioDoNotMerge) {
+  const fs::path dir = FreshDirectory("merge_shards");
+  const auto [a, b] = TwoCopies(dir);
+  WriteText(b.base, Replaced(ReadText(b.base), "mass: 1.0041e8", "mass: 1.1e8"));
+  ASSERT_EQ(RecordOnly(a.campaign, dir / "shard_a").exit_code, 128 + SIGINT);
+  ASSERT_EQ(RecordOnly(b.campaign, dir / "shard_b").exit_code, 128 + SIGINT);
+  try {
+    MergeCampaigns({dir / "shard_a", dir / "shard_b"}, dir / "merged", "test");
+    ADD_FAILURE() << "merged shards of two campaigns";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("--merge " + (dir / "shard_b").string() +
+                                ": holds another campaign "
+                                "than " +
+                                (dir / "shard_a").string() + ": the base scenario ",
+                            0),
+              0u)
+        << message;
+  }
+  EXPECT_FALSE(fs::exists(dir / "merged" / "campaign.json"));
+  fs::remove_all(dir);
+}
+
 TEST(DetectorStatistic, ReadsEachDetectorsScoreTheWayItsAlarmRuleDoes) {
   EXPECT_EQ(StatisticValue("dht", {0.1, 0.7, 0.2}), 0.7);
   EXPECT_EQ(StatisticValue("mle", {10.0, 4.0, 12.0}), 6.0);

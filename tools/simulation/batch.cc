@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "core/error.h"
+#include "core/sha256.h"
 #include "core/version.h"
 #include "detectors/plugin_detector.h"
 #include "scenarios/load.h"
@@ -65,6 +66,15 @@ std::string ReadSmallFile(const std::filesystem::path& path) {
   text << in.rdbuf();
   if (in.bad()) throw Error(path.string() + ": cannot read");
   return text.str();
+}
+
+void CreateDirectory(const std::filesystem::path& directory) {
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error) {
+    throw InputError("--out " + directory.string() +
+                     ": cannot create the directory: " + error.message());
+  }
 }
 
 /// One updating line on stderr: runs done / total, failures, elapsed, ETA, throughput.
@@ -338,12 +348,29 @@ std::string JoinLines(const std::vector<std::string>& items) {
   return joined;
 }
 
-// What --merge needs to know of the campaign without its scenario file at hand.
+// The kind of CampaignIdentity::Input that is moorsim's release, not a file.
+constexpr const char* kRelease = "moorsim release";
+
+nlohmann::json IdentityJson(const CampaignIdentity& identity) {
+  nlohmann::json inputs = nlohmann::json::array();
+  for (const CampaignIdentity::Input& input : identity.inputs) {
+    inputs.push_back({{"what", input.what}, {"path", input.path}, {"sha256", input.sha256}});
+  }
+  return {{"sha256", identity.sha256}, {"inputs", inputs}};
+}
+
+// DIR/campaign.json: the campaign's identity, and what --merge needs to know of the campaign
+// without its scenario file at hand.
 nlohmann::json CampaignMeta(const PreparedCampaign& p) {
   const scenarios::Campaign& c = p.campaign;
-  nlohmann::json meta = {
-      {"name", c.name}, {"path", c.source_path},     {"scenario", c.scenario_path},
-      {"seed", c.seed}, {"factors", c.FactorKeys()}, {"runs", c.NumRuns()}};
+  nlohmann::json meta = {{"name", c.name},
+                         {"path", c.source_path},
+                         {"scenario", c.scenario_path},
+                         {"seed", c.seed},
+                         {"factors", c.FactorKeys()},
+                         {"runs", c.NumRuns()},
+                         {"version", moorsim::kVersion},
+                         {"identity", IdentityJson(p.identity)}};
   std::vector<std::shared_ptr<const detectors::PluginLibrary>> used;
   for (const std::string& path : p.plugin_paths)
     used.push_back(detectors::PluginLibrary::Load(path));
@@ -351,6 +378,184 @@ nlohmann::json CampaignMeta(const PreparedCampaign& p) {
     meta["plugins"] = plugins;
   }
   return meta;
+}
+
+bool IsString(const nlohmann::json& j, const char* key) {
+  return j.contains(key) && j.at(key).is_string();
+}
+
+// DIR/campaign.json, checked for what a resume and a merge read. Throws InputError
+// "<flag> DIR: ..." for a directory without one, a damaged one, and one of a moorsim that
+// recorded no identity.
+nlohmann::json ReadCampaignRecord(const std::filesystem::path& directory, const std::string& flag) {
+  const std::filesystem::path path = directory / "campaign.json";
+  const std::string where = flag + " " + directory.string() + ": ";
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) {
+    throw InputError(where + "no campaign.json (not a results directory of moorsim batch)");
+  }
+  nlohmann::json record;
+  try {
+    record = nlohmann::json::parse(ReadSmallFile(path));
+  } catch (const nlohmann::json::exception&) {
+  }
+  bool whole = record.is_object() && IsString(record, "name") && IsString(record, "path") &&
+               record.contains("seed") && record.at("seed").is_number_unsigned() &&
+               record.contains("runs") && record.at("runs").is_number_unsigned() &&
+               record.contains("factors") && record.at("factors").is_array();
+  for (const nlohmann::json& key : whole ? record.at("factors") : nlohmann::json::array()) {
+    whole = whole && key.is_string();
+  }
+  if (whole && !record.contains("identity")) {
+    throw InputError(where +
+                     "was started by an earlier moorsim, which did not record its campaign's "
+                     "identity; finish it with that moorsim or choose another directory");
+  }
+  if (whole) {
+    const nlohmann::json& identity = record.at("identity");
+    whole = identity.is_object() && IsString(identity, "sha256") && identity.contains("inputs") &&
+            identity.at("inputs").is_array();
+    for (const nlohmann::json& input : whole ? identity.at("inputs") : nlohmann::json::array()) {
+      whole = whole && input.is_object() && IsString(input, "what") && IsString(input, "path") &&
+              IsString(input, "sha256");
+    }
+  }
+  if (!whole)
+    throw InputError(where + "campaign.json is damaged (not the JSON moorsim batch writes)");
+  return record;
+}
+
+// Empty when the identities `recorded` (DIR's) and `now` (as IdentityJson; the campaign
+// resuming DIR, else the one merged into it) are one, else which input differs, in words:
+// "the base scenario X changed since DIR was started". Inputs are paired by kind and
+// order, not by path, so that a file found elsewhere is compared with the one it replaces.
+std::string IdentityDifference(const nlohmann::json& recorded, const nlohmann::json& now,
+                               const std::string& directory, bool resuming) {
+  if (recorded.at("sha256") == now.at("sha256")) return "";
+  const std::string campaign = resuming ? "this campaign" : "the merged campaign";
+  // The input of `inputs[i]`'s kind and order in `other`, or nullptr.
+  const auto counterpart = [](const nlohmann::json& inputs, std::size_t i,
+                              const nlohmann::json& other) -> const nlohmann::json* {
+    const nlohmann::json& what = inputs[i].at("what");
+    std::size_t k = 0;
+    for (std::size_t j = 0; j < i; ++j) k += inputs[j].at("what") == what ? 1 : 0;
+    for (const nlohmann::json& input : other) {
+      if (input.at("what") == what && k-- == 0) return &input;
+    }
+    return nullptr;
+  };
+  const nlohmann::json& was = recorded.at("inputs");
+  const nlohmann::json& is = now.at("inputs");
+  for (std::size_t i = 0; i < is.size(); ++i) {
+    const std::string what = is[i].at("what"), path = is[i].at("path");
+    const nlohmann::json* old = counterpart(is, i, was);
+    if (old == nullptr) {
+      return campaign + " reads the " + what + " " + path + ", which " + directory +
+             " was not started with";
+    }
+    if (old->at("sha256") == is[i].at("sha256")) continue;
+    const std::string old_path = old->at("path");
+    if (what == kRelease) {
+      return directory + " was started by moorsim " + old_path + ", this is moorsim " + path +
+             " (a campaign is finished by the release that started it)";
+    }
+    if (old_path == path) {
+      return "the " + what + " " + path +
+             (resuming ? " changed since " + directory + " was started"
+                       : " differs from the one " + directory + " was started with");
+    }
+    return "the " + what + " " + path + " differs from " + old_path + ", which " + directory +
+           " was started with";
+  }
+  for (std::size_t i = 0; i < was.size(); ++i) {
+    if (counterpart(was, i, is) == nullptr) {
+      return directory + " was started with the " + was[i].at("what").get<std::string>() + " " +
+             was[i].at("path").get<std::string>() + " too, which " + campaign + " does not read";
+    }
+  }
+  return "its campaign identity " + recorded.at("sha256").get<std::string>() + " is not " +
+         campaign + "'s " + now.at("sha256").get<std::string>();
+}
+
+// Under DIR's lock: checks that DIR holds nothing of a campaign or the results of the one
+// `record` (as CampaignMeta) describes, and records that campaign there if DIR is new.
+// Throws InputError "--out DIR: ..." naming what differs. `resuming`: by a batch, not a merge.
+void ClaimDirectory(const std::filesystem::path& directory, const nlohmann::json& record,
+                    const std::string& campaign_text, bool resuming) {
+  const std::string where = "--out " + directory.string() + ": ";
+  const std::string refused = where + "holds the results of another campaign: ";
+  const std::string advice = "; choose another --out or remove the directory";
+  const std::filesystem::path text = directory / "campaign.yaml";
+  std::error_code error;
+  if (std::filesystem::exists(directory / "campaign.json", error)) {
+    const nlohmann::json recorded = ReadCampaignRecord(directory, "--out");
+    const std::string difference = IdentityDifference(
+        recorded.at("identity"), record.at("identity"), directory.string(), resuming);
+    if (!difference.empty()) throw InputError(refused + difference + advice);
+  } else {
+    // No record: a new directory, or one whose first batch stopped before it wrote one
+    // (campaign.json comes first, then campaign.yaml, then rows).
+    if (!std::filesystem::is_empty(directory / "rows", error) && !error) {
+      throw InputError(where + "holds rows of a campaign but no campaign.json that says which" +
+                       advice);
+    }
+    if (std::filesystem::exists(text, error) && ReadSmallFile(text) != campaign_text) {
+      throw InputError(refused + "its campaign.yaml is another campaign's text" + advice);
+    }
+    WriteFileAtomically(directory / "campaign.json", record.dump(2) + "\n");
+  }
+  if (!std::filesystem::exists(text, error)) WriteFileAtomically(text, campaign_text);
+}
+
+// DIR/rows/*.json of the campaign whose identity is `identity`, of `runs` runs. Files
+// whose name does not end in .json (a row being written) are not read.
+std::vector<nlohmann::json> ReadRowsOf(const std::filesystem::path& directory,
+                                       const std::string& identity, std::int64_t runs) {
+  std::vector<nlohmann::json> rows;
+  const std::filesystem::path dir = directory / "rows";
+  std::error_code error;
+  if (!std::filesystem::is_directory(dir, error)) return rows;
+  const std::string move = "; move it out of " + dir.string();
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    const std::filesystem::path& path = entry.path();
+    if (path.extension() != ".json") continue;
+    const std::string where = path.string() + ": ";
+    const std::string stem = path.stem().string();
+    if (!entry.is_regular_file() || stem.size() < 8 ||
+        stem.find_first_not_of("0123456789") != std::string::npos) {
+      throw InputError(where + "not a row of moorsim batch (rows are files named NNNNNNNN.json)" +
+                       move);
+    }
+    nlohmann::json row;
+    try {
+      row = nlohmann::json::parse(ReadSmallFile(path));
+    } catch (const nlohmann::json::exception&) {
+    }
+    if (!row.is_object() || !row.contains("run") || !row.at("run").is_number_integer() ||
+        !IsString(row, "status") || !IsString(row, "campaign") || !row.contains("factors") ||
+        !row.at("factors").is_object() || !row.contains("detectors") ||
+        !row.at("detectors").is_object()) {
+      throw InputError(where +
+                       "not a row of moorsim batch (damaged: not the JSON of a row); remove it to "
+                       "have its run done again");
+    }
+    const std::int64_t run = row.at("run").get<std::int64_t>();
+    if (RunName(run) != stem) {
+      const std::size_t digits = std::min(stem.find_first_not_of('0'), stem.size() - 1);
+      throw InputError(where + "holds run " + std::to_string(run) + ", not run " +
+                       stem.substr(digits) + " (its name)" + move);
+    }
+    if (run >= runs) {
+      throw InputError(where + "run " + std::to_string(run) + " is not one of the campaign's " +
+                       std::to_string(runs) + " runs (0.." + std::to_string(runs - 1) + ")" + move);
+    }
+    if (row.at("campaign") != identity) {
+      throw InputError(where + "a row of another campaign (its campaign identity is not " +
+                       (directory / "campaign.json").string() + "'s)" + move);
+    }
+    rows.push_back(std::move(row));
+  }
+  return rows;
 }
 
 }  // namespace
@@ -438,6 +643,10 @@ PreparedCampaign PrepareCampaign(const std::string& campaign_path) {
   p.truth.reserve(static_cast<std::size_t>(n));
   // Detector configurations already built once (by the scenario's detector sections).
   std::set<std::string> checked;
+  // The inputs of the identity: the base scenarios (sorted) and WAMIT stems (in the order
+  // of the runs that first read them).
+  std::set<std::string> bases;
+  std::vector<std::string> stems;
   for (std::int64_t i = 0; i < n; ++i) {
     scenarios::CampaignRun run = scenarios::MakeCampaignRun(c, i);
     const scenarios::CampaignBlock& block = c.blocks[static_cast<std::size_t>(run.block)];
@@ -471,6 +680,10 @@ PreparedCampaign PrepareCampaign(const std::string& campaign_path) {
         }
       }
       if (checked.insert(key).second) CheckDetectors(s);
+      for (const auto& [path, file] : s.origins) bases.insert(file);
+      if (std::find(stems.begin(), stems.end(), s.vessel->hydrodynamics) == stems.end()) {
+        stems.push_back(s.vessel->hydrodynamics);
+      }
       for (const scenarios::DetectorEntry& d : s.detectors) {
         if (!d.plugin.empty() && std::find(p.plugin_paths.begin(), p.plugin_paths.end(),
                                            d.plugin) == p.plugin_paths.end()) {
@@ -495,6 +708,37 @@ PreparedCampaign PrepareCampaign(const std::string& campaign_path) {
     }
     p.runs.push_back(std::move(run));
   }
+  // The identity (CampaignIdentity, in its order). The kinds' names are part of the hash.
+  CampaignIdentity& id = p.identity;
+  const auto add = [&id](const std::string& what, const std::string& path,
+                         const std::optional<std::string>& sha256) {
+    id.inputs.push_back({what, path, sha256.value_or("absent")});
+  };
+  const std::string version = moorsim::kVersion;
+  const std::string release = version.substr(0, version.find('+'));
+  add(kRelease, release, Sha256Hex(release));
+  add("campaign file", c.source_path, Sha256Hex(c.text));
+  add("scenario", c.scenario_path, FileSha256(c.scenario_path));
+  for (const std::string& base : bases) add("base scenario", base, FileSha256(base));
+  for (const std::string& stem : stems) {
+    for (const char* extension : {".1", ".hst", ".3", ".4", ".9"}) {
+      add("hydrodynamics file", stem + extension, FileSha256(stem + extension));
+    }
+  }
+  std::vector<std::string> plugins;
+  for (const std::string& path : p.plugin_paths) {
+    add("plugin", path, FileSha256(path));
+    plugins.push_back(path);
+  }
+  for (const auto& library : detectors::RegisteredPluginLibraries()) {
+    if (std::find(plugins.begin(), plugins.end(), library->path()) != plugins.end()) continue;
+    add("plugin", library->path(), library->sha256());
+    plugins.push_back(library->path());
+  }
+  std::string all;
+  for (const CampaignIdentity::Input& input : id.inputs)
+    all += input.what + "\t" + input.sha256 + "\n";
+  id.sha256 = Sha256Hex(all);
   return p;
 }
 
@@ -541,6 +785,7 @@ nlohmann::json MakeRow(const PreparedCampaign& p, const scenarios::CampaignRun& 
   const PreparedCampaign::Truth& t = p.truth[static_cast<std::size_t>(run.index)];
   nlohmann::json row;
   row["run"] = run.index;
+  row["campaign"] = p.identity.sha256;
   row["block"] = c.blocks[static_cast<std::size_t>(run.block)].name;
   row["seed"] = run.seed;
   nlohmann::json factors = nlohmann::json::object();
@@ -586,20 +831,9 @@ nlohmann::json MakeRow(const PreparedCampaign& p, const scenarios::CampaignRun& 
 }
 
 std::vector<nlohmann::json> ReadRows(const std::filesystem::path& directory) {
-  std::vector<nlohmann::json> rows;
-  const std::filesystem::path dir = directory / "rows";
-  std::error_code error;
-  if (!std::filesystem::is_directory(dir, error)) return rows;
-  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    if (entry.path().extension() != ".json") continue;
-    try {
-      nlohmann::json row = nlohmann::json::parse(ReadSmallFile(entry.path()));
-      if (row.contains("run") && row.contains("status")) rows.push_back(std::move(row));
-    } catch (const std::exception&) {
-      // Unreadable: the run is done again.
-    }
-  }
-  return rows;
+  const nlohmann::json record = ReadCampaignRecord(directory, "--out");
+  return ReadRowsOf(directory, record.at("identity").at("sha256").get<std::string>(),
+                    record.at("runs").get<std::int64_t>());
 }
 
 void WriteCampaignTables(const std::filesystem::path& directory, const std::string& campaign_text,
@@ -780,29 +1014,14 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
       return result;
     }
 
-    // 2. Rank 0 (or the only process) owns the directory.
+    // 2. Rank 0 (or the only process) owns the directory: this campaign's or a new one.
     const output::DirectoryLock lock(result.directory);
-    std::error_code error;
-    std::filesystem::create_directories(result.directory / "rows", error);
-    if (error) {
-      throw InputError("--out " + result.directory.string() +
-                       ": cannot create the directory: " + error.message());
-    }
-    const std::filesystem::path recorded = result.directory / "campaign.yaml";
-    if (std::filesystem::exists(recorded, error)) {
-      if (ReadSmallFile(recorded) != c.text) {
-        throw InputError("--out " + result.directory.string() +
-                         ": holds the results of another campaign (its campaign.yaml differs); "
-                         "choose another --out or remove the directory");
-      }
-    } else {
-      WriteFileAtomically(recorded, c.text);
-    }
-    WriteFileAtomically(result.directory / "campaign.json", CampaignMeta(p).dump(2) + "\n");
+    ClaimDirectory(result.directory, CampaignMeta(p), c.text, true);
+    CreateDirectory(result.directory / "rows");
 
     // 3. What is left to do in this shard.
     std::set<std::int64_t> finished;
-    for (const nlohmann::json& row : ReadRows(result.directory)) {
+    for (const nlohmann::json& row : ReadRowsOf(result.directory, p.identity.sha256, c.NumRuns())) {
       finished.insert(row.at("run").get<std::int64_t>());
     }
     std::vector<std::int64_t> pending;
@@ -844,7 +1063,8 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
     progress.Update(result.done, result.failed, local.seconds_done(), true);
 
     // 5. The tables, from every row there is (this batch's and earlier ones').
-    const std::vector<nlohmann::json> rows = ReadRows(result.directory);
+    const std::vector<nlohmann::json> rows =
+        ReadRowsOf(result.directory, p.identity.sha256, c.NumRuns());
     WriteCampaignTables(result.directory, c.text, c.name, c.source_path, c.seed, c.FactorKeys(),
                         rows, o.command_line);
     for (const nlohmann::json& row : rows) {
@@ -881,33 +1101,43 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
 void MergeCampaigns(const std::vector<std::filesystem::path>& directories,
                     const std::filesystem::path& out, const std::string& command_line) {
   if (directories.empty()) throw InputError("--merge: give at least one directory");
+  // Every directory is read and checked before anything is written.
+  nlohmann::json meta;
   std::string text;
   std::map<std::int64_t, nlohmann::json> rows;
   for (const std::filesystem::path& dir : directories) {
+    const nlohmann::json record = ReadCampaignRecord(dir, "--merge");
     const std::filesystem::path recorded = dir / "campaign.yaml";
     std::error_code error;
-    if (!std::filesystem::exists(recorded, error)) {
-      throw InputError("--merge " + dir.string() + ": no campaign.yaml (not a batch directory)");
+    if (!std::filesystem::is_regular_file(recorded, error)) {
+      throw InputError("--merge " + dir.string() +
+                       ": no campaign.yaml (not a results directory of moorsim batch)");
     }
-    const std::string t = ReadSmallFile(recorded);
-    if (text.empty()) text = t;
-    if (t != text) {
+    if (meta.is_null()) {
+      meta = record;
+      text = ReadSmallFile(recorded);
+    }
+    const std::string difference = IdentityDifference(meta.at("identity"), record.at("identity"),
+                                                      directories.front().string(), false);
+    if (!difference.empty()) {
       throw InputError("--merge " + dir.string() + ": holds another campaign than " +
-                       directories.front().string());
+                       directories.front().string() + ": " + difference);
     }
-    for (nlohmann::json& row : ReadRows(dir)) {
+    const std::string identity = meta.at("identity").at("sha256").get<std::string>();
+    for (nlohmann::json& row : ReadRowsOf(dir, identity, meta.at("runs").get<std::int64_t>())) {
       const std::int64_t run = row.at("run").get<std::int64_t>();
       rows.emplace(run, std::move(row));
     }
   }
-  const nlohmann::json meta =
-      nlohmann::json::parse(ReadSmallFile(directories.front() / "campaign.json"));
   const output::DirectoryLock lock(out);
-  std::error_code error;
-  std::filesystem::create_directories(out / "rows", error);
-  if (error) throw InputError("--out " + out.string() + ": cannot create: " + error.message());
-  WriteFileAtomically(out / "campaign.yaml", text);
-  WriteFileAtomically(out / "campaign.json", meta.dump(2) + "\n");
+  ClaimDirectory(out, meta, text, false);
+  CreateDirectory(out / "rows");
+  // The rows `out` holds already (an earlier merge, a shard merged into itself) stay rows.
+  for (nlohmann::json& row : ReadRowsOf(out, meta.at("identity").at("sha256").get<std::string>(),
+                                        meta.at("runs").get<std::int64_t>())) {
+    const std::int64_t run = row.at("run").get<std::int64_t>();
+    rows.emplace(run, std::move(row));
+  }
   std::vector<nlohmann::json> all;
   for (auto& [run, row] : rows) {
     WriteFileAtomically(out / "rows" / (RunName(run) + ".json"), row.dump() + "\n");

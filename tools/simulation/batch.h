@@ -3,13 +3,17 @@
 // row per run and the campaign's tables.
 //
 // Output directory DIR:
-//   campaign.yaml     the campaign text (a rerun with another text into DIR is refused)
-//   campaign.json     its name, path, seed and factor keys (for --merge)
-//   moorsim.lock      held (output::DirectoryLock) while a batch writes DIR: no other
-//                     moorsim process (batch, run, detect) writes DIR meanwhile
-//   rows/NNNNNNNN.json  one row per finished run, written atomically (temporary name, then
-//                     rename): a row is whole or absent, so a rerun of the same command
-//                     resumes, skipping runs that have a row
+//   campaign.json     the campaign's identity (CampaignIdentity), name, path, seed and factor
+//                     keys: DIR holds this campaign's results and no other's (a batch or a
+//                     --merge of another campaign into DIR is refused, naming what differs)
+//   campaign.yaml     the campaign text
+//   moorsim.lock      held (output::DirectoryLock) while a batch or a merge writes DIR: no
+//                     other moorsim process (batch, run, detect) writes DIR meanwhile
+//   rows/NNNNNNNN.json  one row per finished run, with the campaign's identity, written
+//                     atomically (temporary name, then rename): a row is whole or absent, so
+//                     a rerun of the same command resumes, skipping runs that have a row. A
+//                     file there that is not a row of one of the campaign's runs is an error
+//                     naming it, never a row of the table.
 //   runs.csv, campaign.h5  the table of every row (docs/design.md section 7), rewritten at
 //                     the end of every batch, also an interrupted one
 //   runs/NNNNNNNN/    run.h5 and summary.json of each run, only with keep_runs
@@ -90,6 +94,25 @@ struct BatchOptions {
   MpiSession mpi;
 };
 
+/// What determines a campaign's rows, so that a results directory is resumed, and shards
+/// are merged, only by the campaign that started them: every input by its SHA-256, paths
+/// left out of `sha256` (the same files in another folder are the same campaign).
+/// moorsim's release (PROJECT_VERSION without the commit: a rebuild of the same release
+/// resumes a campaign, another release does not, as its numbers may differ); the campaign
+/// file (which gives every run's overrides); the scenario and every base scenario a run's
+/// resolved scenario takes values from (together they are that text); each WAMIT file of
+/// every hydrodynamics stem the runs name (an optional one that is not there as absent);
+/// each plugin library (the scenarios' and --plugin's).
+struct CampaignIdentity {
+  struct Input {
+    std::string what;    ///< "campaign file", "base scenario", "hydrodynamics file", ...
+    std::string path;    ///< as the campaign names it (messages only); the release: its number
+    std::string sha256;  ///< of its bytes; "absent" for a file that is not there
+  };
+  std::vector<Input> inputs;  ///< in the order above
+  std::string sha256;         ///< of every input's `what` and `sha256`, in order
+};
+
 /// The campaign's runs and everything checked before the first run starts.
 struct PreparedCampaign {
   scenarios::Campaign campaign;
@@ -108,11 +131,12 @@ struct PreparedCampaign {
   double simulated_seconds = 0.0;
   /// The plugin libraries the runs' scenarios name (`plugin:`), in order without repeats.
   std::vector<std::string> plugin_paths;
+  CampaignIdentity identity;
 };
 
 /// Loads the campaign and the scenario of every run (each with its overrides), checks the
-/// detectors of every distinct configuration. Throws InputError naming the campaign
-/// file, the run and the scenario's message.
+/// detectors of every distinct configuration, and hashes its inputs (CampaignIdentity).
+/// Throws InputError naming the campaign file, the run and the scenario's message.
 PreparedCampaign PrepareCampaign(const std::string& campaign_path);
 
 /// The row of one finished run (DIR/rows/*.json).
@@ -148,7 +172,10 @@ BatchResult RunBatch(const BatchOptions& options) noexcept;
 std::string DescribeCampaign(const PreparedCampaign& prepared, int threads);
 
 /// Reads every row under each of `directories` (the same campaign, e.g. shards) and
-/// writes the campaign's tables into `out` (rows copied there too). Throws Error/InputError.
+/// writes the campaign's tables into `out` (rows copied there too, with the rows `out`
+/// already holds). Throws InputError, before writing anything, for directories of different
+/// campaigns, an `out` that holds another campaign, a directory without campaign.json and a
+/// file in rows/ that is not a row of the campaign (ReadRows); Error when writing fails.
 void MergeCampaigns(const std::vector<std::filesystem::path>& directories,
                     const std::filesystem::path& out, const std::string& command_line);
 
@@ -158,7 +185,9 @@ void WriteCampaignTables(const std::filesystem::path& directory, const std::stri
                          std::uint64_t campaign_seed, const std::vector<std::string>& factor_keys,
                          std::vector<nlohmann::json> rows, const std::string& command_line);
 
-/// Reads DIR/rows/*.json (a row that does not parse is skipped: its run is done again).
+/// Reads DIR/rows/*.json, the rows of the campaign DIR/campaign.json records. Throws
+/// InputError naming the first file there that is not the row of one of its runs (damaged,
+/// of a run beyond the campaign's, named for another run, of another campaign).
 std::vector<nlohmann::json> ReadRows(const std::filesystem::path& directory);
 
 }  // namespace moorsim::simulation
