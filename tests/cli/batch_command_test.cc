@@ -178,7 +178,9 @@ TEST(BatchCommand, SigtermStopsTheBatchWithExit143AndKeepsTheFinishedRows) {
 std::string WriteLargeCampaign(const std::filesystem::path& dir, long seeds, bool drawn) {
   const std::filesystem::path path = dir / "large.yaml";
   std::ofstream(path) << "scenario: " << kScenario << "\nseed: 5\nblocks:\n  - name: many\n"
-                      << (drawn ? "    factors: [{key: failure.time, uniform: [100, 200]}]\n" : "")
+                      << (drawn ? "    set: {failure.line: 3, failure.mode: fairlead}\n"
+                                  "    factors: [{key: failure.time, uniform: [100, 200]}]\n"
+                                : "")
                       << "    seeds: " << seeds << "\n";
   return path.string();
 }
