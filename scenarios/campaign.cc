@@ -8,7 +8,10 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <span>
+#include <tuple>
+#include <utility>
 
 #include "core/angles.h"
 #include "core/error.h"
@@ -37,6 +40,50 @@ std::optional<double> ParseNumber(const std::string& text) {
 // A uniform draw in the factor's [low, high).
 double Draw(const CampaignFactor& f, RandomStream& stream) {
   return f.low + (f.high - f.low) * stream.Uniform();
+}
+
+// Phi, the standard normal distribution function: accurate to the last bits below 0,
+// where it is small.
+double NormalCdf(double z) { return 0.5 * std::erfc(-z / std::numbers::sqrt2); }
+
+// A draw of the normal factor within its [min, max]. While the window holds at least
+// kRejectionMass of the probability, draws outside it are drawn again, as campaigns always
+// have (so their values stay as they were); a narrower window, which could take millions
+// of draws per value, inverts the distribution function restricted to the window instead:
+// one uniform draw, whatever the window. Both give the normal law truncated to the window.
+double DrawNormal(const CampaignFactor& f, RandomStream& stream) {
+  constexpr double kRejectionMass = 0.01;
+  constexpr int kMaxRejections = 10'000;  // (1 - 0.01)^10000 < 1e-43: the bound is never met
+  const double low = f.min.value_or(-std::numeric_limits<double>::infinity());
+  const double high = f.max.value_or(std::numeric_limits<double>::infinity());
+  // The window in standard units, mirrored to lie mostly below 0, where Phi is accurate.
+  double a = (low - f.mean) / f.std_dev, b = (high - f.mean) / f.std_dev;
+  const bool mirrored = a + b > 0.0;
+  if (mirrored) std::tie(a, b) = std::pair(-b, -a);
+  const double phi_a = NormalCdf(a), phi_b = NormalCdf(b), mass = phi_b - phi_a;
+  if (mass >= kRejectionMass) {
+    for (int attempt = 0; attempt < kMaxRejections; ++attempt) {
+      const double x = f.mean + f.std_dev * stream.Normal();
+      if (x >= low && x <= high) return x;
+    }
+  }
+  const double u = stream.Uniform();
+  double z = 0.0;
+  if (mass <= 1e-9 * phi_b) {
+    // So narrow a window that the density is flat across it (to 1e-9).
+    z = a + (b - a) * u;
+  } else {
+    // Phi(z) = Phi(a) + u (Phi(b) - Phi(a)) by bisection, to the last bit of z.
+    const double target = phi_a + u * mass;
+    double lo = std::max(a, -40.0), hi = std::min(b, 40.0);
+    for (int i = 0; i < 200; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      if (mid <= lo || mid >= hi) break;
+      (NormalCdf(mid) < target ? lo : hi) = mid;
+    }
+    z = 0.5 * (lo + hi);
+  }
+  return std::clamp(f.mean + f.std_dev * (mirrored ? -z : z), low, high);
 }
 
 // The value a run has so far given `key` (factors are made in order).
@@ -78,6 +125,38 @@ bool IsBlockName(const std::string& name) {
   return true;
 }
 
+// Why a campaign may not set or vary the key path `key` to the values `values`, if it may
+// not; empty if it may. The path must be written the one way SplitKeyPath takes, so that
+// one key never passes as two. `base` is read before any override applies, and every
+// run's simulation.seed is the run's seed, from the block's `seeds`.
+std::string KeyPathProblem(const std::string& key, const std::vector<YAML::Node>& values,
+                           const std::string& example) {
+  if (key.find('=') != std::string::npos || key.find(' ') != std::string::npos) {
+    return "'" + key + "' is not a key path (e.g. " + example + ")";
+  }
+  std::vector<KeyStep> steps;
+  try {
+    steps = SplitKeyPath(key);
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  if (steps.front().key == "base") {
+    return "'" + key +
+           "': a campaign cannot set the scenario's base (it is read before any override); "
+           "name another scenario in `scenario:`";
+  }
+  bool seed = UnderPath(key, "simulation.seed");
+  for (const YAML::Node& value : values) {
+    seed = seed || (key == "simulation" && value.IsMap() && value["seed"].IsDefined());
+  }
+  if (seed) {
+    return "'" + key +
+           "': every run's simulation.seed is its own seed, which would replace this value; "
+           "vary seeds with the block's `seeds` (a count or {from: A, to: B})";
+  }
+  return "";
+}
+
 // `set:` as "key=value" texts in the order written. A key path is checked for form here;
 // whether it names a scenario key is checked when the runs' scenarios are loaded.
 std::vector<std::string> ParseSet(const Reader& r, const YAML::Node& node) {
@@ -87,9 +166,8 @@ std::vector<std::string> ParseSet(const Reader& r, const YAML::Node& node) {
   std::size_t i = 0;
   for (const auto& entry : node) {
     const std::string& key = keys[i++];
-    if (key.empty() || key.find('=') != std::string::npos || key.find(' ') != std::string::npos) {
-      r.Fail("'" + key + "' is not a key path (e.g. simulation.duration)");
-    }
+    const std::string problem = KeyPathProblem(key, {entry.second}, "simulation.duration");
+    if (!problem.empty()) r.FailAtKey(entry.first, problem);
     set.push_back(key + "=" + SetText(entry.second));
   }
   return set;
@@ -128,9 +206,14 @@ CampaignFactor ParseFactor(const Reader& r, const YAML::Node& node) {
   CampaignFactor f;
   f.mark = r.mark();
   f.key = r.Required<std::string>("key");
-  if (f.key.empty() || f.key.find('=') != std::string::npos ||
-      f.key.find(' ') != std::string::npos) {
-    r.Child("key").Fail("'" + f.key + "' is not a key path (e.g. failure.line)");
+  std::vector<YAML::Node> values;
+  for (const char* kind : {"values", "choice"}) {
+    const YAML::Node list = node[kind];
+    if (!list.IsDefined() || !list.IsSequence()) continue;
+    for (const YAML::Node& value : list) values.push_back(value);
+  }
+  if (const std::string problem = KeyPathProblem(f.key, values, "failure.line"); !problem.empty()) {
+    r.Child("key").Fail(problem);
   }
   int kinds = 0;
   for (const char* k : {"values", "range", "uniform", "normal", "choice", "follows"}) {
@@ -237,8 +320,16 @@ CampaignBlock ParseBlock(const Reader& r, const YAML::Node& node) {
     for (std::size_t i = 0; i < items.size(); ++i) {
       b.factors.push_back(ParseFactor(items[i], node["factors"][i]));
       for (std::size_t j = 0; j < i; ++j) {
-        if (b.factors[j].key == b.factors[i].key) {
-          items[i].Child("key").Fail("'" + b.factors[i].key + "' is varied twice in this block");
+        const std::string& key = b.factors[i].key;
+        const std::string& earlier = b.factors[j].key;
+        if (earlier == key) {
+          items[i].Child("key").Fail("'" + key + "' is varied twice in this block");
+        }
+        // One would overwrite the other's value, and its column would show a value the run
+        // did not have.
+        if (UnderPath(key, earlier) || UnderPath(earlier, key)) {
+          items[i].Child("key").Fail("'" + key + "' overlaps '" + earlier +
+                                     "', varied above in this block (each value is varied once)");
         }
       }
       if (b.factors[i].kind == CampaignFactor::Kind::kFollows) {
@@ -440,16 +531,9 @@ CampaignRun MakeCampaignRun(const Campaign& campaign, std::int64_t index) {
         case CampaignFactor::Kind::kUniform:
           value = Number(Draw(f, stream));
           break;
-        case CampaignFactor::Kind::kNormal: {
-          const double low = f.min.value_or(-std::numeric_limits<double>::infinity());
-          const double high = f.max.value_or(std::numeric_limits<double>::infinity());
-          double x = 0.0;
-          do {
-            x = f.mean + f.std_dev * stream.Normal();
-          } while (x < low || x > high);
-          value = Number(x);
+        case CampaignFactor::Kind::kNormal:
+          value = Number(DrawNormal(f, stream));
           break;
-        }
         case CampaignFactor::Kind::kChoice: {
           const auto n = f.values.size();
           const auto k = std::min(n - 1, static_cast<std::size_t>(stream.Uniform() * n));
@@ -507,9 +591,6 @@ Campaign ParseCampaign(const std::string& yaml_text, const std::string& source_n
   c.source_path = source_name;
   c.text = yaml_text;
   c.name = std::filesystem::path(source_name).stem().string();
-  if (const std::optional<std::size_t> bad = FirstInvalidUtf8(yaml_text)) {
-    ThrowAt(source_name, MarkOfOffset(yaml_text, *bad), "", InvalidUtf8(yaml_text, *bad));
-  }
   std::map<std::string, SourceMark> marks;
   ParseContext strict;
   strict.file = source_name;
@@ -519,19 +600,9 @@ Campaign ParseCampaign(const std::string& yaml_text, const std::string& source_n
   ParseContext context = strict;
   context.errors = &errors;
   try {
-    const std::vector<YAML::Node> documents = YAML::LoadAll(yaml_text);
-    if (documents.empty() || documents[0].IsNull()) {
-      ThrowAt(source_name, {}, "", "the campaign is empty (expected a map with 'scenario')");
-    }
-    if (documents.size() > 1) {
-      ThrowAt(source_name, ToSourceMark(documents[1].Mark()), "",
-              "a campaign file holds one YAML document; this is a second one");
-    }
-    const Reader root(context, documents[0], "", ToSourceMark(documents[0].Mark()),
-                      &schema::Campaign());
-    ParseDocument(root, strict, documents[0], c);
-  } catch (const YAML::ParserException& error) {
-    ThrowAt(source_name, ToSourceMark(error.mark), "", "YAML syntax error: " + error.msg);
+    const YAML::Node document = LoadDocument(yaml_text, source_name, "campaign", "scenario");
+    const Reader root(context, document, "", ToSourceMark(document.Mark()), &schema::Campaign());
+    ParseDocument(root, strict, document, c);
   } catch (const YAML::Exception& error) {
     ThrowAt(source_name, ToSourceMark(error.mark), "", error.msg);
   }

@@ -9,6 +9,7 @@
 //   scenario: ../library/thesis_no_failure_current.yaml   # required; relative to this file
 //   seed: 2026                        # required: the campaign seed (unsigned 64-bit)
 //   set:                              # optional: overrides for every run, as `--set`
+//                                     # (no key may be simulation.seed or base)
 //     simulation.duration: 800        #   key path: value (any YAML value)
 //   blocks:                           # required, >= 1: groups of runs
 //     - name: failures                # required, unique ([A-Za-z0-9_-]+)
@@ -57,7 +58,9 @@ struct CampaignFactor {
   std::vector<std::string> values;
   double low = 0.0, high = 0.0;      ///< kUniform: [low, high)
   double mean = 0.0, std_dev = 0.0;  ///< kNormal
-  std::optional<double> min, max;    ///< kNormal: draws outside are drawn again
+  /// kNormal: draws outside are drawn again, or, for a window holding under 1% of the
+  /// distribution, the distribution function is inverted within it.
+  std::optional<double> min, max;
   /// kFollows: v, the value of `follows` (an earlier factor of the block, numeric), made
   /// scale * function(v) (function: none, or cos / sin of v in degrees), plus `low`, or a
   /// uniform draw in [low, high) when high > low; reduced to [-modulo / 2, modulo / 2) when

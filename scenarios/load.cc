@@ -894,63 +894,48 @@ std::string ApplyOverride(YAML::Node& root, const std::string& assignment) {
   }
   const std::string path = assignment.substr(0, equals);
   const std::string value = assignment.substr(equals + 1);
+  std::vector<KeyStep> steps;
+  try {
+    steps = SplitKeyPath(path);
+  } catch (const InputError& error) {
+    throw InputError(flag + ": " + error.what());
+  }
+  if (steps.front().key == "base") {
+    throw InputError(flag +
+                     ": base is read before --set applies; write base: in the scenario file");
+  }
   YAML::Node parsed;
   try {
-    parsed = YAML::Load(value);
+    const std::vector<YAML::Node> documents = YAML::LoadAll(value);
+    if (documents.size() > 1)
+      throw InputError(flag + ": the value holds more than one YAML document");
+    parsed = documents.empty() ? YAML::Node() : documents[0];
   } catch (const YAML::Exception& error) {
     throw InputError(flag + ": the value is not YAML: " + error.msg);
   }
   CheckOverrideUntagged(parsed, value, flag);
-  // Split "a.b[2].c" into steps.
-  std::vector<std::pair<std::string, int>> steps;  // (key, -1) or ("", index)
-  std::size_t i = 0;
-  while (i < path.size()) {
-    if (path[i] == '.') {
-      ++i;
-      continue;
-    }
-    if (path[i] == '[') {
-      const std::size_t close = path.find(']', i);
-      int index = 0;
-      const auto [end, error] = std::from_chars(
-          path.data() + i + 1, path.data() + (close == std::string::npos ? i + 1 : close), index);
-      if (close == std::string::npos || error != std::errc() || end != path.data() + close ||
-          index < 1) {
-        throw InputError(flag + ": bad list index in '" + path + "' (lists count from 1)");
-      }
-      steps.emplace_back("", index);
-      i = close + 1;
-      continue;
-    }
-    const std::size_t stop = path.find_first_of(".[", i);
-    steps.emplace_back(path.substr(i, stop == std::string::npos ? std::string::npos : stop - i),
-                       -1);
-    i = stop == std::string::npos ? path.size() : stop;
-  }
-  if (steps.empty() || steps.front().second >= 0) {
-    throw InputError(flag + ": expected key.path=value (e.g. controller.type=pi)");
-  }
   // Walk with node references (yaml-cpp nodes are handles).
   std::vector<YAML::Node> chain{root};
   for (std::size_t s = 0; s < steps.size(); ++s) {
     YAML::Node current = chain.back();
     const bool last = s + 1 == steps.size();
-    if (steps[s].second < 0) {
+    const std::string& key = steps[s].key;
+    if (!key.empty()) {
       if (!current.IsMap() && !current.IsNull()) {
-        throw InputError(flag + ": '" + steps[s].first + "' is under something that is not a map");
+        throw InputError(flag + ": '" + key + "' is under something that is not a map");
       }
       if (last) {
-        current[steps[s].first] = parsed;
+        current[key] = parsed;
       } else {
-        YAML::Node next = current[steps[s].first];
+        YAML::Node next = current[key];
         if (!next.IsDefined() || next.IsNull()) {
-          current[steps[s].first] = YAML::Node(YAML::NodeType::Map);
-          next = current[steps[s].first];
+          current[key] = YAML::Node(YAML::NodeType::Map);
+          next = current[key];
         }
         chain.push_back(next);
       }
     } else {
-      const int index = steps[s].second;
+      const int index = steps[s].index;
       if (!current.IsSequence() || index > static_cast<int>(current.size())) {
         throw InputError(flag + ": there is no list entry [" + std::to_string(index) + "]");
       }
@@ -961,35 +946,7 @@ std::string ApplyOverride(YAML::Node& root, const std::string& assignment) {
       }
     }
   }
-  // The canonical key path (as messages spell it).
-  std::string canonical;
-  for (const auto& [key, index] : steps) {
-    canonical +=
-        index < 0 ? (canonical.empty() ? key : "." + key) : "[" + std::to_string(index) + "]";
-  }
-  return canonical;
-}
-
-// The one YAML document of a scenario file's text, or a located error: text that is not
-// UTF-8, a syntax error, no document or a second one.
-YAML::Node LoadDocument(const std::string& text, const std::string& file) {
-  // Bytes that are not UTF-8 would pass as text and stop the JSON writer after the run.
-  if (const std::optional<std::size_t> bad = FirstInvalidUtf8(text)) {
-    ThrowAt(file, MarkOfOffset(text, *bad), "", InvalidUtf8(text, *bad));
-  }
-  try {
-    const std::vector<YAML::Node> documents = YAML::LoadAll(text);
-    if (documents.empty() || documents[0].IsNull()) {
-      ThrowAt(file, {}, "", "the scenario is empty (expected a map with 'mooring')");
-    }
-    if (documents.size() > 1) {
-      ThrowAt(file, ToSourceMark(documents[1].Mark()), "",
-              "a scenario file holds one YAML document; this is a second one");
-    }
-    return documents[0];
-  } catch (const YAML::ParserException& error) {
-    ThrowAt(file, ToSourceMark(error.mark), "", "YAML syntax error: " + error.msg);
-  }
+  return path;  // SplitKeyPath takes one spelling only: the canonical one
 }
 
 // ---------------------------------------------------------------------------------------
@@ -1109,7 +1066,7 @@ void ResolveBase(YAML::Node document, Included& self, std::vector<std::string>& 
     ThrowAt(self.file, at, "base", "'" + name + "': " + failure.what());
   }
   Included parent{path.string(), &texts.back(), {}};
-  YAML::Node parent_document = LoadDocument(texts.back(), parent.file);
+  YAML::Node parent_document = LoadDocument(texts.back(), parent.file, "scenario", "mooring");
   if (!parent_document.IsMap()) {
     ThrowAt(parent.file, ToSourceMark(parent_document.Mark()), "",
             Describe(parent_document) + " must be a map");
@@ -1171,7 +1128,7 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source_n
   context.errors = &errors;
   std::deque<std::string> base_texts;
   try {
-    YAML::Node document = LoadDocument(yaml_text, source_name);
+    YAML::Node document = LoadDocument(yaml_text, source_name, "scenario", "mooring");
     Included top{source_name, &yaml_text, {}};
     std::error_code ignored;
     std::vector<std::string> chain = {

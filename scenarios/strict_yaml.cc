@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <set>
 #include <system_error>
 #include <tuple>
 
@@ -215,6 +216,135 @@ bool UnderPath(const std::string& path, const std::string& prefix) {
   return path == prefix ||
          (path.size() > prefix.size() && path.compare(0, prefix.size(), prefix) == 0 &&
           (path[prefix.size()] == '.' || path[prefix.size()] == '['));
+}
+
+std::vector<KeyStep> SplitKeyPath(const std::string& path) {
+  const auto fail = [&](const std::string& what) { throw InputError(what); };
+  const auto empty_key = [&] {
+    fail("empty key in '" + path + "' (one '.' between keys, none before '[')");
+  };
+  std::vector<KeyStep> steps;
+  std::size_t i = 0;
+  while (i < path.size()) {
+    if (path[i] == '[') {
+      if (steps.empty()) fail("'" + path + "' starts with a list index (e.g. mooring.lines[1])");
+      const std::size_t close = path.find(']', i);
+      const char* first = path.data() + i + 1;
+      const char* last = path.data() + (close == std::string::npos ? i + 1 : close);
+      int index = 0;
+      const auto [end, error] = std::from_chars(first, last, index);
+      if (close == std::string::npos || error != std::errc() || end != last || index < 1) {
+        fail("bad list index in '" + path + "' (lists count from 1)");
+      }
+      if (*first == '0') {
+        fail("bad list index in '" + path + "' (write [" + std::to_string(index) + "])");
+      }
+      steps.push_back({"", index});
+      i = close + 1;
+      if (i < path.size() && path[i] != '.' && path[i] != '[') {
+        fail("'" + path + "': '.' or '[' must follow ']'");
+      }
+      continue;
+    }
+    if (path[i] == '.') {
+      if (steps.empty()) empty_key();
+      ++i;
+    }
+    const std::size_t stop = std::min(path.find_first_of(".[", i), path.size());
+    if (stop == i) empty_key();
+    steps.push_back({path.substr(i, stop - i), 0});
+    i = stop;
+  }
+  if (steps.empty()) empty_key();
+  return steps;
+}
+
+namespace {
+
+// Offset of the first text after a document-end marker (a line "..."), other than blanks
+// and comments, if any. yaml-cpp drops what follows the marker when it is not a document
+// (a directive such as "%YAML 1.2"); a second document it reports.
+std::optional<std::size_t> TextAfterDocumentEnd(std::string_view text) {
+  bool ended = false;
+  for (std::size_t line = 0; line < text.size();) {
+    const std::size_t end = std::min(text.find('\n', line), text.size());
+    std::size_t i = line;
+    if (!ended && text.substr(line, 3) == "..." &&
+        (end == line + 3 ||
+         std::string_view(" \t\r").find(text[line + 3]) != std::string_view::npos)) {
+      ended = true;
+      i += 3;
+    }
+    if (ended) {
+      while (i < end && std::string_view(" \t\r").find(text[i]) != std::string_view::npos) ++i;
+      if (i < end && text[i] != '#') return i;
+    }
+    line = end + 1;
+  }
+  return std::nullopt;
+}
+
+// Every map's keys once (a second occurrence is an error there) and at most
+// kMaxDocumentValues values in all, an alias counted as all it stands for: yaml-cpp shares
+// an aliased node, so nested aliases cost nothing to read but multiply every later walk
+// over the document.
+void CheckStructure(const YAML::Node& node, const std::string& path, const std::string& file,
+                    std::size_t& values) {
+  if (++values > kMaxDocumentValues) {
+    ThrowAt(file, ToSourceMark(node.Mark()), path,
+            "aliases expand the document to more than " + std::to_string(kMaxDocumentValues) +
+                " values (write the values out)");
+  }
+  if (node.IsMap()) {
+    std::set<std::string> keys;
+    for (const auto& entry : node) {
+      if (!entry.first.IsScalar()) {  // the reader rejects it where it is read
+        CheckStructure(entry.first, path, file, values);
+        CheckStructure(entry.second, path, file, values);
+        continue;
+      }
+      const std::string& name = entry.first.Scalar();
+      if (!keys.insert(name).second) {
+        ThrowAt(file, ToSourceMark(entry.first.Mark()), path, "duplicate key '" + name + "'");
+      }
+      CheckStructure(entry.second, KeyPath(path, name), file, values);
+    }
+  } else if (node.IsSequence()) {
+    std::size_t i = 0;
+    for (const YAML::Node& item : node) CheckStructure(item, ItemPath(path, i++), file, values);
+  }
+}
+
+}  // namespace
+
+YAML::Node LoadDocument(const std::string& text, const std::string& file, std::string_view what,
+                        std::string_view expected) {
+  // Bytes that are not UTF-8 would pass as text and stop the JSON writer after the run.
+  if (const std::optional<std::size_t> bad = FirstInvalidUtf8(text)) {
+    ThrowAt(file, MarkOfOffset(text, *bad), "", InvalidUtf8(text, *bad));
+  }
+  const std::string kind(what);
+  try {
+    const std::vector<YAML::Node> documents = YAML::LoadAll(text);
+    if (documents.empty() || documents[0].IsNull()) {
+      ThrowAt(file, {}, "",
+              "the " + kind + " is empty (expected a map with '" + std::string(expected) + "')");
+    }
+    if (const std::optional<std::size_t> after = TextAfterDocumentEnd(text)) {
+      ThrowAt(
+          file, MarkOfOffset(text, *after), "",
+          "text after the document-end marker '...' (a " + kind + " file holds one YAML document)");
+    }
+    if (documents.size() > 1) {
+      ThrowAt(file, ToSourceMark(documents[1].Mark()), "",
+              "a " + kind + " file holds one YAML document; this is a second one");
+    }
+    std::size_t values = 0;
+    CheckStructure(documents[0], "", file, values);
+    return documents[0];
+  } catch (const YAML::ParserException& error) {
+    ThrowAt(file, ToSourceMark(error.mark), "", "YAML syntax error: " + error.msg);
+  }
 }
 
 namespace {

@@ -80,6 +80,30 @@ std::string ReadInputFile(const std::string& path, std::size_t max_bytes, std::s
 /// Whether `path` is `prefix` or lies under it ("a.b[2]" lies under "a.b" and "a").
 bool UnderPath(const std::string& path, const std::string& prefix);
 
+/// One step of a key path: a map key, or a list entry (`index`, from 1) when `key` is empty.
+struct KeyStep {
+  std::string key;
+  int index = 0;
+};
+/// "a.b[2].c" as steps. Every key path has one spelling, so the same key is never taken
+/// for two: an empty key (`a..b`, `.a`, `a.`, `a.[2]`), a list index that is not a plain
+/// number from 1 (`[0]`, `[01]`, `[x]`), text right after `]` or a path that starts with an
+/// index is an InputError (its message names the path, without a location).
+std::vector<KeyStep> SplitKeyPath(const std::string& path);
+
+/// How many values (scalars, lists and maps, an alias counted as all it stands for) an
+/// input document may hold: hundreds of times what a scenario or campaign writes out, so
+/// only aliases that multiply (nested or repeated) reach it.
+inline constexpr std::size_t kMaxDocumentValues = std::size_t{1} << 20;
+
+/// The one YAML document of an input file's text (`what`: "scenario", "campaign"), or a
+/// located InputError: text that is not UTF-8, a syntax error, no document (`expected`
+/// says what it should hold), a second document or any text after the document-end marker
+/// `...`, a key twice in one map (at the second), or aliases that expand the document past
+/// kMaxDocumentValues values.
+YAML::Node LoadDocument(const std::string& text, const std::string& file, std::string_view what,
+                        std::string_view expected);
+
 /// The entry of `entries` whose key path (`path_of(entry)`) `path` lies under most deeply,
 /// or null: where a value was written, from the subtrees taken from other files.
 template <class Range, class PathOf>
@@ -181,6 +205,10 @@ class Reader {
 
   [[noreturn]] void Fail(const std::string& what) const {
     ThrowAt(context_->FileOf(path_), mark_, path_, what);
+  }
+  /// Fails at the key `key` of this map (the path shown is this map's).
+  [[noreturn]] void FailAtKey(const YAML::Node& key, const std::string& what) const {
+    FailAtKey(key, key.Scalar(), what);
   }
 
   /// Requires a map whose keys are all in the schema's block, each at most once, with

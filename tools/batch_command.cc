@@ -62,7 +62,8 @@ int Batch(const BatchCommandOptions& o) {
   options.progress = !o.quiet;
   options.command_line = o.command_line;
   if (o.dry_run) {
-    const simulation::PreparedCampaign prepared = simulation::PrepareCampaign(o.campaign);
+    const simulation::PreparedCampaign prepared =
+        simulation::PrepareCampaign(o.campaign, {}, !o.quiet);
     const int threads = options.threads > 0 ? options.threads : simulation::DefaultThreads();
     std::cout << simulation::DescribeCampaign(prepared, threads);
     return 0;

@@ -197,6 +197,61 @@ TEST(BatchCommand, SigtermStopsTheBatchWithExit143AndKeepsTheFinishedRows) {
   EXPECT_TRUE(std::filesystem::exists(out / "runs.csv"));  // the table of what finished
 }
 
+// A campaign of `seeds` runs of one configuration; with `drawn`, a failure time drawn per
+// run, so that every run is a configuration of its own.
+std::string WriteLargeCampaign(const std::filesystem::path& dir, long seeds, bool drawn) {
+  const std::filesystem::path path = dir / "large.yaml";
+  std::ofstream(path) << "scenario: " << kScenario << "\nseed: 5\nblocks:\n  - name: many\n"
+                      << (drawn ? "    set: {failure.line: 3, failure.mode: fairlead}\n"
+                                  "    factors: [{key: failure.time, uniform: [100, 200]}]\n"
+                                : "")
+                      << "    seeds: " << seeds << "\n";
+  return path.string();
+}
+
+// Runs that differ only in their seed share one scenario load: the dry run of 100 000 of
+// them lists them in seconds (one load per run took minutes).
+TEST(BatchCommand, DryRunOfManySeedsLoadsTheScenarioOnce) {
+  TempDirectory dir(::testing::TempDir());
+  const std::string campaign = WriteLargeCampaign(dir.path(), 100'000, false);
+  const CliResult r = RunCli({"batch", campaign, "--dry-run"}, dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.Describe().substr(0, 2000);
+  EXPECT_NE(r.out.find("100000 runs of " + kScenario), std::string::npos);
+  EXPECT_NE(r.out.find("\n99999\tmany\t"), std::string::npos);
+}
+
+// The documented maximum (10 million runs, each its own configuration) prepares for long;
+// the first SIGINT stops the preparation at once, before anything is written.
+TEST(BatchCommand, SigintWhilePreparingStopsPromptlyWithExit130) {
+  TempDirectory dir(::testing::TempDir());
+  const std::string campaign = WriteLargeCampaign(dir.path(), 10'000'000, true);
+  const std::filesystem::path out = dir.path() / "results";
+  const std::string cli = MOORSIM_CLI;
+  std::vector<std::string> args = {cli, "batch", campaign, "--out", out.string(), "--quiet"};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, cli.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  ::kill(pid, SIGINT);
+  const auto sent = std::chrono::steady_clock::now();
+  int status = 0;
+  pid_t done = 0;
+  while ((done = ::waitpid(pid, &status, WNOHANG)) == 0 &&
+         std::chrono::steady_clock::now() - sent < std::chrono::seconds(30)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  if (done == 0) {
+    ::kill(pid, SIGKILL);  // our own child, by its id
+    ::waitpid(pid, &status, 0);
+    FAIL() << "still preparing 30 s after SIGINT";
+  }
+  ASSERT_TRUE(WIFEXITED(status)) << "signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  EXPECT_FALSE(std::filesystem::exists(out / "rows"));  // nothing was run
+}
+
 }  // namespace
 }  // namespace moorsim::testing
 

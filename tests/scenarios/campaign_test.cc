@@ -278,6 +278,12 @@ struct CampaignError {
 
 std::vector<CampaignError> Errors() {
   const std::string& b = kCampaign;
+  const std::string kSeedRule =
+      "every run's simulation.seed is its own seed, which would replace this value; vary seeds "
+      "with the block's `seeds` (a count or {from: A, to: B})";
+  const std::string kBaseRule =
+      "a campaign cannot set the scenario's base (it is read before any override); name "
+      "another scenario in `scenario:`";
   return {
       {"UnknownTopKey", Replace(b, "seed: 11", "seed: 11\nseeds: 3"), "seeds: 3",
        "unknown key 'seeds' (did you mean 'seed'?)"},
@@ -383,6 +389,45 @@ std::vector<CampaignError> Errors() {
       {"Tagged", Replace(b, "seed: 11", "seed: !!str 11"), "!!str",
        "seed: tagged value '!!str' (tags are not accepted; write the plain integer)"},
       {"Syntax", Replace(b, "seeds: 2", "seeds: [2"), "", ""},
+      // The run's seed replaces simulation.seed: a factor or set on it would change nothing
+      // while runs.csv showed its values.
+      {"SeedFactor", Replace(b, "key: failure.time", "key: simulation.seed"),
+       "simulation.seed, uniform", "blocks[1].factors[3].key: 'simulation.seed': " + kSeedRule},
+      {"SeedSet", Replace(b, "simulation.duration: 300", "simulation.seed: 4"), "simulation.seed",
+       "set: 'simulation.seed': " + kSeedRule},
+      {"SeedInSimulationMap",
+       Replace(b, "set: {failure.mode: fairlead}", "set: {simulation: {duration: 9, seed: 4}}"),
+       "simulation: {", "blocks[1].set: 'simulation': " + kSeedRule},
+      // One key, one spelling: a second spelling would pass the twice-varied check.
+      {"EmptyKeyInPath", Replace(b, "key: failure.time", "key: failure..time"), "failure..time",
+       "blocks[1].factors[3].key: empty key in 'failure..time' (one '.' between keys, none "
+       "before '[')"},
+      {"ZeroPaddedIndex", Replace(b, "profile[1].speed", "profile[01].speed"), "\"environment",
+       "blocks[1].factors[2].key: bad list index in 'environment.current.profile[01].speed' "
+       "(write [1])"},
+      {"DotBeforeIndex", Replace(b, "profile[1].speed", "profile.[1].speed"), "\"environment",
+       "blocks[1].factors[2].key: empty key in 'environment.current.profile.[1].speed' (one '.' "
+       "between keys, none before '[')"},
+      {"SetKeyEmptyPart", Replace(b, "simulation.duration: 300", "simulation..duration: 300"),
+       "simulation..duration",
+       "set: empty key in 'simulation..duration' (one '.' between keys, none before '[')"},
+      {"OverlappingFactors", Replace(b, "key: failure.time", "key: failure"), "failure, uniform",
+       "blocks[1].factors[3].key: 'failure' overlaps 'failure.line', varied above in this block "
+       "(each value is varied once)"},
+      // The base is read before any override applies.
+      {"BaseSet", Replace(b, "simulation.duration: 300", "base: other.yaml"), "base: other",
+       "set: 'base': " + kBaseRule},
+      {"BaseFactor", Replace(b, "key: failure.time", "key: base"), "base, uniform",
+       "blocks[1].factors[3].key: 'base': " + kBaseRule},
+      {"DuplicateKey", Replace(b, "seed: 11", "seed: 11\nseed: 12"), "seed: 12",
+       "duplicate key 'seed'"},
+      {"DuplicateKeyInValue",
+       Replace(b, "simulation.duration: 300", "environment.wind: {speed: 1, speed: 2}"), "speed: 2",
+       "set.environment.wind: duplicate key 'speed'"},
+      {"TextAfterDocumentEnd", b + "...\n%YAML 1.2\n", "%YAML",
+       "text after the document-end marker '...' (a campaign file holds one YAML document)"},
+      {"SecondDocument", b + "---\nseed: 3\n", "seed: 3\n",
+       "a campaign file holds one YAML document; this is a second one"},
   };
 }
 
@@ -428,6 +473,90 @@ TEST(Campaign, MissingFileAndNotUtf8) {
   const std::string bad = Replace(kCampaign, "name: test", "name: t\xE9st");
   EXPECT_EQ(CampaignErrorOf(bad),
             kSource + ":1:8: not valid UTF-8 (byte 0xE9); save the file as UTF-8");
+}
+
+// Aliases that multiply (each level ten of the one below: 10^9 values) are refused while
+// the file is read, not expanded into every run's overrides.
+TEST(Campaign, NestedAliasesAreOneLocatedLine) {
+  std::string text = "scenario: ../library/thesis_no_failure.yaml\nseed: 3\nlol:\n";
+  text += "  - &a0 [x, x, x, x, x, x, x, x, x, x]\n";
+  for (int level = 1; level < 9; ++level) {
+    const std::string below = "*a" + std::to_string(level - 1);
+    text += "  - &a" + std::to_string(level) + " [";
+    for (int k = 0; k < 10; ++k) text += (k ? ", " : "") + below;
+    text += "]\n";
+  }
+  text += "blocks:\n  - {name: one, factors: [{key: failure.time, values: [*a8]}], seeds: 1}\n";
+  const std::string error = CampaignErrorOf(text);
+  EXPECT_EQ(error.rfind(kSource + ":", 0), 0u) << error;
+  EXPECT_NE(error.find("aliases expand the document to more than 1048576 values"),
+            std::string::npos)
+      << error;
+  EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+}
+
+// An alias used as the library's campaigns use it (one factor list for several blocks).
+TEST(Campaign, AFlatAliasStillReads) {
+  const std::string text = R"(scenario: ../library/thesis_no_failure.yaml
+seed: 3
+blocks:
+  - {name: one, factors: &f [{key: failure.line, values: [1, 2]}], seeds: 1}
+  - {name: two, factors: *f, seeds: 1}
+)";
+  const Campaign c = ParseCampaign(text, kSource);
+  EXPECT_EQ(c.NumRuns(), 4);
+  EXPECT_EQ(MakeCampaignRun(c, 3).factors[0].second, "2");
+}
+
+// The normal draws of a window that holds a fair share of the mass are the rejection
+// draws campaigns have always had (these values were drawn before a narrow window got its
+// own method).
+TEST(Campaign, NormalDrawsOfAWideWindowAreUnchanged) {
+  const Campaign c = ParseCampaign(kCampaign, kSource);
+  std::vector<std::string> hs;
+  for (int k = 0; k < 3; ++k) hs.push_back(MakeCampaignRun(c, 18 + k).factors[1].second);
+  EXPECT_EQ(hs, (std::vector<std::string>{"2.8512641718530163", "2.362985694831704",
+                                          "2.394294163934284"}));
+}
+
+// A window narrow enough that rejection would take ~10^9 draws per value (within the
+// 3-sigma guard) draws at once, inside the window, the same value every time.
+TEST(Campaign, NormalDrawOfANarrowWindowFinishes) {
+  const std::string text = Replace(kCampaign, "normal: {mean: 2.5, std_dev: 0.5, min: 2, max: 3}",
+                                   "normal: {mean: 0, std_dev: 1, min: 2.9, max: 2.9000001}");
+  const Campaign c = ParseCampaign(text, kSource);
+  for (int k = 0; k < 3; ++k) {
+    const std::string value = MakeCampaignRun(c, 18 + k).factors[1].second;
+    const double x = std::stod(value);
+    EXPECT_GE(x, 2.9);
+    EXPECT_LE(x, 2.9000001);
+    EXPECT_EQ(MakeCampaignRun(c, 18 + k).factors[1].second, value);
+  }
+  // Upper tail, mirrored: the same window below the mean.
+  const Campaign lower = ParseCampaign(
+      Replace(text, "min: 2.9, max: 2.9000001", "min: -2.9000001, max: -2.9"), kSource);
+  const double y = std::stod(MakeCampaignRun(lower, 18).factors[1].second);
+  EXPECT_GE(y, -2.9000001);
+  EXPECT_LE(y, -2.9);
+}
+
+// The inverted draws follow the truncated normal law: their mean is the law's,
+// (phi(a) - phi(b)) / (Phi(b) - Phi(a)), within a few standard errors.
+TEST(Campaign, NormalDrawOfASmallWindowHasTheTruncatedLawsMean) {
+  const std::string text =
+      Replace(Replace(kCampaign, "normal: {mean: 2.5, std_dev: 0.5, min: 2, max: 3}",
+                      "normal: {mean: 0, std_dev: 1, min: 2.6, max: 3.5}"),
+              "seeds: {from: 5, to: 7}", "seeds: 400");
+  const Campaign c = ParseCampaign(text, kSource);
+  double sum = 0.0;
+  for (int k = 0; k < 400; ++k) sum += std::stod(MakeCampaignRun(c, 18 + k).factors[1].second);
+  const auto pdf = [](double z) {
+    return std::exp(-0.5 * z * z) / std::sqrt(2 * std::numbers::pi);
+  };
+  const auto cdf = [](double z) { return 0.5 * std::erfc(-z / std::numbers::sqrt2); };
+  const double mean = (pdf(2.6) - pdf(3.5)) / (cdf(3.5) - cdf(2.6));  // about 2.83
+  // The law's standard deviation here is below 0.25: 0.05 is over 4 standard errors.
+  EXPECT_NEAR(sum / 400, mean, 0.05);
 }
 
 }  // namespace

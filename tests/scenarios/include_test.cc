@@ -148,6 +148,16 @@ TEST(Include, BadIncludesAreOneLocatedLine) {
   WriteScenario(dir / "list.yaml", "base: [a.yaml]\n");
   EXPECT_EQ(IncludeErrorOf(dir / "list.yaml"),
             (dir / "list.yaml").string() + ":1:7: base: [a.yaml] must be a file name (a scenario)");
+  // A second base (yaml-cpp keeps both; one was silently ignored), also in a base.
+  WriteScenario(dir / "two.yaml", "base: " + kLibraryDir + "thesis_line6.yaml\nbase: b.yaml\n");
+  EXPECT_EQ(IncludeErrorOf(dir / "two.yaml"),
+            (dir / "two.yaml").string() + ":2:1: duplicate key 'base'");
+  WriteScenario(dir / "dup_base.yaml", "base: " + kLibraryDir +
+                                           "thesis_line6.yaml\nsimulation: {duration: 5, "
+                                           "duration: 6}\n");
+  WriteScenario(dir / "on_dup.yaml", "base: dup_base.yaml\n");
+  EXPECT_EQ(IncludeErrorOf(dir / "on_dup.yaml"),
+            (dir / "dup_base.yaml").string() + ":2:27: simulation: duplicate key 'duration'");
   WriteScenario(dir / "broken.yaml", "mooring: [\n");
   WriteScenario(dir / "on_broken.yaml", "base: broken.yaml\n");
   const std::string error = IncludeErrorOf(dir / "on_broken.yaml");

@@ -416,6 +416,52 @@ TEST(ScenarioText, OverridesMustBeUtf8AndUntagged) {
             "gravity)");
 }
 
+// A key path has one spelling (a second would pass as another key), and `base` is read
+// before --set applies.
+TEST(ScenarioText, OverrideKeyPathsHaveOneSpellingAndBaseIsNotOne) {
+  EXPECT_EQ(OverrideError({"simulation..duration=5"}),
+            "--set simulation..duration=5: empty key in 'simulation..duration' (one '.' between "
+            "keys, none before '[')");
+  EXPECT_EQ(OverrideError({"mooring.lines[01].length=2000"}),
+            "--set mooring.lines[01].length=2000: bad list index in 'mooring.lines[01].length' "
+            "(write [1])");
+  EXPECT_EQ(OverrideError({"mooring.lines.[1].length=2000"}),
+            "--set mooring.lines.[1].length=2000: empty key in 'mooring.lines.[1].length' (one "
+            "'.' between keys, none before '[')");
+  EXPECT_EQ(OverrideError({"mooring.lines[1]length=2000"}),
+            "--set mooring.lines[1]length=2000: 'mooring.lines[1]length': '.' or '[' must follow "
+            "']'");
+  EXPECT_EQ(OverrideError({"base=other.yaml"}),
+            "--set base=other.yaml: base is read before --set applies; write base: in the "
+            "scenario file");
+  EXPECT_EQ(OverrideError({"simulation.duration=5\n---\n6"}),
+            "--set simulation.duration=5\n---\n6: the value holds more than one YAML document");
+  EXPECT_EQ(OverrideError({"simulation.duration=500", "mooring.lines[1].segments=20"}),
+            "(no error)");
+}
+
+// yaml-cpp keeps both entries of a duplicate key and drops directives after `...`; aliases
+// cost nothing to read but multiply every walk over the document.
+TEST(BadScenarioText, DuplicateKeysTextAfterTheEndAndMultiplyingAliases) {
+  EXPECT_EQ(ErrorOf(kBase + "...\n%YAML 1.2\n"),
+            "test.yaml:" + std::to_string(std::count(kBase.begin(), kBase.end(), '\n') + 2) +
+                ":1: text after the document-end marker '...' (a scenario file holds one YAML "
+                "document)");
+  const std::string twice = Edit(kBase, "", "name: base", "name: base\nname: other");
+  EXPECT_EQ(ErrorOf(twice), "test.yaml:2:1: duplicate key 'name'");
+  std::string lol = kBase + "lol:\n  - &a0 [x, x, x, x, x, x, x, x, x, x]\n";
+  for (int level = 1; level < 9; ++level) {
+    lol += "  - &a" + std::to_string(level) + " [";
+    for (int k = 0; k < 10; ++k) lol += (k ? ", *a" : "*a") + std::to_string(level - 1);
+    lol += "]\n";
+  }
+  const std::string error = ErrorOf(lol);
+  EXPECT_EQ(error.rfind("test.yaml:", 0), 0u) << error;
+  EXPECT_NE(error.find("aliases expand the document to more than 1048576 values"),
+            std::string::npos)
+      << error;
+}
+
 TEST(ScenarioText, BoundsThemselvesAreAccepted) {
   std::string text = Edit(kBase, "", "density: 1025", "density: 1100");
   text = Edit(text, "", "gravity: 9.81", "gravity: 9.7");

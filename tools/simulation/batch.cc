@@ -14,6 +14,7 @@
 #include <set>
 #include <sstream>
 #include <thread>
+#include <unordered_map>
 
 #include "core/error.h"
 #include "core/sha256.h"
@@ -634,78 +635,123 @@ nlohmann::json StatisticTrace::ToJson() const {
 // ---------------------------------------------------------------------------------------
 // Preparing and describing.
 
-PreparedCampaign PrepareCampaign(const std::string& campaign_path) {
+namespace {
+
+// The files a campaign's runs read beside the campaign and its scenario: the base scenarios
+// (sorted) and the WAMIT stems (in the order of the runs that first read them).
+struct ReadFiles {
+  std::set<std::string> bases;
+  std::vector<std::string> stems;
+};
+
+// Loads the scenario of `run` (with its overrides), builds its detectors once per detector
+// configuration (`checked`) and notes its plugins and the files it reads; the truth the
+// run's row records.
+PreparedCampaign::Truth LoadTruth(PreparedCampaign& p, const scenarios::CampaignRun& run,
+                                  std::set<std::string>& checked, ReadFiles& files) {
+  const scenarios::Campaign& c = p.campaign;
+  const scenarios::CampaignBlock& block = c.blocks[static_cast<std::size_t>(run.block)];
+  const auto where = [&](const std::string& what) {
+    std::string factors;
+    for (const auto& [key, value] : run.factors) {
+      factors += (factors.empty() ? "" : ", ") + key + "=" + value;
+    }
+    const scenarios::SourceMark m = block.mark;
+    return c.source_path +
+           (m.line > 0 ? ":" + std::to_string(m.line) + ":" + std::to_string(m.column)
+                       : std::string()) +
+           ": blocks." + block.name + ": run " + std::to_string(run.index) +
+           (factors.empty() ? "" : " (" + factors + ")") + ": " + what;
+  };
+  try {
+    const scenarios::Scenario s = scenarios::LoadScenario(c.scenario_path, run.overrides);
+    if (!s.vessel)
+      throw InputError(s.source_path +
+                       ": a campaign runs `moorsim run`, which needs a vessel section");
+    std::string key;
+    for (const scenarios::DetectorEntry& d : s.detectors) {
+      key += d.type + "/" + d.label + "/";
+      for (const auto& [name, value] : d.parameters) key += name + "=" + Shortest(value) + ",";
+      key += ";";
+    }
+    for (const std::string& o : run.overrides) {
+      if (o.rfind("detection", 0) == 0 || o.rfind("detectors", 0) == 0 ||
+          o.rfind("mooring", 0) == 0 || o.rfind("vessel", 0) == 0) {
+        key += o + ";";
+      }
+    }
+    if (checked.insert(key).second) CheckDetectors(s);
+    for (const auto& [path, file] : s.origins) files.bases.insert(file);
+    if (std::find(files.stems.begin(), files.stems.end(), s.vessel->hydrodynamics) ==
+        files.stems.end()) {
+      files.stems.push_back(s.vessel->hydrodynamics);
+    }
+    for (const scenarios::DetectorEntry& d : s.detectors) {
+      if (!d.plugin.empty() && std::find(p.plugin_paths.begin(), p.plugin_paths.end(), d.plugin) ==
+                                   p.plugin_paths.end()) {
+        p.plugin_paths.push_back(d.plugin);
+      }
+    }
+    PreparedCampaign::Truth t;
+    if (s.failure.line > 0) {
+      t.failure_line = s.failure.line;
+      t.failure_time = s.failure.time;
+      t.failure_mode = s.failure.mode;
+    }
+    t.duration = s.simulation.duration;
+    t.num_lines = static_cast<int>(s.mooring.lines.size());
+    for (const scenarios::DetectorEntry& d : s.detectors) {
+      t.detectors.emplace_back(d.label.empty() ? d.type : d.label, d.type);
+    }
+    return t;
+  } catch (const InputError& e) {
+    throw InputError(where(e.what()));
+  }
+}
+
+}  // namespace
+
+PreparedCampaign PrepareCampaign(const std::string& campaign_path,
+                                 const std::function<int()>& stop_requested, bool progress) {
   PreparedCampaign p;
   p.campaign = scenarios::LoadCampaign(campaign_path);
   const scenarios::Campaign& c = p.campaign;
   const std::int64_t n = c.NumRuns();
   p.runs.reserve(static_cast<std::size_t>(n));
-  p.truth.reserve(static_cast<std::size_t>(n));
+  p.truth_of.reserve(static_cast<std::size_t>(n));
+  // Each configuration's truth, by its overrides but the seed (the last one).
+  std::unordered_map<std::string, std::uint32_t> loaded;
   // Detector configurations already built once (by the scenario's detector sections).
   std::set<std::string> checked;
-  // The inputs of the identity: the base scenarios (sorted) and WAMIT stems (in the order
-  // of the runs that first read them).
-  std::set<std::string> bases;
-  std::vector<std::string> stems;
+  ReadFiles files;
+  const auto start = std::chrono::steady_clock::now();
+  auto shown = start;
+  const bool tty = ::isatty(2) == 1;
   for (std::int64_t i = 0; i < n; ++i) {
-    scenarios::CampaignRun run = scenarios::MakeCampaignRun(c, i);
-    const scenarios::CampaignBlock& block = c.blocks[static_cast<std::size_t>(run.block)];
-    const auto where = [&](const std::string& what) {
-      std::string factors;
-      for (const auto& [key, value] : run.factors) {
-        factors += (factors.empty() ? "" : ", ") + key + "=" + value;
-      }
-      const scenarios::SourceMark m = block.mark;
-      return c.source_path +
-             (m.line > 0 ? ":" + std::to_string(m.line) + ":" + std::to_string(m.column)
-                         : std::string()) +
-             ": blocks." + block.name + ": run " + std::to_string(i) +
-             (factors.empty() ? "" : " (" + factors + ")") + ": " + what;
-    };
-    try {
-      const scenarios::Scenario s = scenarios::LoadScenario(c.scenario_path, run.overrides);
-      if (!s.vessel)
-        throw InputError(s.source_path +
-                         ": a campaign runs `moorsim run`, which needs a vessel section");
-      std::string key;
-      for (const scenarios::DetectorEntry& d : s.detectors) {
-        key += d.type + "/" + d.label + "/";
-        for (const auto& [name, value] : d.parameters) key += name + "=" + Shortest(value) + ",";
-        key += ";";
-      }
-      for (const std::string& o : run.overrides) {
-        if (o.rfind("detection", 0) == 0 || o.rfind("detectors", 0) == 0 ||
-            o.rfind("mooring", 0) == 0 || o.rfind("vessel", 0) == 0) {
-          key += o + ";";
-        }
-      }
-      if (checked.insert(key).second) CheckDetectors(s);
-      for (const auto& [path, file] : s.origins) bases.insert(file);
-      if (std::find(stems.begin(), stems.end(), s.vessel->hydrodynamics) == stems.end()) {
-        stems.push_back(s.vessel->hydrodynamics);
-      }
-      for (const scenarios::DetectorEntry& d : s.detectors) {
-        if (!d.plugin.empty() && std::find(p.plugin_paths.begin(), p.plugin_paths.end(),
-                                           d.plugin) == p.plugin_paths.end()) {
-          p.plugin_paths.push_back(d.plugin);
-        }
-      }
-      PreparedCampaign::Truth t;
-      if (s.failure.line > 0) {
-        t.failure_line = s.failure.line;
-        t.failure_time = s.failure.time;
-        t.failure_mode = s.failure.mode;
-      }
-      t.duration = s.simulation.duration;
-      t.num_lines = static_cast<int>(s.mooring.lines.size());
-      for (const scenarios::DetectorEntry& d : s.detectors) {
-        t.detectors.emplace_back(d.label.empty() ? d.type : d.label, d.type);
-      }
-      p.simulated_seconds += t.duration;
-      p.truth.push_back(std::move(t));
-    } catch (const InputError& e) {
-      throw InputError(where(e.what()));
+    if (const int signal = stop_requested ? stop_requested() : 0; signal != 0) {
+      throw PreparationStopped(signal);
     }
+    if (progress && i % 1024 == 0) {
+      const auto now = std::chrono::steady_clock::now();
+      if (now - start > std::chrono::seconds(1) &&
+          now - shown > std::chrono::milliseconds(tty ? 500 : 10'000)) {
+        shown = now;
+        std::fprintf(stderr, "%smoorsim batch: preparing %lld/%lld runs (%zu configurations)%s",
+                     tty ? "\r\033[K" : "", static_cast<long long>(i), static_cast<long long>(n),
+                     p.truths.size(), tty ? "" : "\n");
+        std::fflush(stderr);
+      }
+    }
+    scenarios::CampaignRun run = scenarios::MakeCampaignRun(c, i);
+    std::string configuration;
+    for (std::size_t k = 0; k + 1 < run.overrides.size(); ++k) {
+      configuration += run.overrides[k] + "\n";
+    }
+    const auto [known, first] =
+        loaded.try_emplace(std::move(configuration), static_cast<std::uint32_t>(p.truths.size()));
+    if (first) p.truths.push_back(LoadTruth(p, run, checked, files));
+    p.truth_of.push_back(known->second);
+    p.simulated_seconds += p.truths[known->second].duration;
     p.runs.push_back(std::move(run));
   }
   // The identity (CampaignIdentity, in its order). The kinds' names are part of the hash.
@@ -719,8 +765,8 @@ PreparedCampaign PrepareCampaign(const std::string& campaign_path) {
   add(kRelease, release, Sha256Hex(release));
   add("campaign file", c.source_path, Sha256Hex(c.text));
   add("scenario", c.scenario_path, FileSha256(c.scenario_path));
-  for (const std::string& base : bases) add("base scenario", base, FileSha256(base));
-  for (const std::string& stem : stems) {
+  for (const std::string& base : files.bases) add("base scenario", base, FileSha256(base));
+  for (const std::string& stem : files.stems) {
     for (const char* extension : {".1", ".hst", ".3", ".4", ".9"}) {
       add("hydrodynamics file", stem + extension, FileSha256(stem + extension));
     }
@@ -739,6 +785,10 @@ PreparedCampaign PrepareCampaign(const std::string& campaign_path) {
   for (const CampaignIdentity::Input& input : id.inputs)
     all += input.what + "\t" + input.sha256 + "\n";
   id.sha256 = Sha256Hex(all);
+  if (progress && std::chrono::steady_clock::now() - start > std::chrono::seconds(1)) {
+    std::fprintf(stderr, "%smoorsim batch: prepared %lld runs (%zu configurations)\n",
+                 tty ? "\r\033[K" : "", static_cast<long long>(n), p.truths.size());
+  }
   return p;
 }
 
@@ -754,7 +804,7 @@ std::string DescribeCampaign(const PreparedCampaign& p, int threads) {
   out << "run\tblock\tseed\tfailure\tduration\tfactors\n";
   for (std::size_t i = 0; i < p.runs.size(); ++i) {
     const scenarios::CampaignRun& r = p.runs[i];
-    const PreparedCampaign::Truth& t = p.truth[i];
+    const PreparedCampaign::Truth& t = p.TruthOf(static_cast<std::int64_t>(i));
     out << r.index << "\t" << c.blocks[static_cast<std::size_t>(r.block)].name << "\t" << r.seed
         << "\t"
         << (t.failure_line > 0 ? "line " + std::to_string(t.failure_line) + " at " +
@@ -782,7 +832,7 @@ nlohmann::json MakeRow(const PreparedCampaign& p, const scenarios::CampaignRun& 
                        const RunResult& result, const std::vector<StatisticTrace>& traces,
                        const std::string& out_dir) {
   const scenarios::Campaign& c = p.campaign;
-  const PreparedCampaign::Truth& t = p.truth[static_cast<std::size_t>(run.index)];
+  const PreparedCampaign::Truth& t = p.TruthOf(run.index);
   nlohmann::json row;
   row["run"] = run.index;
   row["campaign"] = p.identity.sha256;
@@ -890,7 +940,7 @@ class LocalRunSource final : public RunSource {
     const std::lock_guard<std::mutex> guard(mutex_);
     ++done_;
     if (!ok) ++failed_;
-    seconds_done_ += campaign_.truth[static_cast<std::size_t>(run)].duration;
+    seconds_done_ += campaign_.TruthOf(run).duration;
     progress_.Update(done_, failed_, seconds_done_, false);
   }
   std::int64_t done() const { return done_; }
@@ -922,7 +972,7 @@ std::string RunWorkers(const PreparedCampaign& p, const BatchOptions& o,
         const std::optional<std::int64_t> next = source.Next();
         if (!next) break;
         const scenarios::CampaignRun& run = p.runs[static_cast<std::size_t>(*next)];
-        const PreparedCampaign::Truth& truth = p.truth[static_cast<std::size_t>(run.index)];
+        const PreparedCampaign::Truth& truth = p.TruthOf(run.index);
         std::vector<StatisticTrace> traces;
         for (const auto& detector : truth.detectors) {
           traces.emplace_back(detector.second, truth.failure_line > 0 ? truth.failure_time : kNaN);
@@ -983,11 +1033,6 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
     if (!(o.run_timeout >= 0.0) || !std::isfinite(o.run_timeout)) {
       throw InputError("--run-timeout " + Shortest(o.run_timeout) + ": must be >= 0 seconds");
     }
-    // 1. Everything checked before the first run (on every rank: they all need the runs).
-    const PreparedCampaign p = PrepareCampaign(o.campaign_path);
-    const scenarios::Campaign& c = p.campaign;
-    result.directory = o.out.empty() ? std::filesystem::path("out") / c.name : o.out;
-    const int threads = o.threads > 0 ? o.threads : DefaultThreads();
     std::atomic<int> stop_signal{0};
     const std::function<int()> stop = [&]() -> int {
       if (stop_signal.load() != 0) return stop_signal.load();
@@ -998,6 +1043,11 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
       }
       return 0;
     };
+    // 1. Everything checked before the first run (on every rank: they all need the runs).
+    const PreparedCampaign p = PrepareCampaign(o.campaign_path, stop, o.progress);
+    const scenarios::Campaign& c = p.campaign;
+    result.directory = o.out.empty() ? std::filesystem::path("out") / c.name : o.out;
+    const int threads = o.threads > 0 ? o.threads : DefaultThreads();
 
     if (!coordinator) {
       // A worker rank: runs from rank 0, rows to rank 0; nothing of the campaign on disk.
@@ -1040,8 +1090,7 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
     // the next index, the counters and the rows directory.
     decide(0);
     double pending_seconds = 0.0;
-    for (const std::int64_t k : pending)
-      pending_seconds += p.truth[static_cast<std::size_t>(k)].duration;
+    for (const std::int64_t k : pending) pending_seconds += p.TruthOf(k).duration;
     Progress progress(o.progress, result.runs, result.skipped, pending_seconds);
     LocalRunSource local(p, std::move(pending), result.directory / "rows", progress);
     std::string service_error;
@@ -1082,6 +1131,10 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
       result.message = std::to_string(result.failed) + " of " + std::to_string(result.done) +
                        " runs did not finish ok (status and error in runs.csv)";
     }
+  } catch (const PreparationStopped& e) {
+    result.exit_code = 128 + e.signal();
+    result.message = "stopped by signal " + std::to_string(e.signal()) +
+                     " while preparing the runs; nothing was run";
   } catch (const InputError& e) {
     result.exit_code = 2;
     result.message = e.what();

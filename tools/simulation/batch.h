@@ -24,6 +24,7 @@
 #pragma once
 
 #include <cstdint>
+#include <exception>
 #include <filesystem>
 #include <functional>
 #include <limits>
@@ -126,7 +127,13 @@ struct PreparedCampaign {
     int num_lines = 0;
     std::vector<std::pair<std::string, std::string>> detectors;  ///< (label, type)
   };
-  std::vector<Truth> truth;
+  /// The truth of each distinct configuration, and which one each run has: runs that
+  /// differ only in their seed share one (a campaign of millions of seeds holds a few).
+  std::vector<Truth> truths;
+  std::vector<std::uint32_t> truth_of;
+  const Truth& TruthOf(std::int64_t run) const {
+    return truths[truth_of[static_cast<std::size_t>(run)]];
+  }
   /// Simulated seconds in all runs (for the estimate).
   double simulated_seconds = 0.0;
   /// The plugin libraries the runs' scenarios name (`plugin:`), in order without repeats.
@@ -134,10 +141,25 @@ struct PreparedCampaign {
   CampaignIdentity identity;
 };
 
-/// Loads the campaign and the scenario of every run (each with its overrides), checks the
-/// detectors of every distinct configuration, and hashes its inputs (CampaignIdentity).
-/// Throws InputError naming the campaign file, the run and the scenario's message.
-PreparedCampaign PrepareCampaign(const std::string& campaign_path);
+/// Thrown by PrepareCampaign when asked to stop: nothing has run.
+class PreparationStopped : public std::exception {
+ public:
+  explicit PreparationStopped(int signal) : signal_(signal) {}
+  int signal() const { return signal_; }
+  const char* what() const noexcept override { return "stopped while preparing the runs"; }
+
+ private:
+  int signal_;
+};
+
+/// Loads the campaign and the scenario of every distinct configuration (the runs' overrides
+/// but the seed: runs that differ only in their seed share one load), checks the detectors
+/// of each, and hashes its inputs (CampaignIdentity). Throws InputError naming the campaign
+/// file, the run and the scenario's message. `stop_requested` is asked as it goes
+/// (PreparationStopped); `progress` shows a line on stderr while it takes more than a second.
+PreparedCampaign PrepareCampaign(const std::string& campaign_path,
+                                 const std::function<int()>& stop_requested = {},
+                                 bool progress = false);
 
 /// The row of one finished run (DIR/rows/*.json).
 nlohmann::json MakeRow(const PreparedCampaign& prepared, const scenarios::CampaignRun& run,
