@@ -43,28 +43,6 @@ struct DetectOptions {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-bool IsHdf5(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  char signature[8] = {};
-  in.read(signature, sizeof signature);
-  return in.gcount() == 8 && std::string(signature, 8) == "\x89HDF\r\n\x1a\n";
-}
-
-/// The scenario the run.h5 at `path` was simulated from, with its overrides.
-scenarios::Scenario RunScenarioOf(const std::string& path) {
-  const output::Hdf5Reader file(path);
-  const std::string text = file.StringAttribute("/", "scenario");
-  const std::string source = file.StringAttribute("/", "scenario_path");
-  std::vector<std::string> overrides;
-  const std::string joined = file.StringAttribute("/", "overrides");
-  for (std::size_t begin = 0; begin < joined.size();) {
-    const std::size_t end = std::min(joined.find('\n', begin), joined.size());
-    overrides.push_back(joined.substr(begin, end - begin));
-    begin = end + 1;
-  }
-  return scenarios::ParseScenario(text, source, overrides);
-}
-
 /// Lines of a stream; with `follow`, waits at its end for more (a file being appended)
 /// until a stop signal. A last line without its newline is kept until the newline comes.
 class LineSource {
@@ -210,7 +188,7 @@ class Latency {
 int Detect(const DetectOptions& o) {
   const bool from_stdin = o.input == "-";
   if (!from_stdin && !fs::exists(o.input)) throw InputError(o.input + ": no such file");
-  const bool hdf5 = !from_stdin && IsHdf5(o.input);
+  const bool hdf5 = !from_stdin && output::LooksLikeHdf5(o.input);
   if (o.follow && hdf5) throw InputError("--follow: " + o.input + " is a run.h5, not a CSV stream");
   const double max_gap =
       o.max_gap ? ParseNumber("--max-gap", *o.max_gap) : simulation::kDefaultMaxGap;
@@ -219,7 +197,7 @@ int Detect(const DetectOptions& o) {
   if (o.scenario) {
     scenario = scenarios::LoadScenario(RequireText("--scenario", *o.scenario), o.sets);
   } else if (hdf5) {
-    scenario = RunScenarioOf(o.input);
+    scenario = simulation::ReadRunScenario(o.input);
     if (!o.sets.empty()) {
       throw InputError("--set: needs --scenario (the run's own scenario is replayed as it ran)");
     }
@@ -277,7 +255,7 @@ int Detect(const DetectOptions& o) {
 
   if (hdf5) {
     for (const detectors::Observation& observation :
-         simulation::ReadRunDetectionInput(o.input, max_gap)) {
+         simulation::ReadRunDetectionInput(o.input, lines, max_gap)) {
       take(observation);
     }
   } else {

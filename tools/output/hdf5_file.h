@@ -74,8 +74,8 @@ class Hdf5File {
   void CreateGroup(const std::string& group_path);
 
   /// Sets (or replaces) the attribute `name` of the existing group or table `object_path`;
-  /// "/" is the file itself. Strings are stored as variable-length UTF-8 scalars, doubles
-  /// as IEEE 754 binary64 and integers as signed or unsigned 64-bit (pass an std::int64_t
+  /// "/" is the file itself. Strings are stored as fixed-length UTF-8 scalars (their length),
+  /// doubles as IEEE 754 binary64 and integers as signed or unsigned 64-bit (pass an std::int64_t
   /// or std::uint64_t: a plain int is ambiguous between the numeric overloads on purpose).
   void SetAttribute(const std::string& object_path, const std::string& name,
                     const std::string& value);
@@ -94,7 +94,7 @@ class Hdf5File {
                     std::span<const std::int64_t> values);
   void WriteDataset(const std::string& dataset_path, const std::vector<std::size_t>& dims,
                     std::span<const std::uint64_t> values);
-  /// A one-dimensional dataset of variable-length UTF-8 strings.
+  /// A one-dimensional dataset of UTF-8 strings (fixed-length: the longest value's, NUL-padded).
   void WriteDataset(const std::string& dataset_path, const std::vector<std::string>& values);
   /// Creates an empty, extendible table at `dataset_path` (absolute, e.g.
   /// "/vessel/pose_true"; missing parent groups are created). `columns` > 0 gives a

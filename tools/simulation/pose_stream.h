@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "detectors/detector.h"
+#include "scenarios/scenario.h"
 
 namespace moorsim::simulation {
 
@@ -83,9 +84,18 @@ class CsvPoseStream {
   std::vector<int> tension_columns_;
 };
 
-/// Every observation of a run.h5's /detection/input, checked as a CSV stream is. Throws
-/// InputError naming the file and row for a file without the tables (written before
-/// moorsim recorded them, or by a run without detectors) or a broken sample.
-std::vector<detectors::Observation> ReadRunDetectionInput(const std::string& path, double max_gap);
+/// Every observation of a run.h5's /detection/input, checked as a CSV stream is; `lines` is
+/// the scenario's number of mooring lines (the tension table's width). Throws InputError
+/// naming the file and row for a file without the tables (written before moorsim recorded
+/// them, or by a run without detectors), a table of the wrong length or width, or a broken
+/// sample.
+std::vector<detectors::Observation> ReadRunDetectionInput(const std::string& path, int lines,
+                                                          double max_gap);
+
+/// The scenario a run.h5 records (its text, source path and overrides), loaded as the run
+/// loaded it. Throws InputError naming the run.h5 for a file that is not one, and for a
+/// recorded scenario that does not load: "<path>: the scenario it records (from <source>),
+/// line L:C: ...", the line being that of the recorded text.
+scenarios::Scenario ReadRunScenario(const std::string& path);
 
 }  // namespace moorsim::simulation
