@@ -11,6 +11,12 @@
 // Reproducibility: no object in the file records a creation or modification time, and
 // gzip is deterministic, so the same rows written in the same order give a byte-identical
 // file.
+//
+// Damage: the file is in HDF5 1.10's format, whose metadata carries checksums; string
+// attributes are fixed-length and kept in their object's header, so a flipped bit in the
+// scenario's text or in the structure is refused by the reader (Hdf5Reader) instead of
+// being read as other values or crashing HDF5 (variable-length strings live in the global
+// heap, which has no checksum). HDF5 1.10 or later reads these files.
 #pragma once
 
 #include <cstddef>
