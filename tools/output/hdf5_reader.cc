@@ -285,17 +285,22 @@ std::vector<std::string> Hdf5Reader::ReadStrings(const std::string& dataset_path
 }
 
 std::vector<DatasetInfo> Hdf5Reader::ListDatasets() const {
-  std::vector<std::string> names;
-  H5Lvisit(
+  // Every link's path, and whether it is a hard link (a soft link may dangle).
+  std::vector<std::pair<std::string, bool>> links;
+  const herr_t visited = H5Lvisit(
       static_cast<hid_t>(file_), H5_INDEX_NAME, H5_ITER_INC,
-      [](hid_t, const char* name, const H5L_info_t*, void* data) -> herr_t {
-        static_cast<std::vector<std::string>*>(data)->push_back(std::string("/") + name);
+      [](hid_t, const char* name, const H5L_info_t* info, void* data) -> herr_t {
+        static_cast<std::vector<std::pair<std::string, bool>>*>(data)->emplace_back(
+            std::string("/") + name, info->type == H5L_TYPE_HARD);
         return 0;
       },
-      &names);
+      &links);
+  if (visited < 0) throw InputError(path_ + ": damaged (its groups cannot be listed)");
   std::vector<DatasetInfo> datasets;
-  for (const std::string& name : names) {
+  for (const auto& [name, hard] : links) {
     const Handle object{H5Oopen(static_cast<hid_t>(file_), name.c_str(), H5P_DEFAULT), H5Oclose};
+    if (object.id < 0 && hard)
+      throw InputError(path_ + ": " + name + ": damaged (cannot be opened)");
     if (object.id < 0 || H5Iget_type(object.id) != H5I_DATASET) continue;
     const Dataset d(*this, static_cast<hid_t>(file_), name);
     DatasetInfo info;
