@@ -14,7 +14,8 @@
 //   tension_1 .. tension_N [N]   optional fairlead load cells (all N or none; a row with
 //                           all of them empty has no reading)
 // Lines that are empty or start with '#' are skipped; other columns are refused (a
-// misspelt name would otherwise drop a channel unnoticed).
+// misspelt name would otherwise drop a channel unnoticed). A UTF-8 byte-order mark at the
+// start of the stream (Excel writes one) is skipped; a NUL byte anywhere is an error.
 //
 // Gaps: an empty position or heading cell is a dropout the observers predict through, as
 // they do for the simulated sensors' dropouts. A channel that stays empty, or a time step
