@@ -57,28 +57,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// How much of a live monitor's detect.h5 and alarms.csv a kill may lose at most [s].
 constexpr double kDefaultFlushInterval = 10.0;
 
-bool IsHdf5(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  char signature[8] = {};
-  in.read(signature, sizeof signature);
-  return in.gcount() == 8 && std::string(signature, 8) == "\x89HDF\r\n\x1a\n";
-}
-
-/// The scenario the run.h5 at `path` was simulated from, with its overrides.
-scenarios::Scenario RunScenarioOf(const std::string& path) {
-  const output::Hdf5Reader file(path);
-  const std::string text = file.StringAttribute("/", "scenario");
-  const std::string source = file.StringAttribute("/", "scenario_path");
-  std::vector<std::string> overrides;
-  const std::string joined = file.StringAttribute("/", "overrides");
-  for (std::size_t begin = 0; begin < joined.size();) {
-    const std::size_t end = std::min(joined.find('\n', begin), joined.size());
-    overrides.push_back(joined.substr(begin, end - begin));
-    begin = end + 1;
-  }
-  return scenarios::ParseScenario(text, source, overrides);
-}
-
 /// Lines of a stream read to its end (a file, or standard input until it closes); a last
 /// line without its newline counts. `waiting` is called about every 50 ms while the
 /// descriptor `poll_fd` (standard input, or -1) is quiet. A followed file is read by
@@ -411,7 +389,7 @@ int Detect(const DetectOptions& o) {
   std::ios::sync_with_stdio(false);
   const bool from_stdin = o.input == "-";
   if (!from_stdin && !fs::exists(o.input)) throw InputError(o.input + ": no such file");
-  const bool hdf5 = !from_stdin && IsHdf5(o.input);
+  const bool hdf5 = !from_stdin && output::LooksLikeHdf5(o.input);
   if (o.follow && hdf5) throw InputError("--follow: " + o.input + " is a run.h5, not a CSV stream");
   const double max_gap =
       o.max_gap ? ParseNumber("--max-gap", *o.max_gap) : simulation::kDefaultMaxGap;
@@ -433,7 +411,7 @@ int Detect(const DetectOptions& o) {
   if (o.scenario) {
     scenario = scenarios::LoadScenario(RequireText("--scenario", *o.scenario), o.sets);
   } else if (hdf5) {
-    scenario = RunScenarioOf(o.input);
+    scenario = simulation::ReadRunScenario(o.input);
     if (!o.sets.empty()) {
       throw InputError("--set: needs --scenario (the run's own scenario is replayed as it ran)");
     }
@@ -485,7 +463,7 @@ int Detect(const DetectOptions& o) {
 
   if (hdf5) {
     for (const detectors::Observation& observation :
-         simulation::ReadRunDetectionInput(o.input, max_gap)) {
+         simulation::ReadRunDetectionInput(o.input, lines, max_gap)) {
       take(observation);
       if (stdout_closed) break;
     }

@@ -74,6 +74,7 @@ TEST_F(CompareCommand, EveryBadInputIsOneLineWithExitCode2) {
   const std::string unclosed = write("unclosed.csv", "run,status\n0,\"ok\n");
   const std::string notes = write("notes.txt", "run,status\n0,ok\n");
   const std::string truncated = write("truncated.h5", ReadWholeFile(b_).substr(0, 800));
+  const std::string zeroed = write("zeroed.h5", std::string(800, '\0'));
   const std::string campaign = (d / "campaign.h5").string();
   {
     output::Hdf5File file(campaign);
@@ -93,7 +94,8 @@ TEST_F(CompareCommand, EveryBadInputIsOneLineWithExitCode2) {
       {{a_, missing}, missing + ": no such file or directory"},
       {{empty, b_}, empty + ": a directory without run.h5 or runs.csv"},
       {{notes, b_}, notes + ": neither an HDF5 file nor a .csv table"},
-      {{truncated, b_}, truncated + ": cannot open it as an HDF5 file"},
+      {{truncated, b_}, truncated + ": damaged HDF5 file (HDF5 cannot open it)"},
+      {{zeroed, b_}, zeroed + ": damaged or not an HDF5 file (no HDF5 signature)"},
       {{runs, b_},
        runs + " is a CSV table but " + b_ + " is a run (run.h5) (compare like with like)"},
       {{a_, runs},
@@ -126,6 +128,16 @@ TEST_F(CompareCommand, EveryBadInputIsOneLineWithExitCode2) {
     EXPECT_EQ(r.err, "moorsim: " + c.message + "\n") << r.Describe();
     EXPECT_EQ(r.out, "") << r.Describe();
   }
+}
+
+TEST_F(CompareCommand, AByteOrderMarkBeforeACsvHeaderIsSkipped) {
+  // Excel's "CSV UTF-8" starts the file with one; the first column is still 'run'.
+  const std::filesystem::path& d = dir_.path();
+  WriteWholeFile(d / "plain.csv", "run,status\n0,ok\n");
+  WriteWholeFile(d / "excel.csv", "\xEF\xBB\xBFrun,status\n0,ok\n");
+  const CliResult r = Compare({(d / "excel.csv").string(), (d / "plain.csv").string()});
+  EXPECT_EQ(r.exit_code, 0) << r.Describe();
+  EXPECT_EQ(r.err, "");
 }
 
 }  // namespace

@@ -16,7 +16,9 @@
 #include <thread>
 #include <vector>
 
+#include "scenarios/load.h"
 #include "tests/cli/run_cli.h"
+#include "tools/output/hdf5_file.h"
 #include "tools/output/hdf5_reader.h"
 
 namespace moorsim::testing {
@@ -461,6 +463,101 @@ TEST(DetectCommandInput, EveryBadInputIsOneLineNamingFileRowAndColumn) {
   ExpectOneLocatedLine(Rows(80, 0, 10), "72", "column 'north': no value for 61 s (since 9 s)");
   ExpectOneLocatedLine(Rows(30, 2, 10), "22", "column 'heading': no value for 11 s (since 9 s)",
                        {"--max-gap", "10"});
+  // A NUL byte ends the number for strtod, but the cell is not that number.
+  ExpectOneLocatedLine(header + "0,0,0,0,0,0,0\n1,1.5" + std::string(1, '\0') + "7,0,0,0,0,0\n",
+                       "3", "column 'north': a NUL byte (binary data, not text)");
+  ExpectOneLocatedLine(std::string("time,nor\0th\n", 12), "1",
+                       "header: column 2: a NUL byte (binary data, not text)");
+}
+
+TEST(DetectCommandInput, AByteOrderMarkBeforeTheHeaderIsSkipped) {
+  // Excel's "CSV UTF-8" starts the file with one; the header's first column keeps its name.
+  TempDirectory dir(::testing::TempDir());
+  const std::string path = (dir.path() / "log.csv").string();
+  WriteWholeFile(path, "\xEF\xBB\xBF" + Rows(5));
+  const CliResult r = RunCli({"detect", path, "--scenario", kDetectScenario}, dir.path());
+  EXPECT_EQ(r.exit_code, 0) << r.Describe();
+  EXPECT_NE(r.err.find("moorsim detect: 5 samples (0 s to 4 s)"), std::string::npos) << r.err;
+}
+
+// A run.h5 as `moorsim run` records the detection input: the scenario's text, path and
+// overrides, and 5 rows at 1 Hz of /detection/input with `tension_columns` load cells.
+void WriteRunH5(const std::string& path, const std::string& scenario_text,
+                const std::string& scenario_path, int tension_columns) {
+  output::Hdf5File file(path);
+  file.SetAttribute("/", "scenario", scenario_text);
+  file.SetAttribute("/", "scenario_path", scenario_path);
+  file.SetAttribute("/", "overrides", std::string());
+  const output::TableId time = file.CreateTable("/detection/input/time", 0, "s");
+  const output::TableId pose = file.CreateTable("/detection/input/pose_measured", 3, "m,m,rad");
+  const output::TableId thrust = file.CreateTable("/detection/input/thrust", 3, "N,N,N m");
+  const output::TableId cells =
+      file.CreateTable("/detection/input/tension_measured", tension_columns, "N");
+  for (int t = 0; t < 5; ++t) {
+    file.Append(time, static_cast<double>(t));
+    file.Append(pose, std::vector<double>{1.5, -2.25, -2.356});
+    file.Append(thrust, std::vector<double>{1e5, 0.0, 0.0});
+    file.Append(cells, std::vector<double>(tension_columns, 5e6));
+  }
+  file.Close();
+}
+
+TEST(DetectCommandInput, ARunH5WhoseTensionTableIsNotOneColumnPerLineIsRefused) {
+  TempDirectory dir(::testing::TempDir());
+  const std::string path = (dir.path() / "run.h5").string();
+  const scenarios::Scenario scenario = scenarios::LoadScenario(kDetectScenario);
+  ASSERT_EQ(scenario.mooring.lines.size(), 8u);
+  WriteRunH5(path, scenario.text, kDetectScenario, 8);
+  CliResult r = RunCli({"detect", path, "--quiet"}, dir.path());
+  EXPECT_EQ(r.exit_code, 0) << r.Describe();
+  // Seven columns for eight lines: the cells detector would see no reading at all.
+  WriteRunH5(path, scenario.text, kDetectScenario, 7);
+  r = RunCli({"detect", path, "--quiet"}, dir.path());
+  EXPECT_EQ(r.exit_code, 2) << r.Describe();
+  EXPECT_EQ(r.err, "moorsim: " + path +
+                       ": /detection/input/tension_measured: 7 columns, the scenario has 8 "
+                       "mooring lines (one tension per line)\n");
+}
+
+TEST(DetectCommandInput, ADamagedScenarioInARunH5IsReportedInTheRunH5) {
+  TempDirectory dir(::testing::TempDir());
+  const std::string path = (dir.path() / "run.h5").string();
+  // Recorded from a library file that has far fewer lines than the recorded text: the
+  // message must not send the user to line 3 of that file.
+  std::string text = scenarios::LoadScenario(kDetectScenario).text;
+  const std::size_t depth = text.find("depth:");
+  ASSERT_NE(depth, std::string::npos);
+  text.replace(depth, 6, "dpeth:");
+  const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + depth, '\n'));
+  WriteRunH5(path, text, kDetectScenario, 8);
+  const CliResult r = RunCli({"detect", path, "--quiet"}, dir.path());
+  EXPECT_EQ(r.exit_code, 2) << r.Describe();
+  const std::string expected = "moorsim: " + path + ": the scenario it records (from " +
+                               kDetectScenario + "), line " + std::to_string(line) + ":";
+  EXPECT_EQ(r.err.rfind(expected, 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("dpeth"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(kDetectScenario + ":"), std::string::npos) << r.err;
+}
+
+TEST(DetectCommandInput, AnEmptyOrDamagedRunH5IsNotTakenForACsvLog) {
+  TempDirectory dir(::testing::TempDir());
+  const std::string empty = (dir.path() / "run.h5").string();
+  WriteWholeFile(empty, "");
+  CliResult r = RunCli({"detect", empty}, dir.path());
+  EXPECT_EQ(r.exit_code, 2) << r.Describe();
+  EXPECT_EQ(r.err, "moorsim: " + empty + ": empty (0 bytes), not an HDF5 file\n");
+  // The first kilobytes overwritten (the signature with them).
+  const std::string zeroed = (dir.path() / "zeroed.h5").string();
+  WriteWholeFile(zeroed, std::string(4096, '\0'));
+  r = RunCli({"detect", zeroed}, dir.path());
+  EXPECT_EQ(r.exit_code, 2) << r.Describe();
+  EXPECT_EQ(r.err, "moorsim: " + zeroed + ": damaged or not an HDF5 file (no HDF5 signature)\n");
+  // Any name: the signature says HDF5, what follows it is damaged.
+  const std::string named = (dir.path() / "recording").string();
+  WriteWholeFile(named, "\x89HDF\r\n\x1a\n" + std::string(100, '\x7f'));
+  r = RunCli({"detect", named}, dir.path());
+  EXPECT_EQ(r.exit_code, 2) << r.Describe();
+  EXPECT_EQ(r.err, "moorsim: " + named + ": damaged HDF5 file (HDF5 cannot open it)\n");
 }
 
 TEST(DetectCommandInput, DropoutsWithinTheMaximumGapAreTakenAndBadFlagsRefused) {

@@ -58,11 +58,25 @@ TEST_F(CsvTableTest, QuotedFieldsHoldCommasQuotesAndLineBreaks) {
 
 TEST_F(CsvTableTest, WhatIsNotATableIsAnErrorThatPlacesIt) {
   EXPECT_EQ(ErrorOf(""), ": empty (no header line)");
-  EXPECT_EQ(ErrorOf(std::string("run\n0\0\n", 7)), ": not a text table");
+  EXPECT_EQ(ErrorOf(std::string("run\n0\0\n", 7)), ":2: a NUL byte (not a text table)");
   EXPECT_EQ(ErrorOf("run,a\n0,\"x\ny\"\n1\n"), ":4: 1 fields, the header has 2");
   EXPECT_EQ(ErrorOf("run,a\n0,1\n1,\"open\n"), ":3: a quote never closed");
   EXPECT_EQ(ErrorOf("run,a\n0,1\n"), "");
   EXPECT_EQ(ErrorOf("run,a\n\n"), ":2: 1 fields, the header has 2");  // an empty line
+}
+
+TEST_F(CsvTableTest, AByteOrderMarkBeforeTheHeaderIsSkipped) {
+  // Excel's "CSV UTF-8" starts the file with one; the first column keeps its name.
+  const CsvTable t = ReadCsvTable(Write("\xEF\xBB\xBFrun,a\n0,1\n"));
+  EXPECT_EQ(t.header, (std::vector<std::string>{"run", "a"}));
+  ASSERT_EQ(t.rows.size(), 1u);
+  EXPECT_EQ(ErrorOf("\xEF\xBB\xBF"), ": empty (no header line)");
+  // Only at the start: elsewhere the bytes are a field's text.
+  EXPECT_EQ(ReadCsvTable(Write("run,a\n0,\xEF\xBB\xBF"
+                               "1\n"))
+                .rows[0][1],
+            "\xEF\xBB\xBF"
+            "1");
 }
 
 }  // namespace

@@ -112,13 +112,14 @@ std::string StringAttribute(hid_t file, const std::string& object_path, const st
   EXPECT_GE(attribute.get(), 0) << object_path << " " << name;
   Id type(H5Aget_type(attribute.get()), H5Tclose);
   EXPECT_EQ(H5Tget_class(type.get()), H5T_STRING);
-  EXPECT_GT(H5Tis_variable_str(type.get()), 0);
+  // Fixed-length (stored in the object's header), its size the text's plus the final NUL.
+  EXPECT_EQ(H5Tis_variable_str(type.get()), 0);
+  EXPECT_EQ(H5Tget_strpad(type.get()), H5T_STR_NULLTERM);
   EXPECT_EQ(H5Tget_cset(type.get()), H5T_CSET_UTF8);
-  char* text = nullptr;
-  EXPECT_GE(H5Aread(attribute.get(), type.get(), &text), 0);
-  std::string value = text == nullptr ? "" : text;
-  H5free_memory(text);
-  return value;
+  std::string text(H5Tget_size(type.get()), '\0');
+  EXPECT_GE(H5Aread(attribute.get(), type.get(), text.data()), 0);
+  EXPECT_EQ(text.back(), '\0');
+  return text.substr(0, text.find('\0'));
 }
 
 template <typename T>
@@ -308,6 +309,23 @@ TEST(Hdf5File, AttributesOfTablesGroupsAndFile) {
   EXPECT_EQ((NumberAttribute<double>(f, "/vessel/pose_true", "sample_rate", H5T_IEEE_F64LE,
                                      H5T_NATIVE_DOUBLE)),
             10.0);
+}
+
+TEST(Hdf5File, TheFormatChecksumsItsMetadata) {
+  // HDF5 1.10's format: superblock version 3 and version-2 object headers, each with its
+  // checksum, so that HDF5 refuses damaged metadata instead of reading it.
+  const TempFile temp("format.h5");
+  {
+    Hdf5File file(temp.path());
+    file.CreateTable("/time", 0, "s");
+  }
+  const Id file = OpenForReading(temp.path());
+  H5F_info2_t info{};
+  ASSERT_GE(H5Fget_info2(file.get(), &info), 0);
+  EXPECT_EQ(info.super.version, 3u);
+  H5O_info_t object{};
+  ASSERT_GE(H5Oget_info_by_name2(file.get(), "/time", &object, H5O_INFO_HDR, H5P_DEFAULT), 0);
+  EXPECT_EQ(object.hdr.version, 2u);
 }
 
 TEST(Hdf5File, NestedGroupsAreCreatedOnce) {

@@ -121,7 +121,7 @@ Input Resolve(const std::string& given) {
     throw InputError(given + ": a directory without run.h5 or runs.csv");
   }
   if (!std::ifstream(given, std::ios::binary)) throw InputError(given + ": cannot read it");
-  if (IsHdf5File(given)) {
+  if (LooksLikeHdf5(given)) {
     const Hdf5Reader file(given);
     if (file.Has("/runs")) input.kind = InputKind::kCampaign;
     if (file.Has("/time")) input.kind = InputKind::kRun;

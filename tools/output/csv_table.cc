@@ -1,5 +1,6 @@
 #include "tools/output/csv_table.h"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -7,14 +8,26 @@
 
 namespace moorsim::output {
 
+std::string_view WithoutByteOrderMark(std::string_view first_line) {
+  constexpr std::string_view kUtf8ByteOrderMark = "\xEF\xBB\xBF";
+  if (first_line.substr(0, kUtf8ByteOrderMark.size()) == kUtf8ByteOrderMark) {
+    first_line.remove_prefix(kUtf8ByteOrderMark.size());
+  }
+  return first_line;
+}
+
 CsvTable ReadCsvTable(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream buffer;
   buffer << in.rdbuf();
   if (!in) throw InputError(path + ": cannot read it");
-  const std::string text = buffer.str();
+  const std::string whole = buffer.str();
+  const std::string_view text = WithoutByteOrderMark(whole);
   if (text.empty()) throw InputError(path + ": empty (no header line)");
-  if (text.find('\0') != std::string::npos) throw InputError(path + ": not a text table");
+  if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos) {
+    const auto line = 1 + std::count(text.begin(), text.begin() + nul, '\n');
+    throw InputError(path + ":" + std::to_string(line) + ": a NUL byte (not a text table)");
+  }
 
   CsvTable table;
   std::vector<std::string> record;

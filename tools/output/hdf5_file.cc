@@ -171,24 +171,31 @@ class Hdf5File::Impl {
     // but are told the same so that a newer format cannot bring the times back.
     Handle fcpl = Make(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "H5Pcreate(H5P_FILE_CREATE)", "");
     Check(H5Pset_obj_track_times(fcpl.get(), false), "H5Pset_obj_track_times", "");
+    KeepAttributesInTheHeader(fcpl.get(), "");
     group_creation_ =
         Make(H5Pcreate(H5P_GROUP_CREATE), H5Pclose, "H5Pcreate(H5P_GROUP_CREATE)", "");
     Check(H5Pset_obj_track_times(group_creation_.get(), false), "H5Pset_obj_track_times", "");
+    KeepAttributesInTheHeader(group_creation_.get(), "");
 
-    Handle fapl = Make(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate(H5P_FILE_ACCESS)", "");
+    // The HDF5 1.10 format: its superblock, object headers, B-trees and heaps carry
+    // checksums, so a damaged file is refused by HDF5 instead of being read as garbage
+    // (HDF5 1.10 or later reads these files).
+    Handle access = Make(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate(H5P_FILE_ACCESS)", "");
+    Check(H5Pset_libver_bounds(access.get(), H5F_LIBVER_V110, H5F_LIBVER_V110),
+          "H5Pset_libver_bounds", "");
     if (options_.durable_flushes) {
       // No metadata-cache evictions (and so no adaptive resizing, which needs them): the
       // file's metadata are written only by H5Fflush, never half-way between two flushes.
       H5AC_cache_config_t config;
       config.version = H5AC__CURR_CACHE_CONFIG_VERSION;
-      Check(H5Pget_mdc_config(fapl.get(), &config), "H5Pget_mdc_config", "");
+      Check(H5Pget_mdc_config(access.get(), &config), "H5Pget_mdc_config", "");
       config.evictions_enabled = false;
       config.incr_mode = H5C_incr__off;
       config.flash_incr_mode = H5C_flash_incr__off;
       config.decr_mode = H5C_decr__off;
-      Check(H5Pset_mdc_config(fapl.get(), &config), "H5Pset_mdc_config", "");
+      Check(H5Pset_mdc_config(access.get(), &config), "H5Pset_mdc_config", "");
     }
-    file_ = Make(H5Fcreate(path_.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get()), H5Fclose,
+    file_ = Make(H5Fcreate(path_.c_str(), H5F_ACC_TRUNC, fcpl.get(), access.get()), H5Fclose,
                  "H5Fcreate", "");
   }
 
@@ -240,6 +247,7 @@ class Hdf5File::Impl {
     Handle creation = Make(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "H5Pcreate(H5P_DATASET_CREATE)",
                            dataset_path);
     Check(H5Pset_obj_track_times(creation.get(), false), "H5Pset_obj_track_times", dataset_path);
+    KeepAttributesInTheHeader(creation.get(), dataset_path);
     Handle dataset = Make(H5Dcreate2(file_.get(), dataset_path.c_str(), file_type, space.get(),
                                      H5P_DEFAULT, creation.get(), H5P_DEFAULT),
                           H5Dclose, "H5Dcreate2", dataset_path);
@@ -251,14 +259,20 @@ class Hdf5File::Impl {
   }
 
   void WriteStrings(const std::string& dataset_path, const std::vector<std::string>& values) {
+    // Fixed-length, as long as the longest value (see SetStringAttribute for why not
+    // variable-length), each value NUL-padded.
+    std::size_t longest = 1;
+    for (const std::string& v : values) longest = std::max(longest, v.size());
     Handle type = Make(H5Tcopy(H5T_C_S1), H5Tclose, "H5Tcopy", dataset_path);
-    Check(H5Tset_size(type.get(), H5T_VARIABLE), "H5Tset_size", dataset_path);
+    Check(H5Tset_size(type.get(), longest), "H5Tset_size", dataset_path);
+    Check(H5Tset_strpad(type.get(), H5T_STR_NULLPAD), "H5Tset_strpad", dataset_path);
     Check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "H5Tset_cset", dataset_path);
-    std::vector<const char*> pointers;
-    pointers.reserve(values.size());
-    for (const std::string& v : values) pointers.push_back(v.c_str());
+    std::vector<char> padded(values.size() * longest, '\0');
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      std::copy(values[i].begin(), values[i].end(), padded.begin() + i * longest);
+    }
     WriteDataset(dataset_path, {values.size()}, values.size(), type.get(), type.get(),
-                 pointers.data());
+                 padded.data());
   }
 
   TableId CreateTable(const std::string& dataset_path, int columns, const std::string& units,
@@ -293,6 +307,7 @@ class Hdf5File::Impl {
     Handle creation = Make(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "H5Pcreate(H5P_DATASET_CREATE)",
                            dataset_path);
     Check(H5Pset_obj_track_times(creation.get(), false), "H5Pset_obj_track_times", dataset_path);
+    KeepAttributesInTheHeader(creation.get(), dataset_path);
     Check(H5Pset_chunk(creation.get(), table.rank, chunk_dims.data()), "H5Pset_chunk",
           dataset_path);
     if (compress_) {
@@ -413,6 +428,14 @@ class Hdf5File::Impl {
     if (status < 0) throw Error(Message(object, call, attribute));
   }
 
+  /// Attributes are kept in the object's header, which HDF5 checksums, up to 64 of them
+  /// (HDF5 moves more than 8 by default into "dense" storage, where a long value such as
+  /// the scenario's text lies outside any checksum). A value too long for a header message
+  /// (64 KiB) still goes to dense storage.
+  void KeepAttributesInTheHeader(hid_t creation, const std::string& object) const {
+    Check(H5Pset_attr_phase_change(creation, 64, 48), "H5Pset_attr_phase_change", object);
+  }
+
   static bool DeflateEncoderAvailable() {
     if (H5Zfilter_avail(H5Z_FILTER_DEFLATE) <= 0) return false;
     unsigned int config = 0;
@@ -468,12 +491,16 @@ class Hdf5File::Impl {
 
   void SetStringAttribute(hid_t object, const std::string& object_path, const std::string& name,
                           const std::string& value) const {
+    // Fixed-length, its own length plus the terminating NUL: the text is then stored in the
+    // attribute itself, inside the checksummed object header (or dense attribute storage),
+    // where a variable-length string would keep only a reference into the global heap,
+    // which has no checksum and whose damage crashes HDF5's reader.
     Handle type = Make(H5Tcopy(H5T_C_S1), H5Tclose, "H5Tcopy", object_path, name);
-    Check(H5Tset_size(type.get(), H5T_VARIABLE), "H5Tset_size", object_path, name);
+    Check(H5Tset_size(type.get(), value.size() + 1), "H5Tset_size", object_path, name);
+    Check(H5Tset_strpad(type.get(), H5T_STR_NULLTERM), "H5Tset_strpad", object_path, name);
     Check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "H5Tset_cset", object_path, name);
     Handle attribute = ReplaceAttribute(object, object_path, name, type.get());
-    const char* text = value.c_str();
-    Check(H5Awrite(attribute.get(), type.get(), &text), "H5Awrite", object_path, name);
+    Check(H5Awrite(attribute.get(), type.get(), value.c_str()), "H5Awrite", object_path, name);
     Check(attribute.Close(), "H5Aclose", object_path, name);
   }
 

@@ -11,6 +11,12 @@
 // Reproducibility: no object in the file records a creation or modification time, and
 // gzip is deterministic, so the same rows written in the same order give a byte-identical
 // file.
+//
+// Damage: the file is in HDF5 1.10's format, whose metadata carries checksums; string
+// attributes are fixed-length and kept in their object's header, so a flipped bit in the
+// scenario's text or in the structure is refused by the reader (Hdf5Reader) instead of
+// being read as other values or crashing HDF5 (variable-length strings live in the global
+// heap, which has no checksum). HDF5 1.10 or later reads these files.
 #pragma once
 
 #include <cstddef>
@@ -81,8 +87,8 @@ class Hdf5File {
   void CreateGroup(const std::string& group_path);
 
   /// Sets (or replaces) the attribute `name` of the existing group or table `object_path`;
-  /// "/" is the file itself. Strings are stored as variable-length UTF-8 scalars, doubles
-  /// as IEEE 754 binary64 and integers as signed or unsigned 64-bit (pass an std::int64_t
+  /// "/" is the file itself. Strings are stored as fixed-length UTF-8 scalars (their length),
+  /// doubles as IEEE 754 binary64 and integers as signed or unsigned 64-bit (pass an std::int64_t
   /// or std::uint64_t: a plain int is ambiguous between the numeric overloads on purpose).
   void SetAttribute(const std::string& object_path, const std::string& name,
                     const std::string& value);
@@ -101,7 +107,7 @@ class Hdf5File {
                     std::span<const std::int64_t> values);
   void WriteDataset(const std::string& dataset_path, const std::vector<std::size_t>& dims,
                     std::span<const std::uint64_t> values);
-  /// A one-dimensional dataset of variable-length UTF-8 strings.
+  /// A one-dimensional dataset of UTF-8 strings (fixed-length: the longest value's, NUL-padded).
   void WriteDataset(const std::string& dataset_path, const std::vector<std::string>& values);
   /// Creates an empty, extendible table at `dataset_path` (absolute, e.g.
   /// "/vessel/pose_true"; missing parent groups are created). `columns` > 0 gives a

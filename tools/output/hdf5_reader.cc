@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string_view>
 #include <utility>
 
 #include "core/error.h"
@@ -45,18 +48,59 @@ class Attribute {
 
 }  // namespace
 
-bool IsHdf5File(const std::string& path) {
-  internal::PrepareHdf5();
-  return H5Fis_hdf5(path.c_str()) > 0;
+namespace {
+
+/// Whether the file at `path` carries the HDF5 signature where HDF5 looks for it: at offset
+/// 0, or after a user block of 512, 1024, 2048, ... bytes.
+bool HasHdf5Signature(const std::string& path) {
+  constexpr std::string_view kSignature("\x89HDF\r\n\x1a\n", 8);
+  std::ifstream in(path, std::ios::binary);
+  std::error_code error;
+  const std::uintmax_t size = std::filesystem::file_size(path, error);
+  if (error) return false;
+  for (std::uintmax_t offset = 0; offset + kSignature.size() <= size;
+       offset = offset == 0 ? 512 : 2 * offset) {
+    char bytes[kSignature.size()] = {};
+    if (!in.seekg(static_cast<std::streamoff>(offset)).read(bytes, sizeof bytes)) return false;
+    if (std::string_view(bytes, sizeof bytes) == kSignature) return true;
+  }
+  return false;
+}
+
+/// The memory type a fixed-length string of `file_type` is read into: its size and
+/// character set, NUL-padded (a NUL-terminated type of the same size would drop the last
+/// character of a value that fills it).
+hid_t FixedStringMemoryType(hid_t file_type) {
+  const hid_t memory = H5Tcopy(H5T_C_S1);
+  H5Tset_size(memory, std::max<std::size_t>(H5Tget_size(file_type), 1));
+  H5Tset_strpad(memory, H5T_STR_NULLPAD);
+  H5Tset_cset(memory, H5Tget_cset(file_type));
+  return memory;
+}
+
+/// One fixed-length string of `size` bytes read with FixedStringMemoryType: up to its first
+/// NUL.
+std::string FixedStringValue(const char* text, std::size_t size) {
+  return std::string(text, std::find(text, text + size, '\0'));
+}
+
+}  // namespace
+
+bool LooksLikeHdf5(const std::string& path) {
+  const std::string extension = std::filesystem::path(path).extension().string();
+  return extension == ".h5" || extension == ".hdf5" || HasHdf5Signature(path);
 }
 
 Hdf5Reader::Hdf5Reader(const std::string& path) : path_(path) {
   internal::PrepareHdf5();
-  if (H5Fis_hdf5(path.c_str()) <= 0) {
-    throw InputError(path + ": not a readable HDF5 file");
+  std::error_code error;
+  file_bytes_ = std::filesystem::file_size(path, error);
+  if (file_bytes_ == 0 && !error) throw InputError(path + ": empty (0 bytes), not an HDF5 file");
+  if (!HasHdf5Signature(path)) {
+    throw InputError(path + ": damaged or not an HDF5 file (no HDF5 signature)");
   }
   file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (file_ < 0) throw InputError(path + ": cannot open it as an HDF5 file");
+  if (file_ < 0) throw InputError(path + ": damaged HDF5 file (HDF5 cannot open it)");
 }
 
 Hdf5Reader::~Hdf5Reader() {
@@ -78,8 +122,14 @@ std::string Hdf5Reader::StringAttribute(const std::string& object_path,
   const std::string where = path_ + ": " + object_path + " attribute '" + name + "'";
   const Attribute a(static_cast<hid_t>(file_), object_path, name, where);
   const Handle& attribute = a.attribute;
-  if (H5Tget_class(a.type.id) != H5T_STRING || H5Tis_variable_str(a.type.id) <= 0) {
-    throw InputError(where + ": not a variable-length string");
+  if (H5Tget_class(a.type.id) != H5T_STRING) throw InputError(where + ": not a string");
+  if (H5Tis_variable_str(a.type.id) <= 0) {
+    const Handle memory{FixedStringMemoryType(a.type.id), H5Tclose};
+    std::vector<char> text(std::max<std::size_t>(H5Tget_size(a.type.id), 1));
+    if (H5Aread(attribute.id, memory.id, text.data()) < 0) {
+      throw InputError(where + ": unreadable");
+    }
+    return FixedStringValue(text.data(), text.size());
   }
   Handle memory{H5Tcopy(H5T_C_S1), H5Tclose};
   H5Tset_size(memory.id, H5T_VARIABLE);
@@ -125,14 +175,25 @@ class Dataset {
     const int rank = H5Sget_simple_extent_ndims(space.id);
     if (rank < 0) throw InputError(where_ + ": unreadable dataspace");
     dims.resize(static_cast<std::size_t>(rank));
-    if (rank > 0) H5Sget_simple_extent_dims(space.id, dims.data(), nullptr);
+    if (rank > 0 && H5Sget_simple_extent_dims(space.id, dims.data(), nullptr) < 0) {
+      throw InputError(where_ + ": unreadable dataspace");
+    }
+    // Deflate packs at most 1032 bytes into one: a dataset beyond that (a damaged
+    // dimension) is refused before its memory is asked for. Elements are read as at most
+    // 8 bytes or as stored.
+    const std::uintmax_t element = std::max<std::size_t>(H5Tget_size(type.id), 1);
+    const std::uintmax_t most = 1032 * std::max<std::uintmax_t>(reader.file_bytes(), 1) / element;
+    for (const hsize_t d : dims) {
+      if (d != 0 && count_ > most / d) {
+        throw InputError(where_ + ": more elements than a file of " +
+                         std::to_string(reader.file_bytes()) + " bytes holds (damaged)");
+      }
+      count_ *= d;
+    }
   }
 
-  std::size_t Count() const {
-    std::size_t n = 1;
-    for (const hsize_t d : dims) n *= d;
-    return n;
-  }
+  /// The number of elements.
+  std::size_t Count() const { return count_; }
 
   bool Numeric() const {
     const H5T_class_t kind = H5Tget_class(type.id);
@@ -163,6 +224,7 @@ class Dataset {
 
  private:
   std::string where_;
+  std::size_t count_ = 1;
 };
 
 }  // namespace
@@ -203,8 +265,8 @@ std::vector<std::string> Hdf5Reader::ReadStrings(const std::string& dataset_path
   const std::size_t n = d.Count();
   std::vector<std::string> values;
   values.reserve(n);
-  Handle memory{H5Tcopy(H5T_C_S1), H5Tclose};
   if (H5Tis_variable_str(d.type.id) > 0) {
+    const Handle memory{H5Tcopy(H5T_C_S1), H5Tclose};
     H5Tset_size(memory.id, H5T_VARIABLE);
     H5Tset_cset(memory.id, H5Tget_cset(d.type.id));
     std::vector<char*> texts(n, nullptr);
@@ -216,31 +278,30 @@ std::vector<std::string> Hdf5Reader::ReadStrings(const std::string& dataset_path
     return values;
   }
   const std::size_t size = H5Tget_size(d.type.id);
-  H5Tset_size(memory.id, size);
-  H5Tset_cset(memory.id, H5Tget_cset(d.type.id));
   std::vector<char> buffer(n * size);
+  const Handle memory{FixedStringMemoryType(d.type.id), H5Tclose};
   d.Read(memory.id, buffer.data());
-  for (std::size_t i = 0; i < n; ++i) {
-    const char* text = buffer.data() + i * size;
-    std::size_t length = 0;
-    while (length < size && text[length] != '\0') ++length;
-    values.emplace_back(text, length);
-  }
+  for (std::size_t i = 0; i < n; ++i) values.push_back(FixedStringValue(&buffer[i * size], size));
   return values;
 }
 
 std::vector<DatasetInfo> Hdf5Reader::ListDatasets() const {
-  std::vector<std::string> names;
-  H5Lvisit(
+  // Every link's path, and whether it is a hard link (a soft link may dangle).
+  std::vector<std::pair<std::string, bool>> links;
+  const herr_t visited = H5Lvisit(
       static_cast<hid_t>(file_), H5_INDEX_NAME, H5_ITER_INC,
-      [](hid_t, const char* name, const H5L_info_t*, void* data) -> herr_t {
-        static_cast<std::vector<std::string>*>(data)->push_back(std::string("/") + name);
+      [](hid_t, const char* name, const H5L_info_t* info, void* data) -> herr_t {
+        static_cast<std::vector<std::pair<std::string, bool>>*>(data)->emplace_back(
+            std::string("/") + name, info->type == H5L_TYPE_HARD);
         return 0;
       },
-      &names);
+      &links);
+  if (visited < 0) throw InputError(path_ + ": damaged (its groups cannot be listed)");
   std::vector<DatasetInfo> datasets;
-  for (const std::string& name : names) {
+  for (const auto& [name, hard] : links) {
     const Handle object{H5Oopen(static_cast<hid_t>(file_), name.c_str(), H5P_DEFAULT), H5Oclose};
+    if (object.id < 0 && hard)
+      throw InputError(path_ + ": " + name + ": damaged (cannot be opened)");
     if (object.id < 0 || H5Iget_type(object.id) != H5I_DATASET) continue;
     const Dataset d(*this, static_cast<hid_t>(file_), name);
     DatasetInfo info;

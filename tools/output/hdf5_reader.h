@@ -37,19 +37,23 @@ struct DatasetInfo {
   std::vector<std::size_t> dims;  ///< empty for a scalar dataset
 };
 
-/// Whether `path` is an existing HDF5 file (its signature checked, nothing else).
-bool IsHdf5File(const std::string& path);
+/// Whether the input `path` is to be read as an HDF5 file: it has an HDF5 name (.h5, .hdf5)
+/// or carries the HDF5 signature. A damaged or empty run.h5 is then reported as such by
+/// Hdf5Reader instead of being read as text.
+bool LooksLikeHdf5(const std::string& path);
 
 class Hdf5Reader {
  public:
-  /// Opens `path` read-only; throws InputError "<path>: ..." if it is not a readable HDF5
-  /// file.
+  /// Opens `path` read-only; throws InputError "<path>: ..." if it is empty, has no HDF5
+  /// signature, or HDF5 cannot open it (damaged).
   explicit Hdf5Reader(const std::string& path);
   ~Hdf5Reader();
   Hdf5Reader(const Hdf5Reader&) = delete;
   Hdf5Reader& operator=(const Hdf5Reader&) = delete;
 
   const std::string& path() const { return path_; }
+  /// The file's size [bytes] when it was opened.
+  std::uintmax_t file_bytes() const { return file_bytes_; }
   /// Whether the group or dataset `object_path` exists (every parent must exist too).
   bool Has(const std::string& object_path) const;
   /// The string attribute `name` of `object_path` ("/" the file itself).
@@ -75,6 +79,7 @@ class Hdf5Reader {
 
  private:
   std::string path_;
+  std::uintmax_t file_bytes_ = 0;
   long long file_ = -1;  // hid_t
 };
 

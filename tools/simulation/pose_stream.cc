@@ -1,10 +1,13 @@
 #include "tools/simulation/pose_stream.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
 
 #include "core/error.h"
+#include "scenarios/load.h"
+#include "tools/output/csv_table.h"
 #include "tools/output/hdf5_reader.h"
 
 namespace moorsim::simulation {
@@ -140,9 +143,18 @@ void CsvPoseStream::Restart() {
 
 bool CsvPoseStream::Take(const std::string& line, detectors::Observation* observation) {
   ++line_number_;
-  const std::string trimmed = Trim(line);
+  const std::string trimmed =
+      Trim(line_number_ == 1 ? std::string(output::WithoutByteOrderMark(line)) : line);
   if (trimmed.empty() || trimmed[0] == '#') return false;
   const std::vector<std::string> cells = SplitCells(trimmed);
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    if (cells[c].find('\0') == std::string::npos) continue;
+    throw InputError(name_ + ":" + std::to_string(line_number_) + ": " +
+                     (have_header_ && c < header_.size()
+                          ? "column '" + header_[c] + "'"
+                          : "header: column " + std::to_string(c + 1)) +
+                     ": a NUL byte (binary data, not text)");
+  }
   if (!have_header_) {
     Header(cells);
     return false;
@@ -165,7 +177,7 @@ bool CsvPoseStream::Take(const std::string& line, detectors::Observation* observ
     }
     char* end = nullptr;
     const double value = std::strtod(cell.c_str(), &end);
-    if (*end != '\0' || !std::isfinite(value)) {
+    if (end != cell.c_str() + cell.size() || !std::isfinite(value)) {
       throw InputError(where + ": column '" + header_[c] + "': '" + cell +
                        "' is not a finite number");
     }
@@ -201,7 +213,8 @@ bool CsvPoseStream::Take(const std::string& line, detectors::Observation* observ
   return true;
 }
 
-std::vector<detectors::Observation> ReadRunDetectionInput(const std::string& path, double max_gap) {
+std::vector<detectors::Observation> ReadRunDetectionInput(const std::string& path, int lines,
+                                                          double max_gap) {
   const output::Hdf5Reader file(path);
   if (!file.Has("/detection/input/time")) {
     throw InputError(path +
@@ -214,6 +227,12 @@ std::vector<detectors::Observation> ReadRunDetectionInput(const std::string& pat
   output::TableData tension;
   if (file.Has("/detection/input/tension_measured")) {
     tension = file.ReadTable("/detection/input/tension_measured");
+  }
+  if (file.Has("/detection/input/tension_measured") &&
+      tension.columns != static_cast<std::size_t>(lines)) {
+    throw InputError(path + ": /detection/input/tension_measured: " +
+                     std::to_string(tension.columns) + " columns, the scenario has " +
+                     std::to_string(lines) + " mooring lines (one tension per line)");
   }
   const bool tensions = tension.rows > 0;
   if (pose.rows != time.rows || thrust.rows != time.rows || pose.columns != 3 ||
@@ -243,6 +262,57 @@ std::vector<detectors::Observation> ReadRunDetectionInput(const std::string& pat
     checks.Check(o, path + " /detection/input row " + std::to_string(r + 1));
   }
   return observations;
+}
+
+namespace {
+
+/// The loader's message about a run.h5's recorded scenario, each line restated to name the
+/// run.h5: the loader names the scenario's source file, whose lines (and perhaps whose
+/// content) are not those of the text the run recorded.
+std::string InRecordedScenario(const std::string& path, const std::string& source,
+                               const std::string& message) {
+  const std::string scenario = path + ": the scenario it records (from " + source + ")";
+  std::string restated;
+  for (std::size_t begin = 0; begin <= message.size();) {
+    const std::size_t end = std::min(message.find('\n', begin), message.size());
+    std::string line = message.substr(begin, end - begin);
+    begin = end + 1;
+    if (!restated.empty()) restated += '\n';
+    const std::string prefix = source + ":";
+    if (line.rfind(prefix, 0) != 0) {
+      restated += scenario + ": " + line;
+      continue;
+    }
+    line.erase(0, prefix.size());
+    // "12:5: key: what" (a located message) or " what".
+    const std::size_t digits = line.find_first_not_of("0123456789:");
+    if (digits != std::string::npos && digits > 0 && line.compare(digits - 1, 2, ": ") == 0) {
+      restated += scenario + ", line " + line;
+    } else {
+      restated += scenario + ":" + line;
+    }
+  }
+  return restated;
+}
+
+}  // namespace
+
+scenarios::Scenario ReadRunScenario(const std::string& path) {
+  const output::Hdf5Reader file(path);
+  const std::string text = file.StringAttribute("/", "scenario");
+  const std::string source = file.StringAttribute("/", "scenario_path");
+  std::vector<std::string> overrides;
+  const std::string joined = file.StringAttribute("/", "overrides");
+  for (std::size_t begin = 0; begin < joined.size();) {
+    const std::size_t end = std::min(joined.find('\n', begin), joined.size());
+    overrides.push_back(joined.substr(begin, end - begin));
+    begin = end + 1;
+  }
+  try {
+    return scenarios::ParseScenario(text, source, overrides);
+  } catch (const InputError& error) {
+    throw InputError(InRecordedScenario(path, source, error.what()));
+  }
 }
 
 }  // namespace moorsim::simulation

@@ -14,7 +14,8 @@
 //   tension_1 .. tension_N [N]   optional fairlead load cells (all N or none; a row with
 //                           all of them empty has no reading)
 // Lines that are empty or start with '#' are skipped; other columns are refused (a
-// misspelt name would otherwise drop a channel unnoticed).
+// misspelt name would otherwise drop a channel unnoticed). A UTF-8 byte-order mark at the
+// start of the stream (Excel writes one) is skipped; a NUL byte anywhere is an error.
 //
 // Gaps: an empty position or heading cell is a dropout the observers predict through, as
 // they do for the simulated sensors' dropouts. A channel that stays empty, or a time step
@@ -28,6 +29,7 @@
 #include <vector>
 
 #include "detectors/detector.h"
+#include "scenarios/scenario.h"
 
 namespace moorsim::simulation {
 
@@ -88,9 +90,18 @@ class CsvPoseStream {
   std::vector<int> tension_columns_;
 };
 
-/// Every observation of a run.h5's /detection/input, checked as a CSV stream is. Throws
-/// InputError naming the file and row for a file without the tables (written before
-/// moorsim recorded them, or by a run without detectors) or a broken sample.
-std::vector<detectors::Observation> ReadRunDetectionInput(const std::string& path, double max_gap);
+/// Every observation of a run.h5's /detection/input, checked as a CSV stream is; `lines` is
+/// the scenario's number of mooring lines (the tension table's width). Throws InputError
+/// naming the file and row for a file without the tables (written before moorsim recorded
+/// them, or by a run without detectors), a table of the wrong length or width, or a broken
+/// sample.
+std::vector<detectors::Observation> ReadRunDetectionInput(const std::string& path, int lines,
+                                                          double max_gap);
+
+/// The scenario a run.h5 records (its text, source path and overrides), loaded as the run
+/// loaded it. Throws InputError naming the run.h5 for a file that is not one, and for a
+/// recorded scenario that does not load: "<path>: the scenario it records (from <source>),
+/// line L:C: ...", the line being that of the recorded text.
+scenarios::Scenario ReadRunScenario(const std::string& path);
 
 }  // namespace moorsim::simulation
