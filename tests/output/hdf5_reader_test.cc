@@ -7,10 +7,12 @@
 #include <hdf5.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.h"
@@ -141,6 +143,43 @@ TEST_F(Hdf5ReaderTest, ADimensionBeyondWhatTheFileHoldsIsRefusedBeforeReading) {
     EXPECT_EQ(std::string(error.what()), path + ": /time: more elements than a file of " +
                                              std::to_string(std::filesystem::file_size(path)) +
                                              " bytes holds (damaged)");
+  }
+}
+
+// A file without checksums (as earlier versions wrote them): a damaged size in its global
+// heap, where its text attributes live, sends HDF5 reading it into a crash or an endless
+// loop. The reader reads such a file in a child process first, and refuses it instead.
+// (moorsim's own files keep their text attributes in checksummed object headers.)
+TEST_F(Hdf5ReaderTest, DamageThatCrashesOrHangsHdf5InAFileWithoutChecksumsIsRefused) {
+  const std::string golden = Bytes(MOORSIM_SOURCE_DIR "/tests/data/golden/seed_tapm_line6_run.h5");
+  ASSERT_EQ(golden[8], '\0') << "the golden file is in the format without checksums";
+  const std::size_t heap = golden.find("GCOL");
+  ASSERT_NE(heap, std::string::npos);
+  // The collection's header is 16 bytes; its first object's size sits 8 bytes into the
+  // object's own 16-byte header.
+  const std::size_t first_object_size = heap + 16 + 8;
+  const auto with_size = [&](std::uint64_t size) {
+    std::string bytes = golden;
+    for (int i = 0; i < 8; ++i) bytes[first_object_size + i] = static_cast<char>(size >> (8 * i));
+    return bytes;
+  };
+  const std::string intact = Path("intact.h5");
+  WriteBytes(intact, golden);
+  EXPECT_NE(Hdf5Reader(intact).StringAttribute("/", "scenario"), "");
+  const std::vector<std::pair<std::uint64_t, std::string>> cases = {
+      {200000, "damaged HDF5 file (HDF5 crashed reading it"},
+      {~std::uint64_t{15}, "damaged HDF5 file (HDF5 did not finish reading it in 10 s)"},
+  };
+  for (const auto& [size, message] : cases) {
+    const std::string path = Path("heap_" + std::to_string(size) + ".h5");
+    WriteBytes(path, with_size(size));
+    try {
+      const Hdf5Reader reader(path);
+      reader.StringAttribute("/", "scenario");
+      ADD_FAILURE() << path << ": read";
+    } catch (const InputError& error) {
+      EXPECT_EQ(std::string(error.what()).rfind(path + ": " + message, 0), 0u) << error.what();
+    }
   }
 }
 

@@ -68,7 +68,10 @@ def check(directory: Path) -> list[str]:
         simulated = [float(v) for v in runs["simulated_time"][()]]
         block = strings(runs["block"])
         lines = int(h5.attrs["num_lines"])
-        labels = [d for d in str(h5.attrs.get("detectors", "")).split("\n") if d]
+        detectors = h5.attrs.get("detectors", "")
+        if isinstance(detectors, bytes):  # fixed-length strings come back as bytes
+            detectors = detectors.decode()
+        labels = [d for d in str(detectors).split("\n") if d]
         columns = {label: {key: list(runs[f"{label}.{key}"][()]) for key in
                            ("alarm_time", "isolated_line", "delay", "false_alarms")}
                    for label in labels}

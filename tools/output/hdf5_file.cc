@@ -177,11 +177,14 @@ class Hdf5File::Impl {
     Check(H5Pset_obj_track_times(group_creation_.get(), false), "H5Pset_obj_track_times", "");
     KeepAttributesInTheHeader(group_creation_.get(), "");
 
-    // The HDF5 1.10 format: its superblock, object headers, B-trees and heaps carry
-    // checksums, so a damaged file is refused by HDF5 instead of being read as garbage
-    // (HDF5 1.10 or later reads these files).
+    // The HDF5 1.8 format: its superblock (version 2) and object headers (version 2, which
+    // hold the attributes and the links) carry checksums, so that damaged metadata are
+    // refused by HDF5 instead of read as other values (HDF5 1.8 or later reads these
+    // files). Not 1.10's: its superblock (version 3) marks a file open for writing until it
+    // is closed, so a file whose writer was killed (run.h5.partial, a live detect.h5) could
+    // not be opened without clearing that mark (h5clear).
     Handle access = Make(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate(H5P_FILE_ACCESS)", "");
-    Check(H5Pset_libver_bounds(access.get(), H5F_LIBVER_V110, H5F_LIBVER_V110),
+    Check(H5Pset_libver_bounds(access.get(), H5F_LIBVER_V18, H5F_LIBVER_V18),
           "H5Pset_libver_bounds", "");
     if (options_.durable_flushes) {
       // No metadata-cache evictions (and so no adaptive resizing, which needs them): the

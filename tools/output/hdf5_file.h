@@ -12,11 +12,15 @@
 // gzip is deterministic, so the same rows written in the same order give a byte-identical
 // file.
 //
-// Damage: the file is in HDF5 1.10's format, whose metadata carries checksums; string
-// attributes are fixed-length and kept in their object's header, so a flipped bit in the
-// scenario's text or in the structure is refused by the reader (Hdf5Reader) instead of
-// being read as other values or crashing HDF5 (variable-length strings live in the global
-// heap, which has no checksum). HDF5 1.10 or later reads these files.
+// Damage: the file is in HDF5 1.8's format, whose superblock and object headers carry
+// checksums; string attributes are fixed-length and kept in their object's header, so a
+// flipped bit in the scenario's text or in the structure is refused by the reader
+// (Hdf5Reader) instead of being read as other values (variable-length strings live in the
+// global heap, which has no checksum). The chunk indexes of this format have no checksums:
+// the reader checks each table's index against its dimensions, and reads a file whole in a
+// child process first, so that damage HDF5 would crash or hang on is refused too. Not 1.10's
+// format: its superblock marks a file open for writing until it is closed, and a file
+// whose writer was killed would not open. HDF5 1.8 or later reads these files.
 #pragma once
 
 #include <cstddef>

@@ -2,11 +2,21 @@
 
 #include <hdf5.h>
 
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
+#include <optional>
+#include <set>
 #include <string_view>
+#include <thread>
 #include <utility>
 
 #include "core/error.h"
@@ -50,21 +60,36 @@ class Attribute {
 
 namespace {
 
-/// Whether the file at `path` carries the HDF5 signature where HDF5 looks for it: at offset
-/// 0, or after a user block of 512, 1024, 2048, ... bytes.
-bool HasHdf5Signature(const std::string& path) {
+/// Where the file at `path` carries the HDF5 signature, if it does: at offset 0, or after a
+/// user block of 512, 1024, 2048, ... bytes (where HDF5 looks for it).
+std::optional<std::uintmax_t> Hdf5SignatureOffset(const std::string& path) {
   constexpr std::string_view kSignature("\x89HDF\r\n\x1a\n", 8);
   std::ifstream in(path, std::ios::binary);
   std::error_code error;
   const std::uintmax_t size = std::filesystem::file_size(path, error);
-  if (error) return false;
+  if (error) return std::nullopt;
   for (std::uintmax_t offset = 0; offset + kSignature.size() <= size;
        offset = offset == 0 ? 512 : 2 * offset) {
     char bytes[kSignature.size()] = {};
-    if (!in.seekg(static_cast<std::streamoff>(offset)).read(bytes, sizeof bytes)) return false;
-    if (std::string_view(bytes, sizeof bytes) == kSignature) return true;
+    if (!in.seekg(static_cast<std::streamoff>(offset)).read(bytes, sizeof bytes)) break;
+    if (std::string_view(bytes, sizeof bytes) == kSignature) return offset;
   }
-  return false;
+  return std::nullopt;
+}
+
+bool HasHdf5Signature(const std::string& path) { return Hdf5SignatureOffset(path).has_value(); }
+
+/// The superblock's version (the byte after the signature), -1 if unreadable. Versions 0
+/// and 1 carry no checksums (HDF5's format before 1.8, as earlier moorsim versions wrote
+/// it); version 2 checksums the superblock and the object headers but not the v1 B-trees
+/// that index chunked datasets; version 3 (1.10's) checksums every index.
+int SuperblockVersion(const std::string& path) {
+  const std::optional<std::uintmax_t> at = Hdf5SignatureOffset(path);
+  if (!at) return -1;
+  std::ifstream in(path, std::ios::binary);
+  char version = 0;
+  if (!in.seekg(static_cast<std::streamoff>(*at + 8)).read(&version, 1)) return -1;
+  return static_cast<unsigned char>(version);
 }
 
 /// The memory type a fixed-length string of `file_type` is read into: its size and
@@ -86,12 +111,108 @@ std::string FixedStringValue(const char* text, std::size_t size) {
 
 }  // namespace
 
+namespace {
+
+// Reads every attribute of the object `object_path` (what HDF5 can crash on in a damaged
+// file without checksums; the values are not kept).
+void ReadEveryAttribute(const Hdf5Reader& reader, hid_t file, const std::string& object_path) {
+  std::vector<std::string> names;
+  const auto collect = [](hid_t, const char* name, const H5A_info_t*, void* data) -> herr_t {
+    static_cast<std::vector<std::string>*>(data)->push_back(name);
+    return 0;
+  };
+  hsize_t index = 0;
+  H5Aiterate_by_name(file, object_path.c_str(), H5_INDEX_NAME, H5_ITER_NATIVE, &index, collect,
+                     &names, H5P_DEFAULT);
+  for (const std::string& name : names) {
+    try {
+      reader.StringAttribute(object_path, name);
+    } catch (const InputError&) {
+      try {
+        reader.NumberAttribute(object_path, name);
+      } catch (const InputError&) {
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void Hdf5Reader::ReadWhole() const {
+  const hid_t file = static_cast<hid_t>(file_);
+  ReadEveryAttribute(*this, file, "/");
+  for (const DatasetInfo& dataset : ListDatasets()) {
+    ReadEveryAttribute(*this, file, dataset.path);
+    try {
+      if (dataset.element == ElementClass::kString) {
+        ReadStrings(dataset.path);
+      } else if (dataset.element != ElementClass::kOther) {
+        ReadArray(dataset.path);
+      }
+    } catch (const InputError&) {
+    }
+  }
+}
+
+namespace {
+
+// A file whose indexes are not all checksummed is read whole once in a child process before
+// this process reads it: damage in its heaps or B-trees can crash HDF5 itself or send it
+// into an endless loop,
+// and a child that dies, or has not finished in 10 s plus a second per 20 MB, is then
+// reported as damage instead. Each file once per process.
+void CheckInAChildProcess(const std::string& path) {
+  static std::mutex mutex;
+  static std::set<std::string> checked;
+  const std::lock_guard<std::mutex> guard(mutex);
+  std::error_code error;
+  const std::string key = std::filesystem::weakly_canonical(path, error).string();
+  if (checked.count(key) > 0) return;
+  const pid_t child = ::fork();
+  if (child < 0) return;  // no process to spare: read it here, as any HDF5 tool would
+  if (child == 0) {
+    try {
+      const Hdf5Reader reader(path, Hdf5Reader::kInThisProcess);
+      reader.ReadWhole();
+    } catch (...) {
+    }
+    ::_exit(0);  // no exit handlers: the parent's buffers and HDF5's state are the parent's
+  }
+  const std::uintmax_t bytes = std::filesystem::file_size(path, error);
+  const auto limit = std::chrono::seconds(10 + (error ? 0 : bytes / 20'000'000));
+  const auto deadline = std::chrono::steady_clock::now() + limit;
+  int status = 0;
+  pid_t done = 0;
+  while ((done = ::waitpid(child, &status, WNOHANG)) == 0) {
+    if (std::chrono::steady_clock::now() > deadline) {
+      ::kill(child, SIGKILL);
+      ::waitpid(child, &status, 0);
+      throw InputError(path + ": damaged HDF5 file (HDF5 did not finish reading it in " +
+                       std::to_string(limit.count()) + " s)");
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  // The child ends with 0 whatever it read; anything else is a crash (a sanitizer's runtime
+  // reports one with an exit status).
+  if (done == child && (WIFSIGNALED(status) || WEXITSTATUS(status) != 0)) {
+    const std::string how = WIFSIGNALED(status)
+                                ? std::string(strsignal(WTERMSIG(status)))
+                                : "exit status " + std::to_string(WEXITSTATUS(status));
+    throw InputError(path + ": damaged HDF5 file (HDF5 crashed reading it: " + how + ")");
+  }
+  checked.insert(key);
+}
+
+}  // namespace
+
 bool LooksLikeHdf5(const std::string& path) {
   const std::string extension = std::filesystem::path(path).extension().string();
   return extension == ".h5" || extension == ".hdf5" || HasHdf5Signature(path);
 }
 
-Hdf5Reader::Hdf5Reader(const std::string& path) : path_(path) {
+Hdf5Reader::Hdf5Reader(const std::string& path) : Hdf5Reader(path, kAfterACheck) {}
+
+Hdf5Reader::Hdf5Reader(const std::string& path, Check check) : path_(path) {
   internal::PrepareHdf5();
   std::error_code error;
   file_bytes_ = std::filesystem::file_size(path, error);
@@ -99,6 +220,7 @@ Hdf5Reader::Hdf5Reader(const std::string& path) : path_(path) {
   if (!HasHdf5Signature(path)) {
     throw InputError(path + ": damaged or not an HDF5 file (no HDF5 signature)");
   }
+  if (check == kAfterACheck && SuperblockVersion(path) < 3) CheckInAChildProcess(path);
   file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (file_ < 0) throw InputError(path + ": damaged HDF5 file (HDF5 cannot open it)");
 }
@@ -147,6 +269,10 @@ double Hdf5Reader::NumberAttribute(const std::string& object_path, const std::st
   const Handle& attribute = a.attribute;
   const H5T_class_t kind = H5Tget_class(a.type.id);
   if (kind != H5T_FLOAT && kind != H5T_INTEGER) throw InputError(where + ": not a number");
+  const Handle space{H5Aget_space(attribute.id), H5Sclose};
+  if (space.id < 0 || H5Sget_simple_extent_npoints(space.id) != 1) {
+    throw InputError(where + ": not one number");
+  }
   double value = 0.0;
   if (H5Aread(attribute.id, H5T_NATIVE_DOUBLE, &value) < 0) {
     throw InputError(where + ": unreadable");
@@ -190,6 +316,7 @@ class Dataset {
       }
       count_ *= d;
     }
+    CheckChunkIndex(reader.file_bytes());
   }
 
   /// The number of elements.
@@ -198,6 +325,45 @@ class Dataset {
   bool Numeric() const {
     const H5T_class_t kind = H5Tget_class(type.id);
     return kind == H5T_FLOAT || kind == H5T_INTEGER;
+  }
+
+  /// A chunked dataset's index (a B-tree without checksums in HDF5's formats before 1.10):
+  /// every chunk the dimensions need is there once, at its own place, within the file. A
+  /// damaged index otherwise reads as fill values (zeros) or as another chunk's rows.
+  void CheckChunkIndex(std::uintmax_t file_bytes) const {
+    const Handle creation{H5Dget_create_plist(dataset.id), H5Pclose};
+    if (creation.id < 0 || H5Pget_layout(creation.id) != H5D_CHUNKED || count_ == 0) return;
+    const int rank = static_cast<int>(dims.size());
+    std::vector<hsize_t> chunk(dims.size());
+    if (H5Pget_chunk(creation.id, rank, chunk.data()) != rank) {
+      throw InputError(where_ + ": unreadable chunk layout (damaged)");
+    }
+    std::uintmax_t expected = 1;
+    for (std::size_t k = 0; k < dims.size(); ++k) {
+      if (chunk[k] == 0) throw InputError(where_ + ": unreadable chunk layout (damaged)");
+      expected *= (dims[k] + chunk[k] - 1) / chunk[k];
+    }
+    hsize_t chunks = 0;
+    if (H5Dget_num_chunks(dataset.id, space.id, &chunks) < 0 || chunks != expected) {
+      throw InputError(where_ + ": " + std::to_string(chunks) + " chunks where its " +
+                       std::to_string(expected) + " are needed (damaged)");
+    }
+    std::set<std::vector<hsize_t>> seen;
+    std::vector<hsize_t> offset(dims.size());
+    for (hsize_t i = 0; i < chunks; ++i) {
+      unsigned filter_mask = 0;
+      haddr_t address = 0;
+      hsize_t size = 0;
+      bool good = H5Dget_chunk_info(dataset.id, space.id, i, offset.data(), &filter_mask, &address,
+                                    &size) >= 0 &&
+                  size > 0 && address + size <= file_bytes;
+      for (std::size_t k = 0; good && k < dims.size(); ++k) {
+        good = offset[k] % chunk[k] == 0 && offset[k] < dims[k];
+      }
+      if (!good || !seen.insert(offset).second) {
+        throw InputError(where_ + ": chunk " + std::to_string(i) + " misplaced (damaged)");
+      }
+    }
   }
 
   /// Reads every element converted to `memory_type` into `out` (Count() elements).

@@ -46,7 +46,13 @@ class Hdf5Reader {
  public:
   /// Opens `path` read-only; throws InputError "<path>: ..." if it is empty, has no HDF5
   /// signature, or HDF5 cannot open it (damaged).
+  /// A file whose indexes are not all checksummed (every format before HDF5 1.10's: the
+  /// files moorsim writes, and those earlier versions wrote) is first read whole in a child
+  /// process, so that damage that would crash or hang HDF5 is an InputError too.
   explicit Hdf5Reader(const std::string& path);
+  /// kInThisProcess: without that check (what the child itself does).
+  enum Check { kAfterACheck, kInThisProcess };
+  Hdf5Reader(const std::string& path, Check check);
   ~Hdf5Reader();
   Hdf5Reader(const Hdf5Reader&) = delete;
   Hdf5Reader& operator=(const Hdf5Reader&) = delete;
@@ -76,6 +82,9 @@ class Hdf5Reader {
   /// Every dataset of the file, reached through hard or soft links from the root, in path
   /// order; a path that names no dataset (a dangling link, a group) is left out.
   std::vector<DatasetInfo> ListDatasets() const;
+  /// Reads every attribute of the root and of every dataset, and every dataset, keeping
+  /// nothing: whether HDF5 can read the whole file.
+  void ReadWhole() const;
 
  private:
   std::string path_;
