@@ -3,6 +3,7 @@
 #include <hdf5.h>
 
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -160,13 +161,19 @@ namespace {
 // this process reads it: damage in its heaps or B-trees can crash HDF5 itself or send it
 // into an endless loop,
 // and a child that dies, or has not finished in 10 s plus a second per 20 MB, is then
-// reported as damage instead. Each file once per process.
+// reported as damage instead. Each file (as it is: device, inode, size, modification
+// time) once per process.
 void CheckInAChildProcess(const std::string& path) {
   static std::mutex mutex;
   static std::set<std::string> checked;
   const std::lock_guard<std::mutex> guard(mutex);
   std::error_code error;
-  const std::string key = std::filesystem::weakly_canonical(path, error).string();
+  // The file as it is now: a file rewritten at the same path is checked again.
+  struct stat file {};
+  if (::stat(path.c_str(), &file) != 0) return;  // HDF5's open then says what is wrong
+  const std::string key = std::to_string(file.st_dev) + ":" + std::to_string(file.st_ino) + ":" +
+                          std::to_string(file.st_size) + ":" + std::to_string(file.st_mtim.tv_sec) +
+                          "." + std::to_string(file.st_mtim.tv_nsec);
   if (checked.count(key) > 0) return;
   const pid_t child = ::fork();
   if (child < 0) return;  // no process to spare: read it here, as any HDF5 tool would
