@@ -3,7 +3,6 @@
 // alarm event is printed as one JSON line on standard output the moment the sample that
 // raised it has been processed; --out DIR also keeps alarms.csv, detect.h5 (the figures of
 // tools/plot_run.py) and summary.json (DetectOutputs says how they survive a kill).
-#include <fcntl.h>
 #include <poll.h>
 #include <unistd.h>
 
@@ -30,6 +29,7 @@
 #include "tools/output/directory_lock.h"
 #include "tools/output/hdf5_file.h"
 #include "tools/output/hdf5_reader.h"
+#include "tools/output/text_file.h"
 #include "tools/simulation/detection_tables.h"
 #include "tools/simulation/followed_file.h"
 #include "tools/simulation/pose_stream.h"
@@ -179,46 +179,6 @@ std::string CsvCell(const nlohmann::ordered_json& value) {
   return FormatNumber(value.get<double>());
 }
 
-/// A text file written with write(2), every write checked (a full disk is an error, not a
-/// short file), that Sync makes durable.
-class TextFile {
- public:
-  explicit TextFile(const fs::path& path)
-      : path_(path), fd_(::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644)) {
-    if (fd_ < 0) Fail("cannot create");
-  }
-  ~TextFile() {
-    if (fd_ >= 0) ::close(fd_);
-  }
-  TextFile(const TextFile&) = delete;
-  TextFile& operator=(const TextFile&) = delete;
-
-  void Write(const std::string& text) {
-    for (std::size_t written = 0; written < text.size();) {
-      const ssize_t n = ::write(fd_, text.data() + written, text.size() - written);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) {
-        if (n == 0) errno = ENOSPC;
-        Fail("write failed");
-      }
-      written += static_cast<std::size_t>(n);
-    }
-  }
-  void Sync() {
-    if (::fsync(fd_) != 0 && errno != EINVAL) Fail("fsync failed");
-  }
-  void Close() {
-    if (::close(std::exchange(fd_, -1)) != 0) Fail("close failed");
-  }
-
- private:
-  [[noreturn]] void Fail(const char* what) const {
-    throw Error(path_.string() + ": " + what + ": " + std::strerror(errno));
-  }
-  fs::path path_;
-  int fd_;
-};
-
 /// DIR of `detect --out`: detect.h5, alarms.csv and summary.json, written by this process
 /// alone (output::DirectoryLock). The previous run's outputs go first, summary.json first,
 /// so DIR never mixes two runs.
@@ -302,7 +262,7 @@ class DetectOutputs {
   }
 
  private:
-  fs::path Partial(const std::string& name) const { return dir_ / (name + ".partial"); }
+  fs::path Partial(const std::string& name) const { return output::PartialPath(dir_ / name); }
   bool IntervalPassed() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - last_flush_).count() >=
            flush_interval_;
@@ -313,11 +273,7 @@ class DetectOutputs {
     unflushed_ = false;
     last_flush_ = std::chrono::steady_clock::now();
   }
-  void Publish(const std::string& name) {
-    std::error_code error;
-    fs::rename(Partial(name), dir_ / name, error);
-    if (error) throw Error((dir_ / name).string() + ": rename failed: " + error.message());
-  }
+  void Publish(const std::string& name) { output::PublishPartial(dir_ / name); }
   /// After a failure: closes what is open (its own failures are not news) and removes the
   /// partial files this run created. A live file stays: it holds the last flush.
   void Abandon() noexcept {
@@ -341,7 +297,7 @@ class DetectOutputs {
   bool unflushed_ = false;
   std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
   std::optional<DetectWriter> writer_;
-  std::optional<TextFile> alarms_;
+  std::optional<output::TextFile> alarms_;
 };
 
 /// Per-sample wall time of the observers and detectors [ms]: mean and max over every sample,

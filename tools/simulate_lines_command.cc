@@ -17,6 +17,7 @@
 #include "scenarios/convert.h"
 #include "scenarios/load.h"
 #include "tools/commands.h"
+#include "tools/output/text_file.h"
 
 namespace moorsim::cli {
 namespace {
@@ -119,7 +120,7 @@ class CsvOutput {
     }
     const bool direct = std::filesystem::exists(path_, ignored) &&
                         !std::filesystem::is_regular_file(path_, ignored);
-    writing_ = direct ? path_ : path_ + ".partial";
+    writing_ = direct ? path_ : output::PartialPath(path_).string();
     stream_.open(writing_, std::ios::binary | std::ios::trunc);
     if (!stream_) {
       throw InputError("--out: cannot write '" + writing_ + "': " + std::strerror(errno));
@@ -147,9 +148,7 @@ class CsvOutput {
     stream_.close();
     if (!stream_) Fail();
     if (created_) {
-      std::error_code error;
-      std::filesystem::rename(writing_, path_, error);
-      if (error) throw Error("--out '" + path_ + "': rename failed: " + error.message());
+      output::PublishPartial(path_);
       created_ = false;
     }
   }

@@ -135,6 +135,9 @@ struct HydroData {
   Vec6 Drift(double omega, double beta) const;
 };
 
+/// The files ReadWamit reads beside its stem (what a run depends on of the vessel's data).
+inline constexpr std::array<const char*, 5> kWamitExtensions = {".1", ".hst", ".3", ".4", ".9"};
+
 /// Reads stem + ".1" and ".hst" (required) and ".3", ".4", ".9" (optional; a missing one
 /// leaves its table empty). Wave files must hold the finite periods of the .1 and,
 /// between them, the same headings, which must run 0°…180° (WAMIT convention); every

@@ -84,12 +84,10 @@ bool HasHdf5Signature(const std::string& path) { return Hdf5SignatureOffset(path
 /// and 1 carry no checksums (HDF5's format before 1.8, as earlier moorsim versions wrote
 /// it); version 2 checksums the superblock and the object headers but not the v1 B-trees
 /// that index chunked datasets; version 3 (1.10's) checksums every index.
-int SuperblockVersion(const std::string& path) {
-  const std::optional<std::uintmax_t> at = Hdf5SignatureOffset(path);
-  if (!at) return -1;
+int SuperblockVersion(const std::string& path, std::uintmax_t signature_offset) {
   std::ifstream in(path, std::ios::binary);
   char version = 0;
-  if (!in.seekg(static_cast<std::streamoff>(*at + 8)).read(&version, 1)) return -1;
+  if (!in.seekg(static_cast<std::streamoff>(signature_offset + 8)).read(&version, 1)) return -1;
   return static_cast<unsigned char>(version);
 }
 
@@ -224,10 +222,11 @@ Hdf5Reader::Hdf5Reader(const std::string& path, Check check) : path_(path) {
   std::error_code error;
   file_bytes_ = std::filesystem::file_size(path, error);
   if (file_bytes_ == 0 && !error) throw InputError(path + ": empty (0 bytes), not an HDF5 file");
-  if (!HasHdf5Signature(path)) {
-    throw InputError(path + ": damaged or not an HDF5 file (no HDF5 signature)");
+  const std::optional<std::uintmax_t> signature = Hdf5SignatureOffset(path);
+  if (!signature) throw InputError(path + ": damaged or not an HDF5 file (no HDF5 signature)");
+  if (check == kAfterACheck && SuperblockVersion(path, *signature) < 3) {
+    CheckInAChildProcess(path);
   }
-  if (check == kAfterACheck && SuperblockVersion(path) < 3) CheckInAChildProcess(path);
   file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (file_ < 0) throw InputError(path + ": damaged HDF5 file (HDF5 cannot open it)");
 }

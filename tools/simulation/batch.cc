@@ -23,6 +23,7 @@
 #include "scenarios/load.h"
 #include "tools/output/directory_lock.h"
 #include "tools/output/hdf5_file.h"
+#include "vessel/hydro_data.h"
 
 namespace moorsim::simulation {
 namespace {
@@ -767,7 +768,7 @@ PreparedCampaign PrepareCampaign(const std::string& campaign_path,
   add("scenario", c.scenario_path, FileSha256(c.scenario_path));
   for (const std::string& base : files.bases) add("base scenario", base, FileSha256(base));
   for (const std::string& stem : files.stems) {
-    for (const char* extension : {".1", ".hst", ".3", ".4", ".9"}) {
+    for (const char* extension : vessel::kWamitExtensions) {
       add("hydrodynamics file", stem + extension, FileSha256(stem + extension));
     }
   }

@@ -11,9 +11,6 @@
 #include <span>
 #include <sstream>
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include "core/angles.h"
 #include "core/error.h"
 #include "core/sample_clock.h"
@@ -21,6 +18,7 @@
 #include "scenarios/load.h"
 #include "tools/output/directory_lock.h"
 #include "tools/output/hdf5_file.h"
+#include "tools/output/text_file.h"
 #include "tools/simulation/detection_tables.h"
 
 namespace moorsim::simulation {
@@ -209,15 +207,9 @@ void AddStationKeeping(const Simulation& sim, nlohmann::json& summary) {
                                 {"heading_error_final_deg", kept.heading_error_last / kDegree}};
 }
 
-std::string SystemError(int error) { return std::strerror(error); }
-
 void RemoveQuietly(const std::filesystem::path& path) {
   std::error_code ignored;
   std::filesystem::remove(path, ignored);
-}
-
-std::filesystem::path Partial(const std::filesystem::path& path) {
-  return path.string() + ".partial";
 }
 
 volatile std::sig_atomic_t g_stop_signal = 0;
@@ -261,35 +253,17 @@ int RunResult::ExitCode() const {
 }
 
 void WriteFileAtomically(const std::filesystem::path& path, const std::string& text) {
-  const std::filesystem::path partial = Partial(path);
-  const auto fail = [&](const std::string& what, int error) {
+  const std::filesystem::path partial = output::PartialPath(path);
+  // Messages name `path`; the partial file is removed only once this call has created it.
+  output::TextFile file(partial, path);
+  try {
+    file.Write(text);
+    file.Sync();
+    file.Close();
+    output::PublishPartial(path);
+  } catch (const Error&) {
     RemoveQuietly(partial);
-    throw Error(path.string() + ": " + what + ": " + SystemError(error));
-  };
-  const int fd = ::open(partial.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw Error(path.string() + ": cannot create: " + SystemError(errno));
-  std::size_t written = 0;
-  while (written < text.size()) {
-    const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const int error = n < 0 ? errno : ENOSPC;
-      ::close(fd);
-      fail("write failed", error);
-    }
-    written += static_cast<std::size_t>(n);
-  }
-  if (::fsync(fd) != 0 && errno != EINVAL) {
-    const int error = errno;
-    ::close(fd);
-    fail("fsync failed", error);
-  }
-  if (::close(fd) != 0) fail("close failed", errno);
-  std::error_code error;
-  std::filesystem::rename(partial, path, error);
-  if (error) {
-    RemoveQuietly(partial);
-    throw Error(path.string() + ": rename failed: " + error.message());
+    throw;
   }
 }
 
@@ -344,7 +318,7 @@ RunResult RunScenario(const RunRequest& request) noexcept {
     }
     try {
       if (request.write_files) {
-        output::Hdf5File file(Partial(run_path).string());
+        output::Hdf5File file(output::PartialPath(run_path).string());
         partial_created = true;
         writer = std::make_unique<RunWriter>(std::move(file), scenario, *sim);
       }
@@ -425,11 +399,11 @@ RunResult RunScenario(const RunRequest& request) noexcept {
     // Nothing on disk.
   } else if (run_file_broken) {
     // The previous run's run.h5 goes too: summary.json would not describe it.
-    if (partial_created) RemoveQuietly(Partial(run_path));
+    if (partial_created) RemoveQuietly(output::PartialPath(run_path));
     RemoveQuietly(run_path);
   } else if (sim) {
     std::error_code error;
-    std::filesystem::rename(Partial(run_path), run_path, error);
+    std::filesystem::rename(output::PartialPath(run_path), run_path, error);
     if (error) {
       run_file_broken = true;  // summary.json names no run.h5
       result.status = RunStatus::kFailed;
