@@ -226,13 +226,7 @@ TEST(BatchCommand, SigintWhilePreparingStopsPromptlyWithExit130) {
   TempDirectory dir(::testing::TempDir());
   const std::string campaign = WriteLargeCampaign(dir.path(), 10'000'000, true);
   const std::filesystem::path out = dir.path() / "results";
-  const std::string cli = MOORSIM_CLI;
-  std::vector<std::string> args = {cli, "batch", campaign, "--out", out.string(), "--quiet"};
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  ASSERT_EQ(posix_spawn(&pid, cli.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+  const pid_t pid = StartCli({"batch", campaign, "--out", out.string(), "--quiet"}, {});
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
   ::kill(pid, SIGINT);
   const auto sent = std::chrono::steady_clock::now();

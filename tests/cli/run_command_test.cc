@@ -4,7 +4,6 @@
 
 #include <fcntl.h>
 #include <hdf5.h>
-#include <spawn.h>
 #include <sys/file.h>
 #include <sys/wait.h>
 #include <algorithm>
@@ -391,16 +390,10 @@ TEST(RunCommand, ATenHertzControllerFinishes) {
 }
 
 // Starts a run that would take hours into `out` and returns its pid once run.h5.partial
-// exists (the stop handlers are in place and the run has started), or -1.
+// exists (the stop handlers are in place and the run has started) or two minutes passed.
 pid_t StartLongRun(const std::filesystem::path& out) {
-  std::string program = MOORSIM_CLI;
-  std::vector<std::string> text = {program,  "run",   kThesisNoFailure, "--duration",
-                                   "100000", "--out", out.string(),     "--quiet"};
-  std::vector<char*> argv;
-  for (std::string& a : text) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  if (posix_spawn(&pid, program.c_str(), nullptr, nullptr, argv.data(), environ) != 0) return -1;
+  const pid_t pid = StartCli(
+      {"run", kThesisNoFailure, "--duration", "100000", "--out", out.string(), "--quiet"}, {});
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
   while (!std::filesystem::exists(out / "run.h5.partial") &&
          std::chrono::steady_clock::now() < deadline) {
