@@ -227,12 +227,11 @@ std::vector<detectors::Observation> ReadRunDetectionInput(const std::string& pat
   output::TableData tension;
   if (file.Has("/detection/input/tension_measured")) {
     tension = file.ReadTable("/detection/input/tension_measured");
-  }
-  if (file.Has("/detection/input/tension_measured") &&
-      tension.columns != static_cast<std::size_t>(lines)) {
-    throw InputError(path + ": /detection/input/tension_measured: " +
-                     std::to_string(tension.columns) + " columns, the scenario has " +
-                     std::to_string(lines) + " mooring lines (one tension per line)");
+    if (tension.columns != static_cast<std::size_t>(lines)) {
+      throw InputError(path + ": /detection/input/tension_measured: " +
+                       std::to_string(tension.columns) + " columns, the scenario has " +
+                       std::to_string(lines) + " mooring lines (one tension per line)");
+    }
   }
   const bool tensions = tension.rows > 0;
   if (pose.rows != time.rows || thrust.rows != time.rows || pose.columns != 3 ||
