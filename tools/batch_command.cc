@@ -65,7 +65,7 @@ int Batch(const BatchCommandOptions& o) {
     const simulation::PreparedCampaign prepared =
         simulation::PrepareCampaign(o.campaign, {}, !o.quiet);
     const int threads = options.threads > 0 ? options.threads : simulation::DefaultThreads();
-    std::cout << simulation::DescribeCampaign(prepared, threads);
+    simulation::DescribeCampaign(prepared, threads, std::cout);
     return 0;
   }
   // Under mpirun: MPI from here to the end of the batch; rank 0 alone speaks.
@@ -132,7 +132,9 @@ Command AddBatchCommand(CLI::App& app, int argc, char** argv) {
                   "timeout");
   sub->add_option("--merge", o->merge, "join these shard directories into --out")->expected(1, -1);
   sub->add_flag("--keep-runs", o->keep_runs, "keep every run's run.h5 and summary.json");
-  sub->add_flag("--dry-run", o->dry_run, "list the runs and the estimated wall time, run nothing");
+  sub->add_flag(
+      "--dry-run", o->dry_run,
+      "list every run (each loaded and checked) and the estimated wall time; run nothing");
   sub->add_flag("--quiet", o->quiet, "no progress line on stderr");
   AddPluginOption(sub);
   return [o] { return Batch(*o); };

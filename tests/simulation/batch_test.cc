@@ -2,7 +2,8 @@
 // thread, a run repeated alone gives its row, a diverging run is a failed row while the
 // rest finish, an interrupted campaign resumes to the table of an uninterrupted one,
 // shards merge to the whole, a locked or foreign directory is refused, a run past its
-// wall-clock limit is a timeout row.
+// wall-clock limit is a timeout row, each listed value is checked before the first run and
+// a drawn one in its own run.
 #include "tools/simulation/batch.h"
 
 #include <gtest/gtest.h>
@@ -11,11 +12,13 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -161,7 +164,7 @@ TEST_F(BatchTest, ARunRepeatedAloneGivesItsRow) {
     SCOPED_TRACE(index);
     RunRequest request;
     request.scenario_path = p.campaign.scenario_path;
-    request.overrides = p.runs[static_cast<std::size_t>(index)].overrides;
+    request.overrides = scenarios::MakeCampaignRun(p.campaign, index).overrides;
     request.out = *root_ / ("alone" + std::to_string(index));
     const RunResult alone = RunScenario(request);
     ASSERT_EQ(alone.status, RunStatus::kOk) << alone.message;
@@ -281,6 +284,85 @@ TEST_F(BatchTest, BadInputNamesTheRun) {
       << r.message;
   EXPECT_NE(r.message.find("failure.line"), std::string::npos) << r.message;
   EXPECT_FALSE(fs::exists(dir / "out" / "rows"));  // nothing ran, nothing written
+  fs::remove_all(dir);
+}
+
+// Before the first run, each listed value is loaded and checked once, in the first run
+// that has it, not every run: a grid of 3 x 4 values with 5 seeds each (60 runs) loads 6,
+// and a choice between two modes drawn over 10 runs loads one run per mode.
+TEST(CampaignPreparation, ChecksEachListedValueInItsFirstRunNotEveryRun) {
+  const fs::path dir = FreshDirectory("batch_preparation");
+  const fs::path campaign =
+      WriteCampaign(dir, "scenario: " MOORSIM_SOURCE_DIR
+                         "/scenarios/library/thesis_no_failure_current.yaml\n"
+                         "seed: 3\n"
+                         "blocks:\n"
+                         "  - name: grid\n"
+                         "    set: {failure.mode: fairlead}\n"
+                         "    factors:\n"
+                         "      - {key: failure.line, values: [1, 2, 3]}\n"
+                         "      - {key: failure.time, values: [100, 200, 300, 400]}\n"
+                         "      - {key: environment.waves.hs, uniform: [1, 3]}\n"
+                         "    seeds: 5\n"
+                         "  - name: modes\n"
+                         "    set: {failure.line: 4, failure.time: 100}\n"
+                         "    factors: [{key: failure.mode, choice: [fairlead, anchor]}]\n"
+                         "    seeds: 10\n");
+  const PreparedCampaign p = PrepareCampaign(campaign.string());
+  // Grid points are numbered with the last listed factor fastest: line value v is point
+  // 4 v, time value v point v; each point's first run is 5 x its point.
+  const std::vector<std::int64_t> grid = {0, 20, 40, 5, 10, 15};
+  ASSERT_EQ(p.checked_runs.size(), grid.size() + 2);
+  EXPECT_TRUE(std::equal(grid.begin(), grid.end(), p.checked_runs.begin()));
+  std::set<std::string> modes;
+  for (std::size_t k = grid.size(); k < p.checked_runs.size(); ++k) {
+    const scenarios::CampaignRun run = scenarios::MakeCampaignRun(p.campaign, p.checked_runs[k]);
+    EXPECT_EQ(run.block, 1);
+    modes.insert(run.factors.at(0).second);
+  }
+  EXPECT_EQ(modes, (std::set<std::string>{"fairlead", "anchor"}));
+  EXPECT_EQ(p.EstimatedDuration(0), p.EstimatedDuration(59));
+  fs::remove_all(dir);
+}
+
+// A value drawn per run (uniform, normal, follows) is loaded by the thread that runs it: a
+// draw the scenario refuses is that run's "rejected" row naming the run, and the others run.
+TEST(CampaignPreparation, ADrawnValueTheScenarioRefusesIsThatRunsRejectedRow) {
+  const fs::path dir = FreshDirectory("batch_drawn_refused");
+  const fs::path campaign =
+      WriteCampaign(dir, "scenario: " MOORSIM_SOURCE_DIR
+                         "/scenarios/library/thesis_no_failure_current.yaml\n"
+                         "seed: 11\n"
+                         "set: {simulation.duration: 6, failure.line: 2}\n"
+                         "blocks:\n"
+                         "  - name: late\n"
+                         "    factors: [{key: failure.time, uniform: [2, 10]}]\n"
+                         "    seeds: 8\n");
+  const BatchResult r = RunBatch(Options(campaign, dir / "out", 2));
+  EXPECT_EQ(r.exit_code, 1) << r.message;
+  const std::map<std::int64_t, nlohmann::json> rows = RowsOf(dir / "out");
+  ASSERT_EQ(rows.size(), 8u);
+  int rejected = 0;
+  for (const auto& [index, row] : rows) {
+    const scenarios::CampaignRun run =
+        scenarios::MakeCampaignRun(scenarios::LoadCampaign(campaign.string()), index);
+    const double time = std::stod(run.factors.at(0).second);
+    if (time < 6.0) {
+      EXPECT_EQ(row.at("status"), "ok") << row.dump();
+      EXPECT_EQ(row.at("failure").at("time").get<double>(), time);
+      continue;
+    }
+    ++rejected;
+    EXPECT_EQ(row.at("status"), "rejected");
+    const std::string error = row.at("error").get<std::string>();
+    const std::string where =
+        campaign.string() + ":5:5: blocks.late: run " + std::to_string(index) + " (failure.time=";
+    EXPECT_EQ(error.rfind(where, 0), 0u) << error;
+    EXPECT_NE(error.find("failure.time"), std::string::npos) << error;
+    EXPECT_TRUE(row.at("failure").is_null());
+  }
+  EXPECT_GT(rejected, 0);  // with this campaign seed, some of the 8 draws are past 6 s
+  EXPECT_LT(rejected, 8);
   fs::remove_all(dir);
 }
 

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <ostream>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -636,79 +637,139 @@ nlohmann::json StatisticTrace::ToJson() const {
 // ---------------------------------------------------------------------------------------
 // Preparing and describing.
 
+RunTruth TruthOf(const scenarios::Scenario& s) {
+  if (!s.vessel) {
+    throw InputError(s.source_path +
+                     ": a campaign runs `moorsim run`, which needs a vessel section");
+  }
+  RunTruth t;
+  if (s.failure.line > 0) {
+    t.failure_line = s.failure.line;
+    t.failure_time = s.failure.time;
+    t.failure_mode = s.failure.mode;
+  }
+  t.duration = s.simulation.duration;
+  t.num_lines = static_cast<int>(s.mooring.lines.size());
+  for (const scenarios::DetectorEntry& d : s.detectors) {
+    t.detectors.emplace_back(d.label.empty() ? d.type : d.label, d.type);
+  }
+  return t;
+}
+
+std::string RunLocation(const scenarios::Campaign& c, const scenarios::CampaignRun& run,
+                        const std::string& what) {
+  const scenarios::CampaignBlock& block = c.blocks[static_cast<std::size_t>(run.block)];
+  std::string factors;
+  for (const auto& [key, value] : run.factors) {
+    factors.append(factors.empty() ? "" : ", ").append(key).append("=").append(value);
+  }
+  std::string where = c.source_path;
+  if (block.mark.line > 0) {
+    where.append(":").append(std::to_string(block.mark.line));
+    where.append(":").append(std::to_string(block.mark.column));
+  }
+  where.append(": blocks.").append(block.name).append(": run ").append(std::to_string(run.index));
+  if (!factors.empty()) where.append(" (").append(factors).append(")");
+  return where.append(": ").append(what);
+}
+
+double PreparedCampaign::EstimatedDuration(std::int64_t index) const {
+  for (std::size_t b = 0; b < campaign.blocks.size(); ++b) {
+    const scenarios::CampaignBlock& block = campaign.blocks[b];
+    const std::int64_t size = block.Points() * block.SeedsPerPoint();
+    if (index < size) return block_durations[b];
+    index -= size;
+  }
+  return 0.0;
+}
+
 namespace {
 
-// The files a campaign's runs read beside the campaign and its scenario: the base scenarios
-// (sorted) and the WAMIT stems (in the order of the runs that first read them).
-struct ReadFiles {
-  std::set<std::string> bases;
-  std::vector<std::string> stems;
-};
+// The overrides of a run but its seed (the last): runs that differ only in their seed share
+// one scenario load.
+std::string ConfigurationOf(const scenarios::CampaignRun& run) {
+  std::string configuration;
+  for (std::size_t k = 0; k + 1 < run.overrides.size(); ++k) {
+    configuration.append(run.overrides[k]).append("\n");
+  }
+  return configuration;
+}
 
-// Loads the scenario of `run` (with its overrides), builds its detectors once per detector
-// configuration (`checked`) and notes its plugins and the files it reads; the truth the
-// run's row records.
-PreparedCampaign::Truth LoadTruth(PreparedCampaign& p, const scenarios::CampaignRun& run,
-                                  std::set<std::string>& checked, ReadFiles& files) {
-  const scenarios::Campaign& c = p.campaign;
-  const scenarios::CampaignBlock& block = c.blocks[static_cast<std::size_t>(run.block)];
-  const auto where = [&](const std::string& what) {
-    std::string factors;
-    for (const auto& [key, value] : run.factors) {
-      factors += (factors.empty() ? "" : ", ") + key + "=" + value;
-    }
-    const scenarios::SourceMark m = block.mark;
-    return c.source_path +
-           (m.line > 0 ? ":" + std::to_string(m.line) + ":" + std::to_string(m.column)
-                       : std::string()) +
-           ": blocks." + block.name + ": run " + std::to_string(run.index) +
-           (factors.empty() ? "" : " (" + factors + ")") + ": " + what;
-  };
+scenarios::Scenario LoadRunScenario(const scenarios::Campaign& c,
+                                    const scenarios::CampaignRun& run) {
   try {
-    const scenarios::Scenario s = scenarios::LoadScenario(c.scenario_path, run.overrides);
-    if (!s.vessel)
-      throw InputError(s.source_path +
-                       ": a campaign runs `moorsim run`, which needs a vessel section");
-    std::string key;
-    for (const scenarios::DetectorEntry& d : s.detectors) {
-      key += d.type + "/" + d.label + "/";
-      for (const auto& [name, value] : d.parameters) key += name + "=" + Shortest(value) + ",";
-      key += ";";
-    }
-    for (const std::string& o : run.overrides) {
-      if (o.rfind("detection", 0) == 0 || o.rfind("detectors", 0) == 0 ||
-          o.rfind("mooring", 0) == 0 || o.rfind("vessel", 0) == 0) {
-        key += o + ";";
-      }
-    }
-    if (checked.insert(key).second) CheckDetectors(s);
-    for (const auto& [path, file] : s.origins) files.bases.insert(file);
-    if (std::find(files.stems.begin(), files.stems.end(), s.vessel->hydrodynamics) ==
-        files.stems.end()) {
-      files.stems.push_back(s.vessel->hydrodynamics);
-    }
-    for (const scenarios::DetectorEntry& d : s.detectors) {
-      if (!d.plugin.empty() && std::find(p.plugin_paths.begin(), p.plugin_paths.end(), d.plugin) ==
-                                   p.plugin_paths.end()) {
-        p.plugin_paths.push_back(d.plugin);
-      }
-    }
-    PreparedCampaign::Truth t;
-    if (s.failure.line > 0) {
-      t.failure_line = s.failure.line;
-      t.failure_time = s.failure.time;
-      t.failure_mode = s.failure.mode;
-    }
-    t.duration = s.simulation.duration;
-    t.num_lines = static_cast<int>(s.mooring.lines.size());
-    for (const scenarios::DetectorEntry& d : s.detectors) {
-      t.detectors.emplace_back(d.label.empty() ? d.type : d.label, d.type);
-    }
-    return t;
+    return scenarios::LoadScenario(c.scenario_path, run.overrides);
   } catch (const InputError& e) {
-    throw InputError(where(e.what()));
+    throw InputError(RunLocation(c, run, e.what()));
   }
 }
+
+// The runs checked before the first (PreparedCampaign), in order, each once. Choices are
+// found by drawing the block's runs in order until each value has appeared (or the block
+// ends), asking `stop` as it goes.
+std::vector<std::int64_t> RunsToCheck(const scenarios::Campaign& c,
+                                      const std::function<int()>& stop) {
+  using Kind = scenarios::CampaignFactor::Kind;
+  std::vector<std::int64_t> runs;
+  std::set<std::int64_t> seen;
+  const auto add = [&](std::int64_t index) {
+    if (seen.insert(index).second) runs.push_back(index);
+  };
+  std::int64_t start = 0;
+  for (const scenarios::CampaignBlock& b : c.blocks) {
+    const std::int64_t seeds = b.SeedsPerPoint();
+    const std::int64_t size = b.Points() * seeds;
+    add(start);
+    // A listed value's point: in a grid, the others at their first value (the last listed
+    // factor varies fastest); zipped, the value's position.
+    std::vector<std::int64_t> stride(b.factors.size(), 0);
+    std::int64_t next = 1;
+    for (std::size_t i = b.factors.size(); i-- > 0;) {
+      if (b.factors[i].kind != Kind::kValues) continue;
+      stride[i] = b.zip ? 1 : next;
+      if (!b.zip) next *= static_cast<std::int64_t>(b.factors[i].values.size());
+    }
+    for (std::size_t i = 0; i < b.factors.size(); ++i) {
+      const scenarios::CampaignFactor& f = b.factors[i];
+      if (f.kind == Kind::kValues) {
+        for (std::size_t v = 0; v < f.values.size(); ++v) {
+          add(start + static_cast<std::int64_t>(v) * stride[i] * seeds);
+        }
+      } else if (f.kind == Kind::kChoice) {
+        std::set<std::string> wanted(f.values.begin(), f.values.end());
+        for (std::int64_t k = start; k < start + size && !wanted.empty(); ++k) {
+          if (const int signal = stop ? stop() : 0; signal != 0) throw PreparationStopped(signal);
+          if (wanted.erase(scenarios::MakeCampaignRun(c, k).factors[i].second) > 0) add(k);
+        }
+      }
+    }
+    start += size;
+  }
+  return runs;
+}
+
+// A line on stderr while preparing takes more than a second: on a terminal rewritten in
+// place every 0.5 s, elsewhere a line every 10 s.
+class PreparationProgress {
+ public:
+  explicit PreparationProgress(bool enabled) : enabled_(enabled) {}
+  void Show(std::size_t done, std::size_t total, bool last) {
+    if (!enabled_) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (now - start_ < std::chrono::seconds(1)) return;
+    if (!last && now - shown_ < std::chrono::milliseconds(tty_ ? 500 : 10'000)) return;
+    shown_ = now;
+    std::fprintf(stderr, "%smoorsim batch: %s %zu/%zu configurations%s", tty_ ? "\r\033[K" : "",
+                 last ? "checked" : "checking", done, total, tty_ && !last ? "" : "\n");
+    std::fflush(stderr);
+  }
+
+ private:
+  bool enabled_;
+  bool tty_ = ::isatty(2) == 1;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point shown_{};
+};
 
 }  // namespace
 
@@ -717,43 +778,59 @@ PreparedCampaign PrepareCampaign(const std::string& campaign_path,
   PreparedCampaign p;
   p.campaign = scenarios::LoadCampaign(campaign_path);
   const scenarios::Campaign& c = p.campaign;
-  const std::int64_t n = c.NumRuns();
-  p.runs.reserve(static_cast<std::size_t>(n));
-  p.truth_of.reserve(static_cast<std::size_t>(n));
-  // Each configuration's truth, by its overrides but the seed (the last one).
-  std::unordered_map<std::string, std::uint32_t> loaded;
+  const std::vector<std::int64_t> to_check = RunsToCheck(c, stop_requested);
+  // Each configuration's duration, by its overrides but the seed.
+  std::unordered_map<std::string, double> durations;
   // Detector configurations already built once (by the scenario's detector sections).
-  std::set<std::string> checked;
-  ReadFiles files;
-  const auto start = std::chrono::steady_clock::now();
-  auto shown = start;
-  const bool tty = ::isatty(2) == 1;
-  for (std::int64_t i = 0; i < n; ++i) {
+  std::set<std::string> detector_configurations;
+  // The files the runs read beside the campaign and its scenario, each set sorted.
+  std::set<std::string> bases, stems;
+  PreparationProgress shown(progress);
+  for (std::size_t i = 0; i < to_check.size(); ++i) {
     if (const int signal = stop_requested ? stop_requested() : 0; signal != 0) {
       throw PreparationStopped(signal);
     }
-    if (progress && i % 1024 == 0) {
-      const auto now = std::chrono::steady_clock::now();
-      if (now - start > std::chrono::seconds(1) &&
-          now - shown > std::chrono::milliseconds(tty ? 500 : 10'000)) {
-        shown = now;
-        std::fprintf(stderr, "%smoorsim batch: preparing %lld/%lld runs (%zu configurations)%s",
-                     tty ? "\r\033[K" : "", static_cast<long long>(i), static_cast<long long>(n),
-                     p.truths.size(), tty ? "" : "\n");
-        std::fflush(stderr);
+    shown.Show(i, to_check.size(), false);
+    const scenarios::CampaignRun run = scenarios::MakeCampaignRun(c, to_check[i]);
+    std::string configuration = ConfigurationOf(run);
+    if (durations.count(configuration) > 0) continue;
+    const scenarios::Scenario s = LoadRunScenario(c, run);
+    try {
+      durations.emplace(std::move(configuration), TruthOf(s).duration);
+      std::string key;
+      for (const scenarios::DetectorEntry& d : s.detectors) {
+        key.append(d.type).append("/").append(d.label).append("/").append(d.plugin).append("/");
+        for (const auto& [name, value] : d.parameters) {
+          key.append(name).append("=").append(Shortest(value)).append(",");
+        }
+        key.append(";");
+      }
+      for (const std::string& o : run.overrides) {
+        if (o.rfind("detection", 0) == 0 || o.rfind("detectors", 0) == 0 ||
+            o.rfind("mooring", 0) == 0 || o.rfind("vessel", 0) == 0) {
+          key.append(o).append(";");
+        }
+      }
+      if (detector_configurations.insert(key).second) CheckDetectors(s);
+    } catch (const InputError& e) {
+      throw InputError(RunLocation(c, run, e.what()));
+    }
+    p.checked_runs.push_back(run.index);
+    for (const auto& [path, file] : s.origins) bases.insert(file);
+    stems.insert(s.vessel->hydrodynamics);
+    for (const scenarios::DetectorEntry& d : s.detectors) {
+      if (!d.plugin.empty() && std::find(p.plugin_paths.begin(), p.plugin_paths.end(), d.plugin) ==
+                                   p.plugin_paths.end()) {
+        p.plugin_paths.push_back(d.plugin);
       }
     }
-    scenarios::CampaignRun run = scenarios::MakeCampaignRun(c, i);
-    std::string configuration;
-    for (std::size_t k = 0; k + 1 < run.overrides.size(); ++k) {
-      configuration += run.overrides[k] + "\n";
-    }
-    const auto [known, first] =
-        loaded.try_emplace(std::move(configuration), static_cast<std::uint32_t>(p.truths.size()));
-    if (first) p.truths.push_back(LoadTruth(p, run, checked, files));
-    p.truth_of.push_back(known->second);
-    p.simulated_seconds += p.truths[known->second].duration;
-    p.runs.push_back(std::move(run));
+  }
+  shown.Show(p.checked_runs.size(), p.checked_runs.size(), true);
+  std::int64_t first = 0;
+  for (const scenarios::CampaignBlock& b : c.blocks) {
+    p.block_durations.push_back(
+        durations.at(ConfigurationOf(scenarios::MakeCampaignRun(c, first))));
+    first += b.Points() * b.SeedsPerPoint();
   }
   // The identity (CampaignIdentity, in its order). The kinds' names are part of the hash.
   CampaignIdentity& id = p.identity;
@@ -766,8 +843,8 @@ PreparedCampaign PrepareCampaign(const std::string& campaign_path,
   add(kRelease, release, Sha256Hex(release));
   add("campaign file", c.source_path, Sha256Hex(c.text));
   add("scenario", c.scenario_path, FileSha256(c.scenario_path));
-  for (const std::string& base : files.bases) add("base scenario", base, FileSha256(base));
-  for (const std::string& stem : files.stems) {
+  for (const std::string& base : bases) add("base scenario", base, FileSha256(base));
+  for (const std::string& stem : stems) {
     for (const char* extension : vessel::kWamitExtensions) {
       add("hydrodynamics file", stem + extension, FileSha256(stem + extension));
     }
@@ -783,57 +860,67 @@ PreparedCampaign PrepareCampaign(const std::string& campaign_path,
     plugins.push_back(library->path());
   }
   std::string all;
-  for (const CampaignIdentity::Input& input : id.inputs)
-    all += input.what + "\t" + input.sha256 + "\n";
-  id.sha256 = Sha256Hex(all);
-  if (progress && std::chrono::steady_clock::now() - start > std::chrono::seconds(1)) {
-    std::fprintf(stderr, "%smoorsim batch: prepared %lld runs (%zu configurations)\n",
-                 tty ? "\r\033[K" : "", static_cast<long long>(n), p.truths.size());
+  for (const CampaignIdentity::Input& input : id.inputs) {
+    all.append(input.what).append("\t").append(input.sha256).append("\n");
   }
+  id.sha256 = Sha256Hex(all);
   return p;
 }
 
-std::string DescribeCampaign(const PreparedCampaign& p, int threads) {
+void DescribeCampaign(const PreparedCampaign& p, int threads, std::ostream& out) {
   const scenarios::Campaign& c = p.campaign;
-  std::ostringstream out;
-  out << "campaign " << c.name << " (" << c.source_path << "): " << p.runs.size() << " runs of "
+  out << "campaign " << c.name << " (" << c.source_path << "): " << c.NumRuns() << " runs of "
       << c.scenario_path << ", campaign seed " << c.seed << "\n";
   for (const scenarios::CampaignBlock& b : c.blocks) {
     out << "  block " << b.name << ": " << b.Points() << " points x " << b.SeedsPerPoint()
         << " seeds = " << b.Points() * b.SeedsPerPoint() << " runs\n";
   }
   out << "run\tblock\tseed\tfailure\tduration\tfactors\n";
-  for (std::size_t i = 0; i < p.runs.size(); ++i) {
-    const scenarios::CampaignRun& r = p.runs[i];
-    const PreparedCampaign::Truth& t = p.TruthOf(static_cast<std::int64_t>(i));
+  std::string previous;  // the configuration `truth` is of
+  RunTruth truth;
+  double simulated_seconds = 0.0;
+  for (std::int64_t i = 0; i < c.NumRuns(); ++i) {
+    const scenarios::CampaignRun r = scenarios::MakeCampaignRun(c, i);
+    std::string configuration = ConfigurationOf(r);
+    if (i == 0 || configuration != previous) {
+      const scenarios::Scenario s = LoadRunScenario(c, r);
+      try {
+        truth = TruthOf(s);
+      } catch (const InputError& e) {
+        throw InputError(RunLocation(c, r, e.what()));
+      }
+      previous = std::move(configuration);
+    }
+    simulated_seconds += truth.duration;
     out << r.index << "\t" << c.blocks[static_cast<std::size_t>(r.block)].name << "\t" << r.seed
-        << "\t"
-        << (t.failure_line > 0 ? "line " + std::to_string(t.failure_line) + " at " +
-                                     Shortest(t.failure_time) + " s"
-                               : std::string("none"))
-        << "\t" << Shortest(t.duration) << " s\t";
+        << "\t";
+    if (truth.failure_line > 0) {
+      out << "line " << truth.failure_line << " at " << Shortest(truth.failure_time) << " s";
+    } else {
+      out << "none";
+    }
+    out << "\t" << Shortest(truth.duration) << " s\t";
     for (std::size_t k = 0; k < r.factors.size(); ++k) {
       out << (k ? " " : "") << r.factors[k].first << "=" << r.factors[k].second;
     }
     out << "\n";
   }
   const int n = std::max(1, threads);
-  const double wall = p.simulated_seconds / kEstimatedRealTimeFactor / n;
-  out << "total " << Shortest(p.simulated_seconds) << " simulated s; estimated wall time "
+  const double wall = simulated_seconds / kEstimatedRealTimeFactor / n;
+  out << "total " << Shortest(simulated_seconds) << " simulated s; estimated wall time "
       << Duration(wall) << " on " << n << " thread" << (n > 1 ? "s" : "") << " (at about "
       << Shortest(kEstimatedRealTimeFactor)
       << "x real time per thread, the thesis plant with its detectors)\n";
-  return out.str();
 }
 
 // ---------------------------------------------------------------------------------------
 // Rows and tables.
 
 nlohmann::json MakeRow(const PreparedCampaign& p, const scenarios::CampaignRun& run,
-                       const RunResult& result, const std::vector<StatisticTrace>& traces,
-                       const std::string& out_dir) {
+                       const RunTruth* truth, const RunResult& result,
+                       const std::vector<StatisticTrace>& traces, const std::string& out_dir) {
   const scenarios::Campaign& c = p.campaign;
-  const PreparedCampaign::Truth& t = p.TruthOf(run.index);
+  const RunTruth t = truth ? *truth : RunTruth{};
   nlohmann::json row;
   row["run"] = run.index;
   row["campaign"] = p.identity.sha256;
@@ -858,10 +945,12 @@ nlohmann::json MakeRow(const PreparedCampaign& p, const scenarios::CampaignRun& 
   row["lines"] = t.num_lines;
   row["duration"] = t.duration;
   row["simulated_time"] = result.simulated_time;
-  row["wall_time"] = result.summary.value("wall_time", 0.0);
+  // A rejected run has no summary.
   const nlohmann::json none = nlohmann::json::object();
+  const nlohmann::json& summary = result.summary.is_object() ? result.summary : none;
+  row["wall_time"] = summary.value("wall_time", 0.0);
   const nlohmann::json& summary_detectors =
-      result.summary.contains("detectors") ? result.summary.at("detectors") : none;
+      summary.contains("detectors") ? summary.at("detectors") : none;
   nlohmann::json detectors = nlohmann::json::object();
   for (std::size_t i = 0; i < t.detectors.size(); ++i) {
     const auto& [label, type] = t.detectors[i];
@@ -876,8 +965,8 @@ nlohmann::json MakeRow(const PreparedCampaign& p, const scenarios::CampaignRun& 
     detectors[label] = d;
   }
   row["detectors"] = detectors;
-  row["integrator"] = result.summary.value("integrator", nlohmann::json::object());
-  row["station_keeping"] = result.summary.value("station_keeping", nlohmann::json::object());
+  row["integrator"] = summary.value("integrator", nlohmann::json::object());
+  row["station_keeping"] = summary.value("station_keeping", nlohmann::json::object());
   return row;
 }
 
@@ -941,7 +1030,7 @@ class LocalRunSource final : public RunSource {
     const std::lock_guard<std::mutex> guard(mutex_);
     ++done_;
     if (!ok) ++failed_;
-    seconds_done_ += campaign_.TruthOf(run).duration;
+    seconds_done_ += campaign_.EstimatedDuration(run);
     progress_.Update(done_, failed_, seconds_done_, false);
   }
   std::int64_t done() const { return done_; }
@@ -972,8 +1061,20 @@ std::string RunWorkers(const PreparedCampaign& p, const BatchOptions& o,
       try {
         const std::optional<std::int64_t> next = source.Next();
         if (!next) break;
-        const scenarios::CampaignRun& run = p.runs[static_cast<std::size_t>(*next)];
-        const PreparedCampaign::Truth& truth = p.TruthOf(run.index);
+        const scenarios::CampaignRun run = scenarios::MakeCampaignRun(p.campaign, *next);
+        std::shared_ptr<const scenarios::Scenario> scenario;
+        RunTruth truth;
+        try {
+          scenario = std::make_shared<const scenarios::Scenario>(
+              scenarios::LoadScenario(p.campaign.scenario_path, run.overrides));
+          truth = TruthOf(*scenario);
+        } catch (const InputError& e) {  // a value drawn for this run alone
+          RunResult rejected;
+          rejected.message = RunLocation(p.campaign, run, e.what());
+          source.Deliver(run.index, MakeRow(p, run, nullptr, rejected, {}, "").dump() + "\n",
+                         false);
+          continue;
+        }
         std::vector<StatisticTrace> traces;
         for (const auto& detector : truth.detectors) {
           traces.emplace_back(detector.second, truth.failure_line > 0 ? truth.failure_time : kNaN);
@@ -981,6 +1082,7 @@ std::string RunWorkers(const PreparedCampaign& p, const BatchOptions& o,
         RunRequest request;
         request.scenario_path = p.campaign.scenario_path;
         request.overrides = run.overrides;
+        request.scenario = scenario;
         request.write_files = o.keep_runs;
         request.out = directory / "runs" / RunName(run.index);
         request.stop_requested = stop;
@@ -996,7 +1098,7 @@ std::string RunWorkers(const PreparedCampaign& p, const BatchOptions& o,
         };
         const RunResult r = RunScenario(request);
         if (r.status == RunStatus::kInterrupted) continue;  // no row: done again on resume
-        source.Deliver(run.index, MakeRow(p, run, r, traces, "").dump() + "\n",
+        source.Deliver(run.index, MakeRow(p, run, &truth, r, traces, "").dump() + "\n",
                        r.status == RunStatus::kOk);
       } catch (const std::exception& e) {
         const std::lock_guard<std::mutex> guard(mutex);
@@ -1076,13 +1178,12 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
       finished.insert(row.at("run").get<std::int64_t>());
     }
     std::vector<std::int64_t> pending;
-    for (const scenarios::CampaignRun& run : p.runs) {
-      if (run.index % o.shard_count != o.shard_index) continue;
+    for (std::int64_t run = o.shard_index; run < c.NumRuns(); run += o.shard_count) {
       ++result.runs;
-      if (finished.count(run.index)) {
+      if (finished.count(run)) {
         ++result.skipped;
       } else {
-        pending.push_back(run.index);
+        pending.push_back(run);
       }
     }
 
@@ -1091,7 +1192,7 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
     // the next index, the counters and the rows directory.
     decide(0);
     double pending_seconds = 0.0;
-    for (const std::int64_t k : pending) pending_seconds += p.TruthOf(k).duration;
+    for (const std::int64_t k : pending) pending_seconds += p.EstimatedDuration(k);
     Progress progress(o.progress, result.runs, result.skipped, pending_seconds);
     LocalRunSource local(p, std::move(pending), result.directory / "rows", progress);
     std::string service_error;

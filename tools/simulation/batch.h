@@ -27,6 +27,7 @@
 #include <exception>
 #include <filesystem>
 #include <functional>
+#include <iosfwd>
 #include <limits>
 #include <optional>
 #include <string>
@@ -114,31 +115,45 @@ struct CampaignIdentity {
   std::string sha256;         ///< of every input's `what` and `sha256`, in order
 };
 
-/// The campaign's runs and everything checked before the first run starts.
+/// What a run's row records of its scenario: the truth the detectors are scored against
+/// and the detectors it runs.
+struct RunTruth {
+  int failure_line = 0;
+  double failure_time = std::numeric_limits<double>::quiet_NaN();
+  std::string failure_mode;
+  double duration = 0.0;
+  int num_lines = 0;
+  std::vector<std::pair<std::string, std::string>> detectors;  ///< (label, type)
+};
+
+/// The truth of a scenario loaded for a campaign run. Throws InputError for a scenario
+/// without a vessel (a campaign runs `moorsim run`).
+RunTruth TruthOf(const scenarios::Scenario& scenario);
+
+/// The campaign and everything checked before its first run starts. The work does not grow
+/// with the number of runs: each run's scenario is loaded by the thread that runs it (a
+/// value the scenario refuses there is that run's "rejected" row, naming the run), and
+/// before the first run only these are loaded and checked:
+///   * the first run of each block;
+///   * for every value a factor lists (values, range, choice), the first run that has it
+///     (the run of its point for values and ranges; the first run that draws it for a
+///     choice);
+/// once per configuration (the overrides but the seed). They give the files the runs read
+/// (the identity), the plugins, and each block's duration for the time estimate. A
+/// listed value the scenario refuses is therefore refused before anything runs; a drawn
+/// one (uniform, normal, follows) in the run that draws it, and `--dry-run` loads every
+/// run as it lists it.
 struct PreparedCampaign {
   scenarios::Campaign campaign;
-  std::vector<scenarios::CampaignRun> runs;
-  /// Per run: the scenario's truth and detectors, as loaded.
-  struct Truth {
-    int failure_line = 0;
-    double failure_time = std::numeric_limits<double>::quiet_NaN();
-    std::string failure_mode;
-    double duration = 0.0;
-    int num_lines = 0;
-    std::vector<std::pair<std::string, std::string>> detectors;  ///< (label, type)
-  };
-  /// The truth of each distinct configuration, and which one each run has: runs that
-  /// differ only in their seed share one (a campaign of millions of seeds holds a few).
-  std::vector<Truth> truths;
-  std::vector<std::uint32_t> truth_of;
-  const Truth& TruthOf(std::int64_t run) const {
-    return truths[truth_of[static_cast<std::size_t>(run)]];
-  }
-  /// Simulated seconds in all runs (for the estimate).
-  double simulated_seconds = 0.0;
-  /// The plugin libraries the runs' scenarios name (`plugin:`), in order without repeats.
+  /// The runs checked before the first one (above), in the order they were loaded.
+  std::vector<std::int64_t> checked_runs;
+  /// Each block's first run's simulated duration [s]: the time estimate of its runs.
+  std::vector<double> block_durations;
+  /// The plugin libraries the checked runs' scenarios name (`plugin:`), without repeats.
   std::vector<std::string> plugin_paths;
   CampaignIdentity identity;
+  /// The estimated simulated duration of run `index` (its block's).
+  double EstimatedDuration(std::int64_t index) const;
 };
 
 /// Thrown by PrepareCampaign when asked to stop: nothing has run.
@@ -152,19 +167,24 @@ class PreparationStopped : public std::exception {
   int signal_;
 };
 
-/// Loads the campaign and the scenario of every distinct configuration (the runs' overrides
-/// but the seed: runs that differ only in their seed share one load), checks the detectors
-/// of each, and hashes its inputs (CampaignIdentity). Throws InputError naming the campaign
-/// file, the run and the scenario's message. `stop_requested` is asked as it goes
-/// (PreparationStopped); `progress` shows a line on stderr while it takes more than a second.
+/// Loads the campaign and the runs checked before the first (PreparedCampaign), checks the
+/// detectors of each, and hashes the inputs (CampaignIdentity). Throws InputError naming
+/// the campaign file, the run and the scenario's message (RunLocation). `stop_requested` is
+/// asked between loads (PreparationStopped); `progress` shows a line on stderr while it
+/// takes more than a second.
 PreparedCampaign PrepareCampaign(const std::string& campaign_path,
                                  const std::function<int()>& stop_requested = {},
                                  bool progress = false);
 
-/// The row of one finished run (DIR/rows/*.json).
+/// "<campaign file>:<line>:<col>: blocks.<name>: run <index> (<factors>): <what>".
+std::string RunLocation(const scenarios::Campaign& campaign, const scenarios::CampaignRun& run,
+                        const std::string& what);
+
+/// The row of one run (DIR/rows/*.json). `truth` is null for a run whose scenario was
+/// refused: its row has no failure, lines or detectors.
 nlohmann::json MakeRow(const PreparedCampaign& prepared, const scenarios::CampaignRun& run,
-                       const RunResult& result, const std::vector<StatisticTrace>& traces,
-                       const std::string& out_dir);
+                       const RunTruth* truth, const RunResult& result,
+                       const std::vector<StatisticTrace>& traces, const std::string& out_dir);
 
 struct BatchResult {
   int exit_code = 0;  ///< 0 all ok, 1 some run failed or timed out, 2 rejected, 128+signal
@@ -189,9 +209,12 @@ int DefaultThreads();
 /// Runs the campaign as described at the top of this file. Never throws.
 BatchResult RunBatch(const BatchOptions& options) noexcept;
 
-/// `moorsim batch --dry-run`: the runs (index, block, seed, factors) and the estimated wall
-/// time on `threads` threads, as text.
-std::string DescribeCampaign(const PreparedCampaign& prepared, int threads);
+/// `moorsim batch --dry-run`: every run (index, block, seed, failure, duration, factors),
+/// each loaded and checked as it is written to `out` (a run that shares the previous one's
+/// configuration but the seed shares its load), then the total and the estimated wall time
+/// on `threads` threads. Throws InputError (RunLocation) at the first run its scenario
+/// refuses, after the runs before it.
+void DescribeCampaign(const PreparedCampaign& prepared, int threads, std::ostream& out);
 
 /// Reads every row under each of `directories` (the same campaign, e.g. shards) and
 /// writes the campaign's tables into `out` (rows copied there too, with the rows `out`

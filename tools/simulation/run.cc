@@ -279,10 +279,13 @@ RunResult RunScenario(const RunRequest& request) noexcept {
   RunResult result;
   // 1. Everything about the input, before anything is simulated or written. The output
   // directory is this process's alone until it returns.
-  std::optional<scenarios::Scenario> loaded;
+  std::shared_ptr<const scenarios::Scenario> loaded = request.scenario;
   std::optional<output::DirectoryLock> lock;
   try {
-    loaded.emplace(scenarios::LoadScenario(request.scenario_path, request.overrides));
+    if (!loaded) {
+      loaded = std::make_shared<const scenarios::Scenario>(
+          scenarios::LoadScenario(request.scenario_path, request.overrides));
+    }
     CheckDetectors(*loaded);
     result.directory =
         request.out.empty() ? std::filesystem::path("out") / loaded->name : request.out;

@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -48,6 +49,9 @@ struct RunRequest {
   std::string scenario_path;
   /// key.path=value overrides, in order (the `--set` flags, then --seed/--duration).
   std::vector<std::string> overrides;
+  /// The scenario, already loaded from `scenario_path` with `overrides` (a campaign's
+  /// thread loads it first for the run's truth); null: RunScenario loads it.
+  std::shared_ptr<const scenarios::Scenario> scenario;
   /// Output directory; empty = out/<scenario name>.
   std::filesystem::path out;
   /// Progress lines on stderr (every ~2 s of wall time).
