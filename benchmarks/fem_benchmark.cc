@@ -51,7 +51,7 @@ moorsim::mooring_fem::MooringParameters SeedSpec(int lines, int segments) {
   moorsim::mooring_fem::MooringParameters spec =
       moorsim::scenarios::ToMooringParameters(SeedScenario().mooring);
   if (static_cast<int>(spec.lines.size()) > lines) spec.lines.resize(lines);
-  for (auto& line : spec.lines) line.segments = segments;
+  for (auto& line : spec.lines) line.sections.front().segments = segments;
   return spec;
 }
 
@@ -245,8 +245,9 @@ void BM_StaticSettle(benchmark::State& state) {
 void BM_Catenary(benchmark::State& state) {
   const MooringSystem mooring(SeedSpec(1, 50));
   const moorsim::mooring_fem::LineProperties& lp = mooring.line(0);
-  const moorsim::mooring_fem::CatenaryLineProperties props{lp.length, lp.weight_per_length,
-                                                           lp.axial_stiffness};
+  const moorsim::mooring_fem::SectionProperties& sp = lp.sections.front();
+  const moorsim::mooring_fem::CatenaryLineProperties props{sp.length, sp.weight_per_length,
+                                                           sp.axial_stiffness};
   const Vec3 anchor = lp.anchor;
   const Vec3 fairlead = FairleadPositions(mooring)[0];
   for (auto _ : state) {

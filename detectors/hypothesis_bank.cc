@@ -27,9 +27,26 @@ std::string LineKey(int line_id) { return "mooring.lines[" + std::to_string(line
   throw InputError(out.str());
 }
 
-bool Solvable(const mooring_fem::CatenaryLineProperties& line, double span, double height) {
+bool Homogeneous(const mooring_fem::CompositeLine& line) {
+  return line.sections.size() == 1 &&
+         std::all_of(line.joint_weights.begin(), line.joint_weights.end(),
+                     [](double w) { return w == 0.0; });
+}
+
+// H and V at the fairlead [N].
+std::pair<double, double> Tensions(const mooring_fem::CompositeLine& line, double span,
+                                   double height) {
+  if (Homogeneous(line)) {
+    const auto s = mooring_fem::SolveCatenary(line.sections.front(), span, height);
+    return {s.horizontal_tension, s.vertical_tension};
+  }
+  const auto s = mooring_fem::SolveCompositeCatenary(line, span, height);
+  return {s.horizontal_tension, s.vertical_tension};
+}
+
+bool Solvable(const mooring_fem::CompositeLine& line, double span, double height) {
   try {
-    mooring_fem::SolveCatenary(line, span, height);
+    Tensions(line, span, height);
     return true;
   } catch (const Error&) {
     return false;
@@ -42,7 +59,7 @@ bool Solvable(const mooring_fem::CatenaryLineProperties& line, double span, doub
 // ---------------------------------------------------------------------------------------
 // LineForceTable
 
-LineForceTable::LineForceTable(int line_id, const mooring_fem::CatenaryLineProperties& line,
+LineForceTable::LineForceTable(int line_id, const mooring_fem::CompositeLine& line,
                                const Vec3& anchor, const Vec3& fairlead_body, double fairlead_depth,
                                const LineForceTableOptions& options)
     : line_id_(line_id),
@@ -59,15 +76,21 @@ LineForceTable::LineForceTable(int line_id, const mooring_fem::CatenaryLinePrope
   if (!(std::isfinite(options.span_step) && options.span_step > 0.0)) {
     ThrowOption("hypothesis_bank.table.span_step", options.span_step, "must be finite and > 0");
   }
-  if (!(std::isfinite(line.length) && line.length > 0.0)) {
-    ThrowOption(key + ".length", line.length, "must be finite and > 0");
-  }
-  if (!(std::isfinite(line.weight_per_length) && line.weight_per_length > 0.0)) {
-    ThrowOption(key + ".weight_per_length", line.weight_per_length,
-                "must be finite and > 0 (a line heavier than the water it displaces)");
-  }
-  if (!(std::isfinite(line.axial_stiffness) && line.axial_stiffness > 0.0)) {
-    ThrowOption(key + ".axial_stiffness", line.axial_stiffness, "must be finite and > 0");
+  if (line.sections.empty()) throw InputError(key + ": the line has no section");
+  double length = 0.0;
+  for (const mooring_fem::CatenaryLineProperties& section : line.sections) {
+    if (!(std::isfinite(section.length) && section.length > 0.0)) {
+      ThrowOption(key + ".length", section.length, "must be finite and > 0");
+    }
+    if (!(std::isfinite(section.weight_per_length) &&
+          (section.weight_per_length > 0.0 || !internal::Homogeneous(line)))) {
+      ThrowOption(key + ".weight_per_length", section.weight_per_length,
+                  "must be finite and > 0 (a line heavier than the water it displaces)");
+    }
+    if (!(std::isfinite(section.axial_stiffness) && section.axial_stiffness > 0.0)) {
+      ThrowOption(key + ".axial_stiffness", section.axial_stiffness, "must be finite and > 0");
+    }
+    length += section.length;
   }
   if (!anchor.allFinite() || !fairlead_body.allFinite()) {
     throw InputError(key + ": anchor and fairlead must be finite");
@@ -85,7 +108,7 @@ LineForceTable::LineForceTable(int line_id, const mooring_fem::CatenaryLinePrope
   if (!internal::Solvable(line, nominal_span_, h)) {
     std::ostringstream out;
     out << key << ": the catenary has no solution at the neutral pose (span " << nominal_span_
-        << " m, height " << h << " m, length " << line.length << " m)";
+        << " m, height " << h << " m, length " << length << " m)";
     throw InputError(out.str());
   }
   span_min_ = std::max(nominal_span_ - reach, 2.0 * internal::kSlopeStep);
@@ -115,13 +138,13 @@ LineForceTable::LineForceTable(int line_id, const mooring_fem::CatenaryLinePrope
   try {
     for (int i = 0; i < nodes; ++i) {
       const double s = i == intervals ? span_max_ : span_min_ + i * step_;
-      const auto mid = mooring_fem::SolveCatenary(line, s, h);
-      const auto plus = mooring_fem::SolveCatenary(line, s + internal::kSlopeStep, h);
-      const auto minus = mooring_fem::SolveCatenary(line, s - internal::kSlopeStep, h);
-      h_[i] = mid.horizontal_tension;
-      v_[i] = mid.vertical_tension;
-      dh_[i] = (plus.horizontal_tension - minus.horizontal_tension) / (2.0 * internal::kSlopeStep);
-      dv_[i] = (plus.vertical_tension - minus.vertical_tension) / (2.0 * internal::kSlopeStep);
+      const auto mid = internal::Tensions(line, s, h);
+      const auto plus = internal::Tensions(line, s + internal::kSlopeStep, h);
+      const auto minus = internal::Tensions(line, s - internal::kSlopeStep, h);
+      h_[i] = mid.first;
+      v_[i] = mid.second;
+      dh_[i] = (plus.first - minus.first) / (2.0 * internal::kSlopeStep);
+      dv_[i] = (plus.second - minus.second) / (2.0 * internal::kSlopeStep);
     }
   } catch (const Error& error) {
     throw InputError(key + ": tabulating the catenary failed: " + error.what());
@@ -325,11 +348,9 @@ HypothesisBank::HypothesisBank(const mooring_fem::MooringParameters& spec,
   turret_ = options.turret;
   for (const mooring_fem::LineParameters& line_spec : spec.lines) {
     const mooring_fem::LineProperties p = mooring_fem::MakeLineProperties(spec, line_spec);
-    const mooring_fem::CatenaryLineProperties line{p.length, p.weight_per_length,
-                                                   p.axial_stiffness};
     tables_.push_back(std::make_shared<const LineForceTable>(
-        p.id, line, p.anchor, p.fairlead_body, p.fairlead_body.z() + options.moored_heave,
-        options.table));
+        p.id, mooring_fem::CatenaryLineOf(p), p.anchor, p.fairlead_body,
+        p.fairlead_body.z() + options.moored_heave, options.table));
   }
   const int n = num_lines();
   Add({});

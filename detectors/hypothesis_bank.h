@@ -24,6 +24,7 @@
 
 #include "core/types.h"
 #include "mooring_fem/catenary.h"
+#include "mooring_fem/composite_catenary.h"
 #include "mooring_fem/parameters.h"
 
 namespace moorsim::detectors {
@@ -41,7 +42,8 @@ struct LineForceTableOptions {
 
 /// Horizontal (and vertical) fairlead tension of one line as a function of the horizontal
 /// anchor-fairlead span, at a fixed fairlead depth: the elastic catenary of
-/// mooring_fem/catenary.h (frictionless seabed) tabulated once on a uniform span grid and
+/// mooring_fem/catenary.h or, for a composite line, mooring_fem/composite_catenary.h
+/// (frictionless seabed) tabulated once on a uniform span grid and
 /// interpolated by cubic Hermite polynomials. Node values come from SolveCatenary; node
 /// slopes dH/dspan from a central difference of SolveCatenary with a 1 cm step (relative
 /// error ~1e-7: the solver converges to ~1e-12 of the line length). The interpolant is
@@ -60,12 +62,14 @@ struct LineForceTableOptions {
 /// short of the largest span it can reach.
 class LineForceTable {
  public:
-  /// `line`: unstretched length, submerged weight and EA (e.g. from MakeLineProperties);
+  /// `line`: its sections' unstretched lengths, submerged weights and EA, and the weights
+  /// at their joints (mooring_fem::CatenaryLineOf); a line of one section and no joint
+  /// weight is solved by SolveCatenary, any other by SolveCompositeCatenary;
   /// `anchor`: Earth frame [m]; `fairlead_body`: body frame [m] (its z is not used);
   /// `fairlead_depth`: Earth z of the fairlead [m] (NED, body z plus the moored heave).
   /// `line_id` (1-based) names the line in messages. Throws moorsim::InputError on bad
   /// properties or options, or when the catenary has no solution at the neutral pose.
-  LineForceTable(int line_id, const mooring_fem::CatenaryLineProperties& line, const Vec3& anchor,
+  LineForceTable(int line_id, const mooring_fem::CompositeLine& line, const Vec3& anchor,
                  const Vec3& fairlead_body, double fairlead_depth,
                  const LineForceTableOptions& options = {});
 
@@ -77,7 +81,7 @@ class LineForceTable {
   bool Covers(double span) const { return span >= span_min_ && span <= span_max_; }
 
   int line_id() const { return line_id_; }
-  const mooring_fem::CatenaryLineProperties& line() const { return line_; }
+  const mooring_fem::CompositeLine& line() const { return line_; }
   const Vec3& anchor() const { return anchor_; }
   const Vec3& fairlead_body() const { return fairlead_body_; }
   double fairlead_depth() const { return fairlead_depth_; }
@@ -96,7 +100,7 @@ class LineForceTable {
                      double span, double* d_dspan) const;
 
   int line_id_ = 0;
-  mooring_fem::CatenaryLineProperties line_;
+  mooring_fem::CompositeLine line_;
   Vec3 anchor_ = Vec3::Zero();
   Vec3 fairlead_body_ = Vec3::Zero();
   double fairlead_depth_ = 0.0;

@@ -13,6 +13,7 @@
 #include "core/angles.h"
 #include "core/error.h"
 #include "mooring_fem/catenary.h"
+#include "mooring_fem/composite_catenary.h"
 
 namespace moorsim::mooring_fem {
 
@@ -80,42 +81,198 @@ HalfSegmentDrag Drag(const Vec3& u, const Vec3& t, double L, double c_n, double 
 
 }  // namespace
 
+LineParameters LineParameters::Uniform(int id, const std::string& type, double length, int segments,
+                                       const Vec3& anchor, const Vec3& fairlead_body) {
+  LineParameters line;
+  line.id = id;
+  line.anchor = anchor;
+  line.fairlead_body = fairlead_body;
+  line.sections = {{type, length, segments}};
+  return line;
+}
+
+double LineParameters::Length() const {
+  double total = 0.0;
+  for (const LineSection& section : sections) total += section.length;
+  return total;
+}
+
+int LineParameters::Segments() const {
+  int total = 0;
+  for (const LineSection& section : sections) total += section.segments;
+  return total;
+}
+
 LineProperties MakeLineProperties(const MooringParameters& spec, const LineParameters& line) {
-  const auto type = std::find_if(spec.line_types.begin(), spec.line_types.end(),
-                                 [&](const LineType& t) { return t.name == line.type; });
-  if (type == spec.line_types.end()) {
-    throw InputError("mooring.lines[" + std::to_string(line.id) + "].type: unknown line type '" +
-                     line.type + "'");
+  const std::string where = "mooring.lines[" + std::to_string(line.id) + "]";
+  if (line.sections.empty()) throw InputError(where + ": a line needs at least one section");
+  if (!line.joints.empty() && line.joints.size() + 1 != line.sections.size()) {
+    throw InputError(where + ": " + std::to_string(line.joints.size()) + " joints for " +
+                     std::to_string(line.sections.size()) + " sections (one between each two)");
   }
   const double rho = spec.water.density;
-  const double area = kPi * type->diameter * type->diameter / 4.0;
   LineProperties p;
   p.id = line.id;
-  p.segments = line.segments;
-  p.length = line.length;
-  p.segment_length = line.length / line.segments;
-  p.diameter = type->diameter;
-  p.mass_per_length = type->mass_per_length;
-  p.weight_per_length = (type->mass_per_length - rho * area) * spec.water.gravity;
-  p.axial_stiffness = type->axial_stiffness;
-  if (type->axial_damping) {
-    p.axial_damping = *type->axial_damping;
-  } else {
-    // Damping ratio of the highest axial mode of the discretised line (neighbouring nodes
-    // moving in opposition, w_max = 2 (n / L) sqrt(EA / m)): c = zeta l0 sqrt(EA m).
-    const double zeta = type->axial_damping_ratio.value_or(0.0);
-    p.axial_damping =
-        zeta * p.segment_length * std::sqrt(type->axial_stiffness * type->mass_per_length);
-  }
-  p.added_mass_per_length = type->added_mass_normal * rho * area;
-  p.drag_normal = 0.5 * rho * type->drag_normal * type->diameter;
-  p.drag_tangential = 0.5 * rho * type->drag_tangential * type->diameter;
-  p.friction_axial = type->friction_axial;
-  p.friction_lateral = type->friction_lateral;
   p.anchor = line.anchor;
   p.fairlead_body = line.fairlead_body;
+  for (std::size_t k = 0; k < line.sections.size(); ++k) {
+    const LineSection& section = line.sections[k];
+    const auto type = std::find_if(spec.line_types.begin(), spec.line_types.end(),
+                                   [&](const LineType& t) { return t.name == section.type; });
+    const std::string key =
+        line.sections.size() == 1 ? where : where + ".sections[" + std::to_string(k) + "]";
+    if (type == spec.line_types.end()) {
+      throw InputError(key + ".type: unknown line type '" + section.type + "'");
+    }
+    if (section.segments < 1) throw InputError(key + ".segments: must be >= 1");
+    const double area = kPi * type->diameter * type->diameter / 4.0;
+    SectionProperties sp;
+    sp.type = section.type;
+    sp.segments = section.segments;
+    sp.length = section.length;
+    sp.segment_length = section.length / section.segments;
+    sp.diameter = type->diameter;
+    sp.mass_per_length = type->mass_per_length;
+    sp.weight_per_length = (type->mass_per_length - rho * area) * spec.water.gravity;
+    sp.axial_stiffness = type->axial_stiffness;
+    if (type->axial_damping) {
+      sp.axial_damping = *type->axial_damping;
+    } else {
+      // Damping ratio of the highest axial mode of the discretised line (neighbouring nodes
+      // moving in opposition, w_max = 2 (n / L) sqrt(EA / m)): c = zeta l0 sqrt(EA m).
+      const double zeta = type->axial_damping_ratio.value_or(0.0);
+      sp.axial_damping =
+          zeta * sp.segment_length * std::sqrt(type->axial_stiffness * type->mass_per_length);
+    }
+    sp.added_mass_per_length = type->added_mass_normal * rho * area;
+    sp.drag_normal = 0.5 * rho * type->drag_normal * type->diameter;
+    sp.drag_tangential = 0.5 * rho * type->drag_tangential * type->diameter;
+    sp.friction_axial = type->friction_axial;
+    sp.friction_lateral = type->friction_lateral;
+    p.sections.push_back(sp);
+    p.length += section.length;
+    p.segments += section.segments;
+    p.section_of.insert(p.section_of.end(), section.segments, static_cast<int>(k));
+  }
+  p.body_at.assign(p.segments + 1, std::nullopt);
+  int node = 0;
+  for (std::size_t k = 0; k < line.joints.size(); ++k) {
+    node += line.sections[k].segments;
+    const PointBody& body = line.joints[k];
+    if (body.mass == 0.0 && body.volume == 0.0 && body.drag_area == 0.0) continue;
+    PointBodyProperties b;
+    b.mass = body.mass;
+    b.weight = (body.mass - rho * body.volume) * spec.water.gravity;
+    b.added_mass = body.added_mass * rho * body.volume;
+    b.drag = 0.5 * rho * body.drag_area;
+    p.body_at[node] = b;
+  }
   return p;
 }
+
+CompositeLine CatenaryLineOf(const LineProperties& line) {
+  CompositeLine out;
+  for (const SectionProperties& sp : line.sections) {
+    out.sections.push_back({sp.length, sp.weight_per_length, sp.axial_stiffness});
+  }
+  int node = 0;
+  for (std::size_t k = 0; k + 1 < line.sections.size(); ++k) {
+    node += line.sections[k].segments;
+    out.joint_weights.push_back(line.body_at[node] ? line.body_at[node]->weight : 0.0);
+  }
+  return out;
+}
+
+std::vector<double> NodeArcLengths(const LineProperties& line) {
+  std::vector<double> arc(1, 0.0);
+  double start = 0.0;
+  for (const SectionProperties& sp : line.sections) {
+    for (int k = 1; k <= sp.segments; ++k) {
+      arc.push_back(k == sp.segments ? start + sp.length : start + sp.length * k / sp.segments);
+    }
+    start += sp.length;
+  }
+  return arc;
+}
+
+double CatenaryFairleadTension(const LineProperties& line, const Vec3& fairlead) {
+  if (line.homogeneous()) {
+    const SectionProperties& sp = line.sections.front();
+    const CatenaryLineProperties props{sp.length, sp.weight_per_length, sp.axial_stiffness};
+    return SolveLineCatenary(props, line.anchor, fairlead).solution.fairlead_tension;
+  }
+  const Vec3 chord = fairlead - line.anchor;
+  return SolveCompositeCatenary(CatenaryLineOf(line), std::hypot(chord.x(), chord.y()),
+                                line.anchor.z() - fairlead.z())
+      .fairlead_tension;
+}
+
+int LineParameters::NodeNearest(double arc_length) const {
+  int first = 0;
+  double start = 0.0;
+  for (std::size_t k = 0; k < sections.size(); ++k) {
+    const LineSection& section = sections[k];
+    if (arc_length <= start + section.length || k + 1 == sections.size()) {
+      return first + static_cast<int>(
+                         std::lround((arc_length - start) / section.length * section.segments));
+    }
+    first += section.segments;
+    start += section.length;
+  }
+  return first;
+}
+
+namespace {
+
+// What a node carries of its line: half of each adjacent segment (`below`, `above`: the
+// sections of the segments under and over it, null at a free end) and the body there.
+struct NodeShare {
+  double length = 0.0;  // unstretched line length the node stands for [m]
+  double mass = 0.0;    // line and body [kg] (the body's added mass too: it is isotropic)
+  double weight = 0.0;  // line and body, in water [N]
+  double line_weight_per_length = 0.0;  // of the line alone [N/m]
+  double contact = 0.0;                 // seabed contact area of the line, diameter x length [m^2]
+  double friction_axial = 0.0, friction_lateral = 0.0;
+  const PointBodyProperties* body = nullptr;
+};
+
+NodeShare ShareOf(const LineProperties& lp, int node, bool has_below, bool has_above) {
+  const SectionProperties* below = has_below ? &lp.SectionOf(node - 1) : nullptr;
+  const SectionProperties* above = has_above ? &lp.SectionOf(node) : nullptr;
+  NodeShare n;
+  if (below == nullptr || above == nullptr || below == above) {
+    const SectionProperties& sp = above != nullptr ? *above : *below;
+    n.length = 0.5 * sp.segment_length * ((has_below ? 1 : 0) + (has_above ? 1 : 0));
+    n.mass = sp.mass_per_length * n.length;
+    n.weight = sp.weight_per_length * n.length;
+    n.line_weight_per_length = sp.weight_per_length;
+    n.contact = sp.diameter * n.length;
+    n.friction_axial = sp.friction_axial;
+    n.friction_lateral = sp.friction_lateral;
+  } else {  // a joint: each section's half segment, friction weighted by contact area
+    const double h_below = 0.5 * below->segment_length;
+    const double h_above = 0.5 * above->segment_length;
+    const double c_below = below->diameter * h_below;
+    const double c_above = above->diameter * h_above;
+    n.length = h_below + h_above;
+    n.mass = below->mass_per_length * h_below + above->mass_per_length * h_above;
+    n.weight = below->weight_per_length * h_below + above->weight_per_length * h_above;
+    n.line_weight_per_length = n.weight / n.length;
+    n.contact = c_below + c_above;
+    n.friction_axial =
+        (c_below * below->friction_axial + c_above * above->friction_axial) / n.contact;
+    n.friction_lateral =
+        (c_below * below->friction_lateral + c_above * above->friction_lateral) / n.contact;
+  }
+  if (const auto& body = lp.body_at[node]) {
+    n.body = &*body;
+    n.mass += body->mass + body->added_mass;
+    n.weight += body->weight;
+  }
+  return n;
+}
+
+}  // namespace
 
 MooringSystem::MooringSystem(const MooringParameters& spec) : current_(spec.current) {
   seabed_.depth = spec.water.depth;
@@ -128,10 +285,10 @@ MooringSystem::MooringSystem(const MooringParameters& spec) : current_(spec.curr
     lines_.push_back(MakeLineProperties(spec, line));
     Chain c;
     c.line = static_cast<int>(lines_.size()) - 1;
-    c.segments = line.segments;
+    c.segments = lines_.back().segments;
     c.anchor = line.anchor;
     chains_.push_back(c);
-    max_segments = std::max(max_segments, line.segments);
+    max_segments = std::max(max_segments, c.segments);
   }
   pos_.resize(max_segments + 1);
   vel_.resize(max_segments + 1);
@@ -208,9 +365,10 @@ void MooringSystem::GatherChain(const Chain& c, const double* x,
 
 void MooringSystem::ComputeSegments(const Chain& c) {
   const LineProperties& lp = lines_[c.line];
-  const double l0 = lp.segment_length;
-  const double inverse_l0 = 1.0 / l0;  // multiplications, not divisions, in the loop
   for (int s = 0; s < c.segments; ++s) {
+    const SectionProperties& sp = lp.SectionOf(c.first_node + s);
+    const double l0 = sp.segment_length;
+    const double inverse_l0 = 1.0 / l0;  // multiplications, not divisions, below
     const Vec3 l = pos_[s + 1] - pos_[s];
     const double L = l.norm();
     if (!(L > 1e-9 * l0)) {
@@ -223,7 +381,7 @@ void MooringSystem::ComputeSegments(const Chain& c) {
     g.L = L;
     g.rate = g.t.dot(vel_[s + 1] - vel_[s]) * inverse_l0;
     const double strain = L * inverse_l0 - 1.0;
-    g.T = strain > 0.0 ? lp.axial_stiffness * strain + lp.axial_damping * g.rate : 0.0;
+    g.T = strain > 0.0 ? sp.axial_stiffness * strain + sp.axial_damping * g.rate : 0.0;
   }
 }
 
@@ -262,44 +420,46 @@ Vec3 NodeMass::Solve(const Vec3& F) const {
 
 void MooringSystem::NodeForce(const Chain& c, int k, Vec3* F_out, NodeMass* M_out) const {
   const LineProperties& lp = lines_[c.line];
-  const double l0 = lp.segment_length;
   const bool has_below = k > 0;
   const bool has_above = k < c.segments;
-  const double share = 0.5 * l0 * ((has_below ? 1 : 0) + (has_above ? 1 : 0));
+  const NodeShare share = ShareOf(lp, c.first_node + k, has_below, has_above);
   const Vec3& r = pos_[k];
   const Vec3& v = vel_[k];
   const Vec3 u = v - current_.VelocityAt(r.z());
 
   NodeMass M;
-  M.m = lp.mass_per_length * share;
-  Vec3 F = (lp.weight_per_length * share) * kDown;
-  auto add_segment = [&](const SegmentState& g, double sign) {
+  M.m = share.mass;
+  Vec3 F = share.weight * kDown;
+  auto add_segment = [&](int s, double sign) {
+    const SegmentState& g = seg_[s];
+    const SectionProperties& sp = lp.SectionOf(c.first_node + s);
     F += sign * g.T * g.t;
-    M.Add(0.5 * lp.added_mass_per_length * g.L, g.t);
-    F += DragForce(u, g.t, g.L, lp.drag_normal, lp.drag_tangential);
+    M.Add(0.5 * sp.added_mass_per_length * g.L, g.t);
+    F += DragForce(u, g.t, g.L, sp.drag_normal, sp.drag_tangential);
   };
-  if (has_above) add_segment(seg_[k], +1.0);
-  if (has_below) add_segment(seg_[k - 1], -1.0);
+  if (has_above) add_segment(k, +1.0);
+  if (has_below) add_segment(k - 1, -1.0);
+  if (share.body != nullptr) F -= (share.body->drag * u.norm()) * u;
 
   const double delta = r.z() - seabed_.depth;
   if (delta > 0.0) {
     double q, dq, s, ds;
     seabed_.Penetration(delta, &q, &dq);
     seabed_.DamperWeight(delta, &s, &ds);
-    const double contact = lp.diameter * share;
+    const double contact = share.contact;
     const double normal = seabed_.stiffness * contact * q;
     F.z() -= normal + seabed_.damping * contact * v.z() * s;
-    if (normal > 0.0 && (lp.friction_axial > 0.0 || lp.friction_lateral > 0.0)) {
+    if (normal > 0.0 && (share.friction_axial > 0.0 || share.friction_lateral > 0.0)) {
       const Vec3 q_vec = pos_[has_above ? k + 1 : k] - pos_[has_below ? k - 1 : k];
       const Vec3 q_h(q_vec.x(), q_vec.y(), 0.0);
       const double qn = q_h.norm();
       const Vec3 v_h(v.x(), v.y(), 0.0);
       const double rho =
           std::sqrt(v_h.squaredNorm() + seabed_.friction_velocity * seabed_.friction_velocity);
-      Vec3 resist = lp.friction_lateral * v_h;
+      Vec3 resist = share.friction_lateral * v_h;
       if (qn > 1e-12) {
         const Vec3 th = q_h / qn;
-        resist += (lp.friction_axial - lp.friction_lateral) * th.dot(v_h) * th;
+        resist += (share.friction_axial - share.friction_lateral) * th.dot(v_h) * th;
       }
       F -= (normal / rho) * resist;
     }
@@ -310,9 +470,6 @@ void MooringSystem::NodeForce(const Chain& c, int k, Vec3* F_out, NodeMass* M_ou
 
 void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, NodeJacobian* J) const {
   const LineProperties& lp = lines_[c.line];
-  const double l0 = lp.segment_length;
-  const double EA = lp.axial_stiffness;
-  const double cd = lp.axial_damping;
   const Mat3 I = Mat3::Identity();
   for (int j = 0; j < 3; ++j) {
     J->dF_dr[j].setZero();
@@ -321,7 +478,7 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, Node
   }
   const bool has_below = k > 0;
   const bool has_above = k < c.segments;
-  const double share = 0.5 * l0 * ((has_below ? 1 : 0) + (has_above ? 1 : 0));
+  const NodeShare share = ShareOf(lp, c.first_node + k, has_below, has_above);
   const Vec3& r = pos_[k];
   const Vec3& v = vel_[k];
   const Vec3 u = v - current_.VelocityAt(r.z());
@@ -332,6 +489,10 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, Node
   // sigma = dl/dr_k for the segment (l = r_upper - r_lower): -1 above, +1 below.
   auto add_segment = [&](int s, int other, double sigma) {
     const SegmentState& g = seg_[s];
+    const SectionProperties& sp = lp.SectionOf(c.first_node + s);
+    const double l0 = sp.segment_length;
+    const double EA = sp.axial_stiffness;
+    const double cd = sp.axial_damping;
     const Vec3& t = g.t;
     const Mat3 Pn = I - t * t.transpose();
     // Elastic + structural damping: force on the lower node is T t, on the upper -T t.
@@ -346,31 +507,39 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, Node
       J->dF_dv[kSelf] -= D;
       J->dF_dv[other] += D;
     }
-    const HalfSegmentDrag d = Drag(u, t, g.L, lp.drag_normal, lp.drag_tangential, true);
+    const HalfSegmentDrag d = Drag(u, t, g.L, sp.drag_normal, sp.drag_tangential, true);
     J->dF_dv[kSelf] += d.d_du;
     J->dF_dr[kSelf] += d.d_du * du_dr + sigma * d.d_dl;
     J->dF_dr[other] -= sigma * d.d_dl;
     // Added mass h = C1/2 L Pn a: dh/dl = C1/2 [a t^T - t a^T - (t.a) Pn].
     const Mat3 H =
-        0.5 * lp.added_mass_per_length * (a * t.transpose() - t * a.transpose() - t.dot(a) * Pn);
+        0.5 * sp.added_mass_per_length * (a * t.transpose() - t * a.transpose() - t.dot(a) * Pn);
     J->dMa_dr[kSelf] += sigma * H;
     J->dMa_dr[other] -= sigma * H;
   };
   if (has_above) add_segment(k, kAbove, -1.0);
   if (has_below) add_segment(k - 1, kBelow, +1.0);
+  if (share.body != nullptr) {  // drag -b |u| u of the body: d/du = -b (|u| I + u u^T / |u|)
+    const double speed = u.norm();
+    Mat3 d_du = speed * I;
+    if (speed > 1e-300) d_du += u * u.transpose() / speed;
+    d_du *= -share.body->drag;
+    J->dF_dv[kSelf] += d_du;
+    J->dF_dr[kSelf] += d_du * du_dr;
+  }
 
   const double delta = r.z() - seabed_.depth;
   if (delta > 0.0) {
     double q, dq, s, ds;
     seabed_.Penetration(delta, &q, &dq);
     seabed_.DamperWeight(delta, &s, &ds);
-    const double contact = lp.diameter * share;
+    const double contact = share.contact;
     const double k_n = seabed_.stiffness * contact;
     const double c_n = seabed_.damping * contact;
     const double normal = k_n * q;
     J->dF_dr[kSelf](2, 2) -= k_n * dq + c_n * v.z() * ds;
     J->dF_dv[kSelf](2, 2) -= c_n * s;
-    if (normal > 0.0 && (lp.friction_axial > 0.0 || lp.friction_lateral > 0.0)) {
+    if (normal > 0.0 && (share.friction_axial > 0.0 || share.friction_lateral > 0.0)) {
       const int next = has_above ? kAbove : kSelf;
       const int prev = has_below ? kBelow : kSelf;
       const Vec3 q_vec = pos_[has_above ? k + 1 : k] - pos_[has_below ? k - 1 : k];
@@ -382,18 +551,18 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, Node
       Mat3 Ph = Mat3::Zero();
       Ph(0, 0) = Ph(1, 1) = 1.0;
       // f = -(N / rho) A v_h with A = mu_l Ph + (mu_a - mu_l) th th^T.
-      Mat3 A = lp.friction_lateral * Ph;
+      Mat3 A = share.friction_lateral * Ph;
       Vec3 th = Vec3::Zero();
       if (qn > 1e-12) {
         th = q_h / qn;
-        A += (lp.friction_axial - lp.friction_lateral) * th * th.transpose();
+        A += (share.friction_axial - share.friction_lateral) * th * th.transpose();
       }
       const Vec3 Av = A * v_h;
       J->dF_dv[kSelf] +=
           -(normal / rho) * A * Ph + (normal / (rho * rho * rho)) * Av * v_h.transpose();
       J->dF_dr[kSelf].col(2) += -(k_n * dq / rho) * Av;
       if (qn > 1e-12) {
-        const Mat3 dF_dq = -(normal / rho) * (lp.friction_axial - lp.friction_lateral) *
+        const Mat3 dF_dq = -(normal / rho) * (share.friction_axial - share.friction_lateral) *
                            (th * v_h.transpose() + th.dot(v_h) * I) * (Ph - th * th.transpose()) /
                            qn;
         J->dF_dr[next] += dF_dq;
@@ -550,15 +719,19 @@ std::vector<LineLoad> MooringSystem::LineLoads(const double* x,
       if (delta <= 0.0) continue;
       double q, dq;
       seabed_.Penetration(delta, &q, &dq);
-      const int n_seg = (k > 0 ? 1 : 0) + (k < c.segments ? 1 : 0);
-      const double share = 0.5 * lp.segment_length * n_seg;
-      const double normal = seabed_.stiffness * lp.diameter * share * q;
-      loads[c.line].grounded_length += normal / lp.weight_per_length;
-      if (k == 1)
-        grounded_fraction_of_node_1 = std::min(1.0, normal / (lp.weight_per_length * share));
+      const NodeShare share = ShareOf(lp, c.first_node + k, k > 0, k < c.segments);
+      // A buoyant stretch is not held up by the seabed.
+      if (!(share.line_weight_per_length > 0.0)) continue;
+      const double normal = seabed_.stiffness * share.contact * q;
+      loads[c.line].grounded_length += normal / share.line_weight_per_length;
+      if (k == 1) {
+        grounded_fraction_of_node_1 =
+            std::min(1.0, normal / (share.line_weight_per_length * share.length));
+      }
     }
     if (c.lower == EndCondition::kAnchored && c.anchor.z() >= seabed_.depth - 1e-6) {
-      loads[c.line].grounded_length += 0.5 * lp.segment_length * grounded_fraction_of_node_1;
+      loads[c.line].grounded_length +=
+          0.5 * lp.SectionOf(c.first_node).segment_length * grounded_fraction_of_node_1;
     }
   }
   return loads;
@@ -572,19 +745,19 @@ double MooringSystem::MechanicalEnergy(const double* x,
     GatherChain(c, x, fairleads);
     ComputeSegments(c);
     for (int s = 0; s < c.segments; ++s) {
-      const double strain = seg_[s].L / lp.segment_length - 1.0;
-      if (strain > 0.0) energy += 0.5 * lp.axial_stiffness * strain * strain * lp.segment_length;
+      const SectionProperties& sp = lp.SectionOf(c.first_node + s);
+      const double strain = seg_[s].L / sp.segment_length - 1.0;
+      if (strain > 0.0) energy += 0.5 * sp.axial_stiffness * strain * strain * sp.segment_length;
     }
     for (int k = c.first_state_node(); k <= c.last_state_node(); ++k) {
       Vec3 F;
       NodeMass mass;
       NodeForce(c, k, &F, &mass);
       const Mat3 M = mass.Matrix();
-      const int n_seg = (k > 0 ? 1 : 0) + (k < c.segments ? 1 : 0);
-      const double share = 0.5 * lp.segment_length * n_seg;
+      const NodeShare share = ShareOf(lp, c.first_node + k, k > 0, k < c.segments);
       energy += 0.5 * vel_[k].dot(M * vel_[k]);
-      energy -= lp.weight_per_length * share * pos_[k].z();
-      energy += seabed_.stiffness * lp.diameter * share *
+      energy -= share.weight * pos_[k].z();
+      energy += seabed_.stiffness * share.contact *
                 seabed_.PenetrationEnergy(pos_[k].z() - seabed_.depth);
     }
   }
@@ -610,14 +783,19 @@ void MooringSystem::CatenaryState(std::span<const Vec3> fairleads, double* x) co
       throw Error("catenary initial state needs intact lines");
     }
     const LineProperties& lp = lines_[c.line];
-    const CatenaryLineProperties props{lp.length, lp.weight_per_length, lp.axial_stiffness};
-    LineCatenary cat;
+    Eigen::Matrix3Xd nodes;
     try {
-      cat = SolveLineCatenary(props, lp.anchor, fairleads[c.line]);
+      if (lp.homogeneous()) {
+        const SectionProperties& sp = lp.sections.front();
+        const CatenaryLineProperties props{sp.length, sp.weight_per_length, sp.axial_stiffness};
+        nodes = SolveLineCatenary(props, lp.anchor, fairleads[c.line]).NodePositions(c.segments);
+      } else {
+        nodes = CompositeCatenaryPoints(CatenaryLineOf(lp), lp.anchor, fairleads[c.line],
+                                        NodeArcLengths(lp));
+      }
     } catch (const Error& e) {
       throw Error("line " + std::to_string(lp.id) + ": " + e.what());
     }
-    const Eigen::Matrix3Xd nodes = cat.NodePositions(c.segments);
     for (int k = 1; k < c.segments; ++k) {
       double* p = x + c.state_offset + 6 * (k - 1);
       for (int m = 0; m < 3; ++m) {
@@ -644,11 +822,16 @@ double MooringSystem::SettleStatic(std::span<const Vec3> fairlead_positions, dou
     for (int i = 0; i < S; ++i) std::fill(xc + 6 * i + 3, xc + 6 * i + 6, 0.0);
     // Round-off floor of the node force balance is ~1e-15 EA; ask for far less than any
     // physical effect (1e-11 EA = 2 mN for the seed chain) but well above that floor.
-    const double tolerance = 1e-11 * lp.axial_stiffness;
+    // (The stiffest section sets both scales.)
+    double axial_stiffness = 0.0, segment_stiffness = 0.0;
+    for (const SectionProperties& sp : lp.sections) {
+      axial_stiffness = std::max(axial_stiffness, sp.axial_stiffness);
+      segment_stiffness = std::max(segment_stiffness, sp.axial_stiffness / sp.segment_length);
+    }
+    const double tolerance = 1e-11 * axial_stiffness;
     // The Levenberg-Marquardt shift starts at a millionth of one segment's axial stiffness
     // and may grow to a million times it (then a step moves a node by less than a millionth
     // of the elastic stretch its residual force would cause: no progress is possible).
-    const double segment_stiffness = lp.axial_stiffness / lp.segment_length;
     const double min_shift = 1e-6 * segment_stiffness;
     const double max_shift = 1e6 * segment_stiffness;
     Eigen::VectorXd residual(3 * S);

@@ -21,26 +21,29 @@
 // two ends are each anchored, attached to a fairlead, or free.
 #pragma once
 
+#include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "core/coupled_system.h"
 #include "core/ode_system.h"
 #include "core/types.h"
+#include "mooring_fem/composite_catenary.h"
 #include "mooring_fem/environment.h"
 #include "mooring_fem/parameters.h"
 
 namespace moorsim::mooring_fem {
 
-/// Constants of one line, derived from its type, the water and the number of segments.
-struct LineProperties {
-  int id = 0;  ///< 1-based
+/// Constants of one section of a line, derived from its type, the water and its segments.
+struct SectionProperties {
+  std::string type;
   int segments = 0;
   double length = 0.0;                 ///< unstretched [m]
-  double segment_length = 0.0;         ///< l0 = L / n [m]
+  double segment_length = 0.0;         ///< l0 = length / segments [m]
   double diameter = 0.0;               ///< [m]
   double mass_per_length = 0.0;        ///< dry [kg/m]
-  double weight_per_length = 0.0;      ///< submerged [N/m]
+  double weight_per_length = 0.0;      ///< submerged [N/m]; negative for a buoyant section
   double axial_stiffness = 0.0;        ///< EA [N]
   double axial_damping = 0.0;          ///< c [N s], internal force c de/dt
   double added_mass_per_length = 0.0;  ///< C1 = C_MN rho pi d^2/4 [kg/m]
@@ -48,12 +51,48 @@ struct LineProperties {
   double drag_tangential = 0.0;        ///< 0.5 rho C_DT d [kg/m^2]
   double friction_axial = 0.0;         ///< [-]
   double friction_lateral = 0.0;       ///< [-]
-  Vec3 anchor = Vec3::Zero();          ///< Earth frame [m]
-  Vec3 fairlead_body = Vec3::Zero();   ///< body frame [m]
 };
 
-/// Throws moorsim::InputError if the line's type is not one of spec.line_types.
+/// Constants of a body at a joint (PointBody with the water).
+struct PointBodyProperties {
+  double mass = 0.0;        ///< [kg]
+  double weight = 0.0;      ///< in water [N], negative for a buoy
+  double added_mass = 0.0;  ///< C_A rho V [kg]
+  double drag = 0.0;        ///< 0.5 rho C_D A [kg/m]
+};
+
+/// Constants of one line: its sections from the anchor up and the bodies at their joints.
+/// Segments and nodes are numbered along the whole line from the anchor (node 0) to the
+/// fairlead (node `segments`).
+struct LineProperties {
+  int id = 0;  ///< 1-based
+  int segments = 0;
+  double length = 0.0;  ///< unstretched [m]
+  std::vector<SectionProperties> sections;
+  Vec3 anchor = Vec3::Zero();         ///< Earth frame [m]
+  Vec3 fairlead_body = Vec3::Zero();  ///< body frame [m]
+  /// Per segment: the index of its section.
+  std::vector<int> section_of;
+  /// Per node: the body there (null for none).
+  std::vector<std::optional<PointBodyProperties>> body_at;
+
+  const SectionProperties& SectionOf(int segment) const { return sections[section_of[segment]]; }
+  bool homogeneous() const { return sections.size() == 1; }
+};
+
+/// Throws moorsim::InputError if a section's type is not one of spec.line_types, the line
+/// has no section or a section no segment, or the joints do not match the sections.
 LineProperties MakeLineProperties(const MooringParameters& spec, const LineParameters& line);
+
+/// The line as the composite catenary sees it (composite_catenary.h): its sections'
+/// lengths, weights and stiffnesses, and the bodies' weights at the joints.
+CompositeLine CatenaryLineOf(const LineProperties& line);
+/// Unstretched arc length of every node from the anchor [m] (nodes 0..segments).
+std::vector<double> NodeArcLengths(const LineProperties& line);
+/// The fairlead tension [N] of the line's elastic catenary (SolveLineCatenary for a
+/// homogeneous line, SolveCompositeCatenary otherwise) with its fairlead at `fairlead`
+/// (Earth frame). Throws moorsim::Error if there is none.
+double CatenaryFairleadTension(const LineProperties& line, const Vec3& fairlead);
 
 enum class EndCondition { kAnchored, kFairlead, kFree };
 

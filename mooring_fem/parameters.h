@@ -64,15 +64,43 @@ struct LineType {
   double friction_lateral = 0.0;   ///< seabed Coulomb coefficient across the line [-]
 };
 
+/// A body on a line where two of its sections meet: a clump weight (heavier than the water
+/// it displaces) or a buoy (lighter). It adds to the joint node its mass, its weight in
+/// water, an isotropic added mass and an isotropic quadratic drag.
+struct PointBody {
+  double mass = 0.0;        ///< dry mass [kg]
+  double volume = 0.0;      ///< displaced volume [m^3]
+  double added_mass = 0.0;  ///< added-mass coefficient C_A on the displaced water [-]
+  double drag_area = 0.0;   ///< C_D A [m^2]: drag 0.5 rho C_D A |u| u
+};
+
+/// A stretch of a line of one line type, split into equal segments.
+struct LineSection {
+  std::string type;     ///< name of a LineType
+  double length = 0.0;  ///< unstretched length [m]
+  int segments = 0;     ///< number of equal segments
+};
+
 /// One line as laid out (LineProperties, mooring_system.h, are the constants derived from
-/// it, its type and the water).
+/// it, its types and the water): its sections from the anchor to the fairlead, and the
+/// bodies at the joints between them. A homogeneous line has one section.
 struct LineParameters {
   int id = 0;                         ///< 1-based line number
-  std::string type;                   ///< name of a LineType
   Vec3 anchor = Vec3::Zero();         ///< anchor position, Earth frame [m] (z = +depth: seabed)
   Vec3 fairlead_body = Vec3::Zero();  ///< fairlead position in the body frame of the vessel [m]
-  double length = 0.0;                ///< unstretched length [m]
-  int segments = 50;                  ///< number of equal segments
+  std::vector<LineSection> sections;  ///< from the anchor up, at least one
+  /// joints[k] sits between sections k and k + 1 (sections.size() - 1 of them, or none: no
+  /// bodies); a default PointBody is a plain joint.
+  std::vector<PointBody> joints;
+
+  /// A homogeneous line: one section.
+  static LineParameters Uniform(int id, const std::string& type, double length, int segments,
+                                const Vec3& anchor, const Vec3& fairlead_body);
+  double Length() const;  ///< unstretched, all sections [m]
+  int Segments() const;   ///< all sections
+  /// The node (0..Segments(), from the anchor) nearest the material point at unstretched
+  /// arc length `arc_length` from the anchor.
+  int NodeNearest(double arc_length) const;
 };
 
 struct MooringParameters {

@@ -93,15 +93,57 @@ LineSpec ParseLine(const Reader& r, int entry, int default_segments) {
   line.entry = entry;
   line.id = entry;
   r.Optional("id", line.id);
-  line.type = r.Required<std::string>("type");
   line.anchor = r.Required<Vec3>("anchor");
   line.fairlead_body = r.Required<Vec3>("fairlead");
-  const Reader length = r.Child("length");
-  line.length = length.As<double>();
-  line.length_mark = length.mark();
-  line.segments = default_segments;
-  r.Optional("segments", line.segments);
   line.mark = r.mark();
+  const std::optional<Reader> sections = r.Find("sections");
+  if (!sections) {  // a line of one type
+    if (r.Find("bodies")) {
+      r.Child("bodies").Fail("bodies sit on the joints between sections: give the line's sections");
+    }
+    const Reader length = r.Needed("length");
+    mooring_fem::LineSection section{r.Needed("type").As<std::string>(), length.As<double>(),
+                                     default_segments};
+    r.Optional("segments", section.segments);
+    line.sections = {section};
+    line.length_mark = length.mark();
+    return line;
+  }
+  for (const char* key : {"type", "length", "segments"}) {
+    if (std::optional<Reader> alone = r.Find(key)) {
+      alone->Fail("give a line either type, length and segments or its sections, not both");
+    }
+  }
+  line.length_mark = sections->mark();
+  line.written_in_sections = true;
+  sections->ForEachItem([&](const Reader& item, std::size_t) {
+    item.CheckKeys();
+    line.sections.push_back({item.Required<std::string>("type"), item.Required<double>("length"),
+                             item.Required<int>("segments")});
+  });
+  if (const std::optional<Reader> bodies = r.Find("bodies")) {
+    line.joints.assign(line.sections.size() - 1, {});
+    std::vector<bool> taken(line.joints.size(), false);
+    bodies->ForEachItem([&](const Reader& item, std::size_t) {
+      item.CheckKeys();
+      const int joint = item.Required<int>("joint");
+      if (joint < 1 || joint > static_cast<int>(line.joints.size())) {
+        item.Child("joint").Fail(std::to_string(joint) + " is not a joint of the line: its " +
+                                 std::to_string(line.sections.size()) +
+                                 " sections meet at joints 1.." +
+                                 std::to_string(line.joints.size()));
+      }
+      if (taken[joint - 1]) {
+        item.Child("joint").Fail(std::to_string(joint) + " has a body already");
+      }
+      taken[joint - 1] = true;
+      mooring_fem::PointBody& body = line.joints[joint - 1];
+      item.Optional("mass", body.mass);
+      item.Optional("volume", body.volume);
+      item.Optional("added_mass", body.added_mass);
+      item.Optional("drag_area", body.drag_area);
+    });
+  }
   return line;
 }
 
@@ -550,14 +592,15 @@ Vec3 FairleadAt(const Vec3& body, double x, double y, double psi) {
 // nothing and has no unique static shape. The tension grows smoothly between the two.
 std::string LineGeometryProblem(const LineSpec& line, const Vec3& fairlead) {
   const double distance = (line.anchor - fairlead).norm();
-  if (line.length < distance) {
-    return WithUnit(line.length, "m") + " is shorter than the anchor-fairlead distance " +
+  const double length = line.Length();
+  if (length < distance) {
+    return WithUnit(length, "m") + " is shorter than the anchor-fairlead distance " +
            Fixed(distance, 1) + " m";
   }
   const double span = (line.anchor - fairlead).head<2>().norm();
   const double height = line.anchor.z() - fairlead.z();
-  if (!(line.length < span + height)) {
-    return WithUnit(line.length, "m") +
+  if (!(length < span + height)) {
+    return WithUnit(length, "m") +
            " must be shorter than the horizontal anchor-fairlead distance plus the fairlead's "
            "height above the anchor, " +
            Fixed(span, 1) + " + " + Fixed(height, 1) + " = " + Fixed(span + height, 1) +
@@ -586,9 +629,13 @@ void CheckLines(const Checker& check, const MooringSpec& mooring) {
       check.Fail(path + ".id", std::to_string(line.id) + " must be in 1.." + std::to_string(count) +
                                    " (ids number the " + std::to_string(count) + " lines from 1)");
     }
-    if (std::find(type_names.begin(), type_names.end(), line.type) == type_names.end()) {
-      check.Fail(path + ".type",
-                 "unknown line type '" + line.type + "' (known: " + JoinSorted(type_names) + ")");
+    for (std::size_t k = 0; k < line.sections.size(); ++k) {
+      const std::string& type = line.sections[k].type;
+      if (std::find(type_names.begin(), type_names.end(), type) == type_names.end()) {
+        check.Fail(
+            line.written_in_sections ? ItemPath(path + ".sections", k) + ".type" : path + ".type",
+            "unknown line type '" + type + "' (known: " + JoinSorted(type_names) + ")");
+      }
     }
 
     const double depth = mooring.water.depth;
@@ -800,11 +847,14 @@ void CheckFailure(const Checker& check, const Scenario& scenario) {
     for (const LineSpec& l : scenario.mooring.lines) {
       if (l.id == f.line) line = &l;
     }
-    if (line != nullptr && node_given) check.InRange("failure.node", f.node, 1, line->segments - 1);
-    if (line != nullptr && f.arc_length && !(*f.arc_length > 0.0 && *f.arc_length < line->length)) {
+    if (line != nullptr && node_given) {
+      check.InRange("failure.node", f.node, 1, line->Segments() - 1);
+    }
+    if (line != nullptr && f.arc_length &&
+        !(*f.arc_length > 0.0 && *f.arc_length < line->Length())) {
       check.Fail("failure.arc_length", WithUnit(*f.arc_length, "m") +
                                            " must be inside the line (0, " +
-                                           WithUnit(line->length, "m") + ")");
+                                           WithUnit(line->Length(), "m") + ")");
     }
   }
 }

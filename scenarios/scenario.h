@@ -39,7 +39,8 @@ struct LineType : mooring_fem::LineType {
 /// A line (mooring_fem::LineParameters) and where it was written.
 struct LineSpec : mooring_fem::LineParameters {
   SourceMark mark;         ///< the list entry
-  SourceMark length_mark;  ///< the `length` key's value (for the distance check)
+  SourceMark length_mark;  ///< the `length` key's value, or `sections` (for the distance check)
+  bool written_in_sections = false;  ///< given as `sections` (messages name them)
   /// 1-based position of the entry in the YAML list (0 = not from YAML). Lines are sorted
   /// by id after loading, so messages use this to name the entry the user wrote.
   int entry = 0;

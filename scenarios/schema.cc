@@ -239,12 +239,47 @@ constexpr Key kDefaultsKeys[] = {
 constexpr Block kDefaults{"Values that apply to every line unless it says otherwise.",
                           kDefaultsKeys};
 
+constexpr Key kSectionKeys[] = {
+    Required(Positive("length", "m", kMaxLineLength, "Unstretched length of the section.")),
+    {.name = "segments",
+     .kind = Kind::kInteger,
+     .description = "Number of equal segments of the section.",
+     .required = true,
+     .minimum = AtLeast(1.0),
+     .maximum = AtMost(10000.0)},
+    {.name = "type", .kind = Kind::kString, .description = "A line_types name.", .required = true},
+};
+constexpr Block kSection{"A section of a line: one line type over a length.", kSectionKeys};
+
+constexpr Key kBodyKeys[] = {
+    {.name = "added_mass",
+     .description = "Added-mass coefficient C_A on the displaced volume (isotropic).",
+     .minimum = AtLeast(0.0),
+     .maximum = AtMost(kMaxCoefficient, kCoefficientWhy)},
+    NonNegative("drag_area", "m^2", 1000.0,
+                "C_D A: drag 0.5 rho C_D A |u| u on the water's velocity relative to the body.",
+                "a buoy 35 m across"),
+    {.name = "joint",
+     .kind = Kind::kInteger,
+     .description = "The joint it sits on: 1 between sections 1 and 2 (from the anchor), ...",
+     .required = true,
+     .minimum = AtLeast(1.0),
+     .maximum = AtMost(1000.0)},
+    NonNegative("mass", "kg", 1e7, "Dry mass (a clump weight: heavier than its displaced water).",
+                "ten thousand tonnes"),
+    NonNegative("volume", "m^3", 1e4, "Displaced volume (a buoy: more than mass / water density).",
+                "a buoy 27 m across"),
+};
+constexpr Block kBody{"A clump weight or buoy on a joint between two sections of a line.",
+                      kBodyKeys};
+
 constexpr Key kLineKeys[] = {
     {.name = "anchor",
      .kind = Kind::kVector,
      .unit = "m",
      .description = "Anchor, Earth frame NED (z down: on a 1000 m seabed z = +1000).",
      .required = true},
+    List("bodies", kBody, "Clump weights and buoys on the joints between sections."),
     {.name = "fairlead",
      .kind = Kind::kVector,
      .unit = "m",
@@ -256,14 +291,22 @@ constexpr Key kLineKeys[] = {
     {.name = "id",
      .kind = Kind::kInteger,
      .description = "Line number, 1..N in any order; default: the position in the list."},
-    Required(Positive("length", "m", kMaxLineLength,
-                      "Unstretched length; the line must reach its fairlead without lying slack.")),
+    Positive("length", "m", kMaxLineLength,
+             "Unstretched length of a line of one type; the line must reach its fairlead "
+             "without lying slack. Not with sections."),
+    List("sections", kSection,
+         "A line of several types: its sections from the anchor up (not with type, length "
+         "and segments).",
+         false, 1),
     {.name = "segments",
      .kind = Kind::kInteger,
-     .description = "Number of segments; default mooring.defaults.segments.",
+     .description = "Number of segments of a line of one type; default "
+                    "mooring.defaults.segments.",
      .minimum = AtLeast(2.0),
      .maximum = AtMost(10000.0)},
-    {.name = "type", .kind = Kind::kString, .description = "A line_types name.", .required = true},
+    {.name = "type",
+     .kind = Kind::kString,
+     .description = "A line_types name, for a line of one type (not with sections)."},
 };
 constexpr Block kLine{"One mooring line.", kLineKeys};
 

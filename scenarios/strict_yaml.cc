@@ -441,6 +441,19 @@ std::vector<std::string> Reader::Keys() const {
   return keys;
 }
 
+Reader Reader::Needed(std::string_view key) const {
+  if (std::optional<Reader> child = Find(key)) return *child;
+  if (block_ != nullptr && node_.IsMap()) {
+    for (const auto& entry : node_) {
+      const std::string name = entry.first.IsScalar() ? entry.first.Scalar() : std::string();
+      if (block_->Find(name) == nullptr && schema::NearestKey(*block_, name) == key) {
+        throw AlreadyReported();  // by CheckKeys, as the key it meant
+      }
+    }
+  }
+  Fail("required key '" + std::string(key) + "' is missing");
+}
+
 void Reader::CheckKeys() const {
   if (block_ == nullptr) throw ContractError("CheckKeys at '" + path_ + "' without a schema");
   CheckUntagged("the plain map");

@@ -232,6 +232,12 @@ class Reader {
     return *child;
   }
 
+  /// The value under `key`, which this map needs in the form it is written in though its
+  /// schema does not always require it (e.g. one of two forms). Missing, it is reported
+  /// like a missing required key: once, and not when an unknown key's message (CheckKeys)
+  /// suggested it already.
+  Reader Needed(std::string_view key) const;
+
   std::vector<Reader> Items() const;
 
   /// Runs `body` for each entry of this list; when collecting errors, an entry that fails

@@ -44,14 +44,13 @@ mooring_fem::LineType SeedChain() {
 }
 
 /// The seed chain as the catenary and the FEM see it (submerged weight from the water).
-mooring_fem::LineProperties SeedLine(double depth, double length) {
+mooring_fem::SectionProperties SeedLine(double depth, double length) {
   mooring_fem::MooringParameters spec;
   spec.water.depth = depth;  // sea water and gravity: the Water defaults
   spec.line_types = {SeedChain()};
-  mooring_fem::LineParameters line;
-  line.type = spec.line_types.front().name;
-  line.length = length;
-  return mooring_fem::MakeLineProperties(spec, line);
+  const auto line = mooring_fem::LineParameters::Uniform(1, spec.line_types.front().name, length, 1,
+                                                         Vec3::Zero(), Vec3::Zero());
+  return mooring_fem::MakeLineProperties(spec, line).sections.front();
 }
 
 /// Shortest text that reads back as the same double ("2250", "14.142135623730951"), large
@@ -124,7 +123,7 @@ TemplateLayout PlanTemplate(const TemplateRequest& request) {
                      (request.pretension ? "both" : "neither") + " given)");
   }
 
-  const mooring_fem::LineProperties seed = SeedLine(depth, length);
+  const mooring_fem::SectionProperties seed = SeedLine(depth, length);
   const mooring_fem::CatenaryLineProperties line{seed.length, seed.weight_per_length,
                                                  seed.axial_stiffness};
   const double height = depth - kTemplateFairleadDepth;
@@ -232,7 +231,7 @@ std::string WriteTemplate(const TemplateRequest& request, const TemplateLayout& 
 
   const mooring_fem::Water water;  // sea water
   const mooring_fem::LineType chain = SeedChain();
-  const mooring_fem::LineProperties seed = SeedLine(request.depth, request.length);
+  const mooring_fem::SectionProperties seed = SeedLine(request.depth, request.length);
   // "      key: value" with its comment from column 37, as in the library files.
   const auto field = [&y](const std::string& key, const std::string& value,
                           const std::string& comment) {

@@ -97,7 +97,7 @@ ScheduledPart ParsePart(const std::string& text, const scenarios::Scenario& scen
       p.failure.mode = mooring_fem::FailureMode::kAnchor;
     } else if (mode.rfind("node=", 0) == 0) {
       // Internal nodes only: node 0 is the anchor, node n the fairlead.
-      const int segments = scenario.mooring.lines[line - 1].segments;
+      const int segments = scenario.mooring.lines[line - 1].Segments();
       p.failure.mode = mooring_fem::FailureMode::kNode;
       p.failure.node = ParseInteger("--part " + text + ": node", mode.substr(5), 1, segments - 1);
     } else if (mode != "fairlead") {
@@ -187,7 +187,14 @@ int RunSimulateLines(const SimulateLinesOptions& o) {
   }
   if (o.segments_given) {
     const int segments = ParseInteger("--segments", o.segments, 2, 10000);
-    for (auto& line : scenario.mooring.lines) line.segments = segments;
+    for (auto& line : scenario.mooring.lines) {
+      if (line.sections.size() != 1) {
+        throw InputError("--segments " + o.segments + ": line " + std::to_string(line.id) +
+                         " has " + std::to_string(line.sections.size()) +
+                         " sections; give each its segments in the scenario");
+      }
+      line.sections.front().segments = segments;
+    }
   }
   mooring_fem::ScaleTolerances(scenario.solver, tolerance_scale);
   const auto within = [&](const char* name, double value, double low, double high) {
@@ -227,7 +234,7 @@ int RunSimulateLines(const SimulateLinesOptions& o) {
     csv->precision(10);
     *csv << "# moorsim " << moorsim::kVersion << " simulate-lines scenario=" << o.scenario
          << " motion=" << o.motion << " duration=" << duration
-         << " segments=" << scenario.mooring.lines.front().segments
+         << " segments=" << scenario.mooring.lines.front().Segments()
          << " rtol=" << scenario.solver.rtol << " tolerance_scale=" << tolerance_scale;
     for (const std::string& p : o.parts) *csv << " part=" << p;
     *csv << "\n# fairlead tension = magnitude of the force each line exerts on the turret [N]\n";
@@ -258,7 +265,7 @@ int RunSimulateLines(const SimulateLinesOptions& o) {
       "segments %d, state size %zu, rtol %.2e; steps %ld, rhs %ld, jacobians %ld, "
       "linear setups %ld, newton iterations %ld, newton failures %ld, error-test failures %ld, "
       "stability order reductions %ld, last step %.4f s, last order %d\n",
-      duration, wall_s, init_s, duration / wall_s, scenario.mooring.lines.front().segments,
+      duration, wall_s, init_s, duration / wall_s, scenario.mooring.lines.front().Segments(),
       sim.state().size(), scenario.solver.rtol, s.steps, s.rhs_evals, s.jacobian_evals,
       s.linear_setups, s.newton_iterations, s.newton_failures, s.error_test_failures,
       s.stability_order_reductions, s.last_step, s.last_order);

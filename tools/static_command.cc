@@ -70,7 +70,7 @@ int RunStatic(const StaticOptions& o) {
   for (int i = 0; i < num_lines; ++i) {
     results[i].id = scenario.mooring.lines[i].id;
     results[i].broken = broken.count(results[i].id) > 0;
-    if (results[i].broken) results[i].grounded_length = scenario.mooring.lines[i].length;
+    if (results[i].broken) results[i].grounded_length = scenario.mooring.lines[i].Length();
   }
   double residual = 0.0;
   if (!spec.lines.empty()) {
@@ -94,10 +94,7 @@ int RunStatic(const StaticOptions& o) {
       StaticLineResult& r = results[lp.id - 1];
       r.force = loads[i].fairlead_force;
       r.grounded_length = loads[i].grounded_length;
-      const mooring_fem::CatenaryLineProperties props{lp.length, lp.weight_per_length,
-                                                      lp.axial_stiffness};
-      r.catenary_tension =
-          mooring_fem::SolveLineCatenary(props, lp.anchor, positions[i]).solution.fairlead_tension;
+      r.catenary_tension = mooring_fem::CatenaryFairleadTension(lp, positions[i]);
     }
   }
 

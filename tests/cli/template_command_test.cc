@@ -139,7 +139,7 @@ TEST(TemplateCommand, RadiusPlacesTheAnchorsThereAndWritesTheirPretension) {
       // The pretension the comment states is the catenary's at that radius, and the FEM's.
       const double span = HorizontalDistance(line.anchor, line.fairlead_body);
       const mooring_fem::CatenaryLineProperties props{
-          line.length, (275.0 - 1025.0 * std::numbers::pi / 4.0 * 0.08 * 0.08) * 9.81, 2.28785e8};
+          line.Length(), (275.0 - 1025.0 * std::numbers::pi / 4.0 * 0.08 * 0.08) * 9.81, 2.28785e8};
       const double tension = mooring_fem::SolveCatenary(props, span, 988.0).fairlead_tension;
       char stated[64];
       std::snprintf(stated, sizeof stated, "Pretension: %.1f kN", tension / 1e3);

@@ -28,10 +28,8 @@ mooring_fem::MooringParameters SeedMooring() {
           .mooring);
 }
 
-mooring_fem::CatenaryLineProperties CatenaryOf(const mooring_fem::MooringParameters& spec,
-                                               int index) {
-  const mooring_fem::LineProperties p = mooring_fem::MakeLineProperties(spec, spec.lines[index]);
-  return {p.length, p.weight_per_length, p.axial_stiffness};
+mooring_fem::CompositeLine CatenaryOf(const mooring_fem::MooringParameters& spec, int index) {
+  return mooring_fem::CatenaryLineOf(mooring_fem::MakeLineProperties(spec, spec.lines[index]));
 }
 
 /// Net load [Fx, Fy, Mz] of the given lines (0-based) by SolveLineCatenary in Earth
@@ -45,8 +43,8 @@ Vec3 DirectLoad(const mooring_fem::MooringParameters& spec, const std::vector<in
     const Vec3& fb = spec.lines[i].fairlead_body;
     const Vec3 r(c * fb.x() - s * fb.y(), s * fb.x() + c * fb.y(), 0.0);
     const Vec3 fairlead(eta.x() + r.x(), eta.y() + r.y(), fb.z());
-    const auto cat =
-        mooring_fem::SolveLineCatenary(CatenaryOf(spec, i), spec.lines[i].anchor, fairlead);
+    const auto cat = mooring_fem::SolveLineCatenary(CatenaryOf(spec, i).sections.front(),
+                                                    spec.lines[i].anchor, fairlead);
     const Vec3 f = cat.fairlead_force;
     load += Vec3(f.x(), f.y(), r.x() * f.y() - r.y() * f.x());
   }
@@ -79,7 +77,7 @@ HypothesisBank* HypothesisBankTest::bank_ = nullptr;
 TEST_F(HypothesisBankTest, TableMatchesCatenaryOffGrid) {
   for (int index : {0, 5}) {
     const LineForceTable& table = bank_->table(index);
-    const auto line = CatenaryOf(*spec_, index);
+    const auto line = CatenaryOf(*spec_, index).sections.front();
     double worst_h = 0.0, worst_dh = 0.0, worst_v = 0.0;
     for (int i = 0; i + 1 < table.num_nodes(); ++i) {
       for (double fraction : {0.3, 0.5, 0.85}) {
@@ -251,9 +249,10 @@ Vec3 DirectTurretLoad(const mooring_fem::MooringParameters& spec, const Vec3& et
     const Eigen::Vector2d arm = fb.head<2>() - k;
     const Vec3 fairlead(centre.x() + ct * arm.x() - st * arm.y(),
                         centre.y() + st * arm.x() + ct * arm.y(), fb.z());
-    const Vec3 f = mooring_fem::SolveLineCatenary(CatenaryOf(spec, static_cast<int>(i)),
-                                                  spec.lines[i].anchor, fairlead)
-                       .fairlead_force;
+    const Vec3 f =
+        mooring_fem::SolveLineCatenary(CatenaryOf(spec, static_cast<int>(i)).sections.front(),
+                                       spec.lines[i].anchor, fairlead)
+            .fairlead_force;
     const Vec3 lever = centre - Vec3(eta.x(), eta.y(), 0.0);
     load += Vec3(f.x(), f.y(), lever.x() * f.y() - lever.y() * f.x());
   }
@@ -354,7 +353,8 @@ TEST_F(HypothesisBankTest, MooredHeaveMovesTheFairleads) {
   options.moored_heave = 0.5;
   const HypothesisBank heaved(*spec_, options);
   EXPECT_NEAR(heaved.table(0).fairlead_depth(), 12.5, 1e-12);
-  const auto exact = mooring_fem::SolveCatenary(CatenaryOf(*spec_, 0), 1930.0, 1000.0 - 12.5);
+  const auto exact =
+      mooring_fem::SolveCatenary(CatenaryOf(*spec_, 0).sections.front(), 1930.0, 1000.0 - 12.5);
   EXPECT_NEAR(heaved.table(0).HorizontalTension(1930.0), exact.horizontal_tension, 10.0);
 }
 
@@ -416,7 +416,8 @@ TEST(HypothesisBankInputTest, TableStopsWhereTheLineCannotReach) {
   const LineForceTable table(1, line, Vec3(1950.0, 0.0, 1000.0), Vec3(20.0, 0.0, 12.0), 12.0,
                              options);
   EXPECT_LT(table.span_max(), 1930.0 + 620.0);
-  EXPECT_NO_THROW(mooring_fem::SolveCatenary(line, table.span_max(), table.height()));
+  EXPECT_NO_THROW(
+      mooring_fem::SolveCatenary(line.sections.front(), table.span_max(), table.height()));
   EXPECT_GT(table.HorizontalTension(table.span_max()), 1e7);
 }
 

@@ -105,7 +105,9 @@ TEST(LineDynamics, PartedLineFallsToTheSeabedAndEnergyNeverGrows) {
 
 // Weight of the part of a line hanging from the fairlead down to the seabed: the vertical
 // fairlead load of a line that no longer reaches its anchor.
-double HangingWeight(const LineProperties& lp) { return lp.weight_per_length * (1000.0 - 12.0); }
+double HangingWeight(const LineProperties& lp) {
+  return lp.sections.front().weight_per_length * (1000.0 - 12.0);
+}
 
 TEST(LineDynamics, LinePartedAtAMidNodeHangsFromTheFairlead) {
   const testing::SeedCase s = SeedScenario(50);

@@ -35,14 +35,10 @@ MooringParameters TestSpec(int segments) {
   spec.line_types.push_back(type);
   for (int i = 0; i < 2; ++i) {
     const double angle = i * 2.0 * std::numbers::pi / 3.0;
-    LineParameters line;
-    line.id = i + 1;
-    line.type = "chain";
-    line.anchor = Vec3(1950.0 * std::cos(angle), 1950.0 * std::sin(angle), 1000.0);
-    line.fairlead_body = Vec3(20.0 * std::cos(angle), 20.0 * std::sin(angle), 12.0);
-    line.length = 2250.0;
-    line.segments = segments;
-    spec.lines.push_back(line);
+    spec.lines.push_back(
+        LineParameters::Uniform(i + 1, "chain", 2250.0, segments,
+                                Vec3(1950.0 * std::cos(angle), 1950.0 * std::sin(angle), 1000.0),
+                                Vec3(20.0 * std::cos(angle), 20.0 * std::sin(angle), 12.0)));
   }
   return spec;
 }

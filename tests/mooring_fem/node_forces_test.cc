@@ -64,14 +64,9 @@ MooringParameters StraightChain(double current_speed, double current_direction) 
   type.drag_tangential = kCdt;
   type.added_mass_normal = kCmn;
   spec.line_types.push_back(type);
-  LineParameters line;
-  line.id = 1;
-  line.type = "chain";
-  line.anchor = Vec3(0.0, 0.0, 500.0);  // mid-water: no seabed contact
-  line.fairlead_body = Vec3(kLength, 0.0, 500.0);
-  line.length = kLength;
-  line.segments = kSegments;
-  spec.lines.push_back(line);
+  // Anchor mid-water: no seabed contact.
+  spec.lines.push_back(LineParameters::Uniform(1, "chain", kLength, kSegments,
+                                               Vec3(0.0, 0.0, 500.0), Vec3(kLength, 0.0, 500.0)));
   return spec;
 }
 

@@ -153,7 +153,7 @@ TEST(StaticFem, CatenaryPlacementIsCloseToFemEquilibrium) {
   mooring.CatenaryState(p, catenary.data());
   std::vector<double> settled = catenary;
   const double residual = mooring.SettleStatic(p, settled.data());
-  EXPECT_LT(residual, 1e-11 * mooring.line(0).axial_stiffness);
+  EXPECT_LT(residual, 1e-11 * mooring.line(0).sections.front().axial_stiffness);
   double largest = 0.0;
   for (std::size_t i = 0; i < settled.size(); ++i) {
     largest = std::max(largest, std::abs(settled[i] - catenary[i]));
@@ -185,7 +185,7 @@ MooringSystem LineOne(const Vec3& anchor, double length) {
   testing::SeedCase s = SeedScenario(50);
   s.mooring.lines.resize(1);
   s.mooring.lines[0].anchor = anchor;
-  s.mooring.lines[0].length = length;
+  s.mooring.lines[0].sections.front().length = length;
   return MooringSystem(s.mooring);
 }
 
@@ -214,7 +214,7 @@ TEST(StaticFem, LineLongerThanSpanPlusDepthSettlesSlack) {
   const auto fairleads = FairleadsAt(mooring, {});
   const std::vector<double> x = StaticState(mooring, {});
   const Vec3 f = mooring.LineLoads(x.data(), fairleads)[0].fairlead_force;
-  const double hanging = mooring.line(0).weight_per_length * (1000.0 - 12.0);
+  const double hanging = mooring.line(0).sections.front().weight_per_length * (1000.0 - 12.0);
   EXPECT_LT(f.head<2>().norm(), 1e-3 * hanging);
   EXPECT_NEAR(f.z(), hanging, 0.02 * hanging);
 }

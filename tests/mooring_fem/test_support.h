@@ -25,7 +25,7 @@ inline SeedCase SeedScenario(int segments) {
   const scenarios::Scenario s = scenarios::LoadScenario(std::string(MOORSIM_SOURCE_DIR) +
                                                         "/scenarios/library/seed_tapm.yaml");
   SeedCase seed{scenarios::ToMooringParameters(s.mooring), s.solver};
-  for (auto& line : seed.mooring.lines) line.segments = segments;
+  for (auto& line : seed.mooring.lines) line.sections.front().segments = segments;
   return seed;
 }
 
@@ -62,7 +62,8 @@ inline std::vector<double> StaticState(MooringSystem& mooring, const PlanarPose&
 }
 
 inline CatenaryLineProperties CatenaryProperties(const LineProperties& lp) {
-  return {lp.length, lp.weight_per_length, lp.axial_stiffness};
+  const SectionProperties& sp = lp.sections.front();
+  return {sp.length, sp.weight_per_length, sp.axial_stiffness};
 }
 
 }  // namespace moorsim::mooring_fem::testing

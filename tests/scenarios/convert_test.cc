@@ -51,14 +51,15 @@ TEST(ToMooringParameters, CarriesEveryField) {
     const mooring_fem::LineParameters& l = p.lines[i];
     const LineSpec& given = s.mooring.lines[i];
     EXPECT_EQ(l.id, static_cast<int>(i) + 1);
-    EXPECT_EQ(l.type, given.type);
+    ASSERT_EQ(l.sections.size(), 1u);
+    EXPECT_EQ(l.sections[0].type, given.sections[0].type);
     EXPECT_EQ(l.anchor, given.anchor);
     EXPECT_EQ(l.fairlead_body, given.fairlead_body);
-    EXPECT_EQ(l.length, given.length);
-    EXPECT_EQ(l.segments, given.segments);
+    EXPECT_EQ(l.sections[0].length, given.sections[0].length);
+    EXPECT_EQ(l.sections[0].segments, given.sections[0].segments);
   }
-  EXPECT_EQ(p.lines[0].segments, 30);  // its own
-  EXPECT_EQ(p.lines[1].segments, 40);  // mooring.defaults.segments
+  EXPECT_EQ(p.lines[0].Segments(), 30);  // its own
+  EXPECT_EQ(p.lines[1].Segments(), 40);  // mooring.defaults.segments
 }
 
 TEST(ToMooringParameters, EmptyCurrentStaysEmpty) {
@@ -69,12 +70,6 @@ TEST(ToMooringParameters, EmptyCurrentStaysEmpty) {
       ToMooringParameters(ParseScenario(text, "test.yaml").mooring);
   EXPECT_TRUE(p.current.depth.empty());
   EXPECT_EQ(p.current.SurfaceSpeed(), 0.0);
-}
-
-// The line's default segment count is the FEM's, whether the line or mooring.defaults gives it.
-TEST(ToMooringParameters, DefaultSegmentsAgree) {
-  EXPECT_EQ(LineSpec{}.segments, mooring_fem::LineParameters{}.segments);
-  EXPECT_EQ(LineDefaults{}.segments, mooring_fem::LineParameters{}.segments);
 }
 
 }  // namespace

@@ -80,7 +80,7 @@ TEST(Include, ListsAndValuesAreReplacedWholeAndNullRemoves) {
   EXPECT_EQ(s.simulation.seed, 1u);  // the rest of the base's simulation block stays
   // The lines say segments: 50 each in the base; defaults apply only where a line is silent.
   EXPECT_EQ(s.mooring.defaults.segments, 20);
-  EXPECT_EQ(s.mooring.lines[0].segments, 50);
+  EXPECT_EQ(s.mooring.lines[0].Segments(), 50);
 }
 
 TEST(Include, ErrorsPointIntoTheFileWhereTheValueWasWritten) {

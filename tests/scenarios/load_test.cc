@@ -92,9 +92,9 @@ TEST(SeedScenario, HasTheReferenceNumbers) {
     SCOPED_TRACE("line " + std::to_string(k + 1));
     const LineSpec& line = mooring.lines[k];
     EXPECT_EQ(line.id, k + 1);
-    EXPECT_EQ(line.type, "chain_seed");
-    EXPECT_EQ(line.length, 2250.0);
-    EXPECT_EQ(line.segments, 50);
+    EXPECT_EQ(line.sections[0].type, "chain_seed");
+    EXPECT_EQ(line.Length(), 2250.0);
+    EXPECT_EQ(line.Segments(), 50);
     EXPECT_EQ(line.anchor, Vec3(anchors[k][0], anchors[k][1], 1000.0));
     // On the 20 m turret at 12 m draught, on the horizontal ray toward the anchor. The
     // file gives 20/sqrt(2) to 17 digits, so radius and direction hold to rounding.
@@ -137,8 +137,8 @@ TEST(ParseScenario, ReadsEveryKeyOfTheBaseText) {
   EXPECT_EQ(wire.friction_axial, 0.0);
   EXPECT_EQ(wire.friction_lateral, 0.0);
   ASSERT_EQ(s.mooring.lines.size(), 3u);
-  EXPECT_EQ(s.mooring.lines[0].segments, 30);  // its own
-  EXPECT_EQ(s.mooring.lines[1].segments, 40);  // mooring.defaults.segments
+  EXPECT_EQ(s.mooring.lines[0].Segments(), 30);  // its own
+  EXPECT_EQ(s.mooring.lines[1].Segments(), 40);  // mooring.defaults.segments
   EXPECT_EQ(s.solver.atol_velocity, 2.0e-3);
   EXPECT_EQ(s.solver.max_order, 4);
   EXPECT_FALSE(s.solver.stability_limit_detection);
@@ -234,7 +234,7 @@ TEST(ParseScenario, DefaultsApplyToEverythingOptional) {
   ASSERT_EQ(s.mooring.lines.size(), 2u);
   EXPECT_EQ(s.mooring.lines[0].id, 1);  // position in the list, from 1
   EXPECT_EQ(s.mooring.lines[1].id, 2);
-  EXPECT_EQ(s.mooring.lines[0].segments, 50);
+  EXPECT_EQ(s.mooring.lines[0].Segments(), 50);
   EXPECT_EQ(s.solver.rtol, 1e-4);
   EXPECT_EQ(s.solver.atol_position, 1e-3);
   EXPECT_EQ(s.solver.atol_velocity, 1e-3);
@@ -275,7 +275,7 @@ TEST(ParseScenario, OrdersLinesByIdAndNamesEntriesAsWritten) {
 
   // Checks after sorting still name the entry the user wrote, at its position.
   Scenario changed = s;
-  changed.mooring.lines[0].length = 100;
+  changed.mooring.lines[0].sections[0].length = 100;
   EXPECT_EQ(ValidateError(changed),
             "test.yaml:" + PositionOf(swapped, "- id: 1", "length: ^2250") +
                 ": mooring.lines[3].length: 100 m is shorter than the anchor-fairlead distance "
@@ -350,7 +350,7 @@ TEST(BadScenarioText, ValuesWithoutPositionAreNamedByPathOnly) {
   Scenario s = ParseScenario(kBase, "test.yaml");
   s.marks.clear();
   s.failure = {};
-  s.mooring.lines[2].length = 100.0;
+  s.mooring.lines[2].sections[0].length = 100.0;
   EXPECT_EQ(ValidateError(s),
             "test.yaml: mooring.lines[3].length: 100 m is shorter than the anchor-fairlead "
             "distance 2168.2 m");
@@ -379,8 +379,8 @@ TEST(ScenarioText, QuotedBlockAndAnchoredValuesAreNotTags) {
   Scenario s;
   ASSERT_NO_THROW(s = ParseScenario(text, "test.yaml")) << ErrorOf(text);
   EXPECT_EQ(s.name, "base");
-  EXPECT_EQ(s.mooring.lines[1].type, "wire");
-  EXPECT_EQ(s.mooring.lines[2].type, "chain");
+  EXPECT_EQ(s.mooring.lines[1].sections[0].type, "wire");
+  EXPECT_EQ(s.mooring.lines[2].sections[0].type, "chain");
   EXPECT_EQ(s.vessel->thrusters[0].weight, 1.0);
 }
 

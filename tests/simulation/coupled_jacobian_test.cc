@@ -116,7 +116,8 @@ std::vector<double> AwayFromRest(Simulation& sim, double turret_rate = 0.0) {
 
 TEST(CoupledJacobian, MatchesFiniteDifferencesAwayFromRest) {
   scenarios::Scenario scenario = testing::SeedVesselScenario();
-  for (auto& line : scenario.mooring.lines) line.segments = 10;  // a small system, same blocks
+  for (auto& line : scenario.mooring.lines)
+    line.sections.front().segments = 10;  // a small system, same blocks
   Simulation sim(scenario, 1);
   CheckJacobian(sim, AwayFromRest(sim), 10.0);
   CheckBlockSolve(sim, AwayFromRest(sim), 10.0);
@@ -132,7 +133,7 @@ TEST(CoupledJacobian, BlockSolverAfterLinesPart) {
       {"failure: {line: 3, time: 0.5, mode: anchor}", 8}};
   for (const auto& [failure, chains] : cases) {
     scenarios::Scenario scenario = testing::SeedVesselScenario(failure);
-    for (auto& line : scenario.mooring.lines) line.segments = 10;
+    for (auto& line : scenario.mooring.lines) line.sections.front().segments = 10;
     Simulation sim(scenario, 1);
     sim.AdvanceTo(1.0);
     SCOPED_TRACE(failure);
@@ -157,7 +158,7 @@ TEST_P(TurretJacobian, MatchesFiniteDifferences) {
   scenarios::Scenario scenario =
       testing::SeedVesselScenario("", std::string("  turret: ") + GetParam().turret + "\n");
   for (auto& line : scenario.mooring.lines) {
-    line.segments = 10;
+    line.sections.front().segments = 10;
     line.fairlead_body.x() += 30.0;
     line.fairlead_body.y() += 2.0;
   }

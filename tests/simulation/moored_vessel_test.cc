@@ -30,7 +30,8 @@ Vec3 CatenaryLoad(const scenarios::Scenario& s, const Vec3& pose, double fairlea
   for (const mooring_fem::LineParameters& spec : mooring.lines) {
     if (spec.id == broken) continue;
     const mooring_fem::LineProperties p = mooring_fem::MakeLineProperties(mooring, spec);
-    const CatenaryLineProperties line{p.length, p.weight_per_length, p.axial_stiffness};
+    const mooring_fem::SectionProperties& sp = p.sections.front();
+    const CatenaryLineProperties line{sp.length, sp.weight_per_length, sp.axial_stiffness};
     const Vec3 r(c * p.fairlead_body.x() - sn * p.fairlead_body.y(),
                  sn * p.fairlead_body.x() + c * p.fairlead_body.y(), 0.0);
     const Vec3 fairlead(pose.x() + r.x(), pose.y() + r.y(), fairlead_z);

@@ -248,10 +248,8 @@ mooring_fem::LineFailure ToLineFailure(const scenarios::Scenario& scenario) {
   } else {
     failure.mode = mooring_fem::FailureMode::kNode;
     const scenarios::LineSpec& line = scenario.mooring.lines[failure.line];
-    failure.node = f.arc_length
-                       ? static_cast<int>(std::lround(*f.arc_length / line.length * line.segments))
-                       : f.node;
-    failure.node = std::clamp(failure.node, 1, line.segments - 1);
+    failure.node = f.arc_length ? line.NodeNearest(*f.arc_length) : f.node;
+    failure.node = std::clamp(failure.node, 1, line.Segments() - 1);
   }
   return failure;
 }

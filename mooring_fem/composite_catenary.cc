@@ -1,0 +1,245 @@
+#include "mooring_fem/composite_catenary.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "core/error.h"
+
+namespace moorsim::mooring_fem {
+
+namespace {
+
+constexpr int kMaxNewtonIterations = 200;
+
+// Span and rise of a suspended stretch of unstretched length l of a section (weight w per
+// metre, stiffness ea) whose vertical tension is v1 at its lower end, under H > 0.
+Eigen::Vector2d Stretch(double h, double w, double ea, double v1, double l) {
+  const double v2 = v1 + w * l;
+  const double t1 = std::hypot(h, v1);
+  const double t2 = std::hypot(h, v2);
+  double dx = 0.0;
+  double dz = 0.0;
+  if (std::abs(w * l) <= 1e-8 * std::max(t1, t2)) {  // weightless: straight
+    const double v = 0.5 * (v1 + v2);
+    const double t = std::hypot(h, v);
+    dx = l * h / t;
+    dz = l * v / t;
+  } else {
+    dx = h / w * (std::asinh(v2 / h) - std::asinh(v1 / h));
+    dz = (t2 - t1) / w;
+  }
+  return {dx + h * l / ea, dz + l * (v1 + v2) / (2.0 * ea)};
+}
+
+// The line's layout: where each section starts, and the vertical tension at the bottom and
+// top of each for a given fairlead V.
+struct Layout {
+  std::vector<double> start;  // arc length of each section's lower end; start.back() = L
+  std::vector<double> bottom, top;
+  double grounded = 0.0;  // arc length resting on the seabed from the anchor
+};
+
+double JointWeight(const CompositeLine& line, std::size_t k) {
+  return line.joint_weights.empty() ? 0.0 : line.joint_weights[k];
+}
+
+Layout LayOut(const CompositeLine& line, double v_fairlead) {
+  const std::size_t n = line.sections.size();
+  Layout out;
+  out.start.assign(n + 1, 0.0);
+  for (std::size_t i = 0; i < n; ++i) out.start[i + 1] = out.start[i] + line.sections[i].length;
+  out.bottom.assign(n, 0.0);
+  out.top.assign(n, 0.0);
+  double v = v_fairlead;
+  for (std::size_t i = n; i-- > 0;) {
+    out.top[i] = v;
+    out.bottom[i] = v - line.sections[i].weight_per_length * line.sections[i].length;
+    if (i > 0) v = out.bottom[i] - JointWeight(line, i - 1);
+  }
+  // Touchdown: walking up from the anchor while V < 0 the line lies on the seabed.
+  if (out.bottom[0] >= 0.0) return out;  // the whole line hangs
+  for (std::size_t i = 0; i < n; ++i) {
+    const CatenaryLineProperties& section = line.sections[i];
+    if (out.top[i] >= 0.0) {
+      out.grounded = out.start[i] - out.bottom[i] / section.weight_per_length;
+      return out;
+    }
+    if (!(section.weight_per_length > 0.0)) {
+      throw InputError("catenary: section " + std::to_string(i + 1) +
+                       " is buoyant but lies on the seabed");
+    }
+    if (i + 1 < n) {
+      if (JointWeight(line, i) < 0.0) {
+        throw InputError("catenary: the buoy at joint " + std::to_string(i + 1) +
+                         " lies on the seabed (it cannot: it floats)");
+      }
+      if (out.bottom[i + 1] >= 0.0) {
+        out.grounded = out.start[i + 1];
+        return out;
+      }
+    }
+  }
+  out.grounded = out.start[n];
+  return out;
+}
+
+// The point at arc length s for (H, V_f).
+Eigen::Vector2d Point(const CompositeLine& line, const Layout& layout, double h, double s) {
+  Eigen::Vector2d p(0.0, 0.0);
+  for (std::size_t i = 0; i < line.sections.size(); ++i) {
+    const CatenaryLineProperties& section = line.sections[i];
+    const double lower = layout.start[i];
+    const double upper = std::min(layout.start[i + 1], s);
+    if (upper <= lower) break;
+    // The grounded part of this section, then the hanging part.
+    const double grounded_top = std::clamp(layout.grounded, lower, upper);
+    p.x() += (grounded_top - lower) * (1.0 + h / section.axial_stiffness);
+    if (upper > grounded_top) {
+      const double v1 = layout.bottom[i] + section.weight_per_length * (grounded_top - lower);
+      p += Stretch(h, section.weight_per_length, section.axial_stiffness, v1, upper - grounded_top);
+    }
+  }
+  return p;
+}
+
+void CheckLine(const CompositeLine& line) {
+  if (line.sections.empty()) throw InputError("catenary: a line needs at least one section");
+  if (!line.joint_weights.empty() && line.joint_weights.size() + 1 != line.sections.size()) {
+    throw InputError("catenary: " + std::to_string(line.joint_weights.size()) +
+                     " joint weights for " + std::to_string(line.sections.size()) + " sections");
+  }
+  for (std::size_t i = 0; i < line.sections.size(); ++i) {
+    const CatenaryLineProperties& s = line.sections[i];
+    if (!(std::isfinite(s.length) && s.length > 0.0 && std::isfinite(s.weight_per_length) &&
+          std::isfinite(s.axial_stiffness) && s.axial_stiffness > 0.0)) {
+      std::ostringstream out;
+      out << "catenary: section " << i + 1
+          << " needs a finite positive length and stiffness (L = " << s.length
+          << " m, w = " << s.weight_per_length << " N/m, EA = " << s.axial_stiffness << " N)";
+      throw InputError(out.str());
+    }
+  }
+}
+
+}  // namespace
+
+double CompositeCatenary::VerticalTensionAt(double s) const {
+  const Layout layout = LayOut(line, vertical_tension);
+  for (std::size_t i = 0; i < line.sections.size(); ++i) {
+    if (s <= layout.start[i + 1] || i + 1 == line.sections.size()) {
+      const double v =
+          layout.bottom[i] + line.sections[i].weight_per_length * (s - layout.start[i]);
+      return s < layout.grounded ? 0.0 : v;
+    }
+  }
+  return vertical_tension;
+}
+
+Eigen::Vector2d CompositeCatenary::PointAt(double s) const {
+  return Point(line, LayOut(line, vertical_tension), horizontal_tension, s);
+}
+
+CompositeCatenary SolveCompositeCatenary(const CompositeLine& line, double span, double height) {
+  CheckLine(line);
+  if (!(std::isfinite(span) && span >= 0.0 && std::isfinite(height) && height > 0.0)) {
+    std::ostringstream out;
+    out << "catenary: the fairlead must be above the anchor (span " << span << " m, height "
+        << height << " m)";
+    throw Error(out.str());
+  }
+  // The start: the homogeneous line of the same length, weight and compliance.
+  double length = 0.0, weight = 0.0, compliance = 0.0;
+  for (std::size_t i = 0; i < line.sections.size(); ++i) {
+    const CatenaryLineProperties& s = line.sections[i];
+    length += s.length;
+    weight += s.weight_per_length * s.length;
+    compliance += s.length / s.axial_stiffness;
+    if (i + 1 < line.sections.size()) weight += JointWeight(line, i);
+  }
+  const Eigen::Vector2d target(span, height);
+  const double chord = target.norm();
+  double h = 0.0;
+  double v = 0.0;
+  try {
+    const CatenarySolution uniform =
+        SolveCatenary({length, std::max(weight / length, 1e-6 * std::abs(weight) / length + 1e-9),
+                       length / compliance},
+                      span, height);
+    h = uniform.horizontal_tension;
+    v = uniform.vertical_tension;
+  } catch (const Error&) {
+    // Taut or buoyant: a straight line stretched to the chord.
+    const double tension = std::max(std::abs(weight), (chord / length - 1.0) * length / compliance);
+    h = std::max(tension, 1e-6 * length / compliance) * std::max(span, 1e-3 * chord) / chord;
+    v = std::max(tension, 1e-6 * length / compliance) * height / chord + std::max(weight, 0.0);
+  }
+  h = std::max(h, 1e-9 * length / compliance);
+  const double tolerance = 1e-11 * std::max({span, height, length});
+  const auto residual = [&](double hh, double vv) {
+    return Eigen::Vector2d(Point(line, LayOut(line, vv), hh, length) - target);
+  };
+  Eigen::Vector2d r = residual(h, v);
+  int iteration = 0;
+  while (r.lpNorm<Eigen::Infinity>() > tolerance) {
+    if (++iteration > kMaxNewtonIterations || h > 1e3 * length / compliance) {
+      std::ostringstream out;
+      out << "catenary: no equilibrium found for the composite line (L = " << length << " m, span "
+          << span << " m, height " << height << " m; closure error " << r.norm() << " m after "
+          << iteration << " iterations"
+          << (h > 1e3 * length / compliance ? ": the line cannot reach" : "") << ")";
+      throw Error(out.str());
+    }
+    const double dh = 1e-7 * h;
+    const double dv = 1e-7 * std::max(std::abs(v), h);
+    Eigen::Matrix2d jacobian;
+    jacobian.col(0) = (residual(h + dh, v) - residual(h - dh, v)) / (2.0 * dh);
+    jacobian.col(1) = (residual(h, v + dv) - residual(h, v - dv)) / (2.0 * dv);
+    Eigen::Vector2d step = -jacobian.partialPivLu().solve(r);
+    if (!step.allFinite()) step = Eigen::Vector2d(h, 0.0);  // a flat spot: pull harder
+    // Backtrack until the closure error falls (H stays positive).
+    double lambda = 1.0;
+    for (int k = 0; k < 60; ++k, lambda *= 0.5) {
+      const double h_trial = h + lambda * step.x();
+      if (!(h_trial > 0.0)) continue;
+      const Eigen::Vector2d r_trial = residual(h_trial, v + lambda * step.y());
+      if (r_trial.allFinite() && r_trial.norm() < r.norm()) {
+        h = h_trial;
+        v += lambda * step.y();
+        r = r_trial;
+        break;
+      }
+    }
+    if (lambda < 1e-15) {
+      h *= 2.0;  // no descent along the Newton step: move on from a stalled start
+      r = residual(h, v);
+    }
+  }
+  CompositeCatenary out;
+  out.line = line;
+  out.horizontal_tension = h;
+  out.vertical_tension = v;
+  out.fairlead_tension = std::hypot(h, v);
+  const Layout layout = LayOut(line, v);
+  out.grounded_length = layout.grounded;
+  out.anchor_vertical = layout.grounded > 0.0 ? 0.0 : layout.bottom.front();
+  return out;
+}
+
+Eigen::Matrix3Xd CompositeCatenaryPoints(const CompositeLine& line, const Vec3& anchor,
+                                         const Vec3& fairlead, const std::vector<double>& arc) {
+  const Vec3 chord = fairlead - anchor;
+  const double span = std::hypot(chord.x(), chord.y());
+  const CompositeCatenary solution = SolveCompositeCatenary(line, span, anchor.z() - fairlead.z());
+  const Vec3 along = span > 0.0 ? Vec3(chord.x() / span, chord.y() / span, 0.0) : Vec3::UnitX();
+  Eigen::Matrix3Xd points(3, static_cast<Eigen::Index>(arc.size()));
+  for (std::size_t k = 0; k < arc.size(); ++k) {
+    const Eigen::Vector2d p = solution.PointAt(arc[k]);
+    points.col(static_cast<Eigen::Index>(k)) = anchor + p.x() * along - p.y() * Vec3::UnitZ();
+  }
+  return points;
+}
+
+}  // namespace moorsim::mooring_fem
