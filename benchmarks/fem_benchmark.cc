@@ -14,6 +14,7 @@
 #include <random>
 #include <span>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -47,11 +48,38 @@ const moorsim::scenarios::Scenario& SeedScenario() {
 }
 
 /// The seed mooring with its first `lines` lines, each split into `segments` segments.
-moorsim::mooring_fem::MooringParameters SeedSpec(int lines, int segments) {
+/// `composite`: each line instead 400 m of the seed chain, 1650 m of polyester rope and
+/// 200 m of chain (2250 m, as the seed line) with a 20 t clump weight on the lower joint,
+/// its `segments` shared 20 / 70 / 10 % between the three: the same state size.
+moorsim::mooring_fem::MooringParameters SeedSpec(int lines, int segments, bool composite) {
   moorsim::mooring_fem::MooringParameters spec =
       moorsim::scenarios::ToMooringParameters(SeedScenario().mooring);
   if (static_cast<int>(spec.lines.size()) > lines) spec.lines.resize(lines);
-  for (auto& line : spec.lines) line.sections.front().segments = segments;
+  if (composite) {
+    moorsim::mooring_fem::LineType rope = spec.line_types.front();
+    rope.name = "polyester";
+    rope.diameter = 0.2;
+    rope.mass_per_length = 40.0;
+    rope.axial_stiffness = 2.0e8;
+    rope.drag_normal = 1.2;
+    rope.drag_tangential = 0.008;
+    rope.added_mass_normal = 1.0;
+    rope.friction_axial = rope.friction_lateral = 0.0;
+    spec.line_types.push_back(rope);
+  }
+  for (auto& line : spec.lines) {
+    if (!composite) {
+      line.sections.front().segments = segments;
+      continue;
+    }
+    const std::string chain = line.sections.front().type;
+    const int bottom = std::max(1, segments / 5);
+    const int top = std::max(1, segments / 10);
+    line.sections = {{chain, 400.0, bottom},
+                     {"polyester", 1650.0, segments - bottom - top},
+                     {chain, 200.0, top}};
+    line.joints = {{20000.0, 2.55, 1.0, 2.0}, {}};
+  }
   return spec;
 }
 
@@ -67,7 +95,8 @@ std::vector<Vec3> FairleadPositions(const MooringSystem& mooring) {
 
 /// A settled mooring with small random node velocities.
 struct Fixture {
-  Fixture(int lines, int segments) : mooring(SeedSpec(lines, segments)) {
+  Fixture(int lines, int segments, bool composite = false)
+      : mooring(SeedSpec(lines, segments, composite)) {
     positions = FairleadPositions(mooring);
     fairleads.resize(positions.size());
     for (std::size_t i = 0; i < positions.size(); ++i) fairleads[i].position = positions[i];
@@ -96,15 +125,16 @@ struct Fixture {
   std::vector<double> jacobian;
 };
 
-Fixture& GetFixture(int lines, int segments) {
-  static std::map<std::pair<int, int>, std::unique_ptr<Fixture>> cache;
-  auto& slot = cache[{lines, segments}];
-  if (!slot) slot = std::make_unique<Fixture>(lines, segments);
+Fixture& GetFixture(int lines, int segments, bool composite = false) {
+  static std::map<std::tuple<int, int, bool>, std::unique_ptr<Fixture>> cache;
+  auto& slot = cache[{lines, segments, composite}];
+  if (!slot) slot = std::make_unique<Fixture>(lines, segments, composite);
   return *slot;
 }
 
 void BM_Rhs(benchmark::State& state) {
-  Fixture& f = GetFixture(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  Fixture& f = GetFixture(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)),
+                          state.range_size() > 2 && state.range(2) != 0);
   const std::span<const PointKinematics> fairleads(f.fairleads);
   for (auto _ : state) {
     f.mooring.Derivatives(f.x.data(), fairleads, f.xdot.data());
@@ -119,7 +149,8 @@ void BM_Rhs(benchmark::State& state) {
 }
 
 void BM_Jacobian(benchmark::State& state) {
-  Fixture& f = GetFixture(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  Fixture& f = GetFixture(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)),
+                          state.range_size() > 2 && state.range(2) != 0);
   const std::span<const PointKinematics> fairleads(f.fairleads);
   for (auto _ : state) {
     f.mooring.Jacobian(f.x.data(), fairleads, f.jacobian.data());
@@ -270,6 +301,17 @@ BENCHMARK(BM_Rhs)
 BENCHMARK(BM_Jacobian)
     ->ArgsProduct({{1, 8}, {20, 50, 100}})
     ->ArgNames({"lines", "segments"})
+    ->Unit(benchmark::kMicrosecond);
+// Composite lines of the same segment count as the homogeneous ones (SeedSpec).
+BENCHMARK(BM_Rhs)
+    ->Name("BM_RhsComposite")
+    ->Args({8, 50, 1})
+    ->ArgNames({"lines", "segments", "composite"})
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Jacobian)
+    ->Name("BM_JacobianComposite")
+    ->Args({8, 50, 1})
+    ->ArgNames({"lines", "segments", "composite"})
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_NewtonFactor)
     ->ArgsProduct({{8}, {50, 100}, {0, 1}})

@@ -38,9 +38,7 @@
 namespace moorsim::mooring_fem {
 namespace {
 
-/// A line that would need more strain than this is treated as unable to reach: the
-/// linear-elastic model (and any real rope or chain) is meaningless far beyond it.
-constexpr double kMaxStrain = 0.10;
+constexpr double kMaxStrain = kMaxCatenaryStrain;
 /// Convergence: residuals of span and height below this fraction of the problem size.
 constexpr double kRelativeTolerance = 1e-12;
 constexpr int kMaxNewtonIterations = 100;

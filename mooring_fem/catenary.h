@@ -17,6 +17,10 @@
 
 namespace moorsim::mooring_fem {
 
+/// A line that would need more strain than this is treated as unable to reach: the
+/// linear-elastic model (and any real rope or chain) is meaningless far beyond it.
+inline constexpr double kMaxCatenaryStrain = 0.10;
+
 struct CatenaryLineProperties {
   double length = 0.0;             ///< unstretched length L [m]
   double weight_per_length = 0.0;  ///< submerged weight w per unstretched length [N/m]

@@ -217,14 +217,28 @@ CompositeCatenary SolveCompositeCatenary(const CompositeLine& line, double span,
       r = residual(h, v);
     }
   }
+  // The largest strain is at the top of a section (V grows upward but for buoys: both
+  // ends of each are checked).
+  const Layout final_layout = LayOut(line, v);
+  for (std::size_t i = 0; i < line.sections.size(); ++i) {
+    const double tension =
+        std::hypot(h, std::max(std::abs(final_layout.top[i]), std::abs(final_layout.bottom[i])));
+    const double strain = tension / line.sections[i].axial_stiffness;
+    if (strain > kMaxCatenaryStrain) {
+      std::ostringstream out;
+      out << "catenary: the composite line cannot reach (span " << span << " m, height " << height
+          << " m) without a strain of " << 100.0 * strain << " % in section " << i + 1 << " (limit "
+          << 100.0 * kMaxCatenaryStrain << " %)";
+      throw Error(out.str());
+    }
+  }
   CompositeCatenary out;
   out.line = line;
   out.horizontal_tension = h;
   out.vertical_tension = v;
   out.fairlead_tension = std::hypot(h, v);
-  const Layout layout = LayOut(line, v);
-  out.grounded_length = layout.grounded;
-  out.anchor_vertical = layout.grounded > 0.0 ? 0.0 : layout.bottom.front();
+  out.grounded_length = final_layout.grounded;
+  out.anchor_vertical = final_layout.grounded > 0.0 ? 0.0 : final_layout.bottom.front();
   return out;
 }
 

@@ -663,7 +663,7 @@ void CheckLines(const Checker& check, const MooringSpec& mooring) {
                                        WithUnit(kAnchorAboveSeabed, "m") + ")");
     }
     if (const std::string problem = LineGeometryProblem(line, fairlead); !problem.empty()) {
-      check.Fail(path + ".length", problem);
+      check.Fail(path + (line.written_in_sections ? ".sections" : ".length"), problem);
     }
   }
 }
@@ -690,7 +690,8 @@ void CheckLinesAtInitialPose(const Checker& check, const Scenario& scenario) {
     const Vec3 fairlead = FairleadAt(on_turret, pose.x(), pose.y(), pose.z());
     if (const std::string problem = LineGeometryProblem(lines[i], fairlead); !problem.empty()) {
       check.Fail("vessel.initial_pose",
-                 where + ", " + LinePath(lines[i], i) + ".length " + problem);
+                 where + ", " + LinePath(lines[i], i) +
+                     (lines[i].written_in_sections ? ".sections " : ".length ") + problem);
     }
   }
 }

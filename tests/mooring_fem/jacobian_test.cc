@@ -8,9 +8,11 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <utility>
 
 #include "mooring_fem/line_simulation.h"
 #include "mooring_fem/mooring_system.h"
+#include "test_support.h"
 
 namespace moorsim::mooring_fem {
 namespace {
@@ -21,18 +23,7 @@ MooringParameters TestSpec(int segments) {
   spec.current.direction = 30.0 * std::numbers::pi / 180.0;
   spec.current.depth = {0.0, 200.0, 1000.0};
   spec.current.speed = {0.8, 0.4, 0.1};
-  LineType type;
-  type.name = "chain";
-  type.diameter = 0.08;
-  type.mass_per_length = 275.0;
-  type.axial_stiffness = 2.28785e8;
-  type.axial_damping_ratio = 0.5;
-  type.drag_normal = 0.3;
-  type.drag_tangential = 1.0;
-  type.added_mass_normal = 1.5;
-  type.friction_axial = 0.5;
-  type.friction_lateral = 1.0;
-  spec.line_types.push_back(type);
+  spec.line_types.push_back(testing::ChainType());
   for (int i = 0; i < 2; ++i) {
     const double angle = i * 2.0 * std::numbers::pi / 3.0;
     spec.lines.push_back(
@@ -86,8 +77,20 @@ void ExpectJacobianMatchesFiniteDifferences(MooringSystem& mooring, std::vector<
   EXPECT_GT(checked, 0);
 }
 
+// Line 2 made of three sections (chain, a lighter and more compliant rope, chain) with a
+// clump weight and a buoy with drag at the joints.
+MooringParameters CompositeTestSpec() {
+  MooringParameters spec = TestSpec(12);
+  spec.line_types.push_back(testing::PolyesterType());
+  LineParameters& line = spec.lines[1];
+  line.sections = {{"chain", 700.0, 4}, {"polyester", 1200.0, 6}, {"chain", 350.0, 3}};
+  line.joints = {{20000.0, 2.5, 1.0, 2.0}, {4000.0, 12.0, 0.8, 5.0}};
+  return spec;
+}
+
 struct Fixture {
-  explicit Fixture(int segments) : spec(TestSpec(segments)), mooring(spec) {
+  explicit Fixture(int segments) : Fixture(TestSpec(segments)) {}
+  explicit Fixture(MooringParameters parameters) : spec(std::move(parameters)), mooring(spec) {
     for (int i = 0; i < mooring.num_lines(); ++i) {
       PointKinematics f;
       f.position = mooring.line(i).fairlead_body + Vec3(3.0, -2.0, 0.5);
@@ -117,6 +120,15 @@ struct Fixture {
 TEST(MooringJacobian, IntactLinesMatchFiniteDifferences) {
   Fixture f(12);
   ExpectJacobianMatchesFiniteDifferences(f.mooring, f.x, f.fairleads);
+}
+
+TEST(MooringJacobian, CompositeLinesWithBodiesMatchFiniteDifferences) {
+  Fixture f(CompositeTestSpec());
+  ExpectJacobianMatchesFiniteDifferences(f.mooring, f.x, f.fairleads);
+  // Parted at the joint that carries the buoy: both pieces keep a free copy of it.
+  const std::vector<double> x =
+      f.mooring.ApplyFailure({1, FailureMode::kNode, 10}, f.x.data(), f.fairleads);
+  ExpectJacobianMatchesFiniteDifferences(f.mooring, x, f.fairleads);
 }
 
 TEST(MooringJacobian, GroundedNodesAreExercised) {

@@ -15,6 +15,37 @@
 
 namespace moorsim::mooring_fem::testing {
 
+/// The seed chain (Ren & Skjetne 2016) as a line type named "chain", with seabed friction.
+inline LineType ChainType() {
+  LineType t;
+  t.name = "chain";
+  t.diameter = 0.08;
+  t.mass_per_length = 275.0;
+  t.axial_stiffness = 2.28785e8;
+  t.axial_damping_ratio = 0.5;
+  t.drag_normal = 0.3;
+  t.drag_tangential = 1.0;
+  t.added_mass_normal = 1.5;
+  t.friction_axial = 0.5;
+  t.friction_lateral = 1.0;
+  return t;
+}
+
+/// A polyester rope of 160 mm named "polyester": 26 kg/m dry, 53 N/m in sea water.
+inline LineType PolyesterType() {
+  LineType t = ChainType();
+  t.name = "polyester";
+  t.diameter = 0.16;
+  t.mass_per_length = 26.0;
+  t.axial_stiffness = 1.2e8;
+  t.drag_normal = 1.2;
+  t.drag_tangential = 0.008;
+  t.added_mass_normal = 1.0;
+  t.friction_axial = 0.2;
+  t.friction_lateral = 0.3;
+  return t;
+}
+
 /// What the FEM takes of a scenario.
 struct SeedCase {
   MooringParameters mooring;

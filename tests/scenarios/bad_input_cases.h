@@ -176,6 +176,33 @@ struct BadInput {
 
 inline void PrintTo(const BadInput& input, std::ostream* out) { *out << input.name; }
 inline const BadInput kParseErrors[] = {
+    {"SectionsBesideType", "- id: 2", "length: 2250",
+     "sections: [{type: wire, length: 2250, segments: 40}]", "wire",
+     "mooring.lines[2].type: give a line either type, length and segments or its sections, not "
+     "both"},
+    {"BodyOnALineOfOneType", "- id: 2", "length: 2250",
+     "length: 2250\n      bodies: [{joint: 1, mass: 1000}]", "[{joint",
+     "mooring.lines[2].bodies: bodies sit on the joints between sections: give the line's "
+     "sections"},
+    {"BodyOnAJointTheLineDoesNotHave", "- id: 2",
+     "type: wire\n      anchor: [0, 1950, 1000]\n      fairlead: [0, 20, 12]\n      length: 2250",
+     "anchor: [0, 1950, 1000]\n      fairlead: [0, 20, 12]\n      sections: [{type: wire, length: "
+     "1000, segments: 20}, {type: chain, length: 1250, segments: 20}]\n      bodies: [{joint: 2, "
+     "mass: 1000}]",
+     "2, mass",
+     "mooring.lines[2].bodies[1].joint: 2 is not a joint of the line: its 2 sections meet at "
+     "joints 1..1"},
+    {"TwoBodiesOnOneJoint", "- id: 2",
+     "type: wire\n      anchor: [0, 1950, 1000]\n      fairlead: [0, 20, 12]\n      length: 2250",
+     "anchor: [0, 1950, 1000]\n      fairlead: [0, 20, 12]\n      sections: [{type: wire, length: "
+     "1000, segments: 20}, {type: chain, length: 1250, segments: 20}]\n      bodies: [{joint: 1, "
+     "mass: 1000}, {joint: 1, volume: 3}]",
+     "1, volume", "mooring.lines[2].bodies[2].joint: 1 has a body already"},
+    {"SectionWithoutSegments", "- id: 2",
+     "type: wire\n      anchor: [0, 1950, 1000]\n      fairlead: [0, 20, 12]\n      length: 2250",
+     "anchor: [0, 1950, 1000]\n      fairlead: [0, 20, 12]\n      sections: [{type: wire, length: "
+     "2250}]",
+     "{type: wire", "mooring.lines[2].sections[1]: required key 'segments' is missing"},
     {"UnknownKeyInLine", "- id: 2", "length: 2250", "lenght: 2250", "lenght",
      "mooring.lines[2]: unknown key 'lenght' (did you mean 'length'?)"},
     {"UnknownTopLevelSection", "", "solver:\n", "vessels: {}\nsolver:\n", "vessels",
@@ -449,6 +476,17 @@ inline const BadInput kValidationErrors[] = {
      "mooring.line_types[2].name: 'chain' is already the name of mooring.line_types[1]"},
     {"UnknownLineType", "- id: 2", "type: wire", "type: wier", "wier",
      "mooring.lines[2].type: unknown line type 'wier' (known: chain, wire)"},
+    {"UnknownSectionType", "- id: 2",
+     "type: wire\n      anchor: [0, 1950, 1000]\n      fairlead: [0, 20, 12]\n      length: 2250",
+     "anchor: [0, 1950, 1000]\n      fairlead: [0, 20, 12]\n      sections: [{type: wire, "
+     "length: 1000, segments: 20}, {type: rope, length: 1250, segments: 20}]",
+     "rope", "mooring.lines[2].sections[2].type: unknown line type 'rope' (known: chain, wire)"},
+    {"CompositeLineShorterThanTheDistance", "- id: 2",
+     "type: wire\n      anchor: [0, 1950, 1000]\n      fairlead: [0, 20, 12]\n      length: 2250",
+     "anchor: [0, 1950, 1000]\n      fairlead: [0, 20, 12]\n      sections: [{type: wire, "
+     "length: 1000, segments: 20}, {type: chain, length: 900, segments: 20}]",
+     "[{type: wire",
+     "mooring.lines[2].sections: 1900 m is shorter than the anchor-fairlead distance 2168.2 m"},
     {"DuplicateLineId", "type: chain", "- id: 2", "- id: 1", "- id: ^1",
      "mooring.lines[2].id: 1 is already the id of mooring.lines[1]"},
     {"LineIdsNotOneToN", "type: wire", "- id: 3", "- id: 4", "- id: ^4",

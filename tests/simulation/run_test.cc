@@ -302,3 +302,26 @@ TEST_F(RunTest, BadInputIsRejectedBeforeAnythingIsWritten) {
 
 }  // namespace
 }  // namespace moorsim::simulation
+
+namespace moorsim::simulation {
+namespace {
+
+// A mooring of composite lines (chain, polyester, chain, a clump weight on each) runs
+// through the same coupled plant and detectors unchanged: the force-deficit test, whose
+// quasi-static model tabulates each line's composite catenary, names the line that parts.
+TEST(CompositeMooring, TheDeficitTestNamesThePartedLine) {
+  RunRequest request;
+  request.scenario_path = MOORSIM_SOURCE_DIR "/scenarios/library/composite_line6.yaml";
+  request.write_files = false;
+  const RunResult r = RunScenario(request);
+  ASSERT_EQ(r.status, RunStatus::kOk) << r.message;
+  const nlohmann::json& deficit = r.summary.at("detectors").at("deficit");
+  EXPECT_EQ(deficit.at("isolated_line"), 6) << deficit.dump();
+  EXPECT_EQ(deficit.at("false_alarms"), 0) << deficit.dump();
+  const double delay = deficit.at("delay").get<double>();
+  EXPECT_GT(delay, 0.0);
+  EXPECT_LT(delay, 120.0);
+}
+
+}  // namespace
+}  // namespace moorsim::simulation

@@ -1,0 +1,268 @@
+// Composite lines (sections of different types in series, clump weights and buoys at their
+// joints) at rest, against an independent reference written here: the elastic catenary's
+// differential equations integrated by Simpson's rule (not the closed forms the code uses)
+// with the seabed carrying the line from the anchor to where its vertical tension reaches
+// zero, and the fairlead's horizontal and vertical tension found by Newton's method on the
+// two closure conditions. The FEM settled to rest must give every line's fairlead and
+// anchor tension within 0.1 % of it; the composite catenary (which places the FEM's nodes
+// at the start) within 1e-6.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <numbers>
+#include <ostream>
+#include <vector>
+
+#include "core/error.h"
+#include "mooring_fem/composite_catenary.h"
+#include "mooring_fem/mooring_system.h"
+#include "test_support.h"
+
+namespace moorsim::mooring_fem {
+namespace {
+
+constexpr double kRho = 1025.0;
+constexpr double kG = 9.81;
+
+// --- The reference: a line of sections (w, EA, L) with point weights at the joints.
+
+struct RefSection {
+  double length, weight, stiffness;  // [m], in water [N/m], EA [N]
+};
+
+struct Reference {
+  double h = 0.0, v_fairlead = 0.0, v_anchor = 0.0, grounded = 0.0;
+  double FairleadTension() const { return std::hypot(h, v_fairlead); }
+  double AnchorTension() const { return std::hypot(h, v_anchor); }
+};
+
+// x and z of the fairlead relative to the anchor for (H, V_f), by quadrature of
+// dx/ds = H/T + H/EA, dz/ds = V/T + V/EA on each suspended stretch.
+Eigen::Vector2d Closure(const std::vector<RefSection>& sections, const std::vector<double>& joints,
+                        double h, double v_f, Reference* out = nullptr) {
+  const std::size_t n = sections.size();
+  // V just above the lower end of each section, walking down from the fairlead.
+  std::vector<double> v_low(n);
+  double v = v_f;
+  for (std::size_t i = n; i-- > 0;) {
+    v -= sections[i].weight * sections[i].length;
+    v_low[i] = v;
+    if (i > 0) v -= joints[i - 1];
+  }
+  // The grounded stretch from the anchor: while V < 0 (weights below are all >= 0 here).
+  double grounded = 0.0;
+  if (v_low[0] < 0.0) {
+    double start = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double top = v_low[i] + sections[i].weight * sections[i].length;
+      if (top >= 0.0) {
+        grounded = start - v_low[i] / sections[i].weight;
+        break;
+      }
+      start += sections[i].length;
+      if (i + 1 < n && v_low[i + 1] >= 0.0) {
+        grounded = start;
+        break;
+      }
+    }
+  }
+  Eigen::Vector2d p(0.0, 0.0);
+  double start = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const RefSection& s = sections[i];
+    const double g = std::clamp(grounded - start, 0.0, s.length);  // grounded part here
+    p.x() += g * (1.0 + h / s.stiffness);
+    const double a = g, b = s.length;
+    if (b > a) {
+      constexpr int kIntervals = 4000;  // even: Simpson
+      const double step = (b - a) / kIntervals;
+      Eigen::Vector2d sum(0.0, 0.0);
+      for (int k = 0; k <= kIntervals; ++k) {
+        const double vs = v_low[i] + s.weight * (a + k * step);
+        const double t = std::hypot(h, vs);
+        const Eigen::Vector2d f(h / t + h / s.stiffness, vs / t + vs / s.stiffness);
+        sum += (k == 0 || k == kIntervals ? 1.0 : (k % 2 == 1 ? 4.0 : 2.0)) * f;
+      }
+      p += sum * step / 3.0;
+    }
+    start += s.length;
+  }
+  if (out != nullptr) {
+    out->h = h;
+    out->v_fairlead = v_f;
+    out->v_anchor = grounded > 0.0 ? 0.0 : v_low[0];
+    out->grounded = grounded;
+  }
+  return p;
+}
+
+Reference SolveReference(const std::vector<RefSection>& sections, const std::vector<double>& joints,
+                         double span, double height, double h, double v) {
+  const Eigen::Vector2d target(span, height);
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    const Eigen::Vector2d r = Closure(sections, joints, h, v) - target;
+    if (r.norm() < 1e-9) break;
+    Eigen::Matrix2d j;
+    const double dh = 1e-4 * h, dv = 1e-4 * h;
+    j.col(0) =
+        (Closure(sections, joints, h + dh, v) - Closure(sections, joints, h - dh, v)) / (2.0 * dh);
+    j.col(1) =
+        (Closure(sections, joints, h, v + dv) - Closure(sections, joints, h, v - dv)) / (2.0 * dv);
+    const Eigen::Vector2d step = j.partialPivLu().solve(-r);
+    double lambda = 1.0;
+    while (h + lambda * step.x() <= 0.0) lambda *= 0.5;
+    h += lambda * step.x();
+    v += lambda * step.y();
+  }
+  Reference out;
+  const Eigen::Vector2d r = Closure(sections, joints, h, v, &out) - target;
+  EXPECT_LT(r.norm(), 1e-8) << "the reference did not close";
+  return out;
+}
+
+// --- The case: a deepwater chain-polyester-chain line in 1000 m.
+
+double WeightInWater(const LineType& t) {
+  return (t.mass_per_length - kRho * std::numbers::pi / 4.0 * t.diameter * t.diameter) * kG;
+}
+
+struct Case {
+  const char* name;
+  std::vector<PointBody> joints;  // empty: none
+  double anchor_x = 1750.0;       // [m]; the fairlead is at x = 20 m, 988 m above the anchor
+  bool grounded = true;           // whether part of the line rests on the seabed
+};
+
+MooringParameters CompositeSpec(const Case& c, int scale) {
+  MooringParameters spec;
+  spec.water.depth = 1000.0;
+  // A hard seabed: the grounded chain sinks 0.3 cm into it, where the default seabed's
+  // smoothed contact (0.5 m) lets it sink 7 cm, which moves H by about 0.1 % from the
+  // rigid seabed of the reference.
+  spec.seabed.stiffness = 3e7;
+  spec.seabed.contact_smoothing = 0.02;
+  spec.line_types = {testing::ChainType(), testing::PolyesterType()};
+  LineParameters line;
+  line.id = 1;
+  line.anchor = Vec3(c.anchor_x, 0.0, 1000.0);
+  line.fairlead_body = Vec3(20.0, 0.0, 12.0);
+  line.sections = {{"chain", 400.0, 20 * scale},
+                   {"polyester", 1500.0, 60 * scale},
+                   {"chain", 150.0, 10 * scale}};
+  line.joints = c.joints;
+  spec.lines.push_back(line);
+  return spec;
+}
+
+std::vector<RefSection> ReferenceSections() {
+  return {
+      {400.0, WeightInWater(testing::ChainType()), testing::ChainType().axial_stiffness},
+      {1500.0, WeightInWater(testing::PolyesterType()), testing::PolyesterType().axial_stiffness},
+      {150.0, WeightInWater(testing::ChainType()), testing::ChainType().axial_stiffness}};
+}
+
+std::vector<double> ReferenceJoints(const Case& c) {
+  std::vector<double> w(2, 0.0);
+  for (std::size_t k = 0; k < c.joints.size(); ++k) {
+    w[k] = (c.joints[k].mass - kRho * c.joints[k].volume) * kG;
+  }
+  return w;
+}
+
+const Case kCases[] = {
+    {"plain", {}},
+    // Pulled taut: the whole line hangs and the anchor carries an upward pull.
+    {"taut", {}, 1850.0, false},
+    // A 25 t clump weight where the bottom chain meets the polyester.
+    {"clump", {{25000.0, 25000.0 / 7850.0, 1.0, 2.0}, {}}},
+    // A buoy of 20 m^3 (5 t) where the polyester meets the top chain: 150 kN of lift.
+    {"buoy", {{}, {5000.0, 20.0, 1.0, 6.0}}},
+};
+
+void PrintTo(const Case& c, std::ostream* out) { *out << c.name; }
+
+class CompositeStatic : public ::testing::TestWithParam<Case> {};
+
+TEST_P(CompositeStatic, FemTensionsMatchTheIndependentCatenary) {
+  const Case& c = GetParam();
+  const MooringParameters spec = CompositeSpec(c, 4);
+  MooringSystem mooring(spec);
+  const LineProperties& lp = mooring.line(0);
+  PointKinematics fairlead;
+  fairlead.position = lp.fairlead_body;  // the vessel at the origin
+  const std::vector<Vec3> positions = {fairlead.position};
+  std::vector<double> x(mooring.StateSize());
+  mooring.CatenaryState(positions, x.data());
+  mooring.SettleStatic(positions, x.data());
+
+  const Vec3 chord = fairlead.position - lp.anchor;
+  const double span = std::hypot(chord.x(), chord.y());
+  const double height = lp.anchor.z() - fairlead.position.z();
+  const CompositeCatenary guess = SolveCompositeCatenary(CatenaryLineOf(lp), span, height);
+  const Reference ref = SolveReference(ReferenceSections(), ReferenceJoints(c), span, height,
+                                       guess.horizontal_tension, guess.vertical_tension);
+
+  // The closed forms against the quadrature.
+  EXPECT_NEAR(guess.horizontal_tension, ref.h, 1e-6 * ref.h) << c.name;
+  EXPECT_NEAR(guess.vertical_tension, ref.v_fairlead, 1e-6 * ref.FairleadTension()) << c.name;
+  EXPECT_NEAR(guess.grounded_length, ref.grounded, 1e-6 * 2050.0) << c.name;
+  EXPECT_EQ(ref.grounded > 1.0, c.grounded) << c.name << ": grounded " << ref.grounded << " m";
+
+  // The FEM at rest: the fairlead force, and the anchor's from the first segment.
+  const std::vector<PointKinematics> fairleads = {fairlead};
+  const Vec3 f = mooring.LineLoads(x.data(), fairleads)[0].fairlead_force;
+  EXPECT_NEAR(f.norm(), ref.FairleadTension(), 1e-3 * ref.FairleadTension()) << c.name;
+  EXPECT_NEAR(f.head<2>().norm(), ref.h, 1e-3 * ref.h) << c.name;
+  const double l0 = lp.sections.front().segment_length;
+  const double stretched = (mooring.NodePosition(x.data(), 0, 1, fairleads) - lp.anchor).norm();
+  const double anchor_tension = lp.sections.front().axial_stiffness * (stretched / l0 - 1.0);
+  EXPECT_NEAR(anchor_tension, ref.AnchorTension(), 1e-3 * ref.AnchorTension()) << c.name;
+  RecordProperty("fairlead_error", std::to_string(f.norm() / ref.FairleadTension() - 1.0));
+  RecordProperty("anchor_error", std::to_string(anchor_tension / ref.AnchorTension() - 1.0));
+}
+
+INSTANTIATE_TEST_SUITE_P(Lines, CompositeStatic, ::testing::ValuesIn(kCases),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+// The same model, written as one section per line type, is the homogeneous line exactly:
+// a line cut into two sections of the same type at a node gives the same right-hand side
+// to the last bit.
+TEST(CompositeLine, TwoSectionsOfOneTypeAreTheHomogeneousLine) {
+  MooringParameters one = CompositeSpec(kCases[0], 1);
+  one.lines[0].sections = {{"chain", 2050.0, 41}};
+  MooringParameters two = one;
+  two.lines[0].sections = {{"chain", 1000.0, 20}, {"chain", 1050.0, 21}};
+  MooringSystem a(one), b(two);
+  const std::vector<Vec3> positions = {one.lines[0].fairlead_body};
+  std::vector<double> x(a.StateSize());
+  a.CatenaryState(positions, x.data());
+  std::vector<PointKinematics> fairleads(1);
+  fairleads[0].position = positions[0];
+  std::vector<double> fa(x.size()), fb(x.size());
+  a.Derivatives(x.data(), fairleads, fa.data());
+  b.Derivatives(x.data(), fairleads, fb.data());
+  for (std::size_t i = 0; i < x.size(); ++i) ASSERT_EQ(fa[i], fb[i]) << i;
+}
+
+TEST(CompositeCatenary, LinesItCannotRepresentAreOneMessage) {
+  CompositeLine line;
+  EXPECT_THROW(SolveCompositeCatenary(line, 1000.0, 500.0), InputError);
+  line.sections = {{500.0, 1000.0, 1e8}, {500.0, 1000.0, 1e8}};
+  line.joint_weights = {1.0, 2.0};  // two joint weights for two sections
+  EXPECT_THROW(SolveCompositeCatenary(line, 800.0, 300.0), InputError);
+  // A buoy on the part that rests on the seabed.
+  line.joint_weights = {-5e4};
+  try {
+    SolveCompositeCatenary(line, 400.0, 100.0);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("buoy at joint 1"), std::string::npos) << e.what();
+  }
+  // Too short to reach without straining beyond the elastic model's limit.
+  line.joint_weights = {};
+  EXPECT_THROW(SolveCompositeCatenary(line, 1150.0, 100.0), Error);
+}
+
+}  // namespace
+}  // namespace moorsim::mooring_fem
