@@ -51,7 +51,7 @@ const moorsim::scenarios::Scenario& SeedScenario() {
 /// `composite`: each line instead 400 m of the seed chain, 1650 m of polyester rope and
 /// 200 m of chain (2250 m, as the seed line) with a 20 t clump weight on the lower joint,
 /// its `segments` shared 20 / 70 / 10 % between the three: the same state size.
-moorsim::mooring_fem::MooringParameters SeedSpec(int lines, int segments, bool composite) {
+moorsim::mooring_fem::MooringParameters SeedSpec(int lines, int segments, bool composite = false) {
   moorsim::mooring_fem::MooringParameters spec =
       moorsim::scenarios::ToMooringParameters(SeedScenario().mooring);
   if (static_cast<int>(spec.lines.size()) > lines) spec.lines.resize(lines);
@@ -132,9 +132,9 @@ Fixture& GetFixture(int lines, int segments, bool composite = false) {
   return *slot;
 }
 
-void BM_Rhs(benchmark::State& state) {
-  Fixture& f = GetFixture(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)),
-                          state.range_size() > 2 && state.range(2) != 0);
+void BM_Rhs(benchmark::State& state, bool composite) {
+  Fixture& f =
+      GetFixture(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)), composite);
   const std::span<const PointKinematics> fairleads(f.fairleads);
   for (auto _ : state) {
     f.mooring.Derivatives(f.x.data(), fairleads, f.xdot.data());
@@ -148,9 +148,9 @@ void BM_Rhs(benchmark::State& state) {
   state.counters["rhs/s"] = benchmark::Counter(iterations, benchmark::Counter::kIsRate);
 }
 
-void BM_Jacobian(benchmark::State& state) {
-  Fixture& f = GetFixture(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)),
-                          state.range_size() > 2 && state.range(2) != 0);
+void BM_Jacobian(benchmark::State& state, bool composite) {
+  Fixture& f =
+      GetFixture(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)), composite);
   const std::span<const PointKinematics> fairleads(f.fairleads);
   for (auto _ : state) {
     f.mooring.Jacobian(f.x.data(), fairleads, f.jacobian.data());
@@ -294,24 +294,26 @@ void BM_Catenary(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
-BENCHMARK(BM_Rhs)
+BENCHMARK_CAPTURE(BM_Rhs, , false)
+    ->Name("BM_Rhs")
     ->ArgsProduct({{1, 8}, {20, 50, 100}})
     ->ArgNames({"lines", "segments"})
     ->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_Jacobian)
+BENCHMARK_CAPTURE(BM_Jacobian, , false)
+    ->Name("BM_Jacobian")
     ->ArgsProduct({{1, 8}, {20, 50, 100}})
     ->ArgNames({"lines", "segments"})
     ->Unit(benchmark::kMicrosecond);
 // Composite lines of the same segment count as the homogeneous ones (SeedSpec).
-BENCHMARK(BM_Rhs)
+BENCHMARK_CAPTURE(BM_Rhs, , true)
     ->Name("BM_RhsComposite")
-    ->Args({8, 50, 1})
-    ->ArgNames({"lines", "segments", "composite"})
+    ->Args({8, 50})
+    ->ArgNames({"lines", "segments"})
     ->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_Jacobian)
+BENCHMARK_CAPTURE(BM_Jacobian, , true)
     ->Name("BM_JacobianComposite")
-    ->Args({8, 50, 1})
-    ->ArgNames({"lines", "segments", "composite"})
+    ->Args({8, 50})
+    ->ArgNames({"lines", "segments"})
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_NewtonFactor)
     ->ArgsProduct({{8}, {50, 100}, {0, 1}})
