@@ -154,7 +154,7 @@ LineProperties MakeLineProperties(const MooringParameters& spec, const LineParam
     p.segments += section.segments;
     p.section_of.insert(p.section_of.end(), section.segments, static_cast<int>(k));
   }
-  p.body_at.assign(p.segments + 1, std::nullopt);
+  p.body_at.assign(p.segments + 1, -1);
   int node = 0;
   for (std::size_t k = 0; k < line.joints.size(); ++k) {
     node += line.sections[k].segments;
@@ -165,7 +165,8 @@ LineProperties MakeLineProperties(const MooringParameters& spec, const LineParam
     b.weight = (body.mass - rho * body.volume) * spec.water.gravity;
     b.added_mass = body.added_mass * rho * body.volume;
     b.drag = 0.5 * rho * body.drag_area;
-    p.body_at[node] = b;
+    p.body_at[node] = static_cast<int>(p.bodies.size());
+    p.bodies.push_back(b);
   }
   return p;
 }
@@ -178,7 +179,8 @@ CompositeLine CatenaryLineOf(const LineProperties& line) {
   int node = 0;
   for (std::size_t k = 0; k + 1 < line.sections.size(); ++k) {
     node += line.sections[k].segments;
-    out.joint_weights.push_back(line.body_at[node] ? line.body_at[node]->weight : 0.0);
+    const PointBodyProperties* body = line.BodyAt(node);
+    out.joint_weights.push_back(body != nullptr ? body->weight : 0.0);
   }
   return out;
 }
@@ -222,24 +224,12 @@ int LineParameters::NodeNearest(double arc_length) const {
   return first;
 }
 
-namespace {
-
-// What a node carries of its line: half of each adjacent segment (`below`, `above`: the
-// sections of the segments under and over it, null at a free end) and the body there.
-struct NodeShare {
-  double length = 0.0;  // unstretched line length the node stands for [m]
-  double mass = 0.0;    // line and body [kg] (the body's added mass too: it is isotropic)
-  double weight = 0.0;  // line and body, in water [N]
-  double line_weight_per_length = 0.0;  // of the line alone [N/m]
-  double contact = 0.0;                 // seabed contact area of the line, diameter x length [m^2]
-  double friction_axial = 0.0, friction_lateral = 0.0;
-  const PointBodyProperties* body = nullptr;
-};
-
 NodeShare ShareOf(const LineProperties& lp, int node, bool has_below, bool has_above) {
   const SectionProperties* below = has_below ? &lp.SectionOf(node - 1) : nullptr;
   const SectionProperties* above = has_above ? &lp.SectionOf(node) : nullptr;
   NodeShare n;
+  n.below = has_below ? lp.section_of[node - 1] : -1;
+  n.above = has_above ? lp.section_of[node] : -1;
   if (below == nullptr || above == nullptr || below == above) {
     const SectionProperties& sp = above != nullptr ? *above : *below;
     n.length = 0.5 * sp.segment_length * ((has_below ? 1 : 0) + (has_above ? 1 : 0));
@@ -264,15 +254,13 @@ NodeShare ShareOf(const LineProperties& lp, int node, bool has_below, bool has_a
     n.friction_lateral =
         (c_below * below->friction_lateral + c_above * above->friction_lateral) / n.contact;
   }
-  if (const auto& body = lp.body_at[node]) {
-    n.body = &*body;
+  n.body = lp.body_at[node];
+  if (const PointBodyProperties* body = lp.BodyAt(node)) {
     n.mass += body->mass + body->added_mass;
     n.weight += body->weight;
   }
   return n;
 }
-
-}  // namespace
 
 MooringSystem::MooringSystem(const MooringParameters& spec) : current_(spec.current) {
   seabed_.depth = spec.water.depth;
@@ -283,6 +271,10 @@ MooringSystem::MooringSystem(const MooringParameters& spec) : current_(spec.curr
   int max_segments = 0;
   for (const auto& line : spec.lines) {
     lines_.push_back(MakeLineProperties(spec, line));
+    const LineProperties& lp = lines_.back();
+    std::vector<NodeShare> shares(lp.segments + 1);
+    for (int k = 1; k < lp.segments; ++k) shares[k] = ShareOf(lp, k, true, true);
+    shares_.push_back(std::move(shares));
     Chain c;
     c.line = static_cast<int>(lines_.size()) - 1;
     c.segments = lines_.back().segments;
@@ -365,10 +357,15 @@ void MooringSystem::GatherChain(const Chain& c, const double* x,
 
 void MooringSystem::ComputeSegments(const Chain& c) {
   const LineProperties& lp = lines_[c.line];
+  const SectionProperties* sp_ptr = nullptr;
+  double l0 = 0.0, inverse_l0 = 0.0;  // multiplications, not divisions, below
   for (int s = 0; s < c.segments; ++s) {
     const SectionProperties& sp = lp.SectionOf(c.first_node + s);
-    const double l0 = sp.segment_length;
-    const double inverse_l0 = 1.0 / l0;  // multiplications, not divisions, below
+    if (&sp != sp_ptr) {  // a new section: its constants
+      sp_ptr = &sp;
+      l0 = sp.segment_length;
+      inverse_l0 = 1.0 / l0;
+    }
     const Vec3 l = pos_[s + 1] - pos_[s];
     const double L = l.norm();
     if (!(L > 1e-9 * l0)) {
@@ -422,7 +419,10 @@ void MooringSystem::NodeForce(const Chain& c, int k, Vec3* F_out, NodeMass* M_ou
   const LineProperties& lp = lines_[c.line];
   const bool has_below = k > 0;
   const bool has_above = k < c.segments;
-  const NodeShare share = ShareOf(lp, c.first_node + k, has_below, has_above);
+  NodeShare end;  // a chain's end node: computed here; the others' are kept
+  const NodeShare& share = has_below && has_above
+                               ? shares_[c.line][c.first_node + k]
+                               : (end = ShareOf(lp, c.first_node + k, has_below, has_above));
   const Vec3& r = pos_[k];
   const Vec3& v = vel_[k];
   const Vec3 u = v - current_.VelocityAt(r.z());
@@ -430,16 +430,15 @@ void MooringSystem::NodeForce(const Chain& c, int k, Vec3* F_out, NodeMass* M_ou
   NodeMass M;
   M.m = share.mass;
   Vec3 F = share.weight * kDown;
-  auto add_segment = [&](int s, double sign) {
+  auto add_segment = [&](int s, const SectionProperties& sp, double sign) {
     const SegmentState& g = seg_[s];
-    const SectionProperties& sp = lp.SectionOf(c.first_node + s);
     F += sign * g.T * g.t;
     M.Add(0.5 * sp.added_mass_per_length * g.L, g.t);
     F += DragForce(u, g.t, g.L, sp.drag_normal, sp.drag_tangential);
   };
-  if (has_above) add_segment(k, +1.0);
-  if (has_below) add_segment(k - 1, -1.0);
-  if (share.body != nullptr) F -= (share.body->drag * u.norm()) * u;
+  if (has_above) add_segment(k, lp.sections[share.above], +1.0);
+  if (has_below) add_segment(k - 1, lp.sections[share.below], -1.0);
+  if (share.body >= 0) F -= (lp.bodies[share.body].drag * u.norm()) * u;
 
   const double delta = r.z() - seabed_.depth;
   if (delta > 0.0) {
@@ -478,7 +477,10 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, Node
   }
   const bool has_below = k > 0;
   const bool has_above = k < c.segments;
-  const NodeShare share = ShareOf(lp, c.first_node + k, has_below, has_above);
+  NodeShare end;  // a chain's end node: computed here; the others' are kept
+  const NodeShare& share = has_below && has_above
+                               ? shares_[c.line][c.first_node + k]
+                               : (end = ShareOf(lp, c.first_node + k, has_below, has_above));
   const Vec3& r = pos_[k];
   const Vec3& v = vel_[k];
   const Vec3 u = v - current_.VelocityAt(r.z());
@@ -487,9 +489,8 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, Node
   du_dr.col(2) = -current_.GradientAt(r.z());
 
   // sigma = dl/dr_k for the segment (l = r_upper - r_lower): -1 above, +1 below.
-  auto add_segment = [&](int s, int other, double sigma) {
+  auto add_segment = [&](int s, const SectionProperties& sp, int other, double sigma) {
     const SegmentState& g = seg_[s];
-    const SectionProperties& sp = lp.SectionOf(c.first_node + s);
     const double l0 = sp.segment_length;
     const double EA = sp.axial_stiffness;
     const double cd = sp.axial_damping;
@@ -517,13 +518,13 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, Node
     J->dMa_dr[kSelf] += sigma * H;
     J->dMa_dr[other] -= sigma * H;
   };
-  if (has_above) add_segment(k, kAbove, -1.0);
-  if (has_below) add_segment(k - 1, kBelow, +1.0);
-  if (share.body != nullptr) {  // drag -b |u| u of the body: d/du = -b (|u| I + u u^T / |u|)
+  if (has_above) add_segment(k, lp.sections[share.above], kAbove, -1.0);
+  if (has_below) add_segment(k - 1, lp.sections[share.below], kBelow, +1.0);
+  if (share.body >= 0) {  // drag -b |u| u of the body: d/du = -b (|u| I + u u^T / |u|)
     const double speed = u.norm();
     Mat3 d_du = speed * I;
     if (speed > 1e-300) d_du += u * u.transpose() / speed;
-    d_du *= -share.body->drag;
+    d_du *= -lp.bodies[share.body].drag;
     J->dF_dv[kSelf] += d_du;
     J->dF_dr[kSelf] += d_du * du_dr;
   }

@@ -73,12 +73,32 @@ struct LineProperties {
   Vec3 fairlead_body = Vec3::Zero();  ///< body frame [m]
   /// Per segment: the index of its section.
   std::vector<int> section_of;
-  /// Per node: the body there (null for none).
-  std::vector<std::optional<PointBodyProperties>> body_at;
+  /// The bodies on the line's joints, and per node the index of the one there (-1: none).
+  std::vector<PointBodyProperties> bodies;
+  std::vector<int> body_at;
 
   const SectionProperties& SectionOf(int segment) const { return sections[section_of[segment]]; }
+  const PointBodyProperties* BodyAt(int node) const {
+    return body_at[node] < 0 ? nullptr : &bodies[body_at[node]];
+  }
   bool homogeneous() const { return sections.size() == 1; }
 };
+
+/// What a node carries of its line: half of each adjacent segment (of the sections
+/// `below` and `above`, -1 at a free end) and the body there (an index into the line's
+/// bodies, -1 for none).
+struct NodeShare {
+  double length = 0.0;  ///< unstretched line length the node stands for [m]
+  double mass = 0.0;    ///< line and body [kg] (with the body's isotropic added mass)
+  double weight = 0.0;  ///< line and body, in water [N]
+  double line_weight_per_length = 0.0;  ///< of the line alone [N/m]
+  double contact = 0.0;  ///< seabed contact area of the line, diameter x length [m^2]
+  double friction_axial = 0.0, friction_lateral = 0.0;  ///< contact-weighted [-]
+  int below = -1, above = -1, body = -1;
+};
+/// The share of node `node` (0..segments) of `line`, with or without the segment below
+/// and above it (a chain's free end has one).
+NodeShare ShareOf(const LineProperties& line, int node, bool has_below, bool has_above);
 
 /// Throws moorsim::InputError if a section's type is not one of spec.line_types, the line
 /// has no section or a section no segment, or the joints do not match the sections.
@@ -237,6 +257,8 @@ class MooringSystem {
   void NodeForceJacobian(const Chain& chain, int k, const Vec3& accel, NodeJacobian* J) const;
 
   std::vector<LineProperties> lines_;
+  /// Per line, the share of every interior node (with both its half segments).
+  std::vector<std::vector<NodeShare>> shares_;
   std::vector<Chain> chains_;
   SeabedContact seabed_;
   CurrentField current_;
