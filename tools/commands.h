@@ -44,6 +44,17 @@ const std::string& RequireText(const std::string& flag, const std::string& text)
 double ParseNumber(const std::string& flag, const std::string& text);
 /// One whole number in [min, max]; throws InputError naming the flag and the range.
 int ParseInteger(const std::string& flag, const std::string& text, int min, int max);
+/// Checks `--out PATH` for a scenario file about to be written: not a folder or a device,
+/// its folder there, and not an existing file unless `force`. Throws InputError naming
+/// --out.
+void CheckScenarioOut(const std::string& path, bool force);
+/// The scenario commands' --help note for --out.
+inline constexpr const char* kScenarioOutNote =
+    "Without --out the scenario goes to stdout; --out does not replace an existing file\n"
+    "unless --force.";
+/// Registers `moorsim import`.
+Command AddImportCommand(CLI::App& app);
+
 /// "12.5" -> "12.5", 1e10 -> "1e+10": the shortest form that reads back the same.
 std::string FormatNumber(double value);
 

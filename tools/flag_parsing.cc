@@ -2,11 +2,10 @@
 // flag and the text it was given.
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <filesystem>
 
 #include "core/error.h"
 #include "detectors/registry.h"
@@ -102,6 +101,24 @@ std::string FormatNumber(double value) {
   }
   out << value;
   return out.str();
+}
+
+void CheckScenarioOut(const std::string& path, bool force) {
+  std::error_code ignored;
+  if (std::filesystem::is_directory(path, ignored)) {
+    throw InputError("--out: '" + path + "' is a folder (give the scenario file's name)");
+  }
+  if (std::filesystem::exists(path, ignored) && !std::filesystem::is_regular_file(path, ignored)) {
+    throw InputError("--out: '" + path +
+                     "' is not a regular file (without --out the scenario goes to stdout)");
+  }
+  if (std::filesystem::exists(path, ignored) && !force) {
+    throw InputError("--out: '" + path + "' exists (give --force to overwrite it)");
+  }
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  if (!folder.empty() && !std::filesystem::is_directory(folder, ignored)) {
+    throw InputError("--out: folder '" + folder.string() + "' does not exist");
+  }
 }
 
 }  // namespace moorsim::cli

@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   add(&moorsim::cli::AddAnalyzeCommand);
   add(&moorsim::cli::AddDetectCommand);
   add(&moorsim::cli::AddTemplateCommand);
+  add(&moorsim::cli::AddImportCommand);
   {
     const std::size_t before = app.get_subcommands({}).size();
     moorsim::cli::Command command = moorsim::cli::AddBatchCommand(app, argc, argv);

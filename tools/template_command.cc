@@ -82,22 +82,7 @@ int RunTemplate(const TemplateOptions& o) {
   std::string source_name = "template.yaml";
   if (o.out) {
     source_name = RequireText("--out", *o.out);
-    std::error_code ignored;
-    if (std::filesystem::is_directory(source_name, ignored)) {
-      throw InputError("--out: '" + source_name + "' is a folder (give the scenario file's name)");
-    }
-    if (std::filesystem::exists(source_name, ignored) &&
-        !std::filesystem::is_regular_file(source_name, ignored)) {
-      throw InputError("--out: '" + source_name +
-                       "' is not a regular file (without --out the scenario goes to stdout)");
-    }
-    if (std::filesystem::exists(source_name, ignored) && !o.force) {
-      throw InputError("--out: '" + source_name + "' exists (give --force to overwrite it)");
-    }
-    const std::filesystem::path folder = std::filesystem::path(source_name).parent_path();
-    if (!folder.empty() && !std::filesystem::is_directory(folder, ignored)) {
-      throw InputError("--out: folder '" + folder.string() + "' does not exist");
-    }
+    CheckScenarioOut(source_name, o.force);
   }
   const std::string text = scenarios::WriteTemplate(request, layout, command);
   try {
@@ -139,10 +124,8 @@ Command AddTemplateCommand(CLI::App& app) {
       "that lifts the whole line off the seabed (beyond it the anchor is pulled up) or, for a\n"
       "short line in deep water, pulls it straight; --radius likewise. The rest (waves, the\n"
       "thesis PI, sensors, 1000 s, seed 1, no failure) as in the library scenarios; the file\n"
-      "loads and runs as it is. The WAMIT path is written absolute.\n"
-      "Without --out the scenario goes to stdout; --out does not replace an existing file\n"
-      "unless --force.\n"
-      "Units: N, m.");
+      "loads and runs as it is. The WAMIT path is written absolute.\n" +
+      std::string(kScenarioOutNote) + "\nUnits: N, m.");
   sub->add_option("kind", o->kind, "spread or turret")->required();
   sub->add_option("--lines", o->lines, "number of lines N (3..64)")->required();
   sub->add_option("--depth", o->depth, "water depth [m]")->required();

@@ -258,9 +258,9 @@ TEST_F(CliTest, TopLevelHelpListsEachCommandOnOneLine) {
     ASSERT_NE(line[2], ' ') << "a continuation line: " << line;
     commands.push_back(line.substr(2, line.find(' ', 2) - 2));
   }
-  EXPECT_EQ(commands,
-            (std::vector<std::string>{"static", "run", "simulate-lines", "validate", "schema",
-                                      "analyze", "detect", "template", "batch", "compare"}));
+  EXPECT_EQ(commands, (std::vector<std::string>{"static", "run", "simulate-lines", "validate",
+                                                "schema", "analyze", "detect", "template", "import",
+                                                "batch", "compare"}));
 }
 
 TEST_F(CliTest, AnEndlessInputIsRejectedNotReadForever) {

@@ -1,0 +1,668 @@
+#include "scenarios/moordyn.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/version.h"
+#include "scenarios/load.h"
+#include "scenarios/strict_yaml.h"
+
+namespace moorsim::scenarios {
+namespace {
+
+using strict_yaml::Number;
+
+constexpr std::size_t kMaxFileBytes = 4 << 20;
+
+std::string Lower(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
+std::vector<std::string> Fields(const std::string& line) {
+  std::istringstream in(line);
+  std::vector<std::string> fields;
+  for (std::string field; in >> field;) fields.push_back(field);
+  return fields;
+}
+
+std::optional<double> ToNumber(const std::string& text) {
+  double value = 0.0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  if (ec != std::errc() || ptr != end || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+// A YAML double-quoted scalar when the text is not a plain word.
+std::string Text(const std::string& text) {
+  const bool plain = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+  });
+  if (plain && !ToNumber(text)) return text;
+  std::string quoted = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') quoted += '\\';
+    quoted += c;
+  }
+  return quoted + "\"";
+}
+
+struct Row {
+  int line = 0;  // 1-based line in the file
+  std::vector<std::string> fields;
+};
+
+// A section of the file: its title (upper case, dashes removed) and its rows; a table's
+// first two rows are its column names and units.
+struct Section {
+  std::string title;
+  int line = 0;
+  std::vector<Row> rows;
+};
+
+enum class Kind {
+  kTitle,
+  kLineTypes,
+  kRodTypes,
+  kBodies,
+  kRods,
+  kPoints,
+  kLines,
+  kOptions,
+  kOutputs,
+  kEnd,
+  kOther
+};
+
+Kind KindOf(const std::string& title) {
+  const auto has = [&](const char* word) { return title.find(word) != std::string::npos; };
+  if (has("MOORDYN")) return Kind::kTitle;
+  if (has("NEED THIS LINE")) return Kind::kEnd;
+  if (has("LINE TYPE") || has("LINE DICTIONARY")) return Kind::kLineTypes;
+  if (has("ROD TYPE") || has("ROD DICTIONARY")) return Kind::kRodTypes;
+  if (has("BOD")) return Kind::kBodies;
+  if (has("ROD")) return Kind::kRods;
+  if (has("POINT") || has("CONNECTION") || has("NODE")) return Kind::kPoints;
+  if (has("LINE")) return Kind::kLines;
+  if (has("OPTION")) return Kind::kOptions;
+  if (has("OUTPUT")) return Kind::kOutputs;
+  return Kind::kOther;
+}
+
+std::vector<Section> ReadSections(const std::string& text) {
+  std::vector<Section> sections;
+  std::istringstream in(text);
+  int number = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.find("---") != std::string::npos) {
+      std::string title;
+      for (const char c : line) {
+        if (c != '-') title += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+      }
+      const auto first = title.find_first_not_of(" \t");
+      const auto last = title.find_last_not_of(" \t");
+      title = first == std::string::npos ? "" : title.substr(first, last - first + 1);
+      sections.push_back({title, number, {}});
+      continue;
+    }
+    if (sections.empty()) continue;
+    std::vector<std::string> fields = Fields(line);
+    if (!fields.empty()) sections.back().rows.push_back({number, std::move(fields)});
+  }
+  return sections;
+}
+
+// The columns of a table by meaning, from its header row's names.
+class Columns {
+ public:
+  Columns(const std::string& file, const Row& header,
+          const std::map<std::string, std::vector<std::string>>& names)
+      : file_(file), line_(header.line) {
+    for (std::size_t k = 0; k < header.fields.size(); ++k) {
+      const std::string name = Lower(header.fields[k]);
+      bool known = false;
+      for (const auto& [meaning, spellings] : names) {
+        if (std::find(spellings.begin(), spellings.end(), name) != spellings.end()) {
+          index_[meaning] = k;
+          known = true;
+        }
+      }
+      if (!known) unknown_.push_back({header.fields[k], k});
+    }
+  }
+  bool Has(const std::string& meaning) const { return index_.count(meaning) > 0; }
+  const std::vector<std::pair<std::string, std::size_t>>& unknown() const { return unknown_; }
+  // The field of `row` in the column `meaning`; an error line if the table has no such
+  // column or the row no such field.
+  std::string Field(const Row& row, const std::string& meaning) const {
+    const auto it = index_.find(meaning);
+    if (it == index_.end()) {
+      throw InputError(file_ + ":" + std::to_string(line_) + ": the table has no " + meaning +
+                       " column");
+    }
+    if (it->second >= row.fields.size()) {
+      throw InputError(file_ + ":" + std::to_string(row.line) + ": no " + meaning + " value");
+    }
+    return row.fields[it->second];
+  }
+  double Value(const Row& row, const std::string& meaning) const {
+    const std::string text = Field(row, meaning);
+    const std::optional<double> value = ToNumber(text);
+    if (!value) {
+      throw InputError(file_ + ":" + std::to_string(row.line) + ": " + meaning + " '" + text +
+                       "' is not a number");
+    }
+    return *value;
+  }
+
+ private:
+  std::string file_;
+  int line_;
+  std::map<std::string, std::size_t> index_;
+  std::vector<std::pair<std::string, std::size_t>> unknown_;
+};
+
+struct MdLineType {
+  std::string name;
+  int line = 0;
+  double diameter = 0, mass = 0, ea = 0, ba = 0, cd = 0, ca = 0, cdax = 0;
+};
+
+enum class PointKind { kFixed, kVessel, kFree };
+
+struct Point {
+  std::string id;
+  int line = 0;
+  PointKind kind = PointKind::kFree;
+  std::string kind_text;
+  double x = 0, y = 0, z = 0, mass = 0, volume = 0, cda = 0, ca = 0;
+  std::vector<std::size_t> lines;  // indices of the lines attached
+};
+
+struct MdLine {
+  std::string id;
+  int line = 0;
+  std::string type, a, b;
+  double length = 0;
+  int segments = 0;
+};
+
+// Collects one located line per problem, then throws them all.
+class Problems {
+ public:
+  explicit Problems(std::string file) : file_(std::move(file)) {}
+  void Add(int line, const std::string& what) {
+    lines_.push_back(file_ + ":" + std::to_string(line) + ": " + what);
+  }
+  template <class Body>
+  void Attempt(Body&& body) {
+    try {
+      body();
+    } catch (const InputError& e) {
+      lines_.push_back(e.what());
+    }
+  }
+  void ThrowIfAny() const {
+    if (lines_.empty()) return;
+    std::string all;
+    for (const std::string& line : lines_) all += (all.empty() ? "" : "\n") + line;
+    throw InputError(all);
+  }
+
+ private:
+  std::string file_;
+  std::vector<std::string> lines_;
+};
+
+std::string Vector(double x, double y, double z) {
+  // MoorDyn (z up, y to port) to moorsim (z down, y to starboard).
+  std::string text = "[";
+  text.append(Number(x)).append(", ").append(Number(y == 0.0 ? 0.0 : -y));
+  return text.append(", ").append(Number(z == 0.0 ? 0.0 : -z)).append("]");
+}
+
+}  // namespace
+
+MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command) {
+  const std::string text = strict_yaml::ReadInputFile(path, kMaxFileBytes, "MoorDyn input");
+  const std::vector<Section> sections = ReadSections(text);
+  Problems problems(path);
+  MoorDynImport out;
+  const auto warn = [&](int line, const std::string& what) {
+    out.warnings.push_back(path + ":" + std::to_string(line) + ": " + what);
+  };
+
+  std::vector<MdLineType> types;
+  std::vector<Point> points;
+  std::vector<MdLine> lines;
+  std::map<std::string, std::pair<double, int>> options;  // name (lower case) -> value, line
+  std::vector<std::string> settings;                      // options that are not the model
+  std::string title;
+  bool any_table = false;
+  for (const Section& section : sections) {
+    const Kind kind = KindOf(section.title);
+    if (kind == Kind::kTitle) {
+      if (!section.rows.empty()) {
+        std::string first;
+        for (const std::string& f : section.rows.front().fields)
+          first += (first.empty() ? "" : " ") + f;
+        title = first;
+      }
+      continue;
+    }
+    if (kind == Kind::kEnd || kind == Kind::kOutputs) continue;
+    const bool table = kind == Kind::kLineTypes || kind == Kind::kPoints || kind == Kind::kLines ||
+                       kind == Kind::kRodTypes || kind == Kind::kBodies || kind == Kind::kRods;
+    if (table && section.rows.size() <= 2) continue;  // column names and units only
+    if (kind == Kind::kRodTypes || kind == Kind::kRods || kind == Kind::kBodies) {
+      problems.Add(section.rows[2].line,
+                   (kind == Kind::kBodies ? "bodies" : "rods") +
+                       std::string(" are not supported (moorsim models lines, their joints and "
+                                   "the vessel)"));
+      continue;
+    }
+    if (kind == Kind::kOther) {
+      if (!section.rows.empty()) {
+        problems.Add(section.line, "section '" + section.title + "' is not supported");
+      }
+      continue;
+    }
+    if (kind == Kind::kOptions) {
+      for (const Row& row : section.rows) {
+        if (row.fields.size() < 2) continue;
+        const std::string name = Lower(row.fields[1]);
+        const std::optional<double> value = ToNumber(row.fields[0]);
+        options[name] = {value.value_or(std::nan("")), row.line};
+        static const std::set<std::string> kModel = {
+            "wtrdpth", "wtrdnsty", "g", "gravity", "kbot", "cbot", "frictioncoefficient"};
+        static const std::set<std::string> kUnsupported = {
+            "seafloorfile", "wavekin", "currents", "watrkin", "seafloor", "bathymetry"};
+        if (kUnsupported.count(name) > 0 && row.fields[0] != "0") {
+          problems.Add(row.line, "option " + row.fields[1] + " " + row.fields[0] +
+                                     " is not supported (a flat seabed and still water, or "
+                                     "moorsim's own current and waves)");
+        } else if (kModel.count(name) > 0 && !value) {
+          problems.Add(row.line,
+                       "option " + row.fields[1] + " '" + row.fields[0] + "' is not a number");
+        } else if (kModel.count(name) == 0) {
+          settings.push_back(row.fields[1] + " " + row.fields[0]);
+        }
+      }
+      continue;
+    }
+    any_table = true;
+    const Row& header = section.rows[0];
+    std::vector<Row> rows(section.rows.begin() + 2, section.rows.end());
+    if (kind == Kind::kLineTypes) {
+      const Columns c(path, header,
+                      {{"name", {"typename", "linetype", "name", "type"}},
+                       {"diameter", {"diam", "d"}},
+                       {"mass", {"mass/m", "massden", "massdeninair", "mass", "m"}},
+                       {"unused", {"tbd"}},
+                       {"EA", {"ea"}},
+                       {"BA", {"ba/-zeta", "ba", "ba/zeta", "c"}},
+                       {"EI", {"ei"}},
+                       {"Cd", {"cd", "cdn"}},
+                       {"Ca", {"ca", "can"}},
+                       {"CdAx", {"cdax", "cdt"}},
+                       {"CaAx", {"caax", "cat"}},
+                       {"Cl", {"cl"}},
+                       {"dF", {"df"}},
+                       {"cF", {"cf"}}});
+      for (const auto& [name, k] : c.unknown()) {
+        problems.Add(header.line, "line-type column '" + name + "' is not supported");
+      }
+      for (const Row& row : rows) {
+        problems.Attempt([&] {
+          MdLineType t;
+          t.line = row.line;
+          t.name = c.Field(row, "name");
+          t.diameter = c.Value(row, "diameter");
+          t.mass = c.Value(row, "mass");
+          const std::string ea = c.Field(row, "EA");
+          if (!ToNumber(ea)) {
+            throw InputError(path + ":" + std::to_string(row.line) + ": EA '" + ea +
+                             "': a non-linear or visco-elastic stiffness is not supported yet "
+                             "(give a constant EA)");
+          }
+          t.ea = *ToNumber(ea);
+          t.ba = c.Has("BA") ? c.Value(row, "BA") : 0.0;
+          t.cd = c.Value(row, "Cd");
+          t.ca = c.Value(row, "Ca");
+          t.cdax = c.Value(row, "CdAx");
+          if (c.Has("EI") && c.Value(row, "EI") != 0.0) {
+            warn(row.line, "line type " + t.name + ": bending stiffness EI " + c.Field(row, "EI") +
+                               " left out (moorsim's lines have none)");
+          }
+          if (c.Has("CaAx") && c.Value(row, "CaAx") != 0.0) {
+            warn(row.line, "line type " + t.name + ": tangential added mass CaAx " +
+                               c.Field(row, "CaAx") + " left out (not modelled yet)");
+          }
+          if (c.Has("unused") && c.Value(row, "unused") != 0.0) {
+            warn(row.line, "line type " + t.name + ": column tbd " + c.Field(row, "unused") +
+                               " left out (a placeholder column)");
+          }
+          for (const char* viv : {"Cl", "dF", "cF"}) {
+            if (c.Has(viv) && c.Value(row, viv) != 0.0) {
+              warn(row.line, "line type " + t.name + ": vortex-induced vibration (" +
+                                 std::string(viv) + ") left out");
+            }
+          }
+          types.push_back(t);
+        });
+      }
+    } else if (kind == Kind::kPoints) {
+      const Columns c(path, header,
+                      {{"id", {"id", "node", "point", "connection", "#"}},
+                       {"type", {"type", "attachment", "attach"}},
+                       {"x", {"x"}},
+                       {"y", {"y"}},
+                       {"z", {"z"}},
+                       {"mass", {"mass", "m"}},
+                       {"volume", {"volume", "v"}},
+                       {"CdA", {"cda"}},
+                       {"Ca", {"ca"}},
+                       {"Fx", {"fx"}},
+                       {"Fy", {"fy"}},
+                       {"Fz", {"fz"}}});
+      for (const auto& [name, k] : c.unknown()) {
+        problems.Add(header.line, "point column '" + name + "' is not supported");
+      }
+      for (const Row& row : rows) {
+        problems.Attempt([&] {
+          Point p;
+          p.line = row.line;
+          p.id = c.Field(row, "id");
+          p.kind_text = c.Field(row, "type");
+          const std::string kind_name = Lower(p.kind_text);
+          if (kind_name == "fixed" || kind_name == "fix" || kind_name == "anchor") {
+            p.kind = PointKind::kFixed;
+          } else if (kind_name == "vessel" || kind_name == "coupled" || kind_name == "cpld" ||
+                     kind_name == "vessel1") {
+            p.kind = PointKind::kVessel;
+          } else if (kind_name == "free" || kind_name == "connect" || kind_name == "con") {
+            p.kind = PointKind::kFree;
+          } else {
+            throw InputError(path + ":" + std::to_string(row.line) + ": point " + p.id +
+                             " of type '" + p.kind_text +
+                             "' is not supported (Fixed, Vessel or Coupled, Free)");
+          }
+          p.x = c.Value(row, "x");
+          p.y = c.Value(row, "y");
+          p.z = c.Value(row, "z");
+          p.mass = c.Has("mass") ? c.Value(row, "mass") : 0.0;
+          p.volume = c.Has("volume") ? c.Value(row, "volume") : 0.0;
+          p.cda = c.Has("CdA") ? c.Value(row, "CdA") : 0.0;
+          p.ca = c.Has("Ca") ? c.Value(row, "Ca") : 0.0;
+          for (const char* force : {"Fx", "Fy", "Fz"}) {
+            if (c.Has(force) && c.Value(row, force) != 0.0) {
+              throw InputError(path + ":" + std::to_string(row.line) + ": point " + p.id +
+                               ": an external force " + force + " " + c.Field(row, force) +
+                               " is not supported");
+            }
+          }
+          points.push_back(p);
+        });
+      }
+    } else {
+      const Columns c(path, header,
+                      {{"id", {"id", "line", "#"}},
+                       {"type", {"linetype", "type"}},
+                       {"a", {"attacha", "nodea", "nodeanch", "anchor", "attach1", "pointa"}},
+                       {"b", {"attachb", "nodeb", "nodefair", "fairlead", "attach2", "pointb"}},
+                       {"length", {"unstrlen", "unstrlength", "length", "l"}},
+                       {"segments", {"numsegs", "nsegs", "n"}},
+                       {"outputs", {"lineoutputs", "outputs", "flags/outputs", "flags"}}});
+      for (const auto& [name, k] : c.unknown()) {
+        problems.Add(header.line, "line column '" + name + "' is not supported");
+      }
+      for (const Row& row : rows) {
+        problems.Attempt([&] {
+          MdLine l;
+          l.line = row.line;
+          l.id = c.Field(row, "id");
+          l.type = c.Field(row, "type");
+          l.a = c.Field(row, "a");
+          l.b = c.Field(row, "b");
+          l.length = c.Value(row, "length");
+          const double segments = c.Value(row, "segments");
+          if (segments != std::floor(segments) || segments < 1 || segments > 10000) {
+            throw InputError(path + ":" + std::to_string(row.line) + ": NumSegs " +
+                             c.Field(row, "segments") + " must be a whole number in 1..10000");
+          }
+          l.segments = static_cast<int>(segments);
+          lines.push_back(l);
+        });
+      }
+    }
+  }
+  if (!any_table) {
+    problems.Add(1, "no LINE TYPES, POINTS or LINES tables (not a MoorDyn input file?)");
+  }
+  problems.ThrowIfAny();
+
+  // The topology: every line's points, then each chain from a fixed point to the vessel.
+  const auto point_index = [&](const std::string& id) -> std::optional<std::size_t> {
+    std::string name = id;
+    // MoorDyn v1 wrote attachments as point numbers; v2 may prefix them ("R1", "Body1")
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      if (points[k].id == name) return k;
+    }
+    return std::nullopt;
+  };
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    for (const std::string* end : {&lines[i].a, &lines[i].b}) {
+      if (const std::optional<std::size_t> k = point_index(*end)) {
+        points[*k].lines.push_back(i);
+      } else {
+        problems.Add(lines[i].line, "line " + lines[i].id + " is attached to '" + *end +
+                                        "', which is not a point of the file (rods and bodies "
+                                        "are not supported)");
+      }
+    }
+    if (std::none_of(types.begin(), types.end(),
+                     [&](const MdLineType& t) { return t.name == lines[i].type; })) {
+      problems.Add(lines[i].line,
+                   "line " + lines[i].id + ": unknown line type '" + lines[i].type + "'");
+    }
+  }
+  problems.ThrowIfAny();
+  for (const Point& p : points) {
+    if (p.kind == PointKind::kFree && p.lines.size() != 2) {
+      problems.Add(p.line, "free point " + p.id + " joins " + std::to_string(p.lines.size()) +
+                               " line" + (p.lines.size() == 1 ? "" : "s") +
+                               (p.lines.size() == 1
+                                    ? ": a line ending free is not supported"
+                                    : ": lines meeting at a free point (a bridle or a shared "
+                                      "buoy) are not supported yet; a free point may join two "
+                                      "lines in series"));
+    }
+  }
+  problems.ThrowIfAny();
+
+  struct Chain {
+    std::vector<std::size_t> lines;   // from the anchor up
+    std::vector<std::size_t> joints;  // the free points between them
+    std::size_t anchor = 0, fairlead = 0;
+  };
+  std::vector<Chain> chains;
+  std::vector<bool> used(lines.size(), false);
+  for (std::size_t a = 0; a < points.size(); ++a) {
+    if (points[a].kind != PointKind::kFixed) continue;
+    for (const std::size_t first : points[a].lines) {
+      Chain chain;
+      chain.anchor = a;
+      std::size_t at = a;
+      std::size_t line = first;
+      bool ok = true;
+      while (true) {
+        chain.lines.push_back(line);
+        used[line] = true;
+        const std::size_t next =
+            *point_index(lines[line].a == points[at].id ? lines[line].b : lines[line].a);
+        if (points[next].kind == PointKind::kVessel) {
+          chain.fairlead = next;
+          break;
+        }
+        if (points[next].kind == PointKind::kFixed) {
+          problems.Add(lines[line].line, "line " + lines[line].id + " leads from fixed point " +
+                                             points[a].id + " to fixed point " + points[next].id +
+                                             " without reaching the vessel");
+          ok = false;
+          break;
+        }
+        chain.joints.push_back(next);
+        at = next;
+        line = points[next].lines[0] == line ? points[next].lines[1] : points[next].lines[0];
+        if (used[line]) {
+          ok = false;
+          break;
+        }
+      }
+      if (ok) chains.push_back(chain);
+    }
+  }
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    if (!used[i]) {
+      problems.Add(lines[i].line, "line " + lines[i].id +
+                                      " is on no path from a fixed point to the vessel "
+                                      "(between two vessel points, or in a loop of free points)");
+    }
+  }
+  const auto option = [&](const std::string& name) -> std::optional<std::pair<double, int>> {
+    const auto it = options.find(name);
+    if (it == options.end()) return std::nullopt;
+    return it->second;
+  };
+  const auto depth = option("wtrdpth");
+  if (!depth) problems.Add(1, "no WtrDpth option: the water depth is needed");
+  if (chains.empty()) problems.Add(1, "no line leads from a fixed point to the vessel");
+  problems.ThrowIfAny();
+
+  // The scenario.
+  std::ostringstream y;
+  y << "# yaml-language-server: $schema=moorsim.schema.json\n";
+  y << "# Imported from the MoorDyn input file " << path << " by `" << command << "` (moorsim "
+    << moorsim::kVersion << ").\n";
+  if (!title.empty()) y << "# Its title: " << title << "\n";
+  y << "# Frames: MoorDyn's z points up from the still water level and its y to port; here z\n"
+       "# points down and y to starboard, so (x, y, z) there is (x, -y, -z) here. Fixed points\n"
+       "# are anchors (Earth frame), vessel points fairleads (body frame), free points joining\n"
+       "# two lines the joints of a line's sections. Line numbers are moorsim's, from 1; each\n"
+       "# says which MoorDyn lines and points it is made of.\n";
+  if (!settings.empty()) {
+    y << "# Integration and output settings of the file, not part of the model (moorsim's\n"
+         "# integrator chooses its own steps):";
+    for (const std::string& s : settings) y << " " << s << ";";
+    y << "\n";
+  }
+  for (const std::string& w : out.warnings) y << "# Left out: " << w << "\n";
+  const std::string stem = std::filesystem::path(path).stem().string();
+  y << "name: " << Text(stem) << "\n";
+  y << "mooring:\n";
+  const auto rho = option("wtrdnsty");
+  auto gravity = option("g");
+  if (!gravity) gravity = option("gravity");
+  y << "  water: {density: " << Number(rho ? rho->first : 1025.0)
+    << ", gravity: " << Number(gravity ? gravity->first : 9.81)
+    << ", depth: " << Number(depth->first) << "}  # WtrDpth (line " << depth->second << ")";
+  y << (rho ? ", WtrDnsty (line " + std::to_string(rho->second) + ")"
+            : ", MoorDyn's default density");
+  y << (gravity ? ", g (line " + std::to_string(gravity->second) + ")"
+                : ", MoorDyn's default gravity")
+    << "\n";
+  const auto kbot = option("kbot");
+  const auto cbot = option("cbot");
+  y << "  seabed: {stiffness: " << Number(kbot ? kbot->first : 3.0e6)
+    << ", damping: " << Number(cbot ? cbot->first : 3.0e5) << "}  # kBot and cBot"
+    << (kbot || cbot ? "" : " (MoorDyn's defaults)") << ", per unit of contact area\n";
+  const auto friction = option("frictioncoefficient");
+  y << "  line_types:\n";
+  for (const MdLineType& t : types) {
+    y << "    - name: " << Text(t.name) << "  # LINE TYPES, line " << t.line << "\n";
+    y << "      diameter: " << Number(t.diameter) << "\n";
+    y << "      mass_per_length: " << Number(t.mass) << "\n";
+    y << "      axial_stiffness: " << Number(t.ea) << "\n";
+    if (t.ba < 0.0) {
+      y << "      axial_damping_ratio: " << Number(-t.ba) << "  # BA/-zeta " << Number(t.ba)
+        << "\n";
+    } else {
+      y << "      axial_damping: " << Number(t.ba) << "  # BA [N s]\n";
+    }
+    y << "      drag_normal: " << Number(t.cd) << "\n";
+    y << "      drag_tangential: " << Number(t.cdax * std::numbers::pi) << "  # CdAx "
+      << Number(t.cdax) << " x pi (MoorDyn applies it to pi d, moorsim to d)\n";
+    y << "      added_mass_normal: " << Number(t.ca) << "\n";
+    if (friction) {
+      y << "      friction_axial: " << Number(friction->first) << "  # FrictionCoefficient (line "
+        << friction->second << ")\n";
+      y << "      friction_lateral: " << Number(friction->first) << "\n";
+    }
+  }
+  y << "  lines:\n";
+  int id = 0;
+  for (const Chain& chain : chains) {
+    const Point& anchor = points[chain.anchor];
+    const Point& fairlead = points[chain.fairlead];
+    y << "    - id: " << ++id << "  # MoorDyn line";
+    y << (chain.lines.size() > 1 ? "s " : " ");
+    for (std::size_t k = 0; k < chain.lines.size(); ++k) {
+      y << (k ? ", " : "") << lines[chain.lines[k]].id;
+    }
+    y << ": point " << anchor.id;
+    for (const std::size_t j : chain.joints) y << " -> " << points[j].id;
+    y << " -> " << fairlead.id << "\n";
+    y << "      anchor: " << Vector(anchor.x, anchor.y, anchor.z) << "  # point " << anchor.id
+      << " (line " << anchor.line << ")\n";
+    y << "      fairlead: " << Vector(fairlead.x, fairlead.y, fairlead.z) << "  # point "
+      << fairlead.id << " (line " << fairlead.line << ")\n";
+    // A chain written from the fairlead down is reversed: sections go from the anchor up.
+    const MdLine& only = lines[chain.lines.front()];
+    if (chain.lines.size() == 1 && only.segments >= 2) {
+      y << "      type: " << Text(only.type) << "\n";
+      y << "      length: " << Number(only.length) << "\n";
+      y << "      segments: " << only.segments << "\n";
+      continue;
+    }
+    y << "      sections:\n";
+    for (const std::size_t k : chain.lines) {
+      y << "        - {type: " << Text(lines[k].type) << ", length: " << Number(lines[k].length)
+        << ", segments: " << lines[k].segments << "}  # MoorDyn line " << lines[k].id << "\n";
+    }
+    bool any_body = false;
+    for (std::size_t k = 0; k < chain.joints.size(); ++k) {
+      const Point& p = points[chain.joints[k]];
+      if (p.mass == 0.0 && p.volume == 0.0 && p.cda == 0.0) continue;
+      if (!any_body) y << "      bodies:\n";
+      any_body = true;
+      y << "        - {joint: " << k + 1 << ", mass: " << Number(p.mass)
+        << ", volume: " << Number(p.volume) << ", added_mass: " << Number(p.ca)
+        << ", drag_area: " << Number(p.cda) << "}  # point " << p.id << " (line " << p.line
+        << ")\n";
+    }
+  }
+  out.yaml = y.str();
+  out.lines = id;
+  try {
+    ParseScenario(out.yaml, stem + ".yaml");
+  } catch (const InputError& e) {
+    throw InputError(path + ": the imported model is one moorsim refuses: " + e.what());
+  }
+  return out;
+}
+
+}  // namespace moorsim::scenarios

@@ -1,0 +1,206 @@
+// MoorDyn input files as scenarios (scenarios/moordyn.h): the files are written here, in
+// both of MoorDyn's table layouts, with this test's own numbers. What maps must arrive
+// converted (frames, the tangential drag's circumference, damping ratios, a composite line
+// through a free point written fairlead first); what does not must be one located line each.
+#include "scenarios/moordyn.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include "core/error.h"
+#include "scenarios/load.h"
+#include "tests/support/scratch_directory.h"
+
+namespace moorsim::scenarios {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Three chain lines in 200 m of water (v2 layout), one of them two lines in series through
+// a free point carrying a 5 t clump weight, written from the fairlead down.
+constexpr const char* kSpread = R"(--------------------- MoorDyn Input File -----------------------
+A test spread
+----------------------- LINE TYPES ------------------------------------------
+TypeName   Diam    Mass/m     EA         BA/-zeta    EI   Cd     Ca     CdAx    CaAx
+(name)     (m)     (kg/m)     (N)        (N-s/-)     (N-m^2)  (-)  (-)    (-)     (-)
+chain      0.1     150        8.0e8      -0.6        0    2.0    0.9    0.3     0.0
+wire       0.08    40         5.0e8      2.0e5       0    1.2    1.0    0.01    0.0
+---------------------- POINTS --------------------------------
+ID    Type      X       Y       Z       Mass   Volume  CdA    Ca
+(#)   (-)       (m)     (m)     (m)     (kg)   (m^3)   (m^2)  (-)
+1     Fixed     600     0       -200    0      0       0      0
+2     Fixed     -300    520     -200    0      0       0      0
+3     Fixed     -300    -520    -200    0      0       0      0
+4     Vessel    10      0       -15     0      0       0      0
+5     Vessel    -5      8.66    -15     0      0       0      0
+6     Vessel    -5      -8.66   -15     0      0       0      0
+7     Free      -150    -260    -190    5000   0.64    1.5    0.8
+---------------------- LINES ----------------------------------------
+ID   LineType   AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
+(#)   (name)     (#)      (#)       (m)       (-)     (-)
+1     chain      1        4         680       30      p
+2     chain      2        5         680       30      p
+3     wire       6        7         330       15      p
+4     chain      7        3         350       15      p
+---------------------- OPTIONS -----------------------------------------
+0.001         dtM           time step
+2.0e6         kBot          bottom stiffness (Pa/m)
+2.0e5         cBot          bottom damping (Pa-s/m)
+1020.0        WtrDnsty      water density (kg/m^3)
+200           WtrDpth       water depth (m)
+0.4           FrictionCoefficient
+---------------------- OUTPUTS -----------------------------------------
+FairTen1
+END
+------------------------- need this line --------------------------------------
+)";
+
+fs::path Write(const fs::path& dir, const std::string& name, const std::string& text) {
+  const fs::path path = dir / name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string ErrorOf(const fs::path& path) {
+  try {
+    ImportMoorDyn(path.string(), "test");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(MoorDynImport, LinesPointsAndOptionsArriveConverted) {
+  const fs::path dir = moorsim::testing::FreshDirectory("moordyn_spread");
+  const fs::path file = Write(dir, "spread.txt", kSpread);
+  const MoorDynImport imported = ImportMoorDyn(file.string(), "test");
+  EXPECT_EQ(imported.lines, 3);
+  EXPECT_TRUE(imported.warnings.empty());
+  const Scenario s = ParseScenario(imported.yaml, "spread.yaml");
+  EXPECT_EQ(s.mooring.water.depth, 200.0);
+  EXPECT_EQ(s.mooring.water.density, 1020.0);
+  EXPECT_EQ(s.mooring.seabed.stiffness, 2.0e6);
+  EXPECT_EQ(s.mooring.seabed.damping, 2.0e5);
+  ASSERT_EQ(s.mooring.line_types.size(), 2u);
+  const mooring_fem::LineType& chain = s.mooring.line_types[0];
+  EXPECT_EQ(chain.diameter, 0.1);
+  EXPECT_EQ(chain.mass_per_length, 150.0);
+  EXPECT_EQ(chain.axial_stiffness, 8.0e8);
+  EXPECT_EQ(chain.axial_damping_ratio.value(), 0.6);  // BA/-zeta -0.6: a damping ratio
+  EXPECT_EQ(chain.drag_normal, 2.0);
+  EXPECT_NEAR(chain.drag_tangential, 0.3 * std::numbers::pi, 1e-15);  // on pi d in MoorDyn
+  EXPECT_EQ(chain.added_mass_normal, 0.9);
+  EXPECT_EQ(chain.friction_axial, 0.4);
+  EXPECT_EQ(chain.friction_lateral, 0.4);
+  EXPECT_EQ(s.mooring.line_types[1].axial_damping.value(), 2.0e5);  // BA in N s
+  // Frames: (x, y, z) up and to port -> (x, -y, -z) down and to starboard.
+  ASSERT_EQ(s.mooring.lines.size(), 3u);
+  EXPECT_EQ(s.mooring.lines[1].anchor, Vec3(-300.0, -520.0, 200.0));
+  EXPECT_EQ(s.mooring.lines[1].fairlead_body, Vec3(-5.0, -8.66, 15.0));
+  EXPECT_EQ(s.mooring.lines[0].sections.size(), 1u);
+  EXPECT_EQ(s.mooring.lines[0].Segments(), 30);
+  // Lines 4 and 3 in series through point 7, from the anchor (point 3) up; the clump on
+  // their joint.
+  const LineSpec& composite = s.mooring.lines[2];
+  EXPECT_EQ(composite.anchor, Vec3(-300.0, 520.0, 200.0));
+  EXPECT_EQ(composite.fairlead_body, Vec3(-5.0, 8.66, 15.0));
+  ASSERT_EQ(composite.sections.size(), 2u);
+  EXPECT_EQ(composite.sections[0].type, "chain");
+  EXPECT_EQ(composite.sections[0].length, 350.0);
+  EXPECT_EQ(composite.sections[1].type, "wire");
+  EXPECT_EQ(composite.sections[1].segments, 15);
+  ASSERT_EQ(composite.joints.size(), 1u);
+  EXPECT_EQ(composite.joints[0].mass, 5000.0);
+  EXPECT_EQ(composite.joints[0].volume, 0.64);
+  EXPECT_EQ(composite.joints[0].added_mass, 0.8);
+  EXPECT_EQ(composite.joints[0].drag_area, 1.5);
+  // Where each value came from is said beside it.
+  EXPECT_NE(imported.yaml.find("# MoorDyn lines 4, 3: point 3 -> 7 -> 6"), std::string::npos)
+      << imported.yaml;
+  EXPECT_NE(imported.yaml.find("dtM 0.001"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+// MoorDyn v1's layout: other column names and order, CONNECTION PROPERTIES with Connect
+// points, LINE PROPERTIES; EI and the tangential added mass are left out with a warning.
+TEST(MoorDynImport, TheOlderLayoutReadsByColumnName) {
+  const fs::path dir = moorsim::testing::FreshDirectory("moordyn_v1");
+  const fs::path file =
+      Write(dir, "v1.txt", R"(--------------------- MoorDyn Input File --------------------
+v1 layout
+---------------------- LINE DICTIONARY ---------------------------------------------
+LineType  Diam    MassDenInAir   EA        BA/-zeta    Can     Cat    Cdn     Cdt   EI
+(-)       (m)     (kg/m)        (N)       (Pa-s/-)    (-)     (-)    (-)     (-)   (N-m^2)
+rope      0.12    30            2.0E8      -0.8        1.0     0.5    1.6     0.05  10
+---------------------- CONNECTION PROPERTIES --------------------------------
+Node  Type      X        Y         Z        M        V        FX       FY      FZ     CdA   CA
+(-)   (-)       (m)      (m)       (m)      (kg)     (m^3)    (kN)     (kN)    (kN)   (m^2) (-)
+1     Fixed     500      0         -150     0        0        0        0       0      0     0
+2     Vessel    12       0         -10      0        0        0        0       0      0     0
+---------------------- LINE PROPERTIES --------------------------------------
+Line     LineType  UnstrLen  NumSegs   NodeAnch  NodeFair  Flags/Outputs
+(-)      (-)       (m)       (-)       (-)       (-)       (-)
+1        rope      560       20        1         2         -
+---------------------- SOLVER OPTIONS ---------------------------------------
+150      WtrDpth
+9.80665  g
+)");
+  const MoorDynImport imported = ImportMoorDyn(file.string(), "test");
+  const Scenario s = ParseScenario(imported.yaml, "v1.yaml");
+  const mooring_fem::LineType& rope = s.mooring.line_types.at(0);
+  EXPECT_EQ(rope.mass_per_length, 30.0);
+  EXPECT_EQ(rope.drag_normal, 1.6);
+  EXPECT_EQ(rope.added_mass_normal, 1.0);
+  EXPECT_NEAR(rope.drag_tangential, 0.05 * std::numbers::pi, 1e-15);
+  EXPECT_EQ(s.mooring.water.gravity, 9.80665);
+  EXPECT_EQ(s.mooring.lines.at(0).Length(), 560.0);
+  ASSERT_EQ(imported.warnings.size(), 2u);
+  EXPECT_EQ(imported.warnings[0].rfind(file.string() + ":6: line type rope: bending", 0), 0u)
+      << imported.warnings[0];
+  EXPECT_NE(imported.warnings[1].find("tangential added mass CaAx 0.5"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+// What moorsim cannot represent: one located line each, all of them at once.
+TEST(MoorDynImport, WhatDoesNotMapIsOneLocatedLineEach) {
+  const fs::path dir = moorsim::testing::FreshDirectory("moordyn_refused");
+  std::string text = kSpread;
+  // A bridle: a third line at the free point; a stiffness table; a rod.
+  text.replace(text.find("4     chain      7        3"), 0,
+               "5     chain      7        1         300       10      p\n");
+  text.replace(text.find("8.0e8"), 5, "chain_ea.txt");
+  text.replace(text.find("---------------------- POINTS"), 0,
+               "---------------------- RODS ----\nID RodType Attachment\n(#) (-) (-)\n"
+               "1 pipe Fixed\n");
+  const fs::path file = Write(dir, "refused.txt", text);
+  const std::string error = ErrorOf(file);
+  const std::string f = file.string();
+  EXPECT_NE(error.find(f + ":6: EA 'chain_ea.txt': a non-linear or visco-elastic stiffness"),
+            std::string::npos)
+      << error;
+  EXPECT_NE(error.find(f + ":11: rods are not supported"), std::string::npos) << error;
+  EXPECT_EQ(std::count(error.begin(), error.end(), '\n'), 1) << error;  // two lines so far
+  // Without the table and the rod, the bridle.
+  std::string bridle = kSpread;
+  bridle.replace(bridle.find("4     chain      7        3"), 0,
+                 "5     chain      7        1         300       10      p\n");
+  const fs::path second = Write(dir, "bridle.txt", bridle);
+  EXPECT_EQ(ErrorOf(second), second.string() +
+                                 ":17: free point 7 joins 3 lines: lines meeting at a free point "
+                                 "(a bridle or a shared buoy) are not supported yet; a free "
+                                 "point may join two lines in series");
+  // Not a MoorDyn file at all.
+  EXPECT_NE(ErrorOf(Write(dir, "other.txt", "hello\n")).find("no LINE TYPES, POINTS or LINES"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf(dir / "missing.txt").find("missing.txt"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace moorsim::scenarios

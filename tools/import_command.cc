@@ -1,0 +1,72 @@
+// `moorsim import moordyn FILE`: a MoorDyn input file as a moorsim scenario
+// (scenarios/moordyn.h), checked by the loader before it is written.
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "core/error.h"
+#include "scenarios/moordyn.h"
+#include "tools/commands.h"
+#include "tools/simulation/run.h"
+
+namespace moorsim::cli {
+namespace {
+
+struct ImportOptions {
+  std::string format;
+  std::string file;
+  std::optional<std::string> out;
+  bool force = false;
+};
+
+int RunImport(const ImportOptions& o) {
+  if (o.format != "moordyn") {
+    throw InputError("import: format '" + o.format + "' is not known (known: moordyn)");
+  }
+  const std::string file = RequireText("FILE", o.file);
+  if (o.out) CheckScenarioOut(RequireText("--out", *o.out), o.force);
+  std::string command = "moorsim import moordyn " + file;
+  if (o.out) command += " --out " + *o.out;
+  const scenarios::MoorDynImport imported = scenarios::ImportMoorDyn(file, command);
+  for (const std::string& warning : imported.warnings) {
+    std::cerr << "moorsim: warning: " << warning << "\n";
+  }
+  if (!o.out) {
+    std::cout << imported.yaml;
+    return 0;
+  }
+  simulation::WriteFileAtomically(*o.out, imported.yaml);
+  std::printf("%s: %d line%s from %s\n", o.out->c_str(), imported.lines,
+              imported.lines == 1 ? "" : "s", file.c_str());
+  return 0;
+}
+
+}  // namespace
+
+Command AddImportCommand(CLI::App& app) {
+  auto o = std::make_shared<ImportOptions>();
+  CLI::App* sub =
+      app.add_subcommand("import", "write a scenario from another program's mooring model");
+  sub->footer(
+      "\nFormats:\n"
+      "  moordyn: a MoorDyn (v1 or v2) input file: its line types, points (fixed: anchors;\n"
+      "    vessel or coupled: fairleads; free points joining two lines: the joints of a\n"
+      "    composite line, with their mass, volume, CdA and Ca) and lines, water depth and\n"
+      "    density, gravity, seabed stiffness, damping and friction. Frames are converted\n"
+      "    (MoorDyn's z up and y to port to moorsim's z down and y to starboard) and the\n"
+      "    tangential drag coefficient multiplied by pi (MoorDyn applies it to the\n"
+      "    circumference). Rods, bodies, bridles, non-linear EA and bathymetry are refused,\n"
+      "    one line each; bending stiffness and tangential added mass are left out with a\n"
+      "    warning. The scenario holds the mooring only: `moorsim static` and\n"
+      "    `moorsim simulate-lines` run it; add a vessel for `moorsim run`.\n" +
+      std::string(kScenarioOutNote));
+  sub->add_option("format", o->format, "the model's format: moordyn")->required();
+  sub->add_option("FILE", o->file, "the model's input file")->required();
+  sub->add_option("--out", o->out, "write the scenario to this file (default: stdout)");
+  sub->add_flag("--force", o->force, "with --out: replace an existing file");
+  return [o] { return RunImport(*o); };
+}
+
+}  // namespace moorsim::cli
