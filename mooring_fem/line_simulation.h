@@ -4,6 +4,7 @@
 // MooringSystem to the 6-DOF plant instead of to a prescribed motion.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -25,25 +26,56 @@ struct PlanarPose {
 /// Earth-frame fairlead position for a body-frame fairlead at a planar pose.
 Vec3 FairleadPosition(const PlanarPose& pose, const Vec3& fairlead_body);
 
-/// A translation of the turret along a fixed horizontal direction, the sum of harmonics
-/// A_i sin(2 pi t / T_i), on top of a mean planar pose. Heading stays constant.
-struct HarmonicMotion {
+/// Samples of a rigid-body motion (PrescribedMotion::series): times [s], strictly
+/// increasing, at least two, and per degree of freedom one value per time (surge, sway,
+/// heave [m], roll, pitch, yaw [rad]).
+struct MotionSeries {
+  std::vector<double> time;
+  std::array<std::vector<double>, 6> values;
+};
+
+/// The vessel's prescribed rigid-body motion about a mean planar pose: its reference point
+/// offset by (surge, sway, heave) in the Earth frame [m], and the hull turned by roll,
+/// pitch and yaw [rad] (the body-frame fairleads carried by Rz(psi + yaw) Ry(pitch)
+/// Rx(roll), Euler angles as the vessel's). Each degree of freedom is a sum of harmonics
+/// A_i sin(2 pi t / T_i), or all six come from a series of samples, interpolated by a
+/// natural cubic spline (continuous velocity and acceleration) and held at the end values
+/// outside it.
+struct PrescribedMotion {
+  enum Dof { kSurge, kSway, kHeave, kRoll, kPitch, kYaw };
   struct Component {
-    double amplitude = 0.0;  ///< [m]
+    double amplitude = 0.0;  ///< [m] or [rad]
     double period = 0.0;     ///< [s]
   };
   PlanarPose mean;
-  Vec3 direction = Vec3::UnitX();  ///< unit, horizontal
-  std::vector<Component> components;
+  std::array<std::vector<Component>, 6> components;
+  /// When set, replaces the components (MakeSeries checks and prepares it).
+  std::shared_ptr<const class MotionSpline> series;
 
-  /// Offset of the reference point from the mean pose, with its velocity and acceleration.
-  PointKinematics At(double t) const;
+  /// The fairlead at body point `fairlead_body`: its position, velocity and acceleration.
+  PointKinematics FairleadAt(double t, const Vec3& fairlead_body) const;
 };
 
-/// The lines as an OdeSystem driven by a HarmonicMotion.
+/// The natural cubic spline of each degree of freedom of a MotionSeries. Throws
+/// moorsim::InputError for fewer than two samples, times that do not increase, values
+/// that are not finite or channels of another length.
+class MotionSpline {
+ public:
+  explicit MotionSpline(MotionSeries series);
+  /// Value, first and second time derivative of degree of freedom `dof` at time t.
+  void Evaluate(int dof, double t, double* value, double* rate, double* acceleration) const;
+  double start() const { return series_.time.front(); }
+  double end() const { return series_.time.back(); }
+
+ private:
+  MotionSeries series_;
+  std::array<std::vector<double>, 6> second_;  // second derivatives at the samples
+};
+
+/// The lines as an OdeSystem driven by a PrescribedMotion.
 class PrescribedMotionSystem : public OdeSystem {
  public:
-  PrescribedMotionSystem(MooringSystem& mooring, HarmonicMotion motion);
+  PrescribedMotionSystem(MooringSystem& mooring, PrescribedMotion motion);
 
   int StateSize() const override { return mooring_.StateSize(); }
   void Derivatives(double t, const double* x, double* xdot) override;
@@ -56,7 +88,7 @@ class PrescribedMotionSystem : public OdeSystem {
 
  private:
   MooringSystem& mooring_;
-  HarmonicMotion motion_;
+  PrescribedMotion motion_;
   std::vector<PointKinematics> fairleads_;
 };
 
@@ -71,7 +103,7 @@ IntegratorOptions MakeIntegratorOptions(const SolverSettings& solver, const Moor
 class LineSimulation {
  public:
   LineSimulation(const MooringParameters& mooring, const SolverSettings& solver,
-                 HarmonicMotion motion);
+                 PrescribedMotion motion);
 
   /// A failure at time t [s]; the integrator stops exactly there, changes the topology and
   /// restarts with the state carried over.

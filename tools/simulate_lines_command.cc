@@ -1,5 +1,6 @@
 // `moorsim simulate-lines`: the mooring lines alone with the turret on a prescribed
 // harmonic path; fairlead tensions vs time to CSV, wall time and integrator statistics.
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -7,7 +8,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <sstream>
 
@@ -24,7 +27,8 @@ namespace {
 
 struct SimulateLinesOptions {
   std::string scenario;
-  std::string motion;
+  std::vector<std::string> motions;
+  std::optional<std::string> motion_file;
   std::string duration;
   std::optional<std::string> out;
   std::string output_interval = "0.5";
@@ -43,21 +47,29 @@ constexpr double kMaxAmplitude = 1e4;  // [m]
 // well above round-off, and the scenario's own limits hold for the scaled values too.
 constexpr double kMinRtol = 1e-12;
 
-mooring_fem::HarmonicMotion ParseMotion(const std::string& text) {
-  const std::string usage = "--motion: '" + text + "' must be surge:A1,T1[,A2,T2...] or sway:...";
+constexpr double kMaxAngleDeg = 90.0;  // [deg]: a roll, pitch or yaw amplitude
+
+constexpr const char* kDofNames[] = {"surge", "sway", "heave", "roll", "pitch", "yaw"};
+
+// --motion DOF:A1,T1[,A2,T2...], repeatable: each adds harmonics to its degree of freedom.
+void AddMotion(const std::string& text, mooring_fem::PrescribedMotion& motion) {
+  const std::string usage = "--motion: '" + text +
+                            "' must be DOF:A1,T1[,A2,T2...] with DOF one of surge, sway, heave "
+                            "(A in m), roll, pitch, yaw (A in deg)";
   const auto colon = text.find(':');
   if (colon == std::string::npos) throw InputError(usage);
   const std::string kind = text.substr(0, colon);
-  mooring_fem::HarmonicMotion motion;
-  if (kind == "surge") {
-    motion.direction = Vec3::UnitX();
-  } else if (kind == "sway") {
-    motion.direction = Vec3::UnitY();
-  } else {
-    throw InputError("--motion: unknown motion '" + kind + "' (known: surge, sway)");
+  const auto named = std::find(std::begin(kDofNames), std::end(kDofNames), kind);
+  if (named == std::end(kDofNames)) {
+    throw InputError("--motion: unknown motion '" + kind +
+                     "' (known: surge, sway, heave, roll, pitch, yaw)");
   }
+  const int dof = static_cast<int>(named - std::begin(kDofNames));
+  const bool angle = dof >= mooring_fem::PrescribedMotion::kRoll;
   const std::vector<double> numbers = ParseNumberList("--motion", text.substr(colon + 1));
-  if (numbers.size() % 2 != 0) throw InputError(usage + " (amplitude/period pairs)");
+  if (numbers.empty() || numbers.size() % 2 != 0) {
+    throw InputError(usage + " (amplitude/period pairs)");
+  }
   for (std::size_t i = 0; i < numbers.size(); i += 2) {
     // Periods from faster than any sea wave to slower than any drift; amplitudes within a
     // mooring's reach. Outside these the integrator would fail on a nonsense path.
@@ -65,11 +77,72 @@ mooring_fem::HarmonicMotion ParseMotion(const std::string& text) {
       throw InputError("--motion: period " + FormatNumber(numbers[i + 1]) + " s must be in " +
                        FormatNumber(kMinPeriod) + ".." + FormatNumber(kMaxPeriod) + " s");
     }
-    if (!(std::abs(numbers[i]) <= kMaxAmplitude)) {
-      throw InputError("--motion: amplitude " + FormatNumber(numbers[i]) + " m must be within " +
-                       FormatNumber(kMaxAmplitude) + " m");
+    const double limit = angle ? kMaxAngleDeg : kMaxAmplitude;
+    if (!(std::abs(numbers[i]) <= limit)) {
+      throw InputError("--motion: amplitude " + FormatNumber(numbers[i]) + (angle ? " deg" : " m") +
+                       " must be within " + FormatNumber(limit) + (angle ? " deg" : " m"));
     }
-    motion.components.push_back({numbers[i], numbers[i + 1]});
+    motion.components[dof].push_back(
+        {angle ? numbers[i] * std::numbers::pi / 180.0 : numbers[i], numbers[i + 1]});
+  }
+}
+
+// --motion-file: CSV with the header time,x,y,z,roll_deg,pitch_deg,yaw_deg ('#' lines
+// before it are comments), then one row per sample.
+mooring_fem::MotionSeries ReadMotionFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError("--motion-file: cannot read '" + path + "'");
+  const std::string header = "time,x,y,z,roll_deg,pitch_deg,yaw_deg";
+  mooring_fem::MotionSeries series;
+  std::string line;
+  int number = 0;
+  bool seen_header = false;
+  while (std::getline(in, line)) {
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const std::string where = path + ":" + std::to_string(number) + ": ";
+    if (!seen_header) {
+      if (line.empty() || line[0] == '#') continue;
+      if (line != header) {
+        throw InputError(where + "the header must be '" + header + "' (angles in degrees)");
+      }
+      seen_header = true;
+      continue;
+    }
+    if (line.empty()) continue;
+    std::vector<double> row;
+    try {
+      row = ParseNumberList("", line);
+    } catch (const InputError&) {
+      throw InputError(where + "'" + line + "' is not 7 numbers");
+    }
+    if (row.size() != 7) throw InputError(where + "'" + line + "' is not 7 numbers");
+    if (!series.time.empty() && !(row[0] > series.time.back())) {
+      throw InputError(where + "time " + FormatNumber(row[0]) + " s does not follow " +
+                       FormatNumber(series.time.back()) + " s");
+    }
+    if (series.time.size() >= 10'000'000) throw InputError(where + "more than 1e7 samples");
+    series.time.push_back(row[0]);
+    for (int d = 0; d < 6; ++d) {
+      series.values[d].push_back(d >= 3 ? row[1 + d] * std::numbers::pi / 180.0 : row[1 + d]);
+    }
+  }
+  if (!seen_header) throw InputError("--motion-file " + path + ": no header '" + header + "'");
+  if (series.time.size() < 2) {
+    throw InputError("--motion-file " + path + ": at least two samples are needed");
+  }
+  return series;
+}
+
+mooring_fem::PrescribedMotion ParseMotion(const SimulateLinesOptions& o) {
+  mooring_fem::PrescribedMotion motion;
+  if (o.motions.empty() == !o.motion_file) {
+    throw InputError("--motion, --motion-file: give one or more --motion or one --motion-file");
+  }
+  for (const std::string& text : o.motions) AddMotion(text, motion);
+  if (o.motion_file) {
+    motion.series = std::make_shared<const mooring_fem::MotionSpline>(
+        ReadMotionFile(RequireText("--motion-file", *o.motion_file)));
   }
   return motion;
 }
@@ -207,7 +280,7 @@ int RunSimulateLines(const SimulateLinesOptions& o) {
   within("rtol", scenario.solver.rtol, kMinRtol, 1.0);
   within("atol_position", scenario.solver.atol_position, 0.0, 1.0);
   within("atol_velocity", scenario.solver.atol_velocity, 0.0, 1.0);
-  const mooring_fem::HarmonicMotion motion = ParseMotion(o.motion);
+  const mooring_fem::PrescribedMotion motion = ParseMotion(o);
   std::vector<ScheduledPart> parts;
   for (const std::string& p : o.parts) parts.push_back(ParsePart(p, scenario));
 
@@ -233,9 +306,10 @@ int RunSimulateLines(const SimulateLinesOptions& o) {
   if (csv) {
     csv->precision(10);
     *csv << "# moorsim " << moorsim::kVersion << " simulate-lines scenario=" << o.scenario
-         << " motion=" << o.motion << " duration=" << duration
-         << " segments=" << scenario.mooring.lines.front().Segments()
+         << " duration=" << duration << " segments=" << scenario.mooring.lines.front().Segments()
          << " rtol=" << scenario.solver.rtol << " tolerance_scale=" << tolerance_scale;
+    for (const std::string& m : o.motions) *csv << " motion=" << m;
+    if (o.motion_file) *csv << " motion_file=" << *o.motion_file;
     for (const std::string& p : o.parts) *csv << " part=" << p;
     *csv << "\n# fairlead tension = magnitude of the force each line exerts on the turret [N]\n";
     *csv << "time";
@@ -283,9 +357,12 @@ Command AddSimulateLinesCommand(CLI::App& app) {
       "tensions vs time (CSV) and prints wall time, real-time factor and CVODE statistics.");
   sub->add_option("--set", o->sets, "override a scenario value: key.path=value (repeatable)");
   sub->add_option("scenario", o->scenario, "scenario YAML file")->required();
-  sub->add_option("--motion", o->motion,
-                  "surge:A1,T1[,A2,T2...] or sway:...: sum of A_i sin(2 pi t / T_i) [m, s]")
-      ->required();
+  sub->add_option("--motion", o->motions,
+                  "DOF:A1,T1[,A2,T2...]: add A_i sin(2 pi t / T_i) to DOF (surge, sway, heave "
+                  "[m]; roll, pitch, yaw [deg]), repeatable");
+  sub->add_option("--motion-file", o->motion_file,
+                  "CSV time,x,y,z,roll_deg,pitch_deg,yaw_deg: the motion's samples "
+                  "(natural cubic spline between them)");
   sub->add_option("--duration", o->duration, "simulated time [s]")->required();
   sub->add_option("--out", o->out, "CSV file: time and each line's fairlead tension [N]");
   sub->add_option("--output-interval", o->output_interval, "CSV row interval [s] (default 0.5)");

@@ -29,7 +29,7 @@ double LargestNodeMove(const MooringSystem& mooring, const std::vector<double>& 
 TEST(LineDynamics, StaticStateStaysAtRestFor200Seconds) {
   const testing::SeedCase s = SeedScenario(50);
   // No current in the seed case, turret still.
-  LineSimulation sim(s.mooring, s.solver, HarmonicMotion{});
+  LineSimulation sim(s.mooring, s.solver, PrescribedMotion{});
   const std::vector<double> start = sim.state();
   const std::vector<Vec3> f0 = sim.FairleadForces();
   sim.AdvanceTo(200.0);
@@ -63,7 +63,7 @@ LineNodes NodesOfLine(const LineSimulation& sim, MooringSystem& mooring, int lin
 
 TEST(LineDynamics, PartedLineFallsToTheSeabedAndEnergyNeverGrows) {
   const testing::SeedCase s = SeedScenario(50);
-  LineSimulation sim(s.mooring, s.solver, HarmonicMotion{});
+  LineSimulation sim(s.mooring, s.solver, PrescribedMotion{});
   const double t_fail = 5.0;
   sim.ScheduleFailure(t_fail, {0, FailureMode::kFairlead, 0});
 
@@ -111,7 +111,7 @@ double HangingWeight(const LineProperties& lp) {
 
 TEST(LineDynamics, LinePartedAtAMidNodeHangsFromTheFairlead) {
   const testing::SeedCase s = SeedScenario(50);
-  LineSimulation sim(s.mooring, s.solver, HarmonicMotion{});
+  LineSimulation sim(s.mooring, s.solver, PrescribedMotion{});
   sim.ScheduleFailure(5.0, {0, FailureMode::kNode, 25});
   sim.AdvanceTo(1000.0);
   ASSERT_EQ(sim.mooring().chains().size(), 9u);  // line 1 is now two chains
@@ -131,7 +131,7 @@ TEST(LineDynamics, LinePartedAtAMidNodeHangsFromTheFairlead) {
 
 TEST(LineDynamics, ReleasedAnchorDragsAndTheLineHangsFromTheFairlead) {
   const testing::SeedCase s = SeedScenario(20);
-  LineSimulation sim(s.mooring, s.solver, HarmonicMotion{});
+  LineSimulation sim(s.mooring, s.solver, PrescribedMotion{});
   sim.ScheduleFailure(5.0, {0, FailureMode::kAnchor, 0});
   double previous = sim.MechanicalEnergy();
   for (int i = 1; i <= 100; ++i) {
@@ -149,7 +149,7 @@ TEST(LineDynamics, ReleasedAnchorDragsAndTheLineHangsFromTheFairlead) {
 
 TEST(LineDynamics, FailureOfADetachedEndIsRejected) {
   const testing::SeedCase s = SeedScenario(20);
-  LineSimulation sim(s.mooring, s.solver, HarmonicMotion{});
+  LineSimulation sim(s.mooring, s.solver, PrescribedMotion{});
   sim.ScheduleFailure(1.0, {2, FailureMode::kFairlead, 0});
   sim.ScheduleFailure(2.0, {2, FailureMode::kFairlead, 0});
   EXPECT_THROW(sim.AdvanceTo(3.0), InputError);

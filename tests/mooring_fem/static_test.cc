@@ -263,7 +263,7 @@ TEST(StaticFem, CurrentDragsTheMooringDownstreamAndTheStateIsAtRest) {
   s.mooring.current.direction = 315.0 * std::numbers::pi / 180.0;
   s.mooring.current.depth = {0.0, 1000.0};
   s.mooring.current.speed = {1.0, 0.2};
-  LineSimulation sim(s.mooring, s.solver, HarmonicMotion{});
+  LineSimulation sim(s.mooring, s.solver, PrescribedMotion{});
   const std::vector<Vec3> f = sim.FairleadForces();
   Vec3 net = Vec3::Zero();
   for (const Vec3& line : f) net += line;

@@ -61,9 +61,9 @@ inline SeedCase SeedScenario(int segments) {
 }
 
 /// The issue's turret motion: surge 5 m / 100 s plus 2 m / 10 s.
-inline HarmonicMotion IssueSurge() {
-  HarmonicMotion motion;
-  motion.components = {{5.0, 100.0}, {2.0, 10.0}};
+inline PrescribedMotion IssueSurge() {
+  PrescribedMotion motion;
+  motion.components[PrescribedMotion::kSurge] = {{5.0, 100.0}, {2.0, 10.0}};
   return motion;
 }
 
