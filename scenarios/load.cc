@@ -542,12 +542,19 @@ void CheckCurrent(const Checker& check, const CurrentProfile& current) {
   }
 }
 
+// Water displaced per metre by a line of the type [kg/m].
+double DisplacedMass(const LineType& type, const Water& water) {
+  return water.density * std::numbers::pi * type.diameter * type.diameter / 4.0;
+}
+
+// `buoyant_allowed`: only composite lines use the type (where a buoyant section hangs
+// between heavier ones, CheckLines checks the line's weight as a whole).
 void CheckLineType(const Checker& check, const LineType& type, const std::string& path,
-                   const Water& water) {
+                   const Water& water, bool buoyant_allowed) {
   // A line no heavier than the water it displaces has no submerged weight: no catenary,
   // nothing holds it on the seabed.
-  const double displaced = water.density * std::numbers::pi * type.diameter * type.diameter / 4.0;
-  if (!(type.mass_per_length > displaced)) {
+  const double displaced = DisplacedMass(type, water);
+  if (!buoyant_allowed && !(type.mass_per_length > displaced)) {
     check.Fail(path + ".mass_per_length",
                WithUnit(type.mass_per_length, "kg/m") + " must exceed the displaced water mass " +
                    Significant(displaced, 4) + " kg/m (the line would float)");
@@ -568,7 +575,15 @@ void CheckLineTypes(const Checker& check, const MooringSpec& mooring) {
                                        ItemPath("mooring.line_types", j));
       }
     }
-    CheckLineType(check, mooring.line_types[i], path, mooring.water);
+    // Used by composite lines only (and at least one).
+    bool in_composites = false, alone = false;
+    for (const LineSpec& line : mooring.lines) {
+      for (const mooring_fem::LineSection& section : line.sections) {
+        if (section.type != mooring.line_types[i].name) continue;
+        (line.sections.size() > 1 ? in_composites : alone) = true;
+      }
+    }
+    CheckLineType(check, mooring.line_types[i], path, mooring.water, in_composites && !alone);
   }
 }
 
@@ -664,6 +679,26 @@ void CheckLines(const Checker& check, const MooringSpec& mooring) {
     }
     if (const std::string problem = LineGeometryProblem(line, fairlead); !problem.empty()) {
       check.Fail(path + (line.written_in_sections ? ".sections" : ".length"), problem);
+    }
+    if (line.sections.size() > 1) {  // buoyant sections may hang between heavier ones
+      const Water& water = mooring.water;
+      double weight = 0.0;  // in water [N]
+      for (const mooring_fem::LineSection& section : line.sections) {
+        for (const LineType& type : mooring.line_types) {
+          if (type.name != section.type) continue;
+          weight += (type.mass_per_length - DisplacedMass(type, water)) * water.gravity *
+                    section.length;
+        }
+      }
+      for (const mooring_fem::PointBody& body : line.joints) {
+        weight += (body.mass - water.density * body.volume) * water.gravity;
+      }
+      if (!(weight > 0.0)) {
+        check.Fail(path + ".sections",
+                   "the line weighs " + Significant(weight / 1e3, 4) +
+                       " kN in water with its bodies: a line lighter than the water it "
+                       "displaces would float");
+      }
     }
   }
 }

@@ -218,7 +218,8 @@ constexpr Key kLineTypeKeys[] = {
                 MOORSIM_DEFAULT(mooring_fem::LineType{}.friction_lateral)),
     {.name = "mass_per_length",
      .unit = "kg/m",
-     .description = "Dry mass per unit length; more than the water it displaces.",
+     .description = "Dry mass per unit length; more than the water it displaces, but in a "
+                    "section of a line that weighs more than its water as a whole.",
      .required = true,
      .maximum = AtMost(10000.0, "the heaviest chains weigh about 1000 kg/m")},
     {.name = "name",

@@ -132,7 +132,14 @@ struct Case {
   std::vector<PointBody> joints;  // empty: none
   double anchor_x = 1750.0;       // [m]; the fairlead is at x = 20 m, 988 m above the anchor
   bool grounded = true;           // whether part of the line rests on the seabed
+  double rope_mass = 26.0;        // [kg/m] dry; under 20.6 kg/m the rope floats
 };
+
+LineType Rope(const Case& c) {
+  LineType rope = testing::PolyesterType();
+  rope.mass_per_length = c.rope_mass;
+  return rope;
+}
 
 MooringParameters CompositeSpec(const Case& c, int scale) {
   MooringParameters spec;
@@ -142,7 +149,7 @@ MooringParameters CompositeSpec(const Case& c, int scale) {
   // rigid seabed of the reference.
   spec.seabed.stiffness = 3e7;
   spec.seabed.contact_smoothing = 0.02;
-  spec.line_types = {testing::ChainType(), testing::PolyesterType()};
+  spec.line_types = {testing::ChainType(), Rope(c)};
   LineParameters line;
   line.id = 1;
   line.anchor = Vec3(c.anchor_x, 0.0, 1000.0);
@@ -155,11 +162,10 @@ MooringParameters CompositeSpec(const Case& c, int scale) {
   return spec;
 }
 
-std::vector<RefSection> ReferenceSections() {
-  return {
-      {400.0, WeightInWater(testing::ChainType()), testing::ChainType().axial_stiffness},
-      {1500.0, WeightInWater(testing::PolyesterType()), testing::PolyesterType().axial_stiffness},
-      {150.0, WeightInWater(testing::ChainType()), testing::ChainType().axial_stiffness}};
+std::vector<RefSection> ReferenceSections(const Case& c) {
+  return {{400.0, WeightInWater(testing::ChainType()), testing::ChainType().axial_stiffness},
+          {1500.0, WeightInWater(Rope(c)), Rope(c).axial_stiffness},
+          {150.0, WeightInWater(testing::ChainType()), testing::ChainType().axial_stiffness}};
 }
 
 std::vector<double> ReferenceJoints(const Case& c) {
@@ -178,6 +184,8 @@ const Case kCases[] = {
     {"clump", {{25000.0, 25000.0 / 7850.0, 1.0, 2.0}, {}}},
     // A buoy of 20 m^3 (5 t) where the polyester meets the top chain: 150 kN of lift.
     {"buoy", {{}, {5000.0, 20.0, 1.0, 6.0}}},
+    // A buoyant rope (15 kg/m dry: 55 N/m of lift) hanging between the chains.
+    {"buoyant_rope", {}, 1750.0, true, 15.0},
 };
 
 void PrintTo(const Case& c, std::ostream* out) { *out << c.name; }
@@ -200,7 +208,7 @@ TEST_P(CompositeStatic, FemTensionsMatchTheIndependentCatenary) {
   const double span = std::hypot(chord.x(), chord.y());
   const double height = lp.anchor.z() - fairlead.position.z();
   const CompositeCatenary guess = SolveCompositeCatenary(CatenaryLineOf(lp), span, height);
-  const Reference ref = SolveReference(ReferenceSections(), ReferenceJoints(c), span, height,
+  const Reference ref = SolveReference(ReferenceSections(c), ReferenceJoints(c), span, height,
                                        guess.horizontal_tension, guess.vertical_tension);
 
   // The closed forms against the quadrature.

@@ -14,6 +14,7 @@
 
 #include "bad_input_cases.h"
 #include "core/error.h"
+#include "scenarios/strict_yaml.h"
 
 namespace moorsim::scenarios {
 namespace {
@@ -561,6 +562,56 @@ TEST(SpreadMooring, FairleadsAnywhereOnTheHullButNotOffIt) {
                                ": mooring.lines[1].fairlead: (105, 15) m is off the hull: |x| "
                                "must be <= hull.length / 2 = 100 m and |y| <= hull.beam / 2 = "
                                "22 m");
+}
+
+}  // namespace
+}  // namespace moorsim::scenarios
+
+namespace moorsim::scenarios {
+namespace {
+
+// A line type lighter than the water it displaces (a buoyant rope) may be a section of a
+// composite line that weighs more than its water as a whole; alone it would float, and so
+// would a composite line of too little chain.
+TEST(ScenarioText, BuoyantSectionsHangBetweenHeavierOnes) {
+  std::string text = test_cases::kBase;
+  // The wire made buoyant: 5 kg/m dry in 8.05 kg/m of displaced water.
+  text.replace(text.find("mass_per_length: 40"), 19, "mass_per_length: 5");
+  const std::string alone =
+      "      type: wire\n      anchor: [0, 1950, 1000]\n"
+      "      fairlead: [0, 20, 12]\n      length: 2250\n";
+  ASSERT_NE(text.find(alone), std::string::npos);
+  const auto composite = [&](double chain_length, double wire_length) {
+    std::string t = text;
+    t.replace(t.find(alone), alone.size(),
+              "      anchor: [0, 1950, 1000]\n      fairlead: [0, 20, 12]\n"
+              "      sections:\n        - {type: chain, length: " +
+                  strict_yaml::Number(chain_length) +
+                  ", segments: 10}\n        - {type: wire, length: " +
+                  strict_yaml::Number(wire_length) + ", segments: 20}\n");
+    return t;
+  };
+  const Scenario s = ParseScenario(composite(700.0, 1550.0), "test.yaml");
+  EXPECT_EQ(s.mooring.lines[1].sections.size(), 2u);
+  // The same type alone on a line: it floats.
+  try {
+    ParseScenario(text, "test.yaml");
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("mooring.line_types[2].mass_per_length: 5 kg/m must "
+                                         "exceed the displaced water mass"),
+              std::string::npos)
+        << e.what();
+  }
+  // 10 m of chain (26 kN) cannot hold 2240 m of the rope (-67 kN) down.
+  try {
+    ParseScenario(composite(10.0, 2240.0), "test.yaml");
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("mooring.lines[2].sections: the line weighs -4"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
