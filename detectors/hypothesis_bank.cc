@@ -28,7 +28,7 @@ std::string LineKey(int line_id) { return "mooring.lines[" + std::to_string(line
 }
 
 bool Homogeneous(const mooring_fem::CompositeLine& line) {
-  return line.sections.size() == 1 &&
+  return line.sections.size() == 1 && line.CurveOf(0) == nullptr &&
          std::all_of(line.joint_weights.begin(), line.joint_weights.end(),
                      [](double w) { return w == 0.0; });
 }

@@ -12,7 +12,24 @@ namespace moorsim::mooring_fem {
 
 namespace {
 
-constexpr int kMaxNewtonIterations = 200;
+constexpr int kMaxClosureIterations = 200;
+
+// The same for a section whose strain follows a curve: dx/ds = H/T (1 + e(T)),
+// dz/ds = V/T (1 + e(T)), V = v1 + w s, by Simpson's rule on 256 intervals (a smooth
+// integrand: its error is far below the closure tolerance's effect on H).
+Eigen::Vector2d CurvedStretch(double h, double w, const AxialCurve& curve, double v1, double l) {
+  constexpr int kIntervals = 256;
+  const double step = l / kIntervals;
+  Eigen::Vector2d sum(0.0, 0.0);
+  for (int k = 0; k <= kIntervals; ++k) {
+    const double v = v1 + w * step * k;
+    const double t = std::hypot(h, v);
+    const double stretch = 1.0 + curve.Strain(t);
+    const double weight = k == 0 || k == kIntervals ? 1.0 : (k % 2 == 1 ? 4.0 : 2.0);
+    sum += weight * Eigen::Vector2d(h / t * stretch, v / t * stretch);
+  }
+  return sum * step / 3.0;
+}
 
 // Span and rise of a suspended stretch of unstretched length l of a section (weight w per
 // metre, stiffness ea) whose vertical tension is v1 at its lower end, under H > 0.
@@ -96,10 +113,14 @@ Eigen::Vector2d Point(const CompositeLine& line, const Layout& layout, double h,
     if (upper <= lower) break;
     // The grounded part of this section, then the hanging part.
     const double grounded_top = std::clamp(layout.grounded, lower, upper);
-    p.x() += (grounded_top - lower) * (1.0 + h / section.axial_stiffness);
+    const AxialCurve* curve = line.CurveOf(i);
+    const double grounded_strain = curve ? curve->Strain(h) : h / section.axial_stiffness;
+    p.x() += (grounded_top - lower) * (1.0 + grounded_strain);
     if (upper > grounded_top) {
       const double v1 = layout.bottom[i] + section.weight_per_length * (grounded_top - lower);
-      p += Stretch(h, section.weight_per_length, section.axial_stiffness, v1, upper - grounded_top);
+      p += curve ? CurvedStretch(h, section.weight_per_length, *curve, v1, upper - grounded_top)
+                 : Stretch(h, section.weight_per_length, section.axial_stiffness, v1,
+                           upper - grounded_top);
     }
   }
   return p;
@@ -184,7 +205,7 @@ CompositeCatenary SolveCompositeCatenary(const CompositeLine& line, double span,
   Eigen::Vector2d r = residual(h, v);
   int iteration = 0;
   while (r.lpNorm<Eigen::Infinity>() > tolerance) {
-    if (++iteration > kMaxNewtonIterations || h > 1e3 * length / compliance) {
+    if (++iteration > kMaxClosureIterations || h > 1e3 * length / compliance) {
       std::ostringstream out;
       out << "catenary: no equilibrium found for the composite line (L = " << length << " m, span "
           << span << " m, height " << height << " m; closure error " << r.norm() << " m after "
@@ -223,7 +244,9 @@ CompositeCatenary SolveCompositeCatenary(const CompositeLine& line, double span,
   for (std::size_t i = 0; i < line.sections.size(); ++i) {
     const double tension =
         std::hypot(h, std::max(std::abs(final_layout.top[i]), std::abs(final_layout.bottom[i])));
-    const double strain = tension / line.sections[i].axial_stiffness;
+    const AxialCurve* curve = line.CurveOf(i);
+    const double strain =
+        curve ? curve->Strain(tension) : tension / line.sections[i].axial_stiffness;
     if (strain > kMaxCatenaryStrain) {
       std::ostringstream out;
       out << "catenary: the composite line cannot reach (span " << span << " m, height " << height

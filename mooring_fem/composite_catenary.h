@@ -20,9 +20,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <vector>
 
 #include "core/types.h"
+#include "mooring_fem/axial_curve.h"
 #include "mooring_fem/catenary.h"
 
 namespace moorsim::mooring_fem {
@@ -33,6 +35,13 @@ struct CompositeLine {
   /// Weight in water at each joint [N] (sections.size() - 1 of them, or empty: none);
   /// negative for a buoy.
   std::vector<double> joint_weights;
+  /// Each section's tension-strain law in place of its EA (one per section, a null one for
+  /// a linear section; or empty: all linear).
+  std::vector<std::shared_ptr<const AxialCurve>> curves;
+  /// The curve of section `i`, or null.
+  const AxialCurve* CurveOf(std::size_t i) const {
+    return i < curves.size() ? curves[i].get() : nullptr;
+  }
 };
 
 struct CompositeCatenary {

@@ -135,6 +135,14 @@ LineProperties MakeLineProperties(const MooringParameters& spec, const LineParam
     sp.mass_per_length = type->mass_per_length;
     sp.weight_per_length = (type->mass_per_length - rho * area) * spec.water.gravity;
     sp.axial_stiffness = type->axial_stiffness;
+    if (!type->tension_strain.empty()) {
+      try {
+        sp.curve = std::make_shared<const AxialCurve>(type->tension_strain);
+      } catch (const InputError& e) {
+        throw InputError("mooring.line_types '" + type->name + "': " + e.what());
+      }
+      sp.axial_stiffness = sp.curve->MaxSlope();
+    }
     if (type->axial_damping) {
       sp.axial_damping = *type->axial_damping;
     } else {
@@ -142,7 +150,7 @@ LineProperties MakeLineProperties(const MooringParameters& spec, const LineParam
       // moving in opposition, w_max = 2 (n / L) sqrt(EA / m)): c = zeta l0 sqrt(EA m).
       const double zeta = type->axial_damping_ratio.value_or(0.0);
       sp.axial_damping =
-          zeta * sp.segment_length * std::sqrt(type->axial_stiffness * type->mass_per_length);
+          zeta * sp.segment_length * std::sqrt(sp.axial_stiffness * type->mass_per_length);
     }
     sp.added_mass_per_length = type->added_mass_normal * rho * area;
     sp.drag_normal = 0.5 * rho * type->drag_normal * type->diameter;
@@ -175,6 +183,7 @@ CompositeLine CatenaryLineOf(const LineProperties& line) {
   CompositeLine out;
   for (const SectionProperties& sp : line.sections) {
     out.sections.push_back({sp.length, sp.weight_per_length, sp.axial_stiffness});
+    out.curves.push_back(sp.curve);
   }
   int node = 0;
   for (std::size_t k = 0; k + 1 < line.sections.size(); ++k) {
@@ -198,7 +207,7 @@ std::vector<double> NodeArcLengths(const LineProperties& line) {
 }
 
 double CatenaryFairleadTension(const LineProperties& line, const Vec3& fairlead) {
-  if (line.homogeneous()) {
+  if (line.homogeneous() && !line.sections.front().curve) {
     const SectionProperties& sp = line.sections.front();
     const CatenaryLineProperties props{sp.length, sp.weight_per_length, sp.axial_stiffness};
     return SolveLineCatenary(props, line.anchor, fairlead).solution.fairlead_tension;
@@ -378,7 +387,13 @@ void MooringSystem::ComputeSegments(const Chain& c) {
     g.L = L;
     g.rate = g.t.dot(vel_[s + 1] - vel_[s]) * inverse_l0;
     const double strain = L * inverse_l0 - 1.0;
-    g.T = strain > 0.0 ? sp.axial_stiffness * strain + sp.axial_damping * g.rate : 0.0;
+    if (!(strain > 0.0)) {
+      g.T = 0.0;
+    } else if (sp.curve) {
+      g.T = sp.curve->Tension(strain) + sp.axial_damping * g.rate;
+    } else {
+      g.T = sp.axial_stiffness * strain + sp.axial_damping * g.rate;
+    }
   }
 }
 
@@ -500,7 +515,9 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, Node
     // d(T t)/dl = t (dT/dl)^T + T Pn / L, dT/dl = EA/l0 t + c/l0 Pn dv / L.
     if (g.L / l0 - 1.0 > 0.0) {
       const Vec3 dv = vel_[s + 1] - vel_[s];
-      const Vec3 dT_dl = EA / l0 * t + cd / l0 * (Pn * dv) / g.L;
+      double slope = EA;  // dT/de
+      if (sp.curve) sp.curve->Tension(g.L / l0 - 1.0, &slope);
+      const Vec3 dT_dl = slope / l0 * t + cd / l0 * (Pn * dv) / g.L;
       const Mat3 K = t * dT_dl.transpose() + g.T * Pn / g.L;
       const Mat3 D = cd / l0 * t * t.transpose();
       J->dF_dr[kSelf] -= K;
@@ -748,7 +765,11 @@ double MooringSystem::MechanicalEnergy(const double* x,
     for (int s = 0; s < c.segments; ++s) {
       const SectionProperties& sp = lp.SectionOf(c.first_node + s);
       const double strain = seg_[s].L / sp.segment_length - 1.0;
-      if (strain > 0.0) energy += 0.5 * sp.axial_stiffness * strain * strain * sp.segment_length;
+      if (strain > 0.0) {
+        energy += (sp.curve ? sp.curve->Energy(strain)
+                            : 0.5 * sp.axial_stiffness * strain * strain) *
+                  sp.segment_length;
+      }
     }
     for (int k = c.first_state_node(); k <= c.last_state_node(); ++k) {
       Vec3 F;
@@ -786,7 +807,7 @@ void MooringSystem::CatenaryState(std::span<const Vec3> fairleads, double* x) co
     const LineProperties& lp = lines_[c.line];
     Eigen::Matrix3Xd nodes;
     try {
-      if (lp.homogeneous()) {
+      if (lp.homogeneous() && !lp.sections.front().curve) {
         const SectionProperties& sp = lp.sections.front();
         const CatenaryLineProperties props{sp.length, sp.weight_per_length, sp.axial_stiffness};
         nodes = SolveLineCatenary(props, lp.anchor, fairleads[c.line]).NodePositions(c.segments);

@@ -21,6 +21,7 @@
 // two ends are each anchored, attached to a fairlead, or free.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -44,7 +45,8 @@ struct SectionProperties {
   double diameter = 0.0;               ///< [m]
   double mass_per_length = 0.0;        ///< dry [kg/m]
   double weight_per_length = 0.0;      ///< submerged [N/m]; negative for a buoyant section
-  double axial_stiffness = 0.0;        ///< EA [N]
+  double axial_stiffness = 0.0;        ///< EA [N]; with a curve its largest slope
+  std::shared_ptr<const AxialCurve> curve;  ///< the tension-strain law; null: T = EA e
   double axial_damping = 0.0;          ///< c [N s], internal force c de/dt
   double added_mass_per_length = 0.0;  ///< C1 = C_MN rho pi d^2/4 [kg/m]
   double drag_normal = 0.0;            ///< 0.5 rho C_DN d [kg/m^2]

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/types.h"
+#include "mooring_fem/axial_curve.h"
 
 namespace moorsim::mooring_fem {
 
@@ -50,7 +51,9 @@ struct LineType {
   std::string name;
   double diameter = 0.0;         ///< nominal (hydrodynamic and displacement) diameter [m]
   double mass_per_length = 0.0;  ///< dry mass per unstretched length [kg/m]
-  double axial_stiffness = 0.0;  ///< EA [N]
+  double axial_stiffness = 0.0;  ///< EA [N] (with a tension-strain table: left 0)
+  /// A measured tension-strain table (AxialCurve) in place of a constant EA: empty = EA.
+  std::vector<StrainTension> tension_strain;
   /// Axial structural damping: internal force = c * strain rate, c in [N s]. If
   /// axial_damping_ratio is set instead, c is chosen per line so that a single segment's
   /// axial mode has that fraction of critical damping (a numerical damping that vanishes

@@ -72,7 +72,30 @@ LineType ParseLineType(const Reader& r) {
   type.name = r.Required<std::string>("name");
   type.diameter = r.Required<double>("diameter");
   type.mass_per_length = r.Required<double>("mass_per_length");
-  type.axial_stiffness = r.Required<double>("axial_stiffness");
+  if (const std::optional<Reader> curve = r.Find("tension_strain")) {
+    if (std::optional<Reader> ea = r.Find("axial_stiffness")) {
+      ea->Fail("give axial_stiffness or tension_strain, not both");
+    }
+    const std::vector<Reader> points = curve->Items();
+    if (points.empty()) curve->Fail("[] must hold at least one {strain, tension} point");
+    curve->ForEachItem([&](const Reader& point, std::size_t k) {
+      point.CheckKeys();
+      const mooring_fem::StrainTension p{point.Required<double>("strain"),
+                                         point.Required<double>("tension")};
+      const mooring_fem::StrainTension before =
+          type.tension_strain.empty() ? mooring_fem::StrainTension{} : type.tension_strain.back();
+      if (!(p.strain > before.strain && p.tension > before.tension)) {
+        point.Fail("strain " + Number(p.strain) + " and tension " + WithUnit(p.tension, "N") +
+                   " must both exceed the point before's (" +
+                   (k == 0 ? std::string("0 and 0 N") : Number(before.strain) + " and " +
+                                                            WithUnit(before.tension, "N")) +
+                   ")");
+      }
+      type.tension_strain.push_back(p);
+    });
+  } else {
+    type.axial_stiffness = r.Needed("axial_stiffness").As<double>();
+  }
   type.axial_damping = r.Maybe<double>("axial_damping");
   type.axial_damping_ratio = r.Maybe<double>("axial_damping_ratio");
   if (!type.axial_damping && !type.axial_damping_ratio) {

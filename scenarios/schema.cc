@@ -178,6 +178,12 @@ constexpr Key kCurrentKeys[] = {
 };
 constexpr Block kCurrent{"A steady current; omitted = no current.", kCurrentKeys};
 
+constexpr Key kStrainTensionKeys[] = {
+    Required(Positive("strain", "", 1.0, "Strain (stretched length / unstretched - 1).")),
+    Required(Positive("tension", "N", 1e9, "Tension at that strain.", "above any rope's")),
+};
+constexpr Block kStrainTension{"One point of a tension-strain curve.", kStrainTensionKeys};
+
 constexpr Key kLineTypeKeys[] = {
     {.name = "added_mass_normal",
      .description = "Added-mass coefficient C_MN.",
@@ -192,8 +198,9 @@ constexpr Key kLineTypeKeys[] = {
      .minimum = AtLeast(0.0),
      .maximum = AtMost(10.0),
      .interval = true},
-    Required(Positive("axial_stiffness", "N", 1e11, "Axial stiffness EA.",
-                      "a solid steel bar 0.8 m thick")),
+    Positive("axial_stiffness", "N", 1e11,
+             "Axial stiffness EA (or give tension_strain instead).",
+             "a solid steel bar 0.8 m thick"),
     Required(Positive("diameter", "m", 1.0, "Hydrodynamic and displacement diameter.",
                       "the thickest mooring lines are about 0.3 m")),
     {.name = "drag_normal",
@@ -226,6 +233,10 @@ constexpr Key kLineTypeKeys[] = {
      .kind = Kind::kString,
      .description = "Unique name that lines refer to in their `type`.",
      .required = true},
+    List("tension_strain", kStrainTension,
+         "A measured tension-strain curve in place of axial_stiffness: points with strain and "
+         "tension both increasing, joined by a monotone cubic through (0, 0); beyond the last "
+         "the last slope goes on."),
 };
 constexpr Block kLineType{"A line type: the cable's properties.", kLineTypeKeys};
 

@@ -28,7 +28,11 @@ constexpr double kG = 9.81;
 // --- The reference: a line of sections (w, EA, L) with point weights at the joints.
 
 struct RefSection {
-  double length, weight, stiffness;  // [m], in water [N/m], EA [N]
+  double length, weight, stiffness;   // [m], in water [N/m], EA [N]
+  const AxialCurve* curve = nullptr;  // in place of EA
+  double Strain(double tension) const {
+    return curve != nullptr ? curve->Strain(tension) : tension / stiffness;
+  }
 };
 
 struct Reference {
@@ -72,7 +76,7 @@ Eigen::Vector2d Closure(const std::vector<RefSection>& sections, const std::vect
   for (std::size_t i = 0; i < n; ++i) {
     const RefSection& s = sections[i];
     const double g = std::clamp(grounded - start, 0.0, s.length);  // grounded part here
-    p.x() += g * (1.0 + h / s.stiffness);
+    p.x() += g * (1.0 + s.Strain(h));
     const double a = g, b = s.length;
     if (b > a) {
       constexpr int kIntervals = 4000;  // even: Simpson
@@ -81,7 +85,8 @@ Eigen::Vector2d Closure(const std::vector<RefSection>& sections, const std::vect
       for (int k = 0; k <= kIntervals; ++k) {
         const double vs = v_low[i] + s.weight * (a + k * step);
         const double t = std::hypot(h, vs);
-        const Eigen::Vector2d f(h / t + h / s.stiffness, vs / t + vs / s.stiffness);
+        const double stretch = 1.0 + s.Strain(t);
+        const Eigen::Vector2d f(h / t * stretch, vs / t * stretch);
         sum += (k == 0 || k == kIntervals ? 1.0 : (k % 2 == 1 ? 4.0 : 2.0)) * f;
       }
       p += sum * step / 3.0;
@@ -133,11 +138,20 @@ struct Case {
   double anchor_x = 1750.0;       // [m]; the fairlead is at x = 20 m, 988 m above the anchor
   bool grounded = true;           // whether part of the line rests on the seabed
   double rope_mass = 26.0;        // [kg/m] dry; under 20.6 kg/m the rope floats
+  bool rope_curve = false;        // the rope on kRopeCurve rather than a constant EA
 };
+
+// A polyester-like tension-strain curve, soft at first [strain, N].
+const std::vector<StrainTension> kRopeCurve = {
+    {0.01, 0.6e6}, {0.02, 1.5e6}, {0.03, 2.7e6}, {0.05, 5.5e6}, {0.08, 10.0e6}};
 
 LineType Rope(const Case& c) {
   LineType rope = testing::PolyesterType();
   rope.mass_per_length = c.rope_mass;
+  if (c.rope_curve) {
+    rope.axial_stiffness = 0.0;
+    rope.tension_strain = kRopeCurve;
+  }
   return rope;
 }
 
@@ -163,9 +177,11 @@ MooringParameters CompositeSpec(const Case& c, int scale) {
 }
 
 std::vector<RefSection> ReferenceSections(const Case& c) {
-  return {{400.0, WeightInWater(testing::ChainType()), testing::ChainType().axial_stiffness},
-          {1500.0, WeightInWater(Rope(c)), Rope(c).axial_stiffness},
-          {150.0, WeightInWater(testing::ChainType()), testing::ChainType().axial_stiffness}};
+  static const AxialCurve curve(kRopeCurve);
+  return {
+      {400.0, WeightInWater(testing::ChainType()), testing::ChainType().axial_stiffness},
+      {1500.0, WeightInWater(Rope(c)), Rope(c).axial_stiffness, c.rope_curve ? &curve : nullptr},
+      {150.0, WeightInWater(testing::ChainType()), testing::ChainType().axial_stiffness}};
 }
 
 std::vector<double> ReferenceJoints(const Case& c) {
@@ -186,6 +202,8 @@ const Case kCases[] = {
     {"buoy", {{}, {5000.0, 20.0, 1.0, 6.0}}},
     // A buoyant rope (15 kg/m dry: 55 N/m of lift) hanging between the chains.
     {"buoyant_rope", {}, 1750.0, true, 15.0},
+    // The rope on a measured tension-strain curve instead of a constant EA.
+    {"rope_on_a_curve", {}, 1750.0, true, 26.0, true},
 };
 
 void PrintTo(const Case& c, std::ostream* out) { *out << c.name; }

@@ -131,6 +131,15 @@ TEST(MooringJacobian, CompositeLinesWithBodiesMatchFiniteDifferences) {
   ExpectJacobianMatchesFiniteDifferences(f.mooring, x, f.fairleads);
 }
 
+TEST(MooringJacobian, ARopeOnATensionStrainCurveMatchesFiniteDifferences) {
+  MooringParameters spec = CompositeTestSpec();
+  LineType& rope = spec.line_types.back();
+  rope.axial_stiffness = 0.0;
+  rope.tension_strain = {{0.005, 0.3e6}, {0.01, 0.8e6}, {0.02, 2.0e6}, {0.04, 5.0e6}};
+  Fixture f(spec);
+  ExpectJacobianMatchesFiniteDifferences(f.mooring, f.x, f.fairleads);
+}
+
 TEST(MooringJacobian, GroundedNodesAreExercised) {
   // The test above is only meaningful if some nodes are in seabed contact, in the
   // smoothed zone and beyond it.
