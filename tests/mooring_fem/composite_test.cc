@@ -22,8 +22,8 @@
 namespace moorsim::mooring_fem {
 namespace {
 
-constexpr double kRho = 1025.0;
-constexpr double kG = 9.81;
+constexpr double kSeaWater = 1025.0;
+constexpr double kGravity = 9.81;
 
 // --- The reference: a line of sections (w, EA, L) with point weights at the joints.
 
@@ -129,7 +129,7 @@ Reference SolveReference(const std::vector<RefSection>& sections, const std::vec
 // --- The case: a deepwater chain-polyester-chain line in 1000 m.
 
 double WeightInWater(const LineType& t) {
-  return (t.mass_per_length - kRho * std::numbers::pi / 4.0 * t.diameter * t.diameter) * kG;
+  return (t.mass_per_length - kSeaWater * std::numbers::pi / 4.0 * t.diameter * t.diameter) * kGravity;
 }
 
 struct Case {
@@ -187,7 +187,7 @@ std::vector<RefSection> ReferenceSections(const Case& c) {
 std::vector<double> ReferenceJoints(const Case& c) {
   std::vector<double> w(2, 0.0);
   for (std::size_t k = 0; k < c.joints.size(); ++k) {
-    w[k] = (c.joints[k].mass - kRho * c.joints[k].volume) * kG;
+    w[k] = (c.joints[k].mass - kSeaWater * c.joints[k].volume) * kGravity;
   }
   return w;
 }
