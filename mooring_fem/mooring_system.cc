@@ -766,9 +766,9 @@ double MooringSystem::MechanicalEnergy(const double* x,
       const SectionProperties& sp = lp.SectionOf(c.first_node + s);
       const double strain = seg_[s].L / sp.segment_length - 1.0;
       if (strain > 0.0) {
-        energy += (sp.curve ? sp.curve->Energy(strain)
-                            : 0.5 * sp.axial_stiffness * strain * strain) *
-                  sp.segment_length;
+        energy +=
+            (sp.curve ? sp.curve->Energy(strain) : 0.5 * sp.axial_stiffness * strain * strain) *
+            sp.segment_length;
       }
     }
     for (int k = c.first_state_node(); k <= c.last_state_node(); ++k) {

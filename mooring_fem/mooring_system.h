@@ -40,19 +40,19 @@ namespace moorsim::mooring_fem {
 struct SectionProperties {
   std::string type;
   int segments = 0;
-  double length = 0.0;                 ///< unstretched [m]
-  double segment_length = 0.0;         ///< l0 = length / segments [m]
-  double diameter = 0.0;               ///< [m]
-  double mass_per_length = 0.0;        ///< dry [kg/m]
-  double weight_per_length = 0.0;      ///< submerged [N/m]; negative for a buoyant section
-  double axial_stiffness = 0.0;        ///< EA [N]; with a curve its largest slope
+  double length = 0.0;                      ///< unstretched [m]
+  double segment_length = 0.0;              ///< l0 = length / segments [m]
+  double diameter = 0.0;                    ///< [m]
+  double mass_per_length = 0.0;             ///< dry [kg/m]
+  double weight_per_length = 0.0;           ///< submerged [N/m]; negative for a buoyant section
+  double axial_stiffness = 0.0;             ///< EA [N]; with a curve its largest slope
   std::shared_ptr<const AxialCurve> curve;  ///< the tension-strain law; null: T = EA e
-  double axial_damping = 0.0;          ///< c [N s], internal force c de/dt
-  double added_mass_per_length = 0.0;  ///< C1 = C_MN rho pi d^2/4 [kg/m]
-  double drag_normal = 0.0;            ///< 0.5 rho C_DN d [kg/m^2]
-  double drag_tangential = 0.0;        ///< 0.5 rho C_DT d [kg/m^2]
-  double friction_axial = 0.0;         ///< [-]
-  double friction_lateral = 0.0;       ///< [-]
+  double axial_damping = 0.0;               ///< c [N s], internal force c de/dt
+  double added_mass_per_length = 0.0;       ///< C1 = C_MN rho pi d^2/4 [kg/m]
+  double drag_normal = 0.0;                 ///< 0.5 rho C_DN d [kg/m^2]
+  double drag_tangential = 0.0;             ///< 0.5 rho C_DT d [kg/m^2]
+  double friction_axial = 0.0;              ///< [-]
+  double friction_lateral = 0.0;            ///< [-]
 };
 
 /// Constants of a body at a joint (PointBody with the water).

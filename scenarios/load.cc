@@ -87,8 +87,8 @@ LineType ParseLineType(const Reader& r) {
       if (!(p.strain > before.strain && p.tension > before.tension)) {
         point.Fail("strain " + Number(p.strain) + " and tension " + WithUnit(p.tension, "N") +
                    " must both exceed the point before's (" +
-                   (k == 0 ? std::string("0 and 0 N") : Number(before.strain) + " and " +
-                                                            WithUnit(before.tension, "N")) +
+                   (k == 0 ? std::string("0 and 0 N")
+                           : Number(before.strain) + " and " + WithUnit(before.tension, "N")) +
                    ")");
       }
       type.tension_strain.push_back(p);
@@ -709,8 +709,8 @@ void CheckLines(const Checker& check, const MooringSpec& mooring) {
       for (const mooring_fem::LineSection& section : line.sections) {
         for (const LineType& type : mooring.line_types) {
           if (type.name != section.type) continue;
-          weight += (type.mass_per_length - DisplacedMass(type, water)) * water.gravity *
-                    section.length;
+          weight +=
+              (type.mass_per_length - DisplacedMass(type, water)) * water.gravity * section.length;
         }
       }
       for (const mooring_fem::PointBody& body : line.joints) {

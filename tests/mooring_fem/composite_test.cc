@@ -129,7 +129,8 @@ Reference SolveReference(const std::vector<RefSection>& sections, const std::vec
 // --- The case: a deepwater chain-polyester-chain line in 1000 m.
 
 double WeightInWater(const LineType& t) {
-  return (t.mass_per_length - kSeaWater * std::numbers::pi / 4.0 * t.diameter * t.diameter) * kGravity;
+  return (t.mass_per_length - kSeaWater * std::numbers::pi / 4.0 * t.diameter * t.diameter) *
+         kGravity;
 }
 
 struct Case {
