@@ -153,6 +153,7 @@ LineProperties MakeLineProperties(const MooringParameters& spec, const LineParam
           zeta * sp.segment_length * std::sqrt(sp.axial_stiffness * type->mass_per_length);
     }
     sp.added_mass_per_length = type->added_mass_normal * rho * area;
+    sp.tangential_added_mass_per_length = type->added_mass_tangential * rho * area;
     sp.drag_normal = 0.5 * rho * type->drag_normal * type->diameter;
     sp.drag_tangential = 0.5 * rho * type->drag_tangential * type->diameter;
     sp.friction_axial = type->friction_axial;
@@ -397,15 +398,19 @@ void MooringSystem::ComputeSegments(const Chain& c) {
   }
 }
 
-void NodeMass::Add(double added, const Vec3& direction) {
+void NodeMass::Add(double added, const Vec3& direction, double tangential) {
   a[segments] = added;
+  b[segments] = tangential;
   t[segments] = direction;
   ++segments;
 }
 
 Mat3 NodeMass::Matrix() const {
   Mat3 M = m * Mat3::Identity();
-  for (int i = 0; i < segments; ++i) M += a[i] * (Mat3::Identity() - t[i] * t[i].transpose());
+  for (int i = 0; i < segments; ++i) {
+    M += a[i] * (Mat3::Identity() - t[i] * t[i].transpose());
+    if (b[i] != 0.0) M += b[i] * (t[i] * t[i].transpose());
+  }
   return M;
 }
 
@@ -414,16 +419,20 @@ Vec3 NodeMass::Solve(const Vec3& F) const {
   // absent half segment has a = 0), so by Woodbury M^{-1} F = (F + U z) / alpha with
   // z = (alpha I - D U^T U)^{-1} D U^T F. That 2x2 matrix N has det N = (alpha - a_0)
   // (alpha - a_1) - a_0 a_1 c^2 > 0 for m > 0 (c = t_0 . t_1, |c| <= 1). One division.
+  // With tangential added mass b_i the rank-2 term's weights are a_i - b_i (zero b_i: the
+  // same operations as without it).
   const double a0 = segments > 0 ? a[0] : 0.0;
   const double a1 = segments > 1 ? a[1] : 0.0;
   const double alpha = m + a0 + a1;
+  const double d0 = segments > 0 && b[0] != 0.0 ? a0 - b[0] : a0;
+  const double d1 = segments > 1 && b[1] != 0.0 ? a1 - b[1] : a1;
   const double c = segments > 1 ? t[0].dot(t[1]) : 0.0;
-  const double y0 = segments > 0 ? a0 * t[0].dot(F) : 0.0;
-  const double y1 = segments > 1 ? a1 * t[1].dot(F) : 0.0;
-  const double det = (alpha - a0) * (alpha - a1) - a0 * a1 * c * c;
+  const double y0 = segments > 0 ? d0 * t[0].dot(F) : 0.0;
+  const double y1 = segments > 1 ? d1 * t[1].dot(F) : 0.0;
+  const double det = (alpha - d0) * (alpha - d1) - d0 * d1 * c * c;
   const double inverse = 1.0 / (alpha * det);  // 1 / (alpha det N)
-  const double z0 = ((alpha - a1) * y0 + a0 * c * y1) * alpha * inverse;
-  const double z1 = (a1 * c * y0 + (alpha - a0) * y1) * alpha * inverse;
+  const double z0 = ((alpha - d1) * y0 + d0 * c * y1) * alpha * inverse;
+  const double z1 = (d1 * c * y0 + (alpha - d0) * y1) * alpha * inverse;
   Vec3 x = F;
   if (segments > 0) x += z0 * t[0];
   if (segments > 1) x += z1 * t[1];
@@ -448,7 +457,8 @@ void MooringSystem::NodeForce(const Chain& c, int k, Vec3* F_out, NodeMass* M_ou
   auto add_segment = [&](int s, const SectionProperties& sp, double sign) {
     const SegmentState& g = seg_[s];
     F += sign * g.T * g.t;
-    M.Add(0.5 * sp.added_mass_per_length * g.L, g.t);
+    M.Add(0.5 * sp.added_mass_per_length * g.L, g.t,
+          0.5 * sp.tangential_added_mass_per_length * g.L);
     F += DragForce(u, g.t, g.L, sp.drag_normal, sp.drag_tangential);
   };
   if (has_above) add_segment(k, lp.sections[share.above], +1.0);
@@ -530,8 +540,12 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, Node
     J->dF_dr[kSelf] += d.d_du * du_dr + sigma * d.d_dl;
     J->dF_dr[other] -= sigma * d.d_dl;
     // Added mass h = C1/2 L Pn a: dh/dl = C1/2 [a t^T - t a^T - (t.a) Pn].
-    const Mat3 H =
+    Mat3 H =
         0.5 * sp.added_mass_per_length * (a * t.transpose() - t * a.transpose() - t.dot(a) * Pn);
+    if (sp.tangential_added_mass_per_length != 0.0) {
+      // Tangential: h_t = C_t/2 L t t^T a, dh_t/dl = C_t/2 [(t.a) Pn + t a^T].
+      H += 0.5 * sp.tangential_added_mass_per_length * (t.dot(a) * Pn + t * a.transpose());
+    }
     J->dMa_dr[kSelf] += sigma * H;
     J->dMa_dr[other] -= sigma * H;
   };

@@ -49,10 +49,11 @@ struct SectionProperties {
   std::shared_ptr<const AxialCurve> curve;  ///< the tension-strain law; null: T = EA e
   double axial_damping = 0.0;               ///< c [N s], internal force c de/dt
   double added_mass_per_length = 0.0;       ///< C1 = C_MN rho pi d^2/4 [kg/m]
-  double drag_normal = 0.0;                 ///< 0.5 rho C_DN d [kg/m^2]
-  double drag_tangential = 0.0;             ///< 0.5 rho C_DT d [kg/m^2]
-  double friction_axial = 0.0;              ///< [-]
-  double friction_lateral = 0.0;            ///< [-]
+  double tangential_added_mass_per_length = 0.0;  ///< C_MT rho pi d^2/4 [kg/m]
+  double drag_normal = 0.0;                       ///< 0.5 rho C_DN d [kg/m^2]
+  double drag_tangential = 0.0;                   ///< 0.5 rho C_DT d [kg/m^2]
+  double friction_axial = 0.0;                    ///< [-]
+  double friction_lateral = 0.0;                  ///< [-]
 };
 
 /// Constants of a body at a joint (PointBody with the water).
@@ -133,15 +134,17 @@ struct Chain {
   int num_state_nodes() const { return last_state_node() - first_state_node() + 1; }
 };
 
-/// A node's mass matrix M = m I + sum_i a_i (I - t_i t_i^T): its share of the line's mass and,
-/// for each of its (at most two) half segments of direction t_i, the normal added mass a_i.
+/// A node's mass matrix M = m I + sum_i [a_i (I - t_i t_i^T) + b_i t_i t_i^T]: its share of
+/// the line's mass and, for each of its (at most two) half segments of direction t_i, the
+/// normal and tangential added mass a_i and b_i.
 struct NodeMass {
   double m = 0.0;
   int segments = 0;
   double a[2] = {0.0, 0.0};
+  double b[2] = {0.0, 0.0};
   Vec3 t[2] = {Vec3::Zero(), Vec3::Zero()};
 
-  void Add(double added, const Vec3& direction);
+  void Add(double added, const Vec3& direction, double tangential = 0.0);
   Mat3 Matrix() const;
   /// M^{-1} F without forming or inverting M (Sherman-Morrison-Woodbury: M is m' I minus a
   /// rank-2 term), the right-hand side's acceleration.

@@ -60,11 +60,12 @@ struct LineType {
   /// as segments shrink). Neither set = no axial damping.
   std::optional<double> axial_damping;
   std::optional<double> axial_damping_ratio;
-  double drag_normal = 0.0;        ///< C_DN [-]
-  double drag_tangential = 0.0;    ///< C_DT [-]
-  double added_mass_normal = 0.0;  ///< C_MN [-]
-  double friction_axial = 0.0;     ///< seabed Coulomb coefficient along the line [-]
-  double friction_lateral = 0.0;   ///< seabed Coulomb coefficient across the line [-]
+  double drag_normal = 0.0;            ///< C_DN [-]
+  double drag_tangential = 0.0;        ///< C_DT [-]
+  double added_mass_normal = 0.0;      ///< C_MN [-]
+  double added_mass_tangential = 0.0;  ///< C_MT [-], along the line
+  double friction_axial = 0.0;         ///< seabed Coulomb coefficient along the line [-]
+  double friction_lateral = 0.0;       ///< seabed Coulomb coefficient across the line [-]
 };
 
 /// A body on a line where two of its sections meet: a clump weight (heavier than the water

@@ -104,6 +104,7 @@ LineType ParseLineType(const Reader& r) {
   type.drag_normal = r.Required<double>("drag_normal");
   type.drag_tangential = r.Required<double>("drag_tangential");
   type.added_mass_normal = r.Required<double>("added_mass_normal");
+  r.Optional("added_mass_tangential", type.added_mass_tangential);
   r.Optional("friction_axial", type.friction_axial);
   r.Optional("friction_lateral", type.friction_lateral);
   type.mark = r.mark();

@@ -179,7 +179,7 @@ class Columns {
 struct MdLineType {
   std::string name;
   int line = 0;
-  double diameter = 0, mass = 0, ea = 0, ba = 0, cd = 0, ca = 0, cdax = 0;
+  double diameter = 0, mass = 0, ea = 0, ba = 0, cd = 0, ca = 0, cdax = 0, caax = 0;
 };
 
 enum class PointKind { kFixed, kVessel, kFree };
@@ -348,10 +348,7 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command)
             warn(row.line, "line type " + t.name + ": bending stiffness EI " + c.Field(row, "EI") +
                                " left out (moorsim's lines have none)");
           }
-          if (c.Has("CaAx") && c.Value(row, "CaAx") != 0.0) {
-            warn(row.line, "line type " + t.name + ": tangential added mass CaAx " +
-                               c.Field(row, "CaAx") + " left out (not modelled yet)");
-          }
+          t.caax = c.Has("CaAx") ? c.Value(row, "CaAx") : 0.0;
           if (c.Has("unused") && c.Value(row, "unused") != 0.0) {
             warn(row.line, "line type " + t.name + ": column tbd " + c.Field(row, "unused") +
                                " left out (a placeholder column)");
@@ -607,6 +604,7 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command)
     y << "      drag_tangential: " << Number(t.cdax * std::numbers::pi) << "  # CdAx "
       << Number(t.cdax) << " x pi (MoorDyn applies it to pi d, moorsim to d)\n";
     y << "      added_mass_normal: " << Number(t.ca) << "\n";
+    if (t.caax != 0.0) y << "      added_mass_tangential: " << Number(t.caax) << "  # CaAx\n";
     if (friction) {
       y << "      friction_axial: " << Number(friction->first) << "  # FrictionCoefficient (line "
         << friction->second << ")\n";

@@ -6,7 +6,8 @@
 //     coefficient in N s, or minus a damping ratio of one segment's axial mode: the same
 //     rule as moorsim's axial_damping_ratio), Cd (normal drag on the diameter), Ca (normal
 //     added mass), CdAx (tangential drag: MoorDyn applies it to the circumference pi d,
-//     moorsim to d, so it is multiplied by pi). Columns are found by their header names,
+//     moorsim to d, so it is multiplied by pi), CaAx (tangential added mass, on the same
+//     displaced volume). Columns are found by their header names,
 //     so the v1 order (Can Cat Cdn Cdt) reads as well.
 //   * POINTS (POINT LIST, CONNECTION PROPERTIES, NODE PROPERTIES): Fixed points are
 //     anchors; Vessel and Coupled points are fairleads on the vessel (their coordinates are
@@ -25,9 +26,9 @@
 // free points where one or more than two lines meet (bridles, shared buoys), lines between
 // two fixed or two vessel points, a line ending nowhere, non-linear or visco-elastic EA
 // (tables, files, `EA|EAd` pairs), seabed bathymetry files and wave or current
-// kinematics options. These are errors (InputError, every line at once). Two properties
+// kinematics options. These are errors (InputError, every line at once). Properties
 // moorsim does not model are imported without them and reported as warnings: bending
-// stiffness EI and tangential added mass CaAx. Integration options (time step, scheme,
+// stiffness EI, vortex-induced vibration. Integration options (time step, scheme,
 // initial-condition settings, outputs) are not part of the model and are listed in a
 // comment.
 #pragma once

@@ -190,6 +190,12 @@ constexpr Key kLineTypeKeys[] = {
      .required = true,
      .minimum = AtLeast(0.0),
      .maximum = AtMost(kMaxCoefficient, kCoefficientWhy)},
+    WithDefault({.name = "added_mass_tangential",
+                 .description = "Added-mass coefficient along the line C_MT (on the displaced "
+                                "volume, as C_MN).",
+                 .minimum = AtLeast(0.0),
+                 .maximum = AtMost(kMaxCoefficient, kCoefficientWhy)},
+                MOORSIM_DEFAULT(mooring_fem::LineType{}.added_mass_tangential)),
     NonNegative("axial_damping", "N s", 1e10,
                 "Axial damping c (force = c x strain rate); not with axial_damping_ratio."),
     {.name = "axial_damping_ratio",

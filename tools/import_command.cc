@@ -58,8 +58,8 @@ Command AddImportCommand(CLI::App& app) {
       "    (MoorDyn's z up and y to port to moorsim's z down and y to starboard) and the\n"
       "    tangential drag coefficient multiplied by pi (MoorDyn applies it to the\n"
       "    circumference). Rods, bodies, bridles, non-linear EA and bathymetry are refused,\n"
-      "    one line each; bending stiffness and tangential added mass are left out with a\n"
-      "    warning. The scenario holds the mooring only: `moorsim static` and\n"
+      "    one line each; bending stiffness is left out with a warning. The scenario holds\n"
+      "    the mooring only: `moorsim static` and\n"
       "    `moorsim simulate-lines` run it; add a vessel for `moorsim run`.\n" +
       std::string(kScenarioOutNote));
   sub->add_option("format", o->format, "the model's format: moordyn")->required();

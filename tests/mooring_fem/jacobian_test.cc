@@ -131,11 +131,13 @@ TEST(MooringJacobian, CompositeLinesWithBodiesMatchFiniteDifferences) {
   ExpectJacobianMatchesFiniteDifferences(f.mooring, x, f.fairleads);
 }
 
-TEST(MooringJacobian, ARopeOnATensionStrainCurveMatchesFiniteDifferences) {
+TEST(MooringJacobian, ARopeOnATensionStrainCurveWithTangentialAddedMassMatchesFiniteDifferences) {
   MooringParameters spec = CompositeTestSpec();
   LineType& rope = spec.line_types.back();
   rope.axial_stiffness = 0.0;
   rope.tension_strain = {{0.005, 0.3e6}, {0.01, 0.8e6}, {0.02, 2.0e6}, {0.04, 5.0e6}};
+  rope.added_mass_tangential = 0.4;  // and added mass along it
+  spec.line_types.front().added_mass_tangential = 0.5;
   Fixture f(spec);
   ExpectJacobianMatchesFiniteDifferences(f.mooring, f.x, f.fairleads);
 }

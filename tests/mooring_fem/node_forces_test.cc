@@ -22,23 +22,26 @@ TEST(NodeMass, SolveEqualsTheInverseOfTheMatrix) {
   const Vec3 dirs[] = {Vec3(1, 0, 0),  Vec3(0, 0, 1),        Vec3(0.6, 0.0, 0.8),
                        Vec3(-1, 0, 0), Vec3(0.6, 0.0, -0.8), Vec3(0, 1, 0)};
   int cases = 0;
+  // Tangential added mass too: none, less than the normal, more than it.
   for (double added : {0.0, 400.0, 2.0e5}) {
-    for (int segments = 0; segments <= 2; ++segments) {
-      for (const Vec3& t0 : dirs) {
-        for (const Vec3& t1 : dirs) {
-          NodeMass mass;
-          mass.m = 12375.0;
-          if (segments >= 1) mass.Add(added, t0);
-          if (segments == 2) mass.Add(0.5 * added, t1);
-          const Vec3 reference = mass.Matrix().inverse() * F;
-          EXPECT_LT((mass.Solve(F) - reference).norm(), 1e-13 * reference.norm())
-              << "added " << added << " segments " << segments;
-          ++cases;
+    for (double tangential : {0.0, 0.3, 2.5}) {
+      for (int segments = 0; segments <= 2; ++segments) {
+        for (const Vec3& t0 : dirs) {
+          for (const Vec3& t1 : dirs) {
+            NodeMass mass;
+            mass.m = 12375.0;
+            if (segments >= 1) mass.Add(added, t0, tangential * added);
+            if (segments == 2) mass.Add(0.5 * added, t1, 0.5 * tangential * added);
+            const Vec3 reference = mass.Matrix().inverse() * F;
+            EXPECT_LT((mass.Solve(F) - reference).norm(), 1e-13 * reference.norm())
+                << "added " << added << " tangential " << tangential << " segments " << segments;
+            ++cases;
+          }
         }
       }
     }
   }
-  EXPECT_EQ(cases, 3 * 3 * 36);
+  EXPECT_EQ(cases, 3 * 3 * 3 * 36);
 }
 
 constexpr double kRho = 1025.0, kG = 9.81, kD = 0.08, kMass = 275.0;
