@@ -27,16 +27,10 @@ std::string LineKey(int line_id) { return "mooring.lines[" + std::to_string(line
   throw InputError(out.str());
 }
 
-bool Homogeneous(const mooring_fem::CompositeLine& line) {
-  return line.sections.size() == 1 && line.CurveOf(0) == nullptr &&
-         std::all_of(line.joint_weights.begin(), line.joint_weights.end(),
-                     [](double w) { return w == 0.0; });
-}
-
 // H and V at the fairlead [N].
 std::pair<double, double> Tensions(const mooring_fem::CompositeLine& line, double span,
                                    double height) {
-  if (Homogeneous(line)) {
+  if (line.Uniform()) {
     const auto s = mooring_fem::SolveCatenary(line.sections.front(), span, height);
     return {s.horizontal_tension, s.vertical_tension};
   }
@@ -83,7 +77,7 @@ LineForceTable::LineForceTable(int line_id, const mooring_fem::CompositeLine& li
       ThrowOption(key + ".length", section.length, "must be finite and > 0");
     }
     if (!(std::isfinite(section.weight_per_length) &&
-          (section.weight_per_length > 0.0 || !internal::Homogeneous(line)))) {
+          (section.weight_per_length > 0.0 || !line.Uniform()))) {
       ThrowOption(key + ".weight_per_length", section.weight_per_length,
                   "must be finite and > 0 (a line heavier than the water it displaces)");
     }

@@ -38,6 +38,11 @@ struct CompositeLine {
   /// Each section's tension-strain law in place of its EA (one per section, a null one for
   /// a linear section; or empty: all linear).
   std::vector<std::shared_ptr<const AxialCurve>> curves;
+  /// One linear section and no joint weight: the homogeneous catenary (catenary.h) is it.
+  bool Uniform() const {
+    return sections.size() == 1 && CurveOf(0) == nullptr &&
+           (joint_weights.empty() || joint_weights.front() == 0.0);
+  }
   /// The curve of section `i`, or null.
   const AxialCurve* CurveOf(std::size_t i) const {
     return i < curves.size() ? curves[i].get() : nullptr;

@@ -110,7 +110,7 @@ void MotionSpline::Evaluate(int dof, double t, double* value, double* rate,
   *acceleration = a * m[k] + b * m[k + 1];
 }
 
-PointKinematics PrescribedMotion::FairleadAt(double t, const Vec3& fairlead_body) const {
+PrescribedMotion::State PrescribedMotion::At(double t) const {
   double q[6], dq[6], ddq[6];
   for (int d = 0; d < 6; ++d) {
     q[d] = dq[d] = ddq[d] = 0.0;
@@ -125,41 +125,49 @@ PointKinematics PrescribedMotion::FairleadAt(double t, const Vec3& fairlead_body
       ddq[d] -= c.amplitude * w * w * std::sin(w * t);
     }
   }
-  PointKinematics k;
-  if (q[kRoll] == 0.0 && q[kPitch] == 0.0 && q[kYaw] == 0.0 && dq[kRoll] == 0.0 &&
-      dq[kPitch] == 0.0 && dq[kYaw] == 0.0 && ddq[kRoll] == 0.0 && ddq[kPitch] == 0.0 &&
-      ddq[kYaw] == 0.0) {
-    // A translation: the fairleads move with the reference point.
-    k.position = FairleadPosition(mean, fairlead_body) + Vec3(q[kSurge], q[kSway], q[kHeave]);
-    k.velocity = Vec3(dq[kSurge], dq[kSway], dq[kHeave]);
-    k.acceleration = Vec3(ddq[kSurge], ddq[kSway], ddq[kHeave]);
-    return k;
-  }
+  State state;
+  state.mean = mean;
+  state.offset = {Vec3(q[kSurge], q[kSway], q[kHeave]), Vec3(dq[kSurge], dq[kSway], dq[kHeave]),
+                  Vec3(ddq[kSurge], ddq[kSway], ddq[kHeave])};
+  state.rotates = q[kRoll] != 0.0 || q[kPitch] != 0.0 || q[kYaw] != 0.0 || dq[kRoll] != 0.0 ||
+                  dq[kPitch] != 0.0 || dq[kYaw] != 0.0 || ddq[kRoll] != 0.0 || ddq[kPitch] != 0.0 ||
+                  ddq[kYaw] != 0.0;
+  if (!state.rotates) return state;
   // R = Z Y X; its time derivatives through the angles' (chain rule on each factor).
   const std::array<Mat3, 3> X = Rotation(0, q[kRoll]);
   const std::array<Mat3, 3> Y = Rotation(1, q[kPitch]);
   const std::array<Mat3, 3> Z = Rotation(2, mean.psi + q[kYaw]);
   const double wx = dq[kRoll], wy = dq[kPitch], wz = dq[kYaw];
-  const Mat3 R = Z[0] * Y[0] * X[0];
-  const Mat3 dR = Z[1] * Y[0] * X[0] * wz + Z[0] * Y[1] * X[0] * wy + Z[0] * Y[0] * X[1] * wx;
-  const Mat3 ddR = Z[2] * Y[0] * X[0] * (wz * wz) + Z[0] * Y[2] * X[0] * (wy * wy) +
-                   Z[0] * Y[0] * X[2] * (wx * wx) +
-                   2.0 * (Z[1] * Y[1] * X[0] * (wz * wy) + Z[1] * Y[0] * X[1] * (wz * wx) +
-                          Z[0] * Y[1] * X[1] * (wy * wx)) +
-                   Z[1] * Y[0] * X[0] * ddq[kYaw] + Z[0] * Y[1] * X[0] * ddq[kPitch] +
-                   Z[0] * Y[0] * X[1] * ddq[kRoll];
-  k.position = Vec3(mean.x + q[kSurge], mean.y + q[kSway], q[kHeave]) + R * fairlead_body;
-  k.velocity = Vec3(dq[kSurge], dq[kSway], dq[kHeave]) + dR * fairlead_body;
-  k.acceleration = Vec3(ddq[kSurge], ddq[kSway], ddq[kHeave]) + ddR * fairlead_body;
-  return k;
+  state.R = Z[0] * Y[0] * X[0];
+  state.dR = Z[1] * Y[0] * X[0] * wz + Z[0] * Y[1] * X[0] * wy + Z[0] * Y[0] * X[1] * wx;
+  state.ddR = Z[2] * Y[0] * X[0] * (wz * wz) + Z[0] * Y[2] * X[0] * (wy * wy) +
+              Z[0] * Y[0] * X[2] * (wx * wx) +
+              2.0 * (Z[1] * Y[1] * X[0] * (wz * wy) + Z[1] * Y[0] * X[1] * (wz * wx) +
+                     Z[0] * Y[1] * X[1] * (wy * wx)) +
+              Z[1] * Y[0] * X[0] * ddq[kYaw] + Z[0] * Y[1] * X[0] * ddq[kPitch] +
+              Z[0] * Y[0] * X[1] * ddq[kRoll];
+  return state;
+}
+
+PointKinematics PrescribedMotion::State::Point(const Vec3& body) const {
+  if (!rotates) {  // a translation: the fairleads move with the reference point
+    return {FairleadPosition(mean, body) + offset.position, offset.velocity, offset.acceleration};
+  }
+  return {Vec3(mean.x, mean.y, 0.0) + offset.position + R * body, offset.velocity + dR * body,
+          offset.acceleration + ddR * body};
+}
+
+PointKinematics PrescribedMotion::FairleadAt(double t, const Vec3& fairlead_body) const {
+  return At(t).Point(fairlead_body);
 }
 
 PrescribedMotionSystem::PrescribedMotionSystem(MooringSystem& mooring, PrescribedMotion motion)
     : mooring_(mooring), motion_(std::move(motion)), fairleads_(mooring.num_lines()) {}
 
 std::span<const PointKinematics> PrescribedMotionSystem::Fairleads(double t) {
+  const PrescribedMotion::State state = motion_.At(t);  // once for every fairlead
   for (int i = 0; i < mooring_.num_lines(); ++i) {
-    fairleads_[i] = motion_.FairleadAt(t, mooring_.line(i).fairlead_body);
+    fairleads_[i] = state.Point(mooring_.line(i).fairlead_body);
   }
   return fairleads_;
 }

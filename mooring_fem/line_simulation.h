@@ -52,7 +52,18 @@ struct PrescribedMotion {
   /// When set, replaces the components (MakeSeries checks and prepares it).
   std::shared_ptr<const class MotionSpline> series;
 
-  /// The fairlead at body point `fairlead_body`: its position, velocity and acceleration.
+  /// The rigid-body motion at one time: the reference point's offset from the mean pose
+  /// and, if the hull turns, its rotation and the rotation's first two time derivatives.
+  struct State {
+    PlanarPose mean;
+    PointKinematics offset;
+    bool rotates = false;
+    Mat3 R = Mat3::Identity(), dR = Mat3::Zero(), ddR = Mat3::Zero();
+    /// The point at `body` (body frame): its position, velocity and acceleration.
+    PointKinematics Point(const Vec3& body) const;
+  };
+  State At(double t) const;
+  /// At(t).Point(fairlead_body).
   PointKinematics FairleadAt(double t, const Vec3& fairlead_body) const;
 };
 

@@ -208,13 +208,13 @@ std::vector<double> NodeArcLengths(const LineProperties& line) {
 }
 
 double CatenaryFairleadTension(const LineProperties& line, const Vec3& fairlead) {
-  if (line.homogeneous() && !line.sections.front().curve) {
-    const SectionProperties& sp = line.sections.front();
-    const CatenaryLineProperties props{sp.length, sp.weight_per_length, sp.axial_stiffness};
-    return SolveLineCatenary(props, line.anchor, fairlead).solution.fairlead_tension;
+  const CompositeLine composite = CatenaryLineOf(line);
+  if (composite.Uniform()) {
+    return SolveLineCatenary(composite.sections.front(), line.anchor, fairlead)
+        .solution.fairlead_tension;
   }
   const Vec3 chord = fairlead - line.anchor;
-  return SolveCompositeCatenary(CatenaryLineOf(line), std::hypot(chord.x(), chord.y()),
+  return SolveCompositeCatenary(composite, std::hypot(chord.x(), chord.y()),
                                 line.anchor.z() - fairlead.z())
       .fairlead_tension;
 }
@@ -821,13 +821,12 @@ void MooringSystem::CatenaryState(std::span<const Vec3> fairleads, double* x) co
     const LineProperties& lp = lines_[c.line];
     Eigen::Matrix3Xd nodes;
     try {
-      if (lp.homogeneous() && !lp.sections.front().curve) {
-        const SectionProperties& sp = lp.sections.front();
-        const CatenaryLineProperties props{sp.length, sp.weight_per_length, sp.axial_stiffness};
-        nodes = SolveLineCatenary(props, lp.anchor, fairleads[c.line]).NodePositions(c.segments);
+      const CompositeLine line = CatenaryLineOf(lp);
+      if (line.Uniform()) {
+        nodes = SolveLineCatenary(line.sections.front(), lp.anchor, fairleads[c.line])
+                    .NodePositions(c.segments);
       } else {
-        nodes = CompositeCatenaryPoints(CatenaryLineOf(lp), lp.anchor, fairleads[c.line],
-                                        NodeArcLengths(lp));
+        nodes = CompositeCatenaryPoints(line, lp.anchor, fairleads[c.line], NodeArcLengths(lp));
       }
     } catch (const Error& e) {
       throw Error("line " + std::to_string(lp.id) + ": " + e.what());

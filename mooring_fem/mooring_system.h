@@ -84,7 +84,6 @@ struct LineProperties {
   const PointBodyProperties* BodyAt(int node) const {
     return body_at[node] < 0 ? nullptr : &bodies[body_at[node]];
   }
-  bool homogeneous() const { return sections.size() == 1; }
 };
 
 /// What a node carries of its line: half of each adjacent segment (of the sections

@@ -695,10 +695,18 @@ std::string ConfigurationOf(const scenarios::CampaignRun& run) {
   return configuration;
 }
 
-scenarios::Scenario LoadRunScenario(const scenarios::Campaign& c,
-                                    const scenarios::CampaignRun& run) {
+// A run's scenario and the truth its row records; InputError located at the run
+// (RunLocation).
+struct LoadedRun {
+  scenarios::Scenario scenario;
+  RunTruth truth;
+};
+
+LoadedRun LoadRun(const scenarios::Campaign& c, const scenarios::CampaignRun& run) {
   try {
-    return scenarios::LoadScenario(c.scenario_path, run.overrides);
+    LoadedRun loaded{scenarios::LoadScenario(c.scenario_path, run.overrides), {}};
+    loaded.truth = TruthOf(loaded.scenario);
+    return loaded;
   } catch (const InputError& e) {
     throw InputError(RunLocation(c, run, e.what()));
   }
@@ -794,9 +802,10 @@ PreparedCampaign PrepareCampaign(const std::string& campaign_path,
     const scenarios::CampaignRun run = scenarios::MakeCampaignRun(c, to_check[i]);
     std::string configuration = ConfigurationOf(run);
     if (durations.count(configuration) > 0) continue;
-    const scenarios::Scenario s = LoadRunScenario(c, run);
+    const LoadedRun loaded = LoadRun(c, run);
+    const scenarios::Scenario& s = loaded.scenario;
+    durations.emplace(std::move(configuration), loaded.truth.duration);
     try {
-      durations.emplace(std::move(configuration), TruthOf(s).duration);
       std::string key;
       for (const scenarios::DetectorEntry& d : s.detectors) {
         key.append(d.type).append("/").append(d.label).append("/").append(d.plugin).append("/");
@@ -883,12 +892,7 @@ void DescribeCampaign(const PreparedCampaign& p, int threads, std::ostream& out)
     const scenarios::CampaignRun r = scenarios::MakeCampaignRun(c, i);
     std::string configuration = ConfigurationOf(r);
     if (i == 0 || configuration != previous) {
-      const scenarios::Scenario s = LoadRunScenario(c, r);
-      try {
-        truth = TruthOf(s);
-      } catch (const InputError& e) {
-        throw InputError(RunLocation(c, r, e.what()));
-      }
+      truth = LoadRun(c, r).truth;
       previous = std::move(configuration);
     }
     simulated_seconds += truth.duration;
@@ -1065,12 +1069,12 @@ std::string RunWorkers(const PreparedCampaign& p, const BatchOptions& o,
         std::shared_ptr<const scenarios::Scenario> scenario;
         RunTruth truth;
         try {
-          scenario = std::make_shared<const scenarios::Scenario>(
-              scenarios::LoadScenario(p.campaign.scenario_path, run.overrides));
-          truth = TruthOf(*scenario);
+          LoadedRun loaded = LoadRun(p.campaign, run);
+          scenario = std::make_shared<const scenarios::Scenario>(std::move(loaded.scenario));
+          truth = std::move(loaded.truth);
         } catch (const InputError& e) {  // a value drawn for this run alone
           RunResult rejected;
-          rejected.message = RunLocation(p.campaign, run, e.what());
+          rejected.message = e.what();
           source.Deliver(run.index, MakeRow(p, run, nullptr, rejected, {}, "").dump() + "\n",
                          false);
           continue;
