@@ -7,7 +7,9 @@
 #include <utility>
 
 #include "core/error.h"
+#include "mooring_fem/line_simulation.h"
 #include "mooring_fem/mooring_system.h"
+#include "mooring_fem/seabed.h"
 
 namespace moorsim::detectors {
 namespace internal {
@@ -340,11 +342,16 @@ HypothesisBank::HypothesisBank(const mooring_fem::MooringParameters& spec,
   }
   reference_pose_ = options.reference_pose;
   turret_ = options.turret;
+  const mooring_fem::SeabedSurface seabed(spec.seabed, spec.water.depth);
   for (const mooring_fem::LineParameters& line_spec : spec.lines) {
     const mooring_fem::LineProperties p = mooring_fem::MakeLineProperties(spec, line_spec);
+    // The seabed's rise from the anchor toward the fairlead with the vessel at the
+    // reference pose (a turret's rotation moves the fairlead too little to matter).
+    const Vec3 fairlead = mooring_fem::FairleadPosition(
+        {reference_pose_.x(), reference_pose_.y(), reference_pose_.z()}, p.fairlead_body);
     tables_.push_back(std::make_shared<const LineForceTable>(
-        p.id, mooring_fem::CatenaryLineOf(p), p.anchor, p.fairlead_body,
-        p.fairlead_body.z() + options.moored_heave, options.table));
+        p.id, mooring_fem::CatenaryLineOf(p, seabed.RiseAlong(p.anchor, fairlead)), p.anchor,
+        p.fairlead_body, p.fairlead_body.z() + options.moored_heave, options.table));
   }
   const int n = num_lines();
   Add({});

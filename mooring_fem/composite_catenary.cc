@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <sstream>
 #include <string>
 
@@ -63,7 +64,39 @@ double JointWeight(const CompositeLine& line, std::size_t k) {
   return line.joint_weights.empty() ? 0.0 : line.joint_weights[k];
 }
 
-Layout LayOut(const CompositeLine& line, double v_fairlead) {
+// The vertical tension at which the line leaves the seabed under H = h.
+double TouchdownVertical(const CompositeLine& line, double h) {
+  return h * std::tan(line.seabed_rise);
+}
+
+// The tension along the seabed where the laid-out vertical tension is v (>= 0: slack).
+double GroundedTension(const CompositeLine& line, double h, double v) {
+  return std::max(0.0, h * std::cos(line.seabed_rise) + v * std::sin(line.seabed_rise));
+}
+
+// The stretched length of a grounded stretch of length l on a slope whose tension runs
+// linearly from t1 to t2 (slack where negative): exact for a linear section, Simpson's rule
+// on 64 intervals for a curve.
+double GroundedStretch(double t1, double t2, double l, double ea, const AxialCurve* curve) {
+  if (curve != nullptr) {
+    constexpr int kIntervals = 64;
+    double sum = 0.0;
+    for (int k = 0; k <= kIntervals; ++k) {
+      const double t = std::max(0.0, t1 + (t2 - t1) * k / kIntervals);
+      const double weight = k == 0 || k == kIntervals ? 1.0 : (k % 2 == 1 ? 4.0 : 2.0);
+      sum += weight * (1.0 + curve->Strain(t));
+    }
+    return sum * l / (3.0 * kIntervals);
+  }
+  if (t1 >= 0.0 && t2 >= 0.0) return l * (1.0 + 0.5 * (t1 + t2) / ea);
+  if (t1 <= 0.0 && t2 <= 0.0) return l;
+  // Taut on the part where the tension is positive: a triangle.
+  const double peak = std::max(t1, t2);
+  const double taut = l * peak / std::abs(t2 - t1);
+  return l + taut * 0.5 * peak / ea;
+}
+
+Layout LayOut(const CompositeLine& line, double h, double v_fairlead) {
   const std::size_t n = line.sections.size();
   Layout out;
   out.start.assign(n + 1, 0.0);
@@ -76,12 +109,14 @@ Layout LayOut(const CompositeLine& line, double v_fairlead) {
     out.bottom[i] = v - line.sections[i].weight_per_length * line.sections[i].length;
     if (i > 0) v = out.bottom[i] - JointWeight(line, i - 1);
   }
-  // Touchdown: walking up from the anchor while V < 0 the line lies on the seabed.
-  if (out.bottom[0] >= 0.0) return out;  // the whole line hangs
+  // Touchdown: walking up from the anchor while V < H tan(rise) the line lies on the
+  // seabed.
+  const double touchdown = TouchdownVertical(line, h);
+  if (out.bottom[0] >= touchdown) return out;  // the whole line hangs
   for (std::size_t i = 0; i < n; ++i) {
     const CatenaryLineProperties& section = line.sections[i];
-    if (out.top[i] >= 0.0) {
-      out.grounded = out.start[i] - out.bottom[i] / section.weight_per_length;
+    if (out.top[i] >= touchdown) {
+      out.grounded = out.start[i] + (touchdown - out.bottom[i]) / section.weight_per_length;
       return out;
     }
     if (!(section.weight_per_length > 0.0)) {
@@ -93,7 +128,7 @@ Layout LayOut(const CompositeLine& line, double v_fairlead) {
         throw InputError("catenary: the buoy at joint " + std::to_string(i + 1) +
                          " lies on the seabed (it cannot: it floats)");
       }
-      if (out.bottom[i + 1] >= 0.0) {
+      if (out.bottom[i + 1] >= touchdown) {
         out.grounded = out.start[i + 1];
         return out;
       }
@@ -114,8 +149,17 @@ Eigen::Vector2d Point(const CompositeLine& line, const Layout& layout, double h,
     // The grounded part of this section, then the hanging part.
     const double grounded_top = std::clamp(layout.grounded, lower, upper);
     const AxialCurve* curve = line.CurveOf(i);
-    const double grounded_strain = curve ? curve->Strain(h) : h / section.axial_stiffness;
-    p.x() += (grounded_top - lower) * (1.0 + grounded_strain);
+    if (line.seabed_rise == 0.0) {
+      const double grounded_strain = curve ? curve->Strain(h) : h / section.axial_stiffness;
+      p.x() += (grounded_top - lower) * (1.0 + grounded_strain);
+    } else if (grounded_top > lower) {
+      const double w = section.weight_per_length;
+      const double t1 =
+          h * std::cos(line.seabed_rise) + layout.bottom[i] * std::sin(line.seabed_rise);
+      const double t2 = t1 + w * (grounded_top - lower) * std::sin(line.seabed_rise);
+      p += GroundedStretch(t1, t2, grounded_top - lower, section.axial_stiffness, curve) *
+           Eigen::Vector2d(std::cos(line.seabed_rise), std::sin(line.seabed_rise));
+    }
     if (upper > grounded_top) {
       const double v1 = layout.bottom[i] + section.weight_per_length * (grounded_top - lower);
       p += curve ? CurvedStretch(h, section.weight_per_length, *curve, v1, upper - grounded_top)
@@ -131,6 +175,12 @@ void CheckLine(const CompositeLine& line) {
   if (!line.joint_weights.empty() && line.joint_weights.size() + 1 != line.sections.size()) {
     throw InputError("catenary: " + std::to_string(line.joint_weights.size()) +
                      " joint weights for " + std::to_string(line.sections.size()) + " sections");
+  }
+  if (!(std::abs(line.seabed_rise) < 0.5 * std::numbers::pi)) {
+    std::ostringstream out;
+    out << "catenary: the seabed's rise " << line.seabed_rise
+        << " rad must be between -pi/2 and pi/2";
+    throw InputError(out.str());
   }
   for (std::size_t i = 0; i < line.sections.size(); ++i) {
     const CatenaryLineProperties& s = line.sections[i];
@@ -148,19 +198,22 @@ void CheckLine(const CompositeLine& line) {
 }  // namespace
 
 double CompositeCatenary::VerticalTensionAt(double s) const {
-  const Layout layout = LayOut(line, vertical_tension);
+  const Layout layout = LayOut(line, horizontal_tension, vertical_tension);
   for (std::size_t i = 0; i < line.sections.size(); ++i) {
     if (s <= layout.start[i + 1] || i + 1 == line.sections.size()) {
       const double v =
           layout.bottom[i] + line.sections[i].weight_per_length * (s - layout.start[i]);
-      return s < layout.grounded ? 0.0 : v;
+      if (!(s < layout.grounded)) return v;
+      return line.seabed_rise == 0.0
+                 ? 0.0
+                 : GroundedTension(line, horizontal_tension, v) * std::sin(line.seabed_rise);
     }
   }
   return vertical_tension;
 }
 
 Eigen::Vector2d CompositeCatenary::PointAt(double s) const {
-  return Point(line, LayOut(line, vertical_tension), horizontal_tension, s);
+  return Point(line, LayOut(line, horizontal_tension, vertical_tension), horizontal_tension, s);
 }
 
 CompositeCatenary SolveCompositeCatenary(const CompositeLine& line, double span, double height) {
@@ -200,7 +253,7 @@ CompositeCatenary SolveCompositeCatenary(const CompositeLine& line, double span,
   h = std::max(h, 1e-9 * length / compliance);
   const double tolerance = 1e-11 * std::max({span, height, length});
   const auto residual = [&](double hh, double vv) {
-    return Eigen::Vector2d(Point(line, LayOut(line, vv), hh, length) - target);
+    return Eigen::Vector2d(Point(line, LayOut(line, hh, vv), hh, length) - target);
   };
   Eigen::Vector2d r = residual(h, v);
   int iteration = 0;
@@ -240,7 +293,7 @@ CompositeCatenary SolveCompositeCatenary(const CompositeLine& line, double span,
   }
   // The largest strain is at the top of a section (V grows upward but for buoys: both
   // ends of each are checked).
-  const Layout final_layout = LayOut(line, v);
+  const Layout final_layout = LayOut(line, h, v);
   for (std::size_t i = 0; i < line.sections.size(); ++i) {
     const double tension =
         std::hypot(h, std::max(std::abs(final_layout.top[i]), std::abs(final_layout.bottom[i])));
@@ -261,7 +314,12 @@ CompositeCatenary SolveCompositeCatenary(const CompositeLine& line, double span,
   out.vertical_tension = v;
   out.fairlead_tension = std::hypot(h, v);
   out.grounded_length = final_layout.grounded;
-  out.anchor_vertical = final_layout.grounded > 0.0 ? 0.0 : final_layout.bottom.front();
+  out.anchor_vertical =
+      final_layout.grounded > 0.0
+          ? (line.seabed_rise == 0.0 ? 0.0
+                                     : GroundedTension(line, h, final_layout.bottom.front()) *
+                                           std::sin(line.seabed_rise))
+          : final_layout.bottom.front();
   return out;
 }
 

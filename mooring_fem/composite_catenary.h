@@ -15,6 +15,12 @@
 // with l = (V2 - V1)/w its unstretched length (a weightless stretch is straight). H and V_f
 // are found by Newton's method on the two closure conditions (the span and the height).
 //
+// On a seabed that rises at the angle a toward the fairlead (a plane, in the vertical plane
+// of the line) the line leaves the seabed tangentially, where V = H tan(a). Below that it
+// lies on the slope, frictionless, carrying the tension T(s) = H cos(a) + V(s) sin(a)
+// along it (the weight's component along the slope changes the tension; where T would
+// fall below zero the line lies slack). a = 0 is the flat case above.
+//
 // Used to place the FEM's nodes at the start of a run on a composite line, whose static
 // equilibrium SettleStatic then finds exactly.
 #pragma once
@@ -38,10 +44,14 @@ struct CompositeLine {
   /// Each section's tension-strain law in place of its EA (one per section, a null one for
   /// a linear section; or empty: all linear).
   std::vector<std::shared_ptr<const AxialCurve>> curves;
-  /// One linear section and no joint weight: the homogeneous catenary (catenary.h) is it.
+  /// The seabed's angle of rise from the anchor toward the fairlead [rad], in (-pi/2,
+  /// pi/2): 0 for a flat seabed, positive where it gets shallower toward the fairlead.
+  double seabed_rise = 0.0;
+  /// One linear section, no joint weight and a flat seabed: the homogeneous catenary
+  /// (catenary.h) is it.
   bool Uniform() const {
     return sections.size() == 1 && CurveOf(0) == nullptr &&
-           (joint_weights.empty() || joint_weights.front() == 0.0);
+           (joint_weights.empty() || joint_weights.front() == 0.0) && seabed_rise == 0.0;
   }
   /// The curve of section `i`, or null.
   const AxialCurve* CurveOf(std::size_t i) const {
@@ -54,12 +64,14 @@ struct CompositeCatenary {
   double horizontal_tension = 0.0;  ///< H [N]
   double vertical_tension = 0.0;    ///< V at the fairlead [N]
   double fairlead_tension = 0.0;    ///< sqrt(H^2 + V^2) [N]
-  double anchor_vertical = 0.0;     ///< upward pull on the anchor [N] (0 with touchdown)
+  double anchor_vertical = 0.0;     ///< upward pull on the anchor [N] (0 with touchdown
+                                    ///< on a flat seabed)
   double grounded_length = 0.0;     ///< unstretched length on the seabed [m]
   /// The point at unstretched arc length s from the anchor, in the vertical plane through
   /// anchor and fairlead: x horizontal toward the fairlead, z up, from the anchor [m].
   Eigen::Vector2d PointAt(double s) const;
-  /// V(s) [N] just above arc length s (a joint's weight counts below it).
+  /// V(s) [N] just above arc length s (a joint's weight counts below it); on the seabed,
+  /// the vertical component of the tension along it.
   double VerticalTensionAt(double s) const;
 };
 

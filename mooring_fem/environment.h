@@ -7,6 +7,7 @@
 
 #include "core/types.h"
 #include "mooring_fem/parameters.h"
+#include "mooring_fem/seabed.h"
 
 namespace moorsim::mooring_fem {
 
@@ -28,18 +29,33 @@ class CurrentField {
   std::vector<double> speed_;
 };
 
-/// Flat seabed at z = depth. Contact per metre of line: a penalty spring on penetration
-/// delta = z - depth with pressure `stiffness` per metre, smoothed over `regularisation`
-/// metres so the force and its slope are continuous at first contact:
+/// Where a node touches the seabed: the unit normal into the seabed, the penetration along
+/// it and, for the Jacobian, their derivatives with respect to the node's position
+/// (seabed.h).
+struct SeabedFrame {
+  Vec3 normal = Vec3::UnitZ();
+  double penetration = 0.0;            ///< [m]
+  Vec3 d_penetration = Vec3::UnitZ();  ///< d penetration / d r
+  Mat3 d_normal = Mat3::Zero();        ///< d normal / d r [1/m]
+};
+
+/// The seabed's surface and its contact law. Contact per metre of line: a penalty spring
+/// on the penetration delta along the local normal with pressure `stiffness` per metre,
+/// smoothed over `regularisation` metres so the force and its slope are continuous at
+/// first contact:
 ///   q(delta) = 0 (delta <= 0), delta^2 / (2 eps) (0 < delta < eps), delta - eps/2 (else)
-/// and a vertical damper blended in by the smoothstep s(delta / eps).
+/// and a damper on the normal velocity blended in by the smoothstep s(delta / eps).
 struct SeabedContact {
-  double depth = 0.0;               ///< [m]
+  SeabedSurface surface;
   double stiffness = 0.0;           ///< [N/m^3] times contact width (diameter)
   double damping = 0.0;             ///< [N s/m^3]
   double friction_velocity = 0.01;  ///< [m/s]
   double regularisation = 0.5;      ///< eps [m]
 
+  /// How far `r` is below the seabed, vertically [m] (> 0: in contact).
+  double Below(const Vec3& r) const { return r.z() - surface.DepthAt(r.x(), r.y()); }
+  /// The normal and penetration at `r` (in contact), with their derivatives if asked.
+  SeabedFrame Frame(const Vec3& r, bool with_derivatives) const;
   /// Smoothed penetration q(delta) [m] and dq/ddelta.
   void Penetration(double delta, double* q, double* dq) const;
   /// Smoothstep weight of the damper in [0, 1] and its derivative [1/m].

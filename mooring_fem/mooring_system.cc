@@ -180,8 +180,9 @@ LineProperties MakeLineProperties(const MooringParameters& spec, const LineParam
   return p;
 }
 
-CompositeLine CatenaryLineOf(const LineProperties& line) {
+CompositeLine CatenaryLineOf(const LineProperties& line, double seabed_rise) {
   CompositeLine out;
+  out.seabed_rise = seabed_rise;
   for (const SectionProperties& sp : line.sections) {
     out.sections.push_back({sp.length, sp.weight_per_length, sp.axial_stiffness});
     out.curves.push_back(sp.curve);
@@ -207,8 +208,9 @@ std::vector<double> NodeArcLengths(const LineProperties& line) {
   return arc;
 }
 
-double CatenaryFairleadTension(const LineProperties& line, const Vec3& fairlead) {
-  const CompositeLine composite = CatenaryLineOf(line);
+double CatenaryFairleadTension(const LineProperties& line, const Vec3& fairlead,
+                               const SeabedSurface& seabed) {
+  const CompositeLine composite = CatenaryLineOf(line, seabed.RiseAlong(line.anchor, fairlead));
   if (composite.Uniform()) {
     return SolveLineCatenary(composite.sections.front(), line.anchor, fairlead)
         .solution.fairlead_tension;
@@ -273,7 +275,7 @@ NodeShare ShareOf(const LineProperties& lp, int node, bool has_below, bool has_a
 }
 
 MooringSystem::MooringSystem(const MooringParameters& spec) : current_(spec.current) {
-  seabed_.depth = spec.water.depth;
+  seabed_.surface = SeabedSurface(spec.seabed, spec.water.depth);
   seabed_.stiffness = spec.seabed.stiffness;
   seabed_.damping = spec.seabed.damping;
   seabed_.friction_velocity = spec.seabed.friction_velocity;
@@ -465,25 +467,28 @@ void MooringSystem::NodeForce(const Chain& c, int k, Vec3* F_out, NodeMass* M_ou
   if (has_below) add_segment(k - 1, lp.sections[share.below], -1.0);
   if (share.body >= 0) F -= (lp.bodies[share.body].drag * u.norm()) * u;
 
-  const double delta = r.z() - seabed_.depth;
-  if (delta > 0.0) {
+  if (seabed_.Below(r) > 0.0) {
+    const SeabedFrame frame = seabed_.Frame(r, false);
+    const Vec3& n = frame.normal;
     double q, dq, s, ds;
-    seabed_.Penetration(delta, &q, &dq);
-    seabed_.DamperWeight(delta, &s, &ds);
+    seabed_.Penetration(frame.penetration, &q, &dq);
+    seabed_.DamperWeight(frame.penetration, &s, &ds);
     const double contact = share.contact;
     const double normal = seabed_.stiffness * contact * q;
-    F.z() -= normal + seabed_.damping * contact * v.z() * s;
+    F -= (normal + seabed_.damping * contact * n.dot(v) * s) * n;
     if (normal > 0.0 && (share.friction_axial > 0.0 || share.friction_lateral > 0.0)) {
+      // Friction in the seabed's tangent plane: the sliding velocity and the line's
+      // direction there.
       const Vec3 q_vec = pos_[has_above ? k + 1 : k] - pos_[has_below ? k - 1 : k];
-      const Vec3 q_h(q_vec.x(), q_vec.y(), 0.0);
-      const double qn = q_h.norm();
-      const Vec3 v_h(v.x(), v.y(), 0.0);
+      const Vec3 q_t = q_vec - n.dot(q_vec) * n;
+      const double qn = q_t.norm();
+      const Vec3 v_t = v - n.dot(v) * n;
       const double rho =
-          std::sqrt(v_h.squaredNorm() + seabed_.friction_velocity * seabed_.friction_velocity);
-      Vec3 resist = share.friction_lateral * v_h;
+          std::sqrt(v_t.squaredNorm() + seabed_.friction_velocity * seabed_.friction_velocity);
+      Vec3 resist = share.friction_lateral * v_t;
       if (qn > 1e-12) {
-        const Vec3 th = q_h / qn;
-        resist += (share.friction_axial - share.friction_lateral) * th.dot(v_h) * th;
+        const Vec3 th = q_t / qn;
+        resist += (share.friction_axial - share.friction_lateral) * th.dot(v_t) * th;
       }
       F -= (normal / rho) * resist;
     }
@@ -560,45 +565,55 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, Node
     J->dF_dr[kSelf] += d_du * du_dr;
   }
 
-  const double delta = r.z() - seabed_.depth;
-  if (delta > 0.0) {
+  if (seabed_.Below(r) > 0.0) {
+    const SeabedFrame frame = seabed_.Frame(r, true);
+    const Vec3& n = frame.normal;
+    const Mat3& Dn = frame.d_normal;
     double q, dq, s, ds;
-    seabed_.Penetration(delta, &q, &dq);
-    seabed_.DamperWeight(delta, &s, &ds);
+    seabed_.Penetration(frame.penetration, &q, &dq);
+    seabed_.DamperWeight(frame.penetration, &s, &ds);
     const double contact = share.contact;
     const double k_n = seabed_.stiffness * contact;
     const double c_n = seabed_.damping * contact;
     const double normal = k_n * q;
-    J->dF_dr[kSelf](2, 2) -= k_n * dq + c_n * v.z() * ds;
-    J->dF_dv[kSelf](2, 2) -= c_n * s;
+    const double vn = n.dot(v);
+    // Spring and damper -X n, X = k_n q(delta) + c_n s(delta) (n . v).
+    const Eigen::RowVector3d dX_dr = (k_n * dq + c_n * vn * ds) * frame.d_penetration.transpose() +
+                                     c_n * s * (v.transpose() * Dn);
+    J->dF_dr[kSelf] -= n * dX_dr + (normal + c_n * vn * s) * Dn;
+    J->dF_dv[kSelf] -= c_n * s * n * n.transpose();
     if (normal > 0.0 && (share.friction_axial > 0.0 || share.friction_lateral > 0.0)) {
       const int next = has_above ? kAbove : kSelf;
       const int prev = has_below ? kBelow : kSelf;
+      const Mat3 P = I - n * n.transpose();
       const Vec3 q_vec = pos_[has_above ? k + 1 : k] - pos_[has_below ? k - 1 : k];
-      const Vec3 q_h(q_vec.x(), q_vec.y(), 0.0);
-      const double qn = q_h.norm();
-      const Vec3 v_h(v.x(), v.y(), 0.0);
+      const Vec3 q_t = P * q_vec;
+      const double qn = q_t.norm();
+      const Vec3 v_t = P * v;
       const double rho =
-          std::sqrt(v_h.squaredNorm() + seabed_.friction_velocity * seabed_.friction_velocity);
-      Mat3 Ph = Mat3::Zero();
-      Ph(0, 0) = Ph(1, 1) = 1.0;
-      // f = -(N / rho) A v_h with A = mu_l Ph + (mu_a - mu_l) th th^T.
-      Mat3 A = share.friction_lateral * Ph;
+          std::sqrt(v_t.squaredNorm() + seabed_.friction_velocity * seabed_.friction_velocity);
+      // f = -(N / rho) A v_t with A = mu_l I + (mu_a - mu_l) th th^T; v_t and q_t turn
+      // with the normal: d(P w)/dr = -(n . w) Dn - n (w^T Dn).
+      Mat3 A = share.friction_lateral * I;
       Vec3 th = Vec3::Zero();
       if (qn > 1e-12) {
-        th = q_h / qn;
+        th = q_t / qn;
         A += (share.friction_axial - share.friction_lateral) * th * th.transpose();
       }
-      const Vec3 Av = A * v_h;
+      const Vec3 Av = A * v_t;
+      const Mat3 dvt_dr = -vn * Dn - n * (v.transpose() * Dn);
       J->dF_dv[kSelf] +=
-          -(normal / rho) * A * Ph + (normal / (rho * rho * rho)) * Av * v_h.transpose();
-      J->dF_dr[kSelf].col(2) += -(k_n * dq / rho) * Av;
+          -(normal / rho) * A * P + (normal / (rho * rho * rho)) * Av * v_t.transpose();
+      J->dF_dr[kSelf] += -(k_n * dq / rho) * Av * frame.d_penetration.transpose() -
+                         (normal / rho) * A * dvt_dr +
+                         (normal / (rho * rho * rho)) * Av * (v_t.transpose() * dvt_dr);
       if (qn > 1e-12) {
-        const Mat3 dF_dq = -(normal / rho) * (share.friction_axial - share.friction_lateral) *
-                           (th * v_h.transpose() + th.dot(v_h) * I) * (Ph - th * th.transpose()) /
-                           qn;
-        J->dF_dr[next] += dF_dq;
-        J->dF_dr[prev] -= dF_dq;
+        const Mat3 dF_dqt = -(normal / rho) * (share.friction_axial - share.friction_lateral) *
+                            (th * v_t.transpose() + th.dot(v_t) * I) * (I - th * th.transpose()) /
+                            qn;
+        J->dF_dr[next] += dF_dqt * P;
+        J->dF_dr[prev] -= dF_dqt * P;
+        J->dF_dr[kSelf] += dF_dqt * (-n.dot(q_vec) * Dn - n * (q_vec.transpose() * Dn));
       }
     }
   }
@@ -747,21 +762,22 @@ std::vector<LineLoad> MooringSystem::LineLoads(const double* x,
     const LineProperties& lp = lines_[c.line];
     double grounded_fraction_of_node_1 = 0.0;
     for (int k = 0; k <= c.segments; ++k) {
-      const double delta = pos_[k].z() - seabed_.depth;
-      if (delta <= 0.0) continue;
+      if (!(seabed_.Below(pos_[k]) > 0.0)) continue;
+      const SeabedFrame frame = seabed_.Frame(pos_[k], false);
       double q, dq;
-      seabed_.Penetration(delta, &q, &dq);
+      seabed_.Penetration(frame.penetration, &q, &dq);
       const NodeShare share = ShareOf(lp, c.first_node + k, k > 0, k < c.segments);
       // A buoyant stretch is not held up by the seabed.
       if (!(share.line_weight_per_length > 0.0)) continue;
+      // On a slope the seabed carries the weight's normal component, w cos(slope) per metre.
       const double normal = seabed_.stiffness * share.contact * q;
-      loads[c.line].grounded_length += normal / share.line_weight_per_length;
+      loads[c.line].grounded_length += normal / (share.line_weight_per_length * frame.normal.z());
       if (k == 1) {
-        grounded_fraction_of_node_1 =
-            std::min(1.0, normal / (share.line_weight_per_length * share.length));
+        grounded_fraction_of_node_1 = std::min(
+            1.0, normal / (share.line_weight_per_length * frame.normal.z() * share.length));
       }
     }
-    if (c.lower == EndCondition::kAnchored && c.anchor.z() >= seabed_.depth - 1e-6) {
+    if (c.lower == EndCondition::kAnchored && seabed_.Below(c.anchor) >= -1e-6) {
       loads[c.line].grounded_length +=
           0.5 * lp.SectionOf(c.first_node).segment_length * grounded_fraction_of_node_1;
     }
@@ -793,8 +809,10 @@ double MooringSystem::MechanicalEnergy(const double* x,
       const NodeShare share = ShareOf(lp, c.first_node + k, k > 0, k < c.segments);
       energy += 0.5 * vel_[k].dot(M * vel_[k]);
       energy -= share.weight * pos_[k].z();
-      energy += seabed_.stiffness * share.contact *
-                seabed_.PenetrationEnergy(pos_[k].z() - seabed_.depth);
+      if (seabed_.Below(pos_[k]) > 0.0) {
+        energy += seabed_.stiffness * share.contact *
+                  seabed_.PenetrationEnergy(seabed_.Frame(pos_[k], false).penetration);
+      }
     }
   }
   return energy;
@@ -821,7 +839,8 @@ void MooringSystem::CatenaryState(std::span<const Vec3> fairleads, double* x) co
     const LineProperties& lp = lines_[c.line];
     Eigen::Matrix3Xd nodes;
     try {
-      const CompositeLine line = CatenaryLineOf(lp);
+      const CompositeLine line =
+          CatenaryLineOf(lp, seabed_.surface.RiseAlong(lp.anchor, fairleads[c.line]));
       if (line.Uniform()) {
         nodes = SolveLineCatenary(line.sections.front(), lp.anchor, fairleads[c.line])
                     .NodePositions(c.segments);

@@ -107,14 +107,16 @@ NodeShare ShareOf(const LineProperties& line, int node, bool has_below, bool has
 LineProperties MakeLineProperties(const MooringParameters& spec, const LineParameters& line);
 
 /// The line as the composite catenary sees it (composite_catenary.h): its sections'
-/// lengths, weights and stiffnesses, and the bodies' weights at the joints.
-CompositeLine CatenaryLineOf(const LineProperties& line);
+/// lengths, weights and stiffnesses, the bodies' weights at the joints, and the seabed's
+/// angle of rise toward the fairlead [rad] (SeabedSurface::RiseAlong).
+CompositeLine CatenaryLineOf(const LineProperties& line, double seabed_rise = 0.0);
 /// Unstretched arc length of every node from the anchor [m] (nodes 0..segments).
 std::vector<double> NodeArcLengths(const LineProperties& line);
 /// The fairlead tension [N] of the line's elastic catenary (SolveLineCatenary for a
 /// homogeneous line, SolveCompositeCatenary otherwise) with its fairlead at `fairlead`
-/// (Earth frame). Throws moorsim::Error if there is none.
-double CatenaryFairleadTension(const LineProperties& line, const Vec3& fairlead);
+/// (Earth frame) on `seabed`. Throws moorsim::Error if there is none.
+double CatenaryFairleadTension(const LineProperties& line, const Vec3& fairlead,
+                               const SeabedSurface& seabed);
 
 enum class EndCondition { kAnchored, kFairlead, kFree };
 

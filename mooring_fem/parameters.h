@@ -18,11 +18,24 @@ namespace moorsim::mooring_fem {
 struct Water {
   double density = 1025.0;  ///< [kg/m^3]
   double gravity = 9.81;    ///< [m/s^2]
-  double depth = 0.0;       ///< seabed depth below the mean free surface [m], > 0
+  double depth = 0.0;  ///< below the mean free surface [m], > 0: the waves' and a flat seabed's
 };
 
-/// Penalty contact with a flat seabed at z = water.depth, per unit of contact area
-/// (diameter x length), and regularised Coulomb friction (coefficients per line type).
+/// The seabed's depth on a rectangular grid: depth[i * y.size() + j] below (x[i], y[j]),
+/// bilinear inside each cell and held at the nearest edge's value beyond the grid.
+struct DepthGrid {
+  std::vector<double> x;      ///< north coordinates [m], strictly increasing, >= 2
+  std::vector<double> y;      ///< east coordinates [m], strictly increasing, >= 2
+  std::vector<double> depth;  ///< [m], > 0 (below the mean free surface), x.size() * y.size()
+  std::string source;         ///< where it came from (a file name), for messages
+  bool empty() const { return depth.empty(); }
+};
+
+/// The seabed: its shape, and penalty contact with it per unit of contact area
+/// (diameter x length) with regularised Coulomb friction (coefficients per line type). The
+/// shape is flat at z = water.depth (the default), a plane through depth water.depth below
+/// the origin that deepens by `slope` toward `slope_direction`, or a depth grid; contact
+/// acts along the local normal and friction in the local tangent plane.
 struct Seabed {
   double stiffness = 3.0e6;  ///< [N/m^3] (pressure per metre of penetration)
   double damping = 3.0e5;    ///< [N s/m^3]
@@ -33,6 +46,9 @@ struct Seabed {
   /// Speed [m/s] below which Coulomb friction is regularised (force ~ speed). Smaller is
   /// closer to true stick-slip and costs steps (0.05 m/s ran 20 % slower than 0.1).
   double friction_velocity = 0.1;
+  double slope = 0.0;            ///< angle of a plane seabed to the horizontal [rad], < pi/2
+  double slope_direction = 0.0;  ///< direction it deepens toward, from north to east [rad]
+  DepthGrid grid;                ///< a depth grid in place of the plane (empty: none)
 };
 
 /// Current: a horizontal velocity whose speed varies piecewise linearly with depth and is

@@ -19,7 +19,9 @@
 
 #include "core/angles.h"
 #include "core/error.h"
+#include "mooring_fem/seabed.h"
 #include "scenarios/convert.h"
+#include "scenarios/depth_grid.h"
 #include "scenarios/strict_yaml.h"
 
 namespace moorsim::scenarios {
@@ -51,6 +53,20 @@ void ParseSeabed(const Reader& r, Seabed& seabed) {
   r.Optional("damping", seabed.damping);
   r.Optional("contact_smoothing", seabed.contact_smoothing);
   r.Optional("friction_velocity", seabed.friction_velocity);
+  if (std::optional<Reader> slope = r.Find("slope_deg")) seabed.slope = AngleDegrees(*slope);
+  if (std::optional<Reader> direction = r.Find("slope_direction_deg")) {
+    seabed.slope_direction = AngleDegrees(*direction);
+  }
+  if (std::optional<Reader> grid = r.Find("grid")) {
+    // A relative path is relative to the folder of the file it is written in.
+    std::filesystem::path file = grid->As<std::string>();
+    if (file.is_relative()) file = std::filesystem::path(grid->File()).parent_path() / file;
+    try {
+      seabed.grid = ReadDepthGrid(file.lexically_normal().string());
+    } catch (const InputError& error) {
+      grid->Fail(error.what());
+    }
+  }
 }
 
 void ParseCurrent(const Reader& r, CurrentProfile& current) {
@@ -546,8 +562,10 @@ class Checker {
 // Bounds between values (each key's own range is in the schema, scenarios/schema.cc).
 constexpr double kMaxOutputRows = 1e9;  // simulation.duration x output_rate_hz
 // An anchor lies on the seabed: the static catenary that starts every run and the
-// detectors' quasi-static line model both take the seabed through the anchor.
+// detectors' quasi-static line model both take the seabed from the anchor.
 constexpr double kAnchorAboveSeabed = 1.0;  // [m]
+// Rounding of an anchor's depth written for a sloping seabed (to the centimetre).
+constexpr double kAnchorBelowSeabed = 0.01;  // [m]
 
 void CheckCurrent(const Checker& check, const CurrentProfile& current) {
   const std::string profile = current.key + ".profile";
@@ -648,7 +666,15 @@ std::string LineGeometryProblem(const LineSpec& line, const Vec3& fairlead) {
   return "";
 }
 
+void CheckSeabed(const Checker& check, const Seabed& seabed) {
+  if (!seabed.grid.empty() && seabed.slope != 0.0) {
+    check.Fail("mooring.seabed.grid",
+               "a depth grid cannot be combined with slope_deg; give one of them");
+  }
+}
+
 void CheckLines(const Checker& check, const MooringSpec& mooring) {
+  const mooring_fem::SeabedSurface seabed(mooring.seabed, mooring.water.depth);
   const std::vector<LineSpec>& lines = mooring.lines;
   if (lines.empty()) check.Fail("mooring.lines", "[] must list at least one line");
   const int count = static_cast<int>(lines.size());
@@ -677,10 +703,13 @@ void CheckLines(const Checker& check, const MooringSpec& mooring) {
       }
     }
 
-    const double depth = mooring.water.depth;
-    if (line.anchor.z() > depth + 1e-6) {
-      check.Fail(path + ".anchor", "z = " + WithUnit(line.anchor.z(), "m") +
-                                       " is below the seabed at depth " + WithUnit(depth, "m"));
+    const double depth = seabed.DepthAt(line.anchor.x(), line.anchor.y());
+    const std::string seabed_there =
+        (seabed.flat() ? "the seabed at depth " : "the seabed there, at depth ") +
+        Significant(depth, 6) + " m";
+    if (line.anchor.z() > depth + kAnchorBelowSeabed) {
+      check.Fail(path + ".anchor",
+                 "z = " + WithUnit(line.anchor.z(), "m") + " is below " + seabed_there);
     }
     // With the vessel at the origin and heading 0 the fairlead's Earth position is its
     // body position.
@@ -696,9 +725,8 @@ void CheckLines(const Checker& check, const MooringSpec& mooring) {
                                        "points down)");
     }
     if (line.anchor.z() < depth - kAnchorAboveSeabed) {
-      check.Fail(path + ".anchor", "z = " + WithUnit(line.anchor.z(), "m") +
-                                       " is above the seabed at depth " + WithUnit(depth, "m") +
-                                       " (an anchor lies on the seabed, within " +
+      check.Fail(path + ".anchor", "z = " + WithUnit(line.anchor.z(), "m") + " is above " +
+                                       seabed_there + " (an anchor lies on the seabed, within " +
                                        WithUnit(kAnchorAboveSeabed, "m") + ")");
     }
     if (const std::string problem = LineGeometryProblem(line, fairlead); !problem.empty()) {
@@ -967,6 +995,7 @@ void Validate(const Scenario& scenario) {
   if (mooring.lines.empty()) check.Fail("mooring.lines", "[] must list at least one line");
   const std::size_t before_lines = errors.size();
   group([&] { CheckLineTypes(check, mooring); });
+  group([&] { CheckSeabed(check, mooring.seabed); });
   if (errors.size() == before_lines) group([&] { CheckLines(check, mooring); });
   const bool lines_hold = errors.size() == before_lines;
   if (scenario.vessel) group([&] { CheckVessel(check, *scenario.vessel); });

@@ -132,7 +132,9 @@ constexpr Key kWaterKeys[] = {
                  .maximum = AtMost(1100.0, "water: fresh 1000, sea about 1025"),
                  .interval = true},
                 MOORSIM_DEFAULT(Water{}.density)),
-    Required(Positive("depth", "m", kMaxDepth, "Water depth: the flat seabed's z (NED, down).",
+    Required(Positive("depth", "m", kMaxDepth,
+                      "Water depth: the waves' and a flat seabed's z (NED, down); a sloping "
+                      "seabed's below the origin.",
                       kDepthWhy)),
     WithDefault({.name = "gravity",
                  .unit = "m/s^2",
@@ -142,7 +144,7 @@ constexpr Key kWaterKeys[] = {
                  .interval = true},
                 MOORSIM_DEFAULT(Water{}.gravity)),
 };
-constexpr Block kWater{"The water and the flat seabed's depth.", kWaterKeys};
+constexpr Block kWater{"The water and its depth.", kWaterKeys};
 
 constexpr Key kSeabedKeys[] = {
     WithDefault(Positive("contact_smoothing", "m", 10.0,
@@ -154,13 +156,33 @@ constexpr Key kSeabedKeys[] = {
     WithDefault(Positive("friction_velocity", "m/s", 10.0,
                          "Sliding speed below which Coulomb friction is regularised."),
                 MOORSIM_DEFAULT(Seabed{}.friction_velocity)),
+    {.name = "grid",
+     .kind = Kind::kString,
+     .description = "A depth grid file, relative to this file's folder: a label and the east "
+                    "coordinates y, then rows of a north coordinate x and the depths at each y "
+                    "[m]; bilinear, held at the edges beyond. Not with slope_deg."},
+    WithDefault({.name = "slope_deg",
+                 .unit = "deg",
+                 .description = "A plane seabed's angle to the horizontal; it passes through "
+                                "water.depth below the origin.",
+                 .minimum = AtLeast(0.0),
+                 .maximum = AtMost(45.0, "steeper than the steepest continental slopes"),
+                 .interval = true},
+                MOORSIM_DEFAULT(0.0)),
+    WithDefault(Angle("slope_direction_deg",
+                      "Direction in which the sloping seabed gets deeper, from north, clockwise "
+                      "(east = 90).",
+                      false),
+                MOORSIM_DEFAULT(0.0)),
     WithDefault(
         Positive("stiffness", "N/m^3", 1e10, "Penalty contact stiffness per unit of contact area.",
                  "stiffer than rock"),
         MOORSIM_DEFAULT(Seabed{}.stiffness)),
 };
-constexpr Block kSeabed{"Penalty contact with the seabed (smooth, regularised friction).",
-                        kSeabedKeys};
+constexpr Block kSeabed{
+    "The seabed's shape (flat, a plane or a depth grid) and penalty contact with it (smooth, "
+    "regularised friction).",
+    kSeabedKeys};
 
 constexpr Key kCurrentPointKeys[] = {
     Required(NonNegative("depth", "m", kMaxDepth, "Depth of the point; strictly increasing.",
@@ -332,7 +354,7 @@ constexpr Key kMooringKeys[] = {
     Map("defaults", kDefaults, "Values that apply to every line unless it says otherwise."),
     List("line_types", kLineType, "The cable types the lines use.", true),
     List("lines", kLine, "The mooring lines, numbered 1..N.", true),
-    Map("seabed", kSeabed, "Seabed contact and friction."),
+    Map("seabed", kSeabed, "The seabed's shape, contact and friction."),
     Map("water", kWater, "Water density, gravity and depth.", true),
 };
 constexpr Block kMooring{"The mooring: water, seabed, line types and lines.", kMooringKeys};

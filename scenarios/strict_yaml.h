@@ -197,6 +197,8 @@ class Reader {
   }
 
   SourceMark mark() const { return mark_; }
+  /// The file this value was written in.
+  const std::string& File() const { return context_->FileOf(path_); }
   bool IsMap() const { return node_.IsMap(); }
   bool IsList() const { return node_.IsSequence(); }
   std::string Text() const { return Describe(node_); }

@@ -94,7 +94,8 @@ int RunStatic(const StaticOptions& o) {
       StaticLineResult& r = results[lp.id - 1];
       r.force = loads[i].fairlead_force;
       r.grounded_length = loads[i].grounded_length;
-      r.catenary_tension = mooring_fem::CatenaryFairleadTension(lp, positions[i]);
+      r.catenary_tension =
+          mooring_fem::CatenaryFairleadTension(lp, positions[i], mooring.seabed().surface);
     }
   }
 

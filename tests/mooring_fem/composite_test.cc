@@ -3,7 +3,8 @@
 // differential equations integrated by Simpson's rule (not the closed forms the code uses)
 // with the seabed carrying the line from the anchor to where its vertical tension reaches
 // zero, and the fairlead's horizontal and vertical tension found by Newton's method on the
-// two closure conditions. The FEM settled to rest must give every line's fairlead and
+// two closure conditions; on a plane seabed rising or falling toward the fairlead, with the
+// line resting on the slope. The FEM settled to rest must give every line's fairlead and
 // anchor tension within 0.1 % of it; the composite catenary (which places the FEM's nodes
 // at the start) within 1e-6.
 #include <gtest/gtest.h>
@@ -25,6 +26,11 @@ namespace {
 constexpr double kSeaWater = 1025.0;
 constexpr double kGravity = 9.81;
 
+// On a seabed that rises at the angle a from the anchor toward the fairlead, the reference
+// lays the line on the slope up to where V reaches H tan(a), with the tension along it
+// H cos(a) + V sin(a) (frictionless: the weight's component along the slope changes it),
+// integrated by Simpson's rule too.
+
 // --- The reference: a line of sections (w, EA, L) with point weights at the joints.
 
 struct RefSection {
@@ -36,15 +42,15 @@ struct RefSection {
 };
 
 struct Reference {
-  double h = 0.0, v_fairlead = 0.0, v_anchor = 0.0, grounded = 0.0;
+  double h = 0.0, v_fairlead = 0.0, v_anchor = 0.0, grounded = 0.0, anchor_tension = 0.0;
   double FairleadTension() const { return std::hypot(h, v_fairlead); }
-  double AnchorTension() const { return std::hypot(h, v_anchor); }
+  double AnchorTension() const { return anchor_tension; }
 };
 
 // x and z of the fairlead relative to the anchor for (H, V_f), by quadrature of
 // dx/ds = H/T + H/EA, dz/ds = V/T + V/EA on each suspended stretch.
 Eigen::Vector2d Closure(const std::vector<RefSection>& sections, const std::vector<double>& joints,
-                        double h, double v_f, Reference* out = nullptr) {
+                        double rise, double h, double v_f, Reference* out = nullptr) {
   const std::size_t n = sections.size();
   // V just above the lower end of each section, walking down from the fairlead.
   std::vector<double> v_low(n);
@@ -54,18 +60,20 @@ Eigen::Vector2d Closure(const std::vector<RefSection>& sections, const std::vect
     v_low[i] = v;
     if (i > 0) v -= joints[i - 1];
   }
-  // The grounded stretch from the anchor: while V < 0 (weights below are all >= 0 here).
+  // The grounded stretch from the anchor: while V < H tan(rise) (weights below are all >= 0
+  // here).
+  const double lift_off = h * std::tan(rise);
   double grounded = 0.0;
-  if (v_low[0] < 0.0) {
+  if (v_low[0] < lift_off) {
     double start = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
       const double top = v_low[i] + sections[i].weight * sections[i].length;
-      if (top >= 0.0) {
-        grounded = start - v_low[i] / sections[i].weight;
+      if (top >= lift_off) {
+        grounded = start + (lift_off - v_low[i]) / sections[i].weight;
         break;
       }
       start += sections[i].length;
-      if (i + 1 < n && v_low[i + 1] >= 0.0) {
+      if (i + 1 < n && v_low[i + 1] >= lift_off) {
         grounded = start;
         break;
       }
@@ -76,7 +84,17 @@ Eigen::Vector2d Closure(const std::vector<RefSection>& sections, const std::vect
   for (std::size_t i = 0; i < n; ++i) {
     const RefSection& s = sections[i];
     const double g = std::clamp(grounded - start, 0.0, s.length);  // grounded part here
-    p.x() += g * (1.0 + s.Strain(h));
+    if (g > 0.0) {  // along the slope, its tension varying with V (slack where it is <= 0)
+      constexpr int kIntervals = 2000;
+      const double step = g / kIntervals;
+      double sum = 0.0;
+      for (int k = 0; k <= kIntervals; ++k) {
+        const double vs = v_low[i] + s.weight * k * step;
+        const double t = std::max(0.0, h * std::cos(rise) + vs * std::sin(rise));
+        sum += (k == 0 || k == kIntervals ? 1.0 : (k % 2 == 1 ? 4.0 : 2.0)) * (1.0 + s.Strain(t));
+      }
+      p += sum * step / 3.0 * Eigen::Vector2d(std::cos(rise), std::sin(rise));
+    }
     const double a = g, b = s.length;
     if (b > a) {
       constexpr int kIntervals = 4000;  // even: Simpson
@@ -97,23 +115,27 @@ Eigen::Vector2d Closure(const std::vector<RefSection>& sections, const std::vect
     out->h = h;
     out->v_fairlead = v_f;
     out->v_anchor = grounded > 0.0 ? 0.0 : v_low[0];
+    out->anchor_tension = grounded > 0.0
+                              ? std::max(0.0, h * std::cos(rise) + v_low[0] * std::sin(rise))
+                              : std::hypot(h, v_low[0]);
     out->grounded = grounded;
   }
   return p;
 }
 
 Reference SolveReference(const std::vector<RefSection>& sections, const std::vector<double>& joints,
-                         double span, double height, double h, double v) {
+                         double rise, double span, double height, double h, double v) {
   const Eigen::Vector2d target(span, height);
+  const auto closure = [&](double hh, double vv) {
+    return Closure(sections, joints, rise, hh, vv);
+  };
   for (int iteration = 0; iteration < 100; ++iteration) {
-    const Eigen::Vector2d r = Closure(sections, joints, h, v) - target;
+    const Eigen::Vector2d r = closure(h, v) - target;
     if (r.norm() < 1e-9) break;
     Eigen::Matrix2d j;
     const double dh = 1e-4 * h, dv = 1e-4 * h;
-    j.col(0) =
-        (Closure(sections, joints, h + dh, v) - Closure(sections, joints, h - dh, v)) / (2.0 * dh);
-    j.col(1) =
-        (Closure(sections, joints, h, v + dv) - Closure(sections, joints, h, v - dv)) / (2.0 * dv);
+    j.col(0) = (closure(h + dh, v) - closure(h - dh, v)) / (2.0 * dh);
+    j.col(1) = (closure(h, v + dv) - closure(h, v - dv)) / (2.0 * dv);
     const Eigen::Vector2d step = j.partialPivLu().solve(-r);
     double lambda = 1.0;
     while (h + lambda * step.x() <= 0.0) lambda *= 0.5;
@@ -121,7 +143,7 @@ Reference SolveReference(const std::vector<RefSection>& sections, const std::vec
     v += lambda * step.y();
   }
   Reference out;
-  const Eigen::Vector2d r = Closure(sections, joints, h, v, &out) - target;
+  const Eigen::Vector2d r = Closure(sections, joints, rise, h, v, &out) - target;
   EXPECT_LT(r.norm(), 1e-8) << "the reference did not close";
   return out;
 }
@@ -140,6 +162,9 @@ struct Case {
   bool grounded = true;           // whether part of the line rests on the seabed
   double rope_mass = 26.0;        // [kg/m] dry; under 20.6 kg/m the rope floats
   bool rope_curve = false;        // the rope on kRopeCurve rather than a constant EA
+  // A plane seabed through 1000 m below the origin, deepening toward north (slope > 0) or
+  // toward south (< 0): it rises toward the fairlead by `slope_deg` [deg].
+  double slope_deg = 0.0;
 };
 
 // A polyester-like tension-strain curve, soft at first [strain, N].
@@ -165,9 +190,13 @@ MooringParameters CompositeSpec(const Case& c, int scale) {
   spec.seabed.stiffness = 3e7;
   spec.seabed.contact_smoothing = 0.02;
   spec.line_types = {testing::ChainType(), Rope(c)};
+  spec.seabed.slope = std::abs(c.slope_deg) * std::numbers::pi / 180.0;
+  spec.seabed.slope_direction = c.slope_deg < 0.0 ? std::numbers::pi : 0.0;
   LineParameters line;
   line.id = 1;
-  line.anchor = Vec3(c.anchor_x, 0.0, 1000.0);
+  const double anchor_depth =
+      1000.0 + c.anchor_x * std::tan(c.slope_deg * std::numbers::pi / 180.0);
+  line.anchor = Vec3(c.anchor_x, 0.0, anchor_depth);
   line.fairlead_body = Vec3(20.0, 0.0, 12.0);
   line.sections = {{"chain", 400.0, 20 * scale},
                    {"polyester", 1500.0, 60 * scale},
@@ -205,6 +234,18 @@ const Case kCases[] = {
     {"buoyant_rope", {}, 1750.0, true, 15.0},
     // The rope on a measured tension-strain curve instead of a constant EA.
     {"rope_on_a_curve", {}, 1750.0, true, 26.0, true},
+    // A seabed rising 2 deg toward the fairlead (the anchor 52 m deeper) and one falling
+    // 4 deg (the anchor 122 m shallower); the chain lies on the slope.
+    {"seabed_rising", {}, 1700.0, true, 26.0, false, 1.0},
+    {"seabed_falling", {}, 1750.0, true, 26.0, false, -4.0},
+    // A clump weight resting on the rising slope.
+    {"clump_on_a_slope",
+     {{25000.0, 25000.0 / 7850.0, 1.0, 2.0}, {}},
+     1700.0,
+     true,
+     26.0,
+     false,
+     1.0},
 };
 
 void PrintTo(const Case& c, std::ostream* out) { *out << c.name; }
@@ -226,8 +267,9 @@ TEST_P(CompositeStatic, FemTensionsMatchTheIndependentCatenary) {
   const Vec3 chord = fairlead.position - lp.anchor;
   const double span = std::hypot(chord.x(), chord.y());
   const double height = lp.anchor.z() - fairlead.position.z();
-  const CompositeCatenary guess = SolveCompositeCatenary(CatenaryLineOf(lp), span, height);
-  const Reference ref = SolveReference(ReferenceSections(c), ReferenceJoints(c), span, height,
+  const double rise = c.slope_deg * std::numbers::pi / 180.0;
+  const CompositeCatenary guess = SolveCompositeCatenary(CatenaryLineOf(lp, rise), span, height);
+  const Reference ref = SolveReference(ReferenceSections(c), ReferenceJoints(c), rise, span, height,
                                        guess.horizontal_tension, guess.vertical_tension);
 
   // The closed forms against the quadrature.
@@ -244,9 +286,14 @@ TEST_P(CompositeStatic, FemTensionsMatchTheIndependentCatenary) {
   const double l0 = lp.sections.front().segment_length;
   const double stretched = (mooring.NodePosition(x.data(), 0, 1, fairleads) - lp.anchor).norm();
   const double anchor_tension = lp.sections.front().axial_stiffness * (stretched / l0 - 1.0);
-  EXPECT_NEAR(anchor_tension, ref.AnchorTension(), 1e-3 * ref.AnchorTension()) << c.name;
+  // That segment's tension is the tension half a segment up from the anchor: on a slope the
+  // weight's component along it changes the tension by w sin(rise) per metre there.
+  const double expected =
+      ref.AnchorTension() +
+      (ref.grounded > 0.0 ? WeightInWater(testing::ChainType()) * 0.5 * l0 * std::sin(rise) : 0.0);
+  EXPECT_NEAR(anchor_tension, expected, 1e-3 * expected) << c.name;
   RecordProperty("fairlead_error", std::to_string(f.norm() / ref.FairleadTension() - 1.0));
-  RecordProperty("anchor_error", std::to_string(anchor_tension / ref.AnchorTension() - 1.0));
+  RecordProperty("anchor_error", std::to_string(anchor_tension / expected - 1.0));
 }
 
 INSTANTIATE_TEST_SUITE_P(Lines, CompositeStatic, ::testing::ValuesIn(kCases),

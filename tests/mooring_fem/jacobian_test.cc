@@ -142,6 +142,55 @@ TEST(MooringJacobian, ARopeOnATensionStrainCurveWithTangentialAddedMassMatchesFi
   ExpectJacobianMatchesFiniteDifferences(f.mooring, f.x, f.fairleads);
 }
 
+// The anchors moved onto the seabed below them.
+MooringParameters OnTheSeabed(MooringParameters spec) {
+  const SeabedSurface seabed(spec.seabed, spec.water.depth);
+  for (LineParameters& line : spec.lines) {
+    line.anchor.z() = seabed.DepthAt(line.anchor.x(), line.anchor.y());
+  }
+  return spec;
+}
+
+// How many nodes of the fixture's lines touch the seabed.
+int NodesInContact(const Fixture& f, int segments) {
+  int in_contact = 0;
+  for (int line = 0; line < f.mooring.num_lines(); ++line) {
+    for (int k = 1; k < segments; ++k) {
+      const Vec3 r = f.mooring.NodePosition(f.x.data(), line, k, f.fairleads);
+      in_contact += f.mooring.seabed().Below(r) > 0.0;
+    }
+  }
+  return in_contact;
+}
+
+TEST(MooringJacobian, ASlopingSeabedMatchesFiniteDifferences) {
+  // The contact normal and the friction plane tilted 4 deg; friction acts on the grounded
+  // nodes' random velocities.
+  MooringParameters spec = TestSpec(12);
+  spec.seabed.slope = 4.0 * std::numbers::pi / 180.0;
+  spec.seabed.slope_direction = 70.0 * std::numbers::pi / 180.0;
+  Fixture f(OnTheSeabed(spec));
+  EXPECT_GE(NodesInContact(f, 12), 2);
+  ExpectJacobianMatchesFiniteDifferences(f.mooring, f.x, f.fairleads);
+}
+
+TEST(MooringJacobian, ATwistedDepthGridMatchesFiniteDifferences) {
+  // A 3 x 3 grid of h = 1000 + 0.01 x - 0.02 y + 4e-6 x y, which bilinear interpolation
+  // reproduces everywhere: no kinks at the cell edges, and a normal that turns with
+  // position (h_xy = 4e-6 /m), whose derivative the Jacobian carries.
+  MooringParameters spec = TestSpec(12);
+  DepthGrid& grid = spec.seabed.grid;
+  grid.x = {-3000.0, 0.0, 3000.0};
+  grid.y = {-3000.0, 0.0, 3000.0};
+  for (double x : grid.x) {
+    for (double y : grid.y) grid.depth.push_back(1000.0 + 0.01 * x - 0.02 * y + 4e-6 * x * y);
+  }
+  Fixture f(OnTheSeabed(spec));
+  EXPECT_GE(NodesInContact(f, 12), 2);
+  EXPECT_NE(f.mooring.seabed().surface.At(1500.0, 800.0).dxy, 0.0);
+  ExpectJacobianMatchesFiniteDifferences(f.mooring, f.x, f.fairleads);
+}
+
 TEST(MooringJacobian, GroundedNodesAreExercised) {
   // The test above is only meaningful if some nodes are in seabed contact, in the
   // smoothed zone and beyond it.

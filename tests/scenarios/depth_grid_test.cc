@@ -1,0 +1,150 @@
+// The seabed's depth grid file (mooring.seabed.grid) and the sloping seabed in scenarios:
+// the file read as written, each kind of bad grid one line naming the file and the line,
+// and the anchors checked against the seabed below them.
+#include "scenarios/depth_grid.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "bad_input_cases.h"
+#include "core/error.h"
+#include "scenarios/load.h"
+#include "tests/support/scratch_directory.h"
+
+namespace moorsim::scenarios {
+namespace {
+
+std::string Write(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+std::string GridError(const std::string& text) {
+  const std::string path = Write(testing::FreshDirectory("grid") / "grid.csv", text);
+  try {
+    ReadDepthGrid(path);
+  } catch (const InputError& e) {
+    // The message without the directory.
+    std::string message = e.what();
+    return message.substr(message.find("grid.csv"));
+  }
+  return "(no error)";
+}
+
+TEST(DepthGrid, ReadsCommasOrSpacesWithCommentsAndALabel) {
+  const std::filesystem::path dir = testing::FreshDirectory("grid_read");
+  for (const std::string& text :
+       {std::string("# a survey\nx\\y, -100, 0, 250\n-50, 990, 1000, 1010\n"
+                    "\n# the second row\n60, 995, 1005, 1020\r\n"),
+        std::string("x\\y -100 0 250\n-50 990 1000 1010\n60\t995 1005 1020\n")}) {
+    const mooring_fem::DepthGrid grid = ReadDepthGrid(Write(dir / "grid.csv", text));
+    EXPECT_EQ(grid.x, (std::vector<double>{-50.0, 60.0}));
+    EXPECT_EQ(grid.y, (std::vector<double>{-100.0, 0.0, 250.0}));
+    EXPECT_EQ(grid.depth, (std::vector<double>{990, 1000, 1010, 995, 1005, 1020}));
+  }
+}
+
+TEST(DepthGrid, EachBadGridIsOneLineNamingTheFileLineAndValue) {
+  EXPECT_EQ(GridError("x\\y, 0, 100\n0, 1000, 1000\n100, 1000, ,\n"),
+            "grid.csv:3: 3 depths for 2 y coordinates (a row is x and one depth per y)");
+  EXPECT_EQ(GridError("x\\y, 0, 100\n0, 1000, 1000\n100, 1000,\n"),
+            "grid.csv:3: no depth at x = 100 m, y = 100 m (a hole in the grid)");
+  EXPECT_EQ(GridError("x\\y, 0, 100\n0, 1000, 1000\n100, 1000, deep\n"),
+            "grid.csv:3: 'deep' is not a number");
+  EXPECT_EQ(GridError("x\\y, 0, 100\n0, 1000, 1000\n-10, 1000, 1000\n"),
+            "grid.csv:3: x = -10 m does not follow x = 0 m (the axis must increase)");
+  EXPECT_EQ(GridError("x\\y, 100, 0\n0, 1000, 1000\n10, 1000, 1000\n"),
+            "grid.csv:1: y = 0 m does not follow y = 100 m (the axis must increase)");
+  EXPECT_EQ(GridError("# comment\nx\\y, 0, 100\n0, 1000, 1000\n10, 1000, -3\n"),
+            "grid.csv:4: depth -3 m at x = 10 m, y = 100 m is not below the water surface (z "
+            "points down)");
+  EXPECT_EQ(GridError("x\\y, 0, 100\n0, 1000, 1000\n"),
+            "grid.csv:1: the x axis has 1 point(s); a grid needs at least 2");
+  EXPECT_EQ(GridError("x\\y, 0\n"),
+            "grid.csv:1: the first row must be a label and at least two y coordinates");
+  EXPECT_EQ(GridError("# nothing\n"), "grid.csv: no grid (the file has no rows)");
+  EXPECT_EQ(GridError("x\\y, 0, 100\n0, 1000, 1000\n10, 1000, 1000, 7\n"),
+            "grid.csv:3: 3 depths for 2 y coordinates (a row is x and one depth per y)");
+}
+
+// The test scenario with its seabed written as `seabed`.
+std::string WithSeabed(const std::string& seabed) {
+  return test_cases::Edit(test_cases::kBase, "",
+                          "seabed: {stiffness: 3.0e6, damping: 3.0e5, friction_velocity: 0.01}",
+                          "seabed: " + seabed);
+}
+
+std::string LoadError(const std::filesystem::path& file) {
+  try {
+    LoadScenario(file.string());
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(DepthGrid, AScenarioReadsItsGridBesideItAndChecksTheAnchorsOnIt) {
+  const std::filesystem::path dir = testing::FreshDirectory("grid_scenario");
+  // h = 1000 + 1e-5 x y: 1000 m under the test scenario's three anchors (on the axes),
+  // deeper and shallower between them.
+  Write(dir / "survey.csv",
+        "x\\y, -3000, 0, 3000\n-3000, 1090, 1000, 910\n0, 1000, 1000, 1000\n"
+        "3000, 910, 1000, 1090\n");
+  Write(dir / "ok.yaml", WithSeabed("{grid: survey.csv}"));
+  const Scenario s = LoadScenario((dir / "ok.yaml").string());
+  EXPECT_EQ(s.mooring.seabed.grid.x.size(), 3u);
+  EXPECT_NEAR(s.mooring.seabed.grid.depth[0], 1090.0, 0.0);
+
+  // A grid 10 m shallower under line 1's anchor: the anchor is in the ground.
+  Write(dir / "shallow.csv",
+        "x\\y, -3000, 0, 3000\n-3000, 1000, 1000, 1000\n0, 1000, 1000, 1000\n"
+        "3000, 985, 985, 985\n");
+  Write(dir / "shallow.yaml", WithSeabed("{grid: shallow.csv}"));
+  const std::string shallow = LoadError(dir / "shallow.yaml");
+  EXPECT_NE(shallow.find("mooring.lines[1].anchor: z = 1000 m is below the seabed there, at depth "
+                         "990.25 m"),
+            std::string::npos)
+      << shallow;
+
+  // A bad grid file: one line, at the key, naming the file's line.
+  Write(dir / "holed.csv", "x\\y, -3000, 3000\n-3000, 1000, \n3000, 1000, 1000\n");
+  Write(dir / "holed.yaml", WithSeabed("{grid: holed.csv}"));
+  const std::string holed = LoadError(dir / "holed.yaml");
+  EXPECT_NE(holed.find("holed.yaml:4:"), std::string::npos) << holed;
+  EXPECT_NE(holed.find("mooring.seabed.grid: "), std::string::npos) << holed;
+  EXPECT_NE(holed.find("holed.csv:2: no depth at x = -3000 m, y = 3000 m (a hole in the grid)"),
+            std::string::npos)
+      << holed;
+  EXPECT_EQ(holed.find('\n'), std::string::npos) << holed;
+
+  Write(dir / "missing.yaml", WithSeabed("{grid: nowhere.csv}"));
+  EXPECT_NE(LoadError(dir / "missing.yaml").find("nowhere.csv: cannot read the depth grid"),
+            std::string::npos);
+
+  Write(dir / "both.yaml", WithSeabed("{grid: survey.csv, slope_deg: 1}"));
+  EXPECT_NE(LoadError(dir / "both.yaml")
+                .find("mooring.seabed.grid: a depth grid cannot be combined with slope_deg"),
+            std::string::npos);
+}
+
+TEST(SlopingSeabed, TheAnchorsMustLieOnThePlane) {
+  const std::filesystem::path dir = testing::FreshDirectory("slope_scenario");
+  // 1 deg deepening toward east: line 2's anchor at y = 1950 is 34 m above the seabed.
+  Write(dir / "slope.yaml", WithSeabed("{slope_deg: 1, slope_direction_deg: 90}"));
+  const std::string error = LoadError(dir / "slope.yaml");
+  EXPECT_NE(error.find("mooring.lines[2].anchor: z = 1000 m is above the seabed there, at depth "
+                       "1034.04 m"),
+            std::string::npos)
+      << error;
+  Write(dir / "steep.yaml", WithSeabed("{slope_deg: 50}"));
+  EXPECT_NE(LoadError(dir / "steep.yaml")
+                .find("mooring.seabed.slope_deg: 50 deg must be in [0, 45] (steeper than the "
+                      "steepest continental slopes)"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace moorsim::scenarios
