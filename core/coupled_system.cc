@@ -85,6 +85,7 @@ void CoupledSystem::Rebuild() {
 }
 
 void CoupledSystem::ComputePoints(double t, const double* x, bool with_jacobian) {
+  attached_.SetTime(t);
   for (std::size_t i = 0; i < points_.size(); ++i) {
     points_[i] =
         body_.PointMotion(t, x, r_body_[i], with_jacobian ? &point_jacobians_[i] : nullptr);

@@ -106,6 +106,9 @@ class AttachedSubsystem {
   virtual Vec3 AttachmentPoint(int i) const = 0;
   /// Whether attachment i still transmits force (a parted line does not).
   virtual bool Attached(int i) const = 0;
+  /// The time the next Derivatives, Jacobian and Coupling calls are at (for a subsystem
+  /// whose forces depend on time, e.g. lines in waves). The coupled system sets it first.
+  virtual void SetTime(double /*t*/) {}
   /// Own derivatives and the Earth-frame force on the body at every attachment (zero for
   /// detached ones) for the given point kinematics.
   virtual void Derivatives(const double* x, std::span<const PointKinematics> points, double* xdot,

@@ -45,10 +45,10 @@ Vec3 CurrentField::GradientAt(double z) const {
   return (speed_[i + 1] - speed_[i]) / (depth_[i + 1] - depth_[i]) * direction_;
 }
 
-SeabedFrame SeabedContact::Frame(const Vec3& r, bool with_derivatives) const {
+SeabedFrame SeabedContact::SlopedFrame(const Vec3& r, bool with_derivatives) const {
   const SeabedPoint p = surface.At(r.x(), r.y());
   const Vec3 G(-p.dx, -p.dy, 1.0);  // grad (z - h)
-  const double norm = surface.flat() ? 1.0 : G.norm();
+  const double norm = G.norm();
   const double g = r.z() - p.depth;
   SeabedFrame f;
   f.normal = G / norm;

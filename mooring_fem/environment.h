@@ -55,11 +55,20 @@ struct SeabedContact {
   /// How far `r` is below the seabed, vertically [m] (> 0: in contact).
   double Below(const Vec3& r) const { return r.z() - surface.DepthAt(r.x(), r.y()); }
   /// The normal and penetration at `r` (in contact), with their derivatives if asked.
-  SeabedFrame Frame(const Vec3& r, bool with_derivatives) const;
+  SeabedFrame Frame(const Vec3& r, bool with_derivatives) const {
+    if (surface.flat()) {  // the common case, inline: every grounded node
+      SeabedFrame f;
+      f.penetration = Below(r);
+      return f;
+    }
+    return SlopedFrame(r, with_derivatives);
+  }
   /// Smoothed penetration q(delta) [m] and dq/ddelta.
   void Penetration(double delta, double* q, double* dq) const;
   /// Smoothstep weight of the damper in [0, 1] and its derivative [1/m].
   void DamperWeight(double delta, double* s, double* ds) const;
+  /// Frame() on a seabed that is not flat.
+  SeabedFrame SlopedFrame(const Vec3& r, bool with_derivatives) const;
   /// Energy stored per unit spring constant: integral of q from 0 to delta [m^2].
   double PenetrationEnergy(double delta) const;
 };

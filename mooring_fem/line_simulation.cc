@@ -165,6 +165,7 @@ PrescribedMotionSystem::PrescribedMotionSystem(MooringSystem& mooring, Prescribe
     : mooring_(mooring), motion_(std::move(motion)), fairleads_(mooring.num_lines()) {}
 
 std::span<const PointKinematics> PrescribedMotionSystem::Fairleads(double t) {
+  mooring_.SetTime(t);                                  // the waves, if the lines see any
   const PrescribedMotion::State state = motion_.At(t);  // once for every fairlead
   for (int i = 0; i < mooring_.num_lines(); ++i) {
     fairleads_[i] = state.Point(mooring_.line(i).fairlead_body);

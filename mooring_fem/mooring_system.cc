@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -53,6 +54,15 @@ inline Vec3 DragForce(const Vec3& u, const Vec3& t, double L, double c_n, double
   const Vec3 u_n = u - s * t;
   const double h = 0.5 * L;
   return -(c_n * h * u_n.norm()) * u_n - (c_t * h * std::abs(s) * s) * t;
+}
+
+// Froude-Krylov and added-mass force of the water's acceleration a on half a segment
+// (stretched length L, tangent t): L/2 [(rho A + C_MN rho A) a_n + (rho A + C_MT rho A) a_t]
+// with a_n and a_t the parts of a across and along the segment.
+inline Vec3 FluidInertiaForce(const Vec3& a, const Vec3& t, double L, const SectionProperties& sp) {
+  const double cn = sp.displaced_mass_per_length + sp.added_mass_per_length;
+  const double dc = sp.tangential_added_mass_per_length - sp.added_mass_per_length;
+  return 0.5 * L * (cn * a + dc * t.dot(a) * t);
 }
 
 HalfSegmentDrag Drag(const Vec3& u, const Vec3& t, double L, double c_n, double c_t,
@@ -152,6 +162,7 @@ LineProperties MakeLineProperties(const MooringParameters& spec, const LineParam
       sp.axial_damping =
           zeta * sp.segment_length * std::sqrt(sp.axial_stiffness * type->mass_per_length);
     }
+    sp.displaced_mass_per_length = rho * area;
     sp.added_mass_per_length = type->added_mass_normal * rho * area;
     sp.tangential_added_mass_per_length = type->added_mass_tangential * rho * area;
     sp.drag_normal = 0.5 * rho * type->drag_normal * type->diameter;
@@ -174,6 +185,7 @@ LineProperties MakeLineProperties(const MooringParameters& spec, const LineParam
     b.weight = (body.mass - rho * body.volume) * spec.water.gravity;
     b.added_mass = body.added_mass * rho * body.volume;
     b.drag = 0.5 * rho * body.drag_area;
+    b.displaced_mass = rho * body.volume;
     p.body_at[node] = static_cast<int>(p.bodies.size());
     p.bodies.push_back(b);
   }
@@ -442,6 +454,15 @@ Vec3 NodeMass::Solve(const Vec3& F) const {
 }
 
 void MooringSystem::NodeForce(const Chain& c, int k, Vec3* F_out, NodeMass* M_out) const {
+  if (waves_ != nullptr) {
+    NodeForceIn<true>(c, k, F_out, M_out);
+  } else {
+    NodeForceIn<false>(c, k, F_out, M_out);
+  }
+}
+
+template <bool kWaves>
+void MooringSystem::NodeForceIn(const Chain& c, int k, Vec3* F_out, NodeMass* M_out) const {
   const LineProperties& lp = lines_[c.line];
   const bool has_below = k > 0;
   const bool has_above = k < c.segments;
@@ -451,7 +472,13 @@ void MooringSystem::NodeForce(const Chain& c, int k, Vec3* F_out, NodeMass* M_ou
                                : (end = ShareOf(lp, c.first_node + k, has_below, has_above));
   const Vec3& r = pos_[k];
   const Vec3& v = vel_[k];
-  const Vec3 u = v - current_.VelocityAt(r.z());
+  Vec3 u = v - current_.VelocityAt(r.z());
+  Vec3 water_acceleration = Vec3::Zero();
+  if constexpr (kWaves) {
+    const WaterMotion water = waves_->At(time_, r, false);
+    u -= water.velocity;
+    water_acceleration = water.acceleration;
+  }
 
   NodeMass M;
   M.m = share.mass;
@@ -466,13 +493,28 @@ void MooringSystem::NodeForce(const Chain& c, int k, Vec3* F_out, NodeMass* M_ou
   if (has_above) add_segment(k, lp.sections[share.above], +1.0);
   if (has_below) add_segment(k - 1, lp.sections[share.below], -1.0);
   if (share.body >= 0) F -= (lp.bodies[share.body].drag * u.norm()) * u;
+  if constexpr (kWaves) {
+    const Vec3& a = water_acceleration;
+    if (has_above) F += FluidInertiaForce(a, seg_[k].t, seg_[k].L, lp.sections[share.above]);
+    if (has_below)
+      F += FluidInertiaForce(a, seg_[k - 1].t, seg_[k - 1].L, lp.sections[share.below]);
+    if (share.body >= 0) {
+      const PointBodyProperties& body = lp.bodies[share.body];
+      F += (body.displaced_mass + body.added_mass) * a;
+    }
+  }
 
-  if (seabed_.Below(r) > 0.0) {
-    const SeabedFrame frame = seabed_.Frame(r, false);
-    const Vec3& n = frame.normal;
+  if (const double below = seabed_.Below(r); below > 0.0) {
+    Vec3 n = Vec3::UnitZ();
+    double penetration = below;
+    if (!seabed_.surface.flat()) {
+      const SeabedFrame frame = seabed_.SlopedFrame(r, false);
+      n = frame.normal;
+      penetration = frame.penetration;
+    }
     double q, dq, s, ds;
-    seabed_.Penetration(frame.penetration, &q, &dq);
-    seabed_.DamperWeight(frame.penetration, &s, &ds);
+    seabed_.Penetration(penetration, &q, &dq);
+    seabed_.DamperWeight(penetration, &s, &ds);
     const double contact = share.contact;
     const double normal = seabed_.stiffness * contact * q;
     F -= (normal + seabed_.damping * contact * n.dot(v) * s) * n;
@@ -513,10 +555,14 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, Node
                                : (end = ShareOf(lp, c.first_node + k, has_below, has_above));
   const Vec3& r = pos_[k];
   const Vec3& v = vel_[k];
-  const Vec3 u = v - current_.VelocityAt(r.z());
-  // du/dr = -dvc/dz e_z^T: only the z column.
+  std::optional<WaterMotion> water;
+  if (waves_ != nullptr) water = waves_->At(time_, r, true);
+  Vec3 u = v - current_.VelocityAt(r.z());
+  if (water) u -= water->velocity;
+  // du/dr = -dvc/dz e_z^T (the current: only the z column) - d(wave velocity)/dr.
   Mat3 du_dr = Mat3::Zero();
   du_dr.col(2) = -current_.GradientAt(r.z());
+  if (water) du_dr -= water->d_velocity;
 
   // sigma = dl/dr_k for the segment (l = r_upper - r_lower): -1 above, +1 below.
   auto add_segment = [&](int s, const SectionProperties& sp, int other, double sigma) {
@@ -553,6 +599,18 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, Node
     }
     J->dMa_dr[kSelf] += sigma * H;
     J->dMa_dr[other] -= sigma * H;
+    if (water) {
+      // Fluid inertia f = L/2 [c_n a + (c_t - c_n)(t.a) t] (FluidInertiaForce):
+      // df/dl = 1/2 [c_n a t^T + (c_t - c_n)(t a^T Pn + (t.a) I)], as L t = l.
+      const Vec3& aw = water->acceleration;
+      const double cn = sp.displaced_mass_per_length + sp.added_mass_per_length;
+      const double dc = sp.tangential_added_mass_per_length - sp.added_mass_per_length;
+      const Mat3 df_dl =
+          0.5 * (cn * aw * t.transpose() + dc * (t * (aw.transpose() * Pn) + t.dot(aw) * I));
+      J->dF_dr[kSelf] +=
+          sigma * df_dl + 0.5 * g.L * (cn * I + dc * t * t.transpose()) * water->d_acceleration;
+      J->dF_dr[other] -= sigma * df_dl;
+    }
   };
   if (has_above) add_segment(k, lp.sections[share.above], kAbove, -1.0);
   if (has_below) add_segment(k - 1, lp.sections[share.below], kBelow, +1.0);
@@ -560,9 +618,11 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, Node
     const double speed = u.norm();
     Mat3 d_du = speed * I;
     if (speed > 1e-300) d_du += u * u.transpose() / speed;
-    d_du *= -lp.bodies[share.body].drag;
+    const PointBodyProperties& body = lp.bodies[share.body];
+    d_du *= -body.drag;
     J->dF_dv[kSelf] += d_du;
     J->dF_dr[kSelf] += d_du * du_dr;
+    if (water) J->dF_dr[kSelf] += (body.displaced_mass + body.added_mass) * water->d_acceleration;
   }
 
   if (seabed_.Below(r) > 0.0) {

@@ -33,6 +33,7 @@
 #include "mooring_fem/composite_catenary.h"
 #include "mooring_fem/environment.h"
 #include "mooring_fem/parameters.h"
+#include "mooring_fem/wave_kinematics.h"
 
 namespace moorsim::mooring_fem {
 
@@ -48,6 +49,7 @@ struct SectionProperties {
   double axial_stiffness = 0.0;             ///< EA [N]; with a curve its largest slope
   std::shared_ptr<const AxialCurve> curve;  ///< the tension-strain law; null: T = EA e
   double axial_damping = 0.0;               ///< c [N s], internal force c de/dt
+  double displaced_mass_per_length = 0.0;   ///< rho pi d^2/4 [kg/m]
   double added_mass_per_length = 0.0;       ///< C1 = C_MN rho pi d^2/4 [kg/m]
   double tangential_added_mass_per_length = 0.0;  ///< C_MT rho pi d^2/4 [kg/m]
   double drag_normal = 0.0;                       ///< 0.5 rho C_DN d [kg/m^2]
@@ -58,10 +60,11 @@ struct SectionProperties {
 
 /// Constants of a body at a joint (PointBody with the water).
 struct PointBodyProperties {
-  double mass = 0.0;        ///< [kg]
-  double weight = 0.0;      ///< in water [N], negative for a buoy
-  double added_mass = 0.0;  ///< C_A rho V [kg]
-  double drag = 0.0;        ///< 0.5 rho C_D A [kg/m]
+  double mass = 0.0;            ///< [kg]
+  double weight = 0.0;          ///< in water [N], negative for a buoy
+  double added_mass = 0.0;      ///< C_A rho V [kg]
+  double drag = 0.0;            ///< 0.5 rho C_D A [kg/m]
+  double displaced_mass = 0.0;  ///< rho V [kg]
 };
 
 /// Constants of one line: its sections from the anchor up and the bodies at their joints.
@@ -181,6 +184,13 @@ class MooringSystem {
   const std::vector<Chain>& chains() const { return chains_; }
   const SeabedContact& seabed() const { return seabed_; }
   const CurrentField& current() const { return current_; }
+  /// The waves' water motion the lines see in drag and inertia (wave_kinematics.h), or
+  /// none (null: still water but for the current).
+  void SetWaves(std::shared_ptr<const WaveKinematics> waves) { waves_ = std::move(waves); }
+  const WaveKinematics* waves() const { return waves_.get(); }
+  /// The time [s] the waves are taken at by the next evaluations (the right-hand side and
+  /// its Jacobian depend on time only through them).
+  void SetTime(double t) { time_ = t; }
   int StateSize() const { return state_size_; }
   /// Whether line `index` is still attached to its fairlead.
   bool attached(int index) const;
@@ -259,6 +269,10 @@ class MooringSystem {
   void ComputeSegments(const Chain& chain);
   /// Net force F and mass M of chain node k from the gathered state.
   void NodeForce(const Chain& chain, int k, Vec3* F, NodeMass* M) const;
+  /// NodeForce with or without the waves (two instantiations, so still water costs nothing
+  /// extra).
+  template <bool kWaves>
+  void NodeForceIn(const Chain& chain, int k, Vec3* F, NodeMass* M) const;
   /// Adds the node's force derivatives; needs the node's acceleration for d(M a)/dr.
   void NodeForceJacobian(const Chain& chain, int k, const Vec3& accel, NodeJacobian* J) const;
 
@@ -268,6 +282,8 @@ class MooringSystem {
   std::vector<Chain> chains_;
   SeabedContact seabed_;
   CurrentField current_;
+  std::shared_ptr<const WaveKinematics> waves_;
+  double time_ = 0.0;
   int state_size_ = 0;
   SparsityPattern pattern_;
   BlockStructure blocks_;

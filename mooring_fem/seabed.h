@@ -35,7 +35,9 @@ class SeabedSurface {
   bool flat() const { return kind_ == Kind::kFlat; }
   /// The depth and its derivatives below the horizontal point (x, y).
   SeabedPoint At(double x, double y) const;
-  double DepthAt(double x, double y) const { return At(x, y).depth; }
+  double DepthAt(double x, double y) const {
+    return kind_ == Kind::kFlat ? depth_ : At(x, y).depth;  // flat: inline, every node
+  }
   /// The seabed's mean angle of rise [rad] along the straight horizontal path from `from`
   /// toward `to` (positive where it gets shallower): for a plane its slope in that
   /// direction, for a grid the depth difference over the horizontal distance.

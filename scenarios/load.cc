@@ -324,6 +324,8 @@ void ParseEnvironment(const Reader& r, Scenario& scenario) {
     e.waves.direction_toward = AngleDegrees(w->Child("direction_toward_deg"));
     e.waves.spreading = w->Maybe<double>("spreading");
     w->Optional("components", e.waves.components);
+    w->Optional("on_lines", e.waves.on_lines);
+    w->Optional("stretching", e.waves.stretching);
   }
   if (std::optional<Reader> w = r.Find("wind")) {
     w->CheckKeys();

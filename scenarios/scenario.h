@@ -172,6 +172,10 @@ struct WavesSpec {
   double direction_toward = 0.0;    ///< mean direction the waves travel TOWARD [rad]
   std::optional<double> spreading;  ///< cos-2s exponent s; unset = long-crested
   int components = 200;
+  /// The lines see the waves' water velocity and acceleration (finite-depth Airy,
+  /// mooring_fem/wave_kinematics.h) in their drag and inertia; off: only the hull does.
+  bool on_lines = false;
+  std::string stretching = "wheeler";  ///< above the mean surface: "wheeler" or "none"
 };
 
 struct WindSpec {

@@ -610,6 +610,8 @@ constexpr Block kVessel{"The 6-DOF vessel.", kVesselKeys};
 // ---------------------------------------------------------------------------------------
 // environment
 
+constexpr std::string_view kStretchings[] = {"none", "wheeler"};
+
 constexpr Key kWavesKeys[] = {
     WithDefault({.name = "components",
                  .kind = Kind::kInteger,
@@ -626,8 +628,22 @@ constexpr Key kWavesKeys[] = {
                 MOORSIM_DEFAULT(WavesSpec{}.gamma)),
     Required(
         Positive("hs", "m", 30.0, "Significant wave height.", "the highest sea states measured")),
+    WithDefault({.name = "on_lines",
+                 .kind = Kind::kBoolean,
+                 .description = "The lines see the waves' water velocity and acceleration in "
+                                "their drag and inertia (finite-depth Airy); false: only the "
+                                "hull feels the waves."},
+                MOORSIM_DEFAULT(WavesSpec{}.on_lines)),
     NonNegative("spreading", "", 100.0, "cos-2s spreading exponent s; omitted = long-crested.",
                 "s = 75 is narrow swell; omit it for long-crested waves"),
+    WithDefault({.name = "stretching",
+                 .kind = Kind::kString,
+                 .description = "The lines' wave kinematics under a crest: wheeler (stretched "
+                                "between the seabed and the instantaneous surface) or none "
+                                "(linear theory held constant above the mean surface).",
+                 .choices = kStretchings,
+                 .choice_noun = "stretching rule"},
+                MOORSIM_DEFAULT(WavesSpec{}.stretching)),
     {.name = "tp",
      .unit = "s",
      .description = "Peak period.",

@@ -93,8 +93,8 @@ struct WaveResponseOptions {
 ///
 /// Evaluation allocates nothing and throws nothing: a non-finite t, x, y or ψ gives NaN in
 /// every output, for the ODE adapter to reject the step. Cost per component: one sincos
-/// (internal::SinCos), 6 complex and 4 or 6 real blends, and as many square roots. For 200
-/// components (release build, SSE2, thread CPU time on a shared 2.6 GHz AMD EPYC VM):
+/// (internal::SinCos, core/sincos.h), 6 complex and 4 or 6 real blends, and as many square roots.
+/// For 200 components (release build, SSE2, thread CPU time on a shared 2.6 GHz AMD EPYC VM):
 /// Evaluate 5.5 µs, Motion alone 3.1 µs, DriftLoad alone 4.3 µs, MeanDrift 1.1 µs; with
 /// std::sin and std::cos instead of SinCos, Evaluate takes 7.5 µs.
 class WaveResponse {
@@ -155,20 +155,5 @@ class WaveResponse {
   // β = −π + 2π g / n.
   std::vector<double> table_;
 };
-
-namespace internal {
-
-/// sin and cos of `count` angles [rad] at once, for the hot loop: Cody-Waite reduction by
-/// π/2 in three parts and fdlibm's minimax kernels on [−π/4, π/4] (Sun Microsystems'
-/// fdlibm k_sin.c / k_cos.c coefficients; Muller, "Elementary Functions", 3rd ed. 2016,
-/// ch. 11), free of branches so the compiler vectorises it: 4 ns per angle against 12 ns
-/// for std::sin plus std::cos on the development machine. Absolute error at most 2.3e-16
-/// (2 ulp from glibc over 2^20 random angles in each of ±1 … ±1e8 rad). The reduction is
-/// exact for |angle| ≤ 1.6e6 rad (a 3 h record at 3.6 rad/s reaches 4e4 rad); larger
-/// finite angles fall back to std::sin and std::cos, non-finite ones give NaN.
-/// Allocation-free. Public only for its test.
-void SinCos(const double* angle, double* sine, double* cosine, int count);
-
-}  // namespace internal
 
 }  // namespace moorsim::vessel

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <random>
 #include <utility>
@@ -189,6 +190,28 @@ TEST(MooringJacobian, ATwistedDepthGridMatchesFiniteDifferences) {
   EXPECT_GE(NodesInContact(f, 12), 2);
   EXPECT_NE(f.mooring.seabed().surface.At(1500.0, 800.0).dxy, 0.0);
   ExpectJacobianMatchesFiniteDifferences(f.mooring, f.x, f.fairleads);
+}
+
+TEST(MooringJacobian, LinesInWavesMatchFiniteDifferences) {
+  // A long-period sea that reaches a few hundred metres down: drag on the velocity relative
+  // to current and waves, the water's inertia on the segments and on the joints' bodies,
+  // all with their dependence on position; Wheeler stretching and linear theory.
+  const std::vector<WaveTrain> sea = {
+      {0.35, 3.0, 0.4, 0.5}, {0.55, 2.0, 1.9, -0.3}, {0.9, 1.0, 4.4, 0.8}};
+  for (const WaveStretching stretching : {WaveStretching::kWheeler, WaveStretching::kNone}) {
+    Fixture f(CompositeTestSpec());
+    f.mooring.SetWaves(std::make_shared<const WaveKinematics>(sea, 1000.0, 9.81, stretching));
+    f.mooring.SetTime(17.3);
+    int in_waves = 0;
+    for (int line = 0; line < f.mooring.num_lines(); ++line) {
+      for (int k = 1; k < f.mooring.line(line).segments; ++k) {
+        const Vec3 r = f.mooring.NodePosition(f.x.data(), line, k, f.fairleads);
+        in_waves += f.mooring.waves()->At(17.3, r, false).velocity.norm() > 1e-3;
+      }
+    }
+    EXPECT_GE(in_waves, 4);
+    ExpectJacobianMatchesFiniteDifferences(f.mooring, f.x, f.fairleads);
+  }
 }
 
 TEST(MooringJacobian, GroundedNodesAreExercised) {

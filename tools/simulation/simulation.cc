@@ -351,6 +351,16 @@ Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed)
   if (env.waves.enabled) {
     parts_->sea.emplace(env.waves, *hydro_, scenario_.mooring.water.gravity, seed_);
     plant_->SetSea(&*parts_->sea);
+    if (env.waves.on_lines) {  // the same components, in the lines' finite depth
+      std::vector<mooring_fem::WaveTrain> trains;
+      for (const vessel::WaveComponent& c : parts_->sea->realisation().components()) {
+        trains.push_back({c.omega, c.amplitude, c.phase, c.direction});
+      }
+      mooring_.SetWaves(std::make_shared<const mooring_fem::WaveKinematics>(
+          trains, scenario_.mooring.water.depth, scenario_.mooring.water.gravity,
+          env.waves.stretching == "none" ? mooring_fem::WaveStretching::kNone
+                                         : mooring_fem::WaveStretching::kWheeler));
+    }
   }
   if (env.wind.enabled) {
     parts_->wind.emplace(ToWindParameters(v), env.wind, seed_);
