@@ -12,8 +12,9 @@ namespace moorsim::mooring_fem {
 
 namespace {
 
-// A component's velocity and acceleration below this are left out [m/s, m/s^2].
-constexpr double kNegligible = 1e-6;
+// A component's velocity and acceleration below this are left out [m/s, m/s^2]: a
+// hundredth of a millimetre per second, against currents of 0.1-1 m/s.
+constexpr double kNegligible = 1e-5;
 
 [[noreturn]] void Refuse(const std::string& what, double value) {
   std::ostringstream out;
@@ -65,23 +66,37 @@ WaveKinematics::WaveKinematics(const std::vector<WaveTrain>& trains, double dept
     if (!std::isfinite(w.phase) || !std::isfinite(w.direction)) {
       Refuse("phase and direction must be finite, not", w.phase + w.direction);
     }
-    const double k = WaveNumber(w.omega, depth, gravity);
-    omega_.push_back(w.omega);
-    amplitude_.push_back(w.amplitude);
-    phase_.push_back(w.phase);
-    k_.push_back(k);
-    cos_dir_.push_back(std::cos(w.direction));
-    sin_dir_.push_back(std::sin(w.direction));
-    kx_.push_back(k * cos_dir_.back());
-    ky_.push_back(k * sin_dir_.back());
-    decay_.push_back(1.0 / -std::expm1(-2.0 * k * depth));
-    // Velocity a omega C and acceleration a omega^2 C with C <= 2 exp(k zeta) / (1 -
-    // exp(-2 k h)): below `reach` both are under kNegligible.
-    const double size = 2.0 * w.amplitude * w.omega * std::max(1.0, w.omega) * decay_.back();
-    reach_.push_back(size > kNegligible ? std::log(size / kNegligible) / k : 0.0);
-    highest_crest_ += w.amplitude;
-    deepest_reach_ = std::max(deepest_reach_, reach_.back());
   }
+  // The components that reach deepest first, so those that reach a point are a prefix.
+  // Velocity a omega C and acceleration a omega^2 C with C <= 2 exp(k zeta) / (1 -
+  // exp(-2 k h)): below `reach` both are under kNegligible.
+  struct Sorted {
+    WaveTrain w;
+    double k, decay, reach;
+  };
+  std::vector<Sorted> sorted;
+  for (const WaveTrain& w : trains) {
+    const double k = WaveNumber(w.omega, depth, gravity);
+    const double decay = 1.0 / -std::expm1(-2.0 * k * depth);
+    const double size = 2.0 * w.amplitude * w.omega * std::max(1.0, w.omega) * decay;
+    sorted.push_back({w, k, decay, size > kNegligible ? std::log(size / kNegligible) / k : 0.0});
+  }
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](const Sorted& a, const Sorted& b) { return a.reach > b.reach; });
+  for (const Sorted& c : sorted) {
+    omega_.push_back(c.w.omega);
+    amplitude_.push_back(c.w.amplitude);
+    phase_.push_back(c.w.phase);
+    k_.push_back(c.k);
+    cos_dir_.push_back(std::cos(c.w.direction));
+    sin_dir_.push_back(std::sin(c.w.direction));
+    kx_.push_back(c.k * cos_dir_.back());
+    ky_.push_back(c.k * sin_dir_.back());
+    decay_.push_back(c.decay);
+    reach_.push_back(c.reach);
+    highest_crest_ += c.w.amplitude;
+  }
+  deepest_reach_ = reach_.empty() ? 0.0 : reach_.front();
 }
 
 double WaveKinematics::Elevation(double t, double x, double y) const {
@@ -105,7 +120,17 @@ WaterMotion WaveKinematics::At(double t, const Vec3& r, bool with_gradient) cons
   }
   if (zeta_bound < -deepest_reach_ || omega_.empty()) return out;
 
-  const std::size_t n = omega_.size();
+  // The components that reach the point at its highest: a prefix (the constructor's order).
+  const auto reaching = [&](double height) {
+    return static_cast<std::size_t>(
+        std::partition_point(reach_.begin(), reach_.end(), [&](double d) { return height >= -d; }) -
+        reach_.begin());
+  };
+  // Wheeler's stretched height needs the surface above the point (every component), and
+  // so does a point that may be above a trough; deeper points with no stretching need only
+  // the components that reach them.
+  const bool surface_needed = stretching_ == WaveStretching::kWheeler || zeta > -highest_crest_;
+  const std::size_t n = surface_needed ? omega_.size() : reaching(zeta_bound);
   thread_local PhaseScratch scratch;
   scratch.Resize(n);
   double* chi = scratch.chi.data();
@@ -118,12 +143,14 @@ WaterMotion WaveKinematics::At(double t, const Vec3& r, bool with_gradient) cons
 
   // The surface above the point and its slope; the stretched height and its gradient.
   double eta = 0.0, eta_x = 0.0, eta_y = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    eta += amplitude_[i] * c[i];
-    eta_x += amplitude_[i] * kx_[i] * s[i];
-    eta_y += amplitude_[i] * ky_[i] * s[i];
+  if (surface_needed) {
+    for (std::size_t i = 0; i < n; ++i) {
+      eta += amplitude_[i] * c[i];
+      eta_x += amplitude_[i] * kx_[i] * s[i];
+      eta_y += amplitude_[i] * ky_[i] * s[i];
+    }
+    if (zeta > eta) return out;  // out of the water
   }
-  if (zeta > eta) return out;  // out of the water
   double zs = 0.0;
   Vec3 dzs = Vec3::Zero();  // d zeta_s / d r
   if (stretching_ == WaveStretching::kWheeler) {
@@ -135,11 +162,13 @@ WaterMotion WaveKinematics::At(double t, const Vec3& r, bool with_gradient) cons
     dzs.z() = zeta < 0.0 ? -1.0 : 0.0;
   }
 
-  for (std::size_t i = 0; i < n; ++i) {
-    if (zs < -reach_[i]) continue;
+  const std::size_t active = std::min(n, reaching(zs));
+  for (std::size_t i = 0; i < active; ++i) {
     const double k = k_[i];
     const double q = std::exp(k * zs);
-    const double p = std::exp(-k * (zs + 2.0 * h));
+    // The seabed's image, exp(-k (zs + 2 h)) = q exp(-2 k (zs + h)): below 1e-16 of q
+    // where k (zs + h) > 18.5 (deep water for this component at this point).
+    const double p = k * (zs + h) > 18.5 ? 0.0 : std::exp(-k * (zs + 2.0 * h));
     const double C = (q + p) * decay_[i];
     const double S = (q - p) * decay_[i];
     const double av = amplitude_[i] * omega_[i];

@@ -17,7 +17,7 @@
 // stretching off, at min(zeta, 0) (linear theory held constant above the mean surface).
 // Above the instantaneous surface the water does not move (the point is out of it).
 //
-// A component whose velocity and acceleration at a point are below 1e-6 m/s and m/s^2 is
+// A component whose velocity and acceleration at a point are below 1e-5 m/s and m/s^2 is
 // skipped there (its profile decays as exp(k zeta)): a line's deep nodes cost nothing.
 #pragma once
 
@@ -68,7 +68,7 @@ class WaveKinematics {
   int size() const { return static_cast<int>(omega_.size()); }
 
  private:
-  // Structure of arrays, one entry per component.
+  // Structure of arrays, one entry per component, the deepest reaching first.
   std::vector<double> omega_, amplitude_, phase_, k_, kx_, ky_, cos_dir_, sin_dir_;
   std::vector<double> decay_;  // 1 / (1 - exp(-2 k h))
   std::vector<double> reach_;  // depth below which the component is skipped [m]
