@@ -27,11 +27,37 @@
 
 namespace moorsim::scenarios {
 
+/// A stretch of a template line, from the anchor up, of one of kTemplateLineTypes.
+struct TemplateSection {
+  std::string type;     ///< "chain" (the seed chain) or "polyester" (a 200 mm rope)
+  double length = 0.0;  ///< unstretched [m]
+  int segments = 0;     ///< 0: one per 40 m, at least 2
+};
+
+/// The line types a template line may be made of: name in --sections, name in the scenario.
+struct TemplateLineType {
+  std::string_view name;
+  std::string_view scenario_name;
+  std::string_view description;
+};
+extern const std::vector<TemplateLineType> kTemplateLineTypes;
+
+/// Parses --sections: "TYPE:LENGTH[:SEGMENTS],..." from the anchor up, e.g.
+/// "chain:400,polyester:1650:30,chain:150". Throws InputError "--sections: ...".
+std::vector<TemplateSection> ParseTemplateSections(const std::string& text);
+
 struct TemplateRequest {
-  std::string kind;                  ///< a kTemplateKinds name
-  int lines = 0;                     ///< number of lines N, 3..kMaxTemplateLines
-  double depth = 0.0;                ///< water depth [m]
-  double length = 0.0;               ///< unstretched length of every line [m]
+  std::string kind;     ///< a kTemplateKinds name
+  int lines = 0;        ///< number of lines N, 3..kMaxTemplateLines
+  double depth = 0.0;   ///< water depth [m]
+  double length = 0.0;  ///< unstretched length of every line [m] (no sections)
+  /// Every line's sections from the anchor up; empty: one section of the seed chain,
+  /// `length` long. (Give one of the two.)
+  std::vector<TemplateSection> sections;
+  /// 0: the bearings evenly spread; else the lines in this many groups (>= 3), the groups
+  /// evenly spread and the lines of a group `group_spread_deg` apart.
+  int groups = 0;
+  double group_spread_deg = 5.0;
   std::optional<double> pretension;  ///< fairlead tension of every line [N], or
   std::optional<double> radius;      ///< anchors' horizontal distance from the reference point [m]
   std::string hydrodynamics;         ///< vessel.hydrodynamics as YAML text (quoted as needed)

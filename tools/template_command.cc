@@ -21,9 +21,12 @@ struct TemplateOptions {
   std::string kind;
   std::string lines;
   std::string depth;
-  std::string length;
+  std::optional<std::string> length;
   std::optional<std::string> pretension;
   std::optional<std::string> radius;
+  std::optional<std::string> sections;
+  std::optional<std::string> groups;
+  std::optional<std::string> group_spread;
   std::optional<std::string> out;
   std::optional<std::string> hydrodynamics;
   bool force = false;
@@ -51,9 +54,33 @@ int RunTemplate(const TemplateOptions& o) {
   }
   request.lines = static_cast<int>(lines);
   request.depth = ParseNumber("--depth", o.depth);
-  request.length = ParseNumber("--length", o.length);
-  std::string command = "moorsim template " + o.kind + " --lines " + o.lines + " --depth " +
-                        o.depth + " --length " + o.length;
+  std::string command =
+      "moorsim template " + o.kind + " --lines " + o.lines + " --depth " + o.depth;
+  if (o.length.has_value() == o.sections.has_value()) {
+    throw InputError(std::string("--length, --sections: give exactly one of them (") +
+                     (o.length ? "both" : "neither") + " given)");
+  }
+  if (o.length) {
+    request.length = ParseNumber("--length", *o.length);
+    command += " --length " + *o.length;
+  }
+  if (o.sections) {
+    request.sections = scenarios::ParseTemplateSections(*o.sections);
+    command += " --sections " + *o.sections;
+  }
+  if (o.groups) {
+    const double groups = ParseNumber("--groups", *o.groups);
+    if (groups != std::floor(groups) || std::abs(groups) > 1e9) {
+      throw InputError("--groups: '" + *o.groups + "' must be a whole number");
+    }
+    request.groups = static_cast<int>(groups);
+    command += " --groups " + *o.groups;
+  }
+  if (o.group_spread) {
+    if (!o.groups) throw InputError("--group-spread: only with --groups");
+    request.group_spread_deg = ParseNumber("--group-spread", *o.group_spread);
+    command += " --group-spread " + *o.group_spread;
+  }
   if (o.pretension) {
     request.pretension = ParseNumber("--pretension", *o.pretension);
     command += " --pretension " + *o.pretension;
@@ -114,10 +141,13 @@ Command AddTemplateCommand(CLI::App& app) {
   }
   sub->footer(
       "\nKinds:\n" + kinds +
-      "\nThe seed FPSO on N identical lines of the seed chain (80 mm, 275 kg/m, EA 2.28785e8 N),\n"
-      "bearings 360/N deg apart, each line radial from the vessel's reference point, fairleads\n"
+      "\nThe seed FPSO on N identical lines of the seed chain (80 mm, 275 kg/m, EA 2.28785e8 N)\n"
+      "--length long, or of --sections (e.g. chain:400,polyester:1650,chain:150; the rope is a\n"
+      "generic 200 mm polyester, 40 kg/m, EA 2e8 N; segments one per 40 m unless given),\n"
+      "bearings 360/N deg apart or in --groups (G groups 360/G deg apart, the lines of a group\n"
+      "--group-spread deg apart), each line radial from the vessel's reference point, fairleads\n"
       "12 m deep. Every anchor is placed on the seabed where the elastic catenary (seabed\n"
-      "contact, stretch, the chain's weight in water) gives the fairlead tension --pretension,\n"
+      "contact, stretch, the lines' weight in water) gives the fairlead tension --pretension,\n"
       "or at --radius with the resulting pretension written in a comment; give exactly one.\n"
       "The pretension must lie in the touchdown range: above the weight in water of the line\n"
       "hanging straight down to the seabed (below it the line lies slack), at most the tension\n"
@@ -129,7 +159,13 @@ Command AddTemplateCommand(CLI::App& app) {
   sub->add_option("kind", o->kind, "spread or turret")->required();
   sub->add_option("--lines", o->lines, "number of lines N (3..64)")->required();
   sub->add_option("--depth", o->depth, "water depth [m]")->required();
-  sub->add_option("--length", o->length, "unstretched length of every line [m]")->required();
+  sub->add_option("--length", o->length, "unstretched length of every line of chain [m]");
+  sub->add_option("--sections", o->sections,
+                  "instead of --length: every line's sections from the anchor up, "
+                  "TYPE:LENGTH[:SEGMENTS],... (types: chain, polyester)");
+  sub->add_option("--groups", o->groups, "the lines in this many groups (>= 3)");
+  sub->add_option("--group-spread", o->group_spread,
+                  "with --groups: degrees between the lines of a group (default 5)");
   sub->add_option("--pretension", o->pretension, "fairlead tension of every line at rest [N]");
   sub->add_option("--radius", o->radius,
                   "anchors' horizontal distance from the vessel's reference point [m]");

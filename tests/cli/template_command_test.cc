@@ -305,6 +305,15 @@ TEST(TemplateCommand, BadInputIsOneLineNamingTheFlagAndExitTwo) {
        "--radius: 2500 m is too large: beyond 2041.5 m from the reference point the line is "
        "pulled straight: its anchor as far from its fairlead as it is long (unstretched)"},
       {with({"--radius", "1.9e3,2e3"}), "--radius: '1.9e3,2e3' must be a single number"},
+      {{"turret", "--lines", "8", "--depth", "1000", "--pretension", "3e6"},
+       "--length, --sections: give exactly one of them (neither given)"},
+      {{"turret", "--lines", "8", "--depth", "1000", "--sections", "chain:400,rope:1600",
+        "--pretension", "2e6"},
+       "--sections: 'rope:1600' (section 2): unknown line type 'rope' (known: chain, "
+       "polyester)"},
+      {with({"--pretension", "3e6", "--groups", "3"}),
+       "--groups: 3 does not divide the 8 lines into equal groups"},
+      {with({"--pretension", "3e6", "--group-spread", "3"}), "--group-spread: only with --groups"},
       {with({"--pretension", "3e6", "--out", "no/such/folder/x.yaml"}),
        "--out: folder 'no/such/folder' does not exist"},
       {with({"--pretension", "3e6", "--hydrodynamics", "no_such_stem"}),

@@ -11,6 +11,8 @@
 
 #include "core/error.h"
 #include "mooring_fem/catenary.h"
+#include "mooring_fem/mooring_system.h"
+#include "scenarios/convert.h"
 #include "scenarios/load.h"
 
 namespace moorsim::scenarios {
@@ -99,6 +101,87 @@ TEST(PlanTemplate, TurretLineOnePointsNorthAndSpreadLinesAvoidTheBow) {
   EXPECT_DOUBLE_EQ(spread.lines[0].bearing_deg, 45.0);
   EXPECT_DOUBLE_EQ(spread.span, turret.span);  // same line, same pretension
   EXPECT_DOUBLE_EQ(spread.anchor_radius, spread.span + 22.0);
+}
+
+// Chain-polyester-chain lines in four groups of three: the file loads, the bearings are the
+// groups', and the FEM settled at rest (an independent model: lumped masses, penalty seabed)
+// gives every line the pretension the catenary placed its anchor for, within 0.2 %.
+TEST(PlanTemplate, SectionedLinesInGroupsCarryTheirPretensionInTheFem) {
+  TemplateRequest request = Request("turret", 12, 1500.0, 0.0);
+  request.sections = ParseTemplateSections("chain:300,polyester:2200,chain:200");
+  request.groups = 4;
+  request.pretension = 1.5e6;
+  TemplateLayout layout;
+  Scenario s;
+  ASSERT_NO_THROW(s = PlanWriteLoad(request, &layout));
+  EXPECT_NEAR(layout.pretension, 1.5e6, 1e-6 * 1.5e6);
+  ASSERT_EQ(s.mooring.lines.size(), 12u);
+  for (int k = 0; k < 12; ++k) {
+    const double expected = std::fmod(90.0 * (k / 3) + 5.0 * (k % 3 - 1) + 360.0, 360.0);
+    EXPECT_NEAR(layout.lines[k].bearing_deg, expected, 1e-12) << "line " << k + 1;
+    ASSERT_EQ(s.mooring.lines[k].sections.size(), 3u);
+    EXPECT_EQ(s.mooring.lines[k].sections[1].type, "polyester");
+    EXPECT_EQ(s.mooring.lines[k].sections[1].segments, 55);  // one per 40 m
+  }
+  mooring_fem::MooringSystem mooring(ToMooringParameters(s.mooring));
+  std::vector<Vec3> positions;
+  std::vector<PointKinematics> fairleads(12);
+  for (int i = 0; i < 12; ++i) {
+    positions.push_back(mooring.line(i).fairlead_body);  // the vessel at the origin
+    fairleads[i].position = positions.back();
+  }
+  std::vector<double> x(mooring.StateSize());
+  mooring.CatenaryState(positions, x.data());
+  mooring.SettleStatic(positions, x.data());
+  for (const mooring_fem::LineLoad& load : mooring.LineLoads(x.data(), fairleads)) {
+    EXPECT_NEAR(load.fairlead_force.norm(), 1.5e6, 2e-3 * 1.5e6);
+  }
+  // Both ends of the sectioned line's range load too.
+  request.pretension.reset();
+  for (double tension : {layout.max_pretension, layout.min_pretension * (1.0 + 1e-6)}) {
+    request.pretension = tension;
+    ASSERT_NO_THROW(PlanWriteLoad(request)) << tension;
+  }
+  request.pretension = layout.max_pretension * (1.0 + 1e-6);
+  EXPECT_THROW(PlanTemplate(request), InputError);
+}
+
+TEST(PlanTemplate, BadSectionsAndGroupsAreOneMessageNamingTheFlag) {
+  const auto error = [](auto&& body) {
+    try {
+      body();
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  EXPECT_EQ(error([] { ParseTemplateSections("chain:400,wire:100"); }),
+            "--sections: 'wire:100' (section 2): unknown line type 'wire' (known: chain, "
+            "polyester)");
+  EXPECT_EQ(error([] { ParseTemplateSections("chain"); }),
+            "--sections: 'chain' (section 1) must be TYPE:LENGTH or TYPE:LENGTH:SEGMENTS");
+  EXPECT_EQ(error([] { ParseTemplateSections("chain:-4"); }),
+            "--sections: 'chain:-4' (section 1): the length must be a number in (0, 20000] m");
+  EXPECT_EQ(error([] { ParseTemplateSections("chain:400:2.5"); }),
+            "--sections: 'chain:400:2.5' (section 1): the segments must be a whole number in "
+            "1..10000");
+  TemplateRequest request = Request("turret", 12, 1500.0, 2000.0);
+  request.pretension = 1.5e6;
+  request.groups = 5;
+  EXPECT_EQ(error([&] { PlanTemplate(request); }),
+            "--groups: 5 does not divide the 12 lines into equal groups");
+  request.groups = 2;
+  EXPECT_EQ(error([&] { PlanTemplate(request); }),
+            "--groups: 2 must be >= 3 (fewer groups cannot hold the vessel in every direction)");
+  request.groups = 4;
+  request.group_spread_deg = 50.0;
+  EXPECT_EQ(error([&] { PlanTemplate(request); }),
+            "--group-spread: 50 deg must be > 0 and keep each group of 3 lines within its 90 deg "
+            "(groups apart)");
+  request.group_spread_deg = 5.0;
+  request.sections = ParseTemplateSections("chain:2000");
+  EXPECT_EQ(error([&] { PlanTemplate(request); }),
+            "--length, --sections: give exactly one of them (both given)");
 }
 
 }  // namespace
