@@ -15,18 +15,18 @@
 namespace moorsim::mooring_fem {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kSlopeDegree = std::numbers::pi / 180.0;
 
-Seabed Plane(double slope_deg, double direction_deg) {
+Seabed PlaneSeabed(double slope_deg, double direction_deg) {
   Seabed seabed;
-  seabed.slope = slope_deg * kDeg;
-  seabed.slope_direction = direction_deg * kDeg;
+  seabed.slope = slope_deg * kSlopeDegree;
+  seabed.slope_direction = direction_deg * kSlopeDegree;
   return seabed;
 }
 
 // A grid sampling h(x, y) at the given axes.
 template <class Depth>
-DepthGrid Sampled(std::vector<double> x, std::vector<double> y, Depth h) {
+DepthGrid SampledGrid(std::vector<double> x, std::vector<double> y, Depth h) {
   DepthGrid grid;
   grid.x = std::move(x);
   grid.y = std::move(y);
@@ -37,20 +37,23 @@ DepthGrid Sampled(std::vector<double> x, std::vector<double> y, Depth h) {
 }
 
 TEST(SeabedSurface, APlaneDeepensAlongItsDirectionByTheTangentOfItsSlope) {
-  const SeabedSurface plane(Plane(3.0, 60.0), 1000.0);
-  const double rate = std::tan(3.0 * kDeg);
+  const SeabedSurface plane(PlaneSeabed(3.0, 60.0), 1000.0);
+  const double rate = std::tan(3.0 * kSlopeDegree);
   const double d = 500.0;
-  const SeabedPoint p = plane.At(d * std::cos(60.0 * kDeg), d * std::sin(60.0 * kDeg));
+  const SeabedPoint p =
+      plane.At(d * std::cos(60.0 * kSlopeDegree), d * std::sin(60.0 * kSlopeDegree));
   EXPECT_NEAR(p.depth, 1000.0 + d * rate, 1e-9);
-  EXPECT_NEAR(p.dx, rate * std::cos(60.0 * kDeg), 1e-15);
-  EXPECT_NEAR(p.dy, rate * std::sin(60.0 * kDeg), 1e-15);
+  EXPECT_NEAR(p.dx, rate * std::cos(60.0 * kSlopeDegree), 1e-15);
+  EXPECT_NEAR(p.dy, rate * std::sin(60.0 * kSlopeDegree), 1e-15);
   EXPECT_EQ(p.dxy, 0.0);
   // Across the direction the depth does not change.
-  EXPECT_NEAR(plane.DepthAt(-d * std::sin(60.0 * kDeg), d * std::cos(60.0 * kDeg)), 1000.0, 1e-9);
+  EXPECT_NEAR(plane.DepthAt(-d * std::sin(60.0 * kSlopeDegree), d * std::cos(60.0 * kSlopeDegree)),
+              1000.0, 1e-9);
   // Rising toward where it gets shallower: from the deep side back toward the origin.
-  EXPECT_NEAR(plane.RiseAlong(Vec3(d * std::cos(60.0 * kDeg), d * std::sin(60.0 * kDeg), 0.0),
-                              Vec3::Zero()),
-              3.0 * kDeg, 1e-12);
+  EXPECT_NEAR(plane.RiseAlong(
+                  Vec3(d * std::cos(60.0 * kSlopeDegree), d * std::sin(60.0 * kSlopeDegree), 0.0),
+                  Vec3::Zero()),
+              3.0 * kSlopeDegree, 1e-12);
   EXPECT_TRUE(SeabedSurface(Seabed{}, 1000.0).flat());
   EXPECT_FALSE(plane.flat());
 }
@@ -60,7 +63,7 @@ TEST(SeabedSurface, AGridIsBilinearInsideAndHeldAtItsEdgesBeyond) {
   // gradient and its twist exactly, in every cell.
   const auto h = [](double x, double y) { return 1000.0 + 0.01 * x - 0.02 * y + 4e-6 * x * y; };
   Seabed seabed;
-  seabed.grid = Sampled({-3000.0, -500.0, 3000.0}, {-2000.0, 0.0, 100.0, 2000.0}, h);
+  seabed.grid = SampledGrid({-3000.0, -500.0, 3000.0}, {-2000.0, 0.0, 100.0, 2000.0}, h);
   const SeabedSurface grid(seabed, 1000.0);
   for (const auto& [x, y] : std::vector<std::pair<double, double>>{
            {0.0, 0.0}, {-2999.0, 1999.0}, {1234.5, -876.5}, {-500.0, 50.0}}) {
@@ -91,7 +94,7 @@ TEST(SeabedSurface, ABadGridOrSlopeIsOneMessageNamingIt) {
     }
     return std::string("accepted");
   };
-  DepthGrid ok = Sampled({0.0, 100.0}, {0.0, 100.0}, [](double, double) { return 900.0; });
+  DepthGrid ok = SampledGrid({0.0, 100.0}, {0.0, 100.0}, [](double, double) { return 900.0; });
   EXPECT_EQ(bad(ok), "accepted");
   DepthGrid g = ok;
   g.x = {100.0, 0.0};
@@ -116,7 +119,7 @@ TEST(SeabedSurface, ABadGridOrSlopeIsOneMessageNamingIt) {
   g.depth[2] = 0.0;
   DepthGridProblem(g, &row);
   EXPECT_EQ(row, 1);  // the second x row
-  EXPECT_THROW(SeabedSurface(Plane(90.0, 0.0), 1000.0), InputError);
+  EXPECT_THROW(SeabedSurface(PlaneSeabed(90.0, 0.0), 1000.0), InputError);
 }
 
 // One chain line whose anchor is on the seabed given, settled at rest; the fairlead force.
@@ -143,14 +146,15 @@ Vec3 SettledFairleadForce(const Seabed& seabed) {
 TEST(SeabedSurface, TheFemAtRestOnAGridSamplingAPlaneIsTheFemOnThePlane) {
   // A plane 3 deg deep toward 200 deg, sampled on a coarse grid (one cell under the
   // whole line) and on a fine one: the same surface, the same equilibrium.
-  const Seabed plane = Plane(3.0, 200.0);
+  const Seabed plane = PlaneSeabed(3.0, 200.0);
   const SeabedSurface surface(plane, 1000.0);
   const Vec3 on_plane = SettledFairleadForce(plane);
   for (const double step : {5000.0, 250.0}) {
     std::vector<double> axis;
     for (double v = -5000.0; v <= 5000.0 + 1e-9; v += step) axis.push_back(v);
     Seabed gridded;
-    gridded.grid = Sampled(axis, axis, [&](double x, double y) { return surface.DepthAt(x, y); });
+    gridded.grid =
+        SampledGrid(axis, axis, [&](double x, double y) { return surface.DepthAt(x, y); });
     const Vec3 on_grid = SettledFairleadForce(gridded);
     EXPECT_LT((on_grid - on_plane).norm(), 1e-6 * on_plane.norm()) << "grid step " << step;
   }

@@ -1,5 +1,5 @@
 // The lines' wave kinematics against closed forms written here: the finite-depth dispersion
-// relation, a single Airy wave's velocity and acceleration from its potential (cosh/sinh as
+// relation, a single AiryWave wave's velocity and acceleration from its potential (cosh/sinh as
 // the textbook writes them), the deep- and shallow-water limits, incompressibility, the
 // acceleration as the time derivative of the velocity, Wheeler stretching's surface and
 // seabed, and the gradients against finite differences.
@@ -16,22 +16,21 @@
 namespace moorsim::mooring_fem {
 namespace {
 
-constexpr double kG = 9.81;
-constexpr double kPi = std::numbers::pi;
+constexpr double kWaveGravity = 9.81;
 
 TEST(WaveNumber, SolvesTheFiniteDepthDispersionRelationWithItsLimits) {
   for (const double depth : {5.0, 30.0, 150.0, 1000.0}) {
     for (const double omega : {0.1, 0.3, 0.7, 1.5, 3.0}) {
-      const double k = WaveKinematics::WaveNumber(omega, depth, kG);
-      EXPECT_NEAR(kG * k * std::tanh(k * depth), omega * omega, 1e-12 * omega * omega)
+      const double k = WaveKinematics::WaveNumber(omega, depth, kWaveGravity);
+      EXPECT_NEAR(kWaveGravity * k * std::tanh(k * depth), omega * omega, 1e-12 * omega * omega)
           << depth << " m, " << omega << " rad/s";
     }
   }
   // Deep water: omega^2 / g to the bit where tanh(k h) is 1 in double precision.
-  EXPECT_EQ(WaveKinematics::WaveNumber(0.45, 1000.0, kG), 0.45 * 0.45 / kG);
+  EXPECT_EQ(WaveKinematics::WaveNumber(0.45, 1000.0, kWaveGravity), 0.45 * 0.45 / kWaveGravity);
   // Shallow water: k -> omega / sqrt(g h) (k h = 0.02 here: within 0.01 %).
-  EXPECT_NEAR(WaveKinematics::WaveNumber(0.01, 40.0, kG), 0.01 / std::sqrt(kG * 40.0),
-              1e-4 * 0.01 / std::sqrt(kG * 40.0));
+  EXPECT_NEAR(WaveKinematics::WaveNumber(0.01, 40.0, kWaveGravity),
+              0.01 / std::sqrt(kWaveGravity * 40.0), 1e-4 * 0.01 / std::sqrt(kWaveGravity * 40.0));
 }
 
 // One wave of amplitude a, frequency w, toward `direction`: its velocity potential
@@ -39,15 +38,16 @@ TEST(WaveNumber, SolvesTheFiniteDepthDispersionRelationWithItsLimits) {
 // (Faltinsen 1990, table 2.1), and the water's velocity as phi's gradient by central
 // differences. The potential itself is pinned by the linear free-surface conditions
 // (OneWavesPotentialMeetsTheFreeSurfaceConditions).
-struct Airy {
+struct AiryWave {
   double a, w, direction, phase, h;
-  double k() const { return WaveKinematics::WaveNumber(w, h, kG); }
+  double k() const { return WaveKinematics::WaveNumber(w, h, kWaveGravity); }
   double Chi(double t, double x, double y) const {
     return w * t - k() * (x * std::cos(direction) + y * std::sin(direction)) + phase;
   }
   double Elevation(double t, double x, double y) const { return a * std::cos(Chi(t, x, y)); }
   double Potential(double t, double x, double y, double zeta) const {
-    return -kG * a / w * std::cosh(k() * (zeta + h)) / std::cosh(k() * h) * std::sin(Chi(t, x, y));
+    return -kWaveGravity * a / w * std::cosh(k() * (zeta + h)) / std::cosh(k() * h) *
+           std::sin(Chi(t, x, y));
   }
   // NED velocity at r: (d phi/dx, d phi/dy, -d phi/dzeta).
   Vec3 Velocity(double t, const Vec3& r) const {
@@ -63,7 +63,7 @@ struct Airy {
 TEST(WaveKinematics, OneWavesPotentialMeetsTheFreeSurfaceConditions) {
   // Linearised at the mean surface: d eta/dt = d phi/d zeta (kinematic) and
   // g eta = -d phi/dt (dynamic).
-  const Airy wave{1.5, 0.5, 0.7, 0.3, 30.0};
+  const AiryWave wave{1.5, 0.5, 0.7, 0.3, 30.0};
   const double e = 1e-5;
   for (const double t : {0.0, 2.0, 7.5}) {
     const double deta_dt = (wave.Elevation(t + e, 3, 4) - wave.Elevation(t - e, 3, 4)) / (2 * e);
@@ -71,7 +71,7 @@ TEST(WaveKinematics, OneWavesPotentialMeetsTheFreeSurfaceConditions) {
     const double dphi_dt =
         (wave.Potential(t + e, 3, 4, 0) - wave.Potential(t - e, 3, 4, 0)) / (2 * e);
     EXPECT_NEAR(deta_dt, dphi_dz, 1e-8);
-    EXPECT_NEAR(kG * wave.Elevation(t, 3, 4), -dphi_dt, 1e-7);
+    EXPECT_NEAR(kWaveGravity * wave.Elevation(t, 3, 4), -dphi_dt, 1e-7);
   }
 }
 
@@ -79,8 +79,8 @@ TEST(WaveKinematics, OneWaveIsTheGradientOfItsPotential) {
   // Shallow (h = 30 m, k h = 0.6) and deep (h = 1000 m) water, stretching off, points below
   // the trough.
   for (const double h : {30.0, 1000.0}) {
-    const Airy wave{1.5, 0.5, 0.7, 0.3, h};
-    const WaveKinematics kin({{wave.w, wave.a, wave.phase, wave.direction}}, h, kG,
+    const AiryWave wave{1.5, 0.5, 0.7, 0.3, h};
+    const WaveKinematics kin({{wave.w, wave.a, wave.phase, wave.direction}}, h, kWaveGravity,
                              WaveStretching::kNone);
     for (const Vec3& r : {Vec3(10.0, -40.0, 3.0), Vec3(-200.0, 75.0, 12.0), Vec3(0, 0, h - 1)}) {
       for (const double t : {0.0, 3.7, 101.2}) {
@@ -100,8 +100,8 @@ TEST(WaveKinematics, OneWaveIsTheGradientOfItsPotential) {
 
 TEST(WaveKinematics, DeepWaterDecaysAsExpKzAndTheSeabedStopsVerticalMotion) {
   const double a = 1.0, w = 0.9;
-  const WaveKinematics deep({{w, a, 0.0, 0.0}}, 1000.0, kG, WaveStretching::kNone);
-  const double k = w * w / kG;
+  const WaveKinematics deep({{w, a, 0.0, 0.0}}, 1000.0, kWaveGravity, WaveStretching::kNone);
+  const double k = w * w / kWaveGravity;
   for (const double z : {0.0, 10.0, 50.0, 120.0}) {
     // At chi = 0 (t = 0 at the origin): horizontal velocity a w e^{-k z}.
     EXPECT_NEAR(deep.At(0.0, Vec3(0, 0, z), false).velocity.x(), a * w * std::exp(-k * z), 1e-12);
@@ -109,20 +109,21 @@ TEST(WaveKinematics, DeepWaterDecaysAsExpKzAndTheSeabedStopsVerticalMotion) {
   // Below where every component is negligible the water is still (nothing computed).
   EXPECT_EQ(deep.At(0.0, Vec3(0, 0, 900.0), false).velocity, Vec3::Zero());
   // A shallow seabed: no vertical velocity on it, at any phase.
-  const WaveKinematics shallow({{0.6, 1.0, 0.0, 0.0}}, 25.0, kG, WaveStretching::kWheeler);
+  const WaveKinematics shallow({{0.6, 1.0, 0.0, 0.0}}, 25.0, kWaveGravity,
+                               WaveStretching::kWheeler);
   for (const double t : {0.0, 1.0, 2.5, 4.0}) {
     EXPECT_NEAR(shallow.At(t, Vec3(5.0, 0.0, 25.0), false).velocity.z(), 0.0, 1e-12);
   }
 }
 
 // A three-component short-crested sea in 60 m of water.
-std::vector<WaveTrain> Sea() {
+std::vector<WaveTrain> ThreeComponentSea() {
   return {{0.5, 1.2, 0.1, 0.2}, {0.8, 0.7, 2.0, -0.4}, {1.3, 0.3, 4.0, 0.9}};
 }
 
 TEST(WaveKinematics, WheelerStretchingPutsTheMeanSurfaceValuesAtTheCrest) {
-  const WaveKinematics stretched(Sea(), 60.0, kG, WaveStretching::kWheeler);
-  const WaveKinematics linear(Sea(), 60.0, kG, WaveStretching::kNone);
+  const WaveKinematics stretched(ThreeComponentSea(), 60.0, kWaveGravity, WaveStretching::kWheeler);
+  const WaveKinematics linear(ThreeComponentSea(), 60.0, kWaveGravity, WaveStretching::kNone);
   int crests = 0;
   for (double t = 0.0; t < 20.0; t += 0.5) {
     const double eta = stretched.Elevation(t, 12.0, -7.0);
@@ -145,7 +146,7 @@ TEST(WaveKinematics, WheelerStretchingPutsTheMeanSurfaceValuesAtTheCrest) {
 
 TEST(WaveKinematics, TheVelocityIsDivergenceFreeAndTheGradientsAreTheFiniteDifferences) {
   for (const WaveStretching stretching : {WaveStretching::kNone, WaveStretching::kWheeler}) {
-    const WaveKinematics kin(Sea(), 60.0, kG, stretching);
+    const WaveKinematics kin(ThreeComponentSea(), 60.0, kWaveGravity, stretching);
     for (const Vec3& r : {Vec3(3.0, 4.0, 5.0), Vec3(-30.0, 12.0, 25.0), Vec3(7.0, 7.0, 55.0)}) {
       const double t = 3.3;
       const WaterMotion m = kin.At(t, r, true);
@@ -170,11 +171,12 @@ TEST(WaveKinematics, TheVelocityIsDivergenceFreeAndTheGradientsAreTheFiniteDiffe
 }
 
 TEST(WaveKinematics, BadComponentsAreRefused) {
-  EXPECT_THROW(WaveKinematics({{0.0, 1.0, 0.0, 0.0}}, 100.0, kG, WaveStretching::kNone),
+  EXPECT_THROW(WaveKinematics({{0.0, 1.0, 0.0, 0.0}}, 100.0, kWaveGravity, WaveStretching::kNone),
                InputError);
-  EXPECT_THROW(WaveKinematics({{1.0, -1.0, 0.0, 0.0}}, 100.0, kG, WaveStretching::kNone),
+  EXPECT_THROW(WaveKinematics({{1.0, -1.0, 0.0, 0.0}}, 100.0, kWaveGravity, WaveStretching::kNone),
                InputError);
-  EXPECT_THROW(WaveKinematics(Sea(), 0.0, kG, WaveStretching::kNone), InputError);
+  EXPECT_THROW(WaveKinematics(ThreeComponentSea(), 0.0, kWaveGravity, WaveStretching::kNone),
+               InputError);
 }
 
 }  // namespace

@@ -17,13 +17,13 @@
 namespace moorsim::scenarios {
 namespace {
 
-std::string Write(const std::filesystem::path& path, const std::string& text) {
+std::string WriteText(const std::filesystem::path& path, const std::string& text) {
   std::ofstream(path) << text;
   return path.string();
 }
 
 std::string GridError(const std::string& text) {
-  const std::string path = Write(testing::FreshDirectory("grid") / "grid.csv", text);
+  const std::string path = WriteText(testing::FreshDirectory("grid") / "grid.csv", text);
   try {
     ReadDepthGrid(path);
   } catch (const InputError& e) {
@@ -40,7 +40,7 @@ TEST(DepthGrid, ReadsCommasOrSpacesWithCommentsAndALabel) {
        {std::string("# a survey\nx\\y, -100, 0, 250\n-50, 990, 1000, 1010\n"
                     "\n# the second row\n60, 995, 1005, 1020\r\n"),
         std::string("x\\y -100 0 250\n-50 990 1000 1010\n60\t995 1005 1020\n")}) {
-    const mooring_fem::DepthGrid grid = ReadDepthGrid(Write(dir / "grid.csv", text));
+    const mooring_fem::DepthGrid grid = ReadDepthGrid(WriteText(dir / "grid.csv", text));
     EXPECT_EQ(grid.x, (std::vector<double>{-50.0, 60.0}));
     EXPECT_EQ(grid.y, (std::vector<double>{-100.0, 0.0, 250.0}));
     EXPECT_EQ(grid.depth, (std::vector<double>{990, 1000, 1010, 995, 1005, 1020}));
@@ -77,7 +77,7 @@ std::string WithSeabed(const std::string& seabed) {
                           "seabed: " + seabed);
 }
 
-std::string LoadError(const std::filesystem::path& file) {
+std::string GridScenarioError(const std::filesystem::path& file) {
   try {
     LoadScenario(file.string());
   } catch (const InputError& e) {
@@ -90,29 +90,29 @@ TEST(DepthGrid, AScenarioReadsItsGridBesideItAndChecksTheAnchorsOnIt) {
   const std::filesystem::path dir = testing::FreshDirectory("grid_scenario");
   // h = 1000 + 1e-5 x y: 1000 m under the test scenario's three anchors (on the axes),
   // deeper and shallower between them.
-  Write(dir / "survey.csv",
-        "x\\y, -3000, 0, 3000\n-3000, 1090, 1000, 910\n0, 1000, 1000, 1000\n"
-        "3000, 910, 1000, 1090\n");
-  Write(dir / "ok.yaml", WithSeabed("{grid: survey.csv}"));
+  WriteText(dir / "survey.csv",
+            "x\\y, -3000, 0, 3000\n-3000, 1090, 1000, 910\n0, 1000, 1000, 1000\n"
+            "3000, 910, 1000, 1090\n");
+  WriteText(dir / "ok.yaml", WithSeabed("{grid: survey.csv}"));
   const Scenario s = LoadScenario((dir / "ok.yaml").string());
   EXPECT_EQ(s.mooring.seabed.grid.x.size(), 3u);
   EXPECT_NEAR(s.mooring.seabed.grid.depth[0], 1090.0, 0.0);
 
   // A grid 10 m shallower under line 1's anchor: the anchor is in the ground.
-  Write(dir / "shallow.csv",
-        "x\\y, -3000, 0, 3000\n-3000, 1000, 1000, 1000\n0, 1000, 1000, 1000\n"
-        "3000, 985, 985, 985\n");
-  Write(dir / "shallow.yaml", WithSeabed("{grid: shallow.csv}"));
-  const std::string shallow = LoadError(dir / "shallow.yaml");
+  WriteText(dir / "shallow.csv",
+            "x\\y, -3000, 0, 3000\n-3000, 1000, 1000, 1000\n0, 1000, 1000, 1000\n"
+            "3000, 985, 985, 985\n");
+  WriteText(dir / "shallow.yaml", WithSeabed("{grid: shallow.csv}"));
+  const std::string shallow = GridScenarioError(dir / "shallow.yaml");
   EXPECT_NE(shallow.find("mooring.lines[1].anchor: z = 1000 m is below the seabed there, at depth "
                          "990.25 m"),
             std::string::npos)
       << shallow;
 
   // A bad grid file: one line, at the key, naming the file's line.
-  Write(dir / "holed.csv", "x\\y, -3000, 3000\n-3000, 1000, \n3000, 1000, 1000\n");
-  Write(dir / "holed.yaml", WithSeabed("{grid: holed.csv}"));
-  const std::string holed = LoadError(dir / "holed.yaml");
+  WriteText(dir / "holed.csv", "x\\y, -3000, 3000\n-3000, 1000, \n3000, 1000, 1000\n");
+  WriteText(dir / "holed.yaml", WithSeabed("{grid: holed.csv}"));
+  const std::string holed = GridScenarioError(dir / "holed.yaml");
   EXPECT_NE(holed.find("holed.yaml:4:"), std::string::npos) << holed;
   EXPECT_NE(holed.find("mooring.seabed.grid: "), std::string::npos) << holed;
   EXPECT_NE(holed.find("holed.csv:2: no depth at x = -3000 m, y = 3000 m (a hole in the grid)"),
@@ -120,12 +120,12 @@ TEST(DepthGrid, AScenarioReadsItsGridBesideItAndChecksTheAnchorsOnIt) {
       << holed;
   EXPECT_EQ(holed.find('\n'), std::string::npos) << holed;
 
-  Write(dir / "missing.yaml", WithSeabed("{grid: nowhere.csv}"));
-  EXPECT_NE(LoadError(dir / "missing.yaml").find("nowhere.csv: cannot read the depth grid"),
+  WriteText(dir / "missing.yaml", WithSeabed("{grid: nowhere.csv}"));
+  EXPECT_NE(GridScenarioError(dir / "missing.yaml").find("nowhere.csv: cannot read the depth grid"),
             std::string::npos);
 
-  Write(dir / "both.yaml", WithSeabed("{grid: survey.csv, slope_deg: 1}"));
-  EXPECT_NE(LoadError(dir / "both.yaml")
+  WriteText(dir / "both.yaml", WithSeabed("{grid: survey.csv, slope_deg: 1}"));
+  EXPECT_NE(GridScenarioError(dir / "both.yaml")
                 .find("mooring.seabed.grid: a depth grid cannot be combined with slope_deg"),
             std::string::npos);
 }
@@ -133,14 +133,14 @@ TEST(DepthGrid, AScenarioReadsItsGridBesideItAndChecksTheAnchorsOnIt) {
 TEST(SlopingSeabed, TheAnchorsMustLieOnThePlane) {
   const std::filesystem::path dir = testing::FreshDirectory("slope_scenario");
   // 1 deg deepening toward east: line 2's anchor at y = 1950 is 34 m above the seabed.
-  Write(dir / "slope.yaml", WithSeabed("{slope_deg: 1, slope_direction_deg: 90}"));
-  const std::string error = LoadError(dir / "slope.yaml");
+  WriteText(dir / "slope.yaml", WithSeabed("{slope_deg: 1, slope_direction_deg: 90}"));
+  const std::string error = GridScenarioError(dir / "slope.yaml");
   EXPECT_NE(error.find("mooring.lines[2].anchor: z = 1000 m is above the seabed there, at depth "
                        "1034.04 m"),
             std::string::npos)
       << error;
-  Write(dir / "steep.yaml", WithSeabed("{slope_deg: 50}"));
-  EXPECT_NE(LoadError(dir / "steep.yaml")
+  WriteText(dir / "steep.yaml", WithSeabed("{slope_deg: 50}"));
+  EXPECT_NE(GridScenarioError(dir / "steep.yaml")
                 .find("mooring.seabed.slope_deg: 50 deg must be in [0, 45] (steeper than the "
                       "steepest continental slopes)"),
             std::string::npos);
