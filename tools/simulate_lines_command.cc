@@ -21,6 +21,7 @@
 #include "scenarios/load.h"
 #include "tools/commands.h"
 #include "tools/output/text_file.h"
+#include "tools/simulation/simulation.h"
 
 namespace moorsim::cli {
 namespace {
@@ -293,6 +294,13 @@ int RunSimulateLines(const SimulateLinesOptions& o) {
   mooring_fem::LineSimulation sim(scenarios::ToMooringParameters(scenario.mooring), scenario.solver,
                                   motion);
   for (const ScheduledPart& p : parts) sim.ScheduleFailure(p.time, p.failure);
+  // The scenario's waves on the lines (environment.waves.on_lines), realised from its seed
+  // as a run of it would realise them; the motion stays the one prescribed.
+  if (scenario.environment.waves.enabled && scenario.environment.waves.on_lines) {
+    sim.mooring().SetWaves(simulation::LineWaves(
+        scenario, simulation::RealiseSea(scenario.environment.waves, scenario.mooring.water.gravity,
+                                         scenario.simulation.seed)));
+  }
   const auto t_ready = Clock::now();
 
   auto write_row = [&] {

@@ -84,6 +84,55 @@ TEST(SimulateLines, SixDegreesOfFreedomFromHarmonicsOrFromASampledFile) {
   EXPECT_LT(worst, 0.01 * (high - low)) << "worst " << worst << " N of a range " << high - low;
 }
 
+// The scenario's waves reach the lines only where it asks (environment.waves.on_lines): off,
+// the lines move in still water whatever the sea (the same tensions as with calm waves);
+// on, the water's motion changes them, near the fairlead, by a small part of the swing the
+// vessel's motion makes.
+TEST(SimulateLines, TheScenariosWavesReachTheLinesOnlyWhereItAsks) {
+  TempDirectory dir(::testing::TempDir());
+  const auto run = [&](const std::string& name, std::vector<std::string> set) {
+    std::vector<std::string> args = {"simulate-lines",
+                                     kSeed,
+                                     "--segments",
+                                     "20",
+                                     "--duration",
+                                     "60",
+                                     "--output-interval",
+                                     "1",
+                                     "--quiet",
+                                     "--motion",
+                                     "surge:1,20",
+                                     "--set",
+                                     "environment.waves.hs=6",
+                                     "--set",
+                                     "environment.waves.tp=11",
+                                     "--out",
+                                     (dir.path() / name).string()};
+    for (const std::string& s : set) {
+      args.push_back("--set");
+      args.push_back(s);
+    }
+    const CliResult r = RunCli(args, dir.path());
+    EXPECT_EQ(r.exit_code, 0) << r.Describe();
+    return LineOneTension(dir.path() / name);
+  };
+  const std::vector<double> off = run("off.csv", {"environment.waves.on_lines=false"});
+  const std::vector<double> calm = run("calm.csv", {"environment.waves.hs=0.01"});
+  const std::vector<double> on = run("on.csv", {"environment.waves.on_lines=true"});
+  ASSERT_EQ(off.size(), 61u);
+  ASSERT_EQ(calm.size(), off.size());
+  ASSERT_EQ(on.size(), off.size());
+  double low = off[0], high = off[0], changed = 0.0;
+  for (std::size_t i = 0; i < off.size(); ++i) {
+    EXPECT_EQ(off[i], calm[i]) << "t = " << i << " s";
+    low = std::min(low, off[i]);
+    high = std::max(high, off[i]);
+    changed = std::max(changed, std::abs(on[i] - off[i]));
+  }
+  EXPECT_GT(changed, 100.0);  // [N]
+  EXPECT_LT(changed, 0.5 * (high - low)) << changed << " N against a swing of " << high - low;
+}
+
 TEST(SimulateLines, AMotionFileIsCheckedRowByRow) {
   TempDirectory dir(::testing::TempDir());
   const std::filesystem::path file = dir.path() / "m.csv";

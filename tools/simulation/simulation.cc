@@ -111,16 +111,44 @@ class HullWindLoad final : public vessel::EnvironmentLoad {
   std::optional<vessel::WindGust> gust_;
 };
 
+}  // namespace
+
+vessel::WaveRealisation RealiseSea(const scenarios::WavesSpec& spec, double gravity,
+                                   std::uint64_t seed) {
+  const vessel::JonswapSpectrum spectrum({.significant_height = spec.significant_height,
+                                          .peak_period = spec.peak_period,
+                                          .peak_enhancement = spec.gamma});
+  RandomStream stream = RandomStream::Derive(seed, "waves");
+  vessel::WaveRealisationOptions options;
+  options.mean_direction = spec.direction_toward;
+  options.spreading_exponent = spec.spreading;
+  options.components = spec.components;
+  options.gravity = gravity;
+  return vessel::WaveRealisation(spectrum, options, stream);
+}
+
+std::shared_ptr<const mooring_fem::WaveKinematics> LineWaves(const scenarios::Scenario& scenario,
+                                                             const vessel::WaveRealisation& sea) {
+  std::vector<mooring_fem::WaveTrain> trains;
+  for (const vessel::WaveComponent& c : sea.components()) {
+    trains.push_back({c.omega, c.amplitude, c.phase, c.direction});
+  }
+  const scenarios::WavesSpec& waves = scenario.environment.waves;
+  return std::make_shared<const mooring_fem::WaveKinematics>(
+      trains, scenario.mooring.water.depth, scenario.mooring.water.gravity,
+      waves.stretching == "none" ? mooring_fem::WaveStretching::kNone
+                                 : mooring_fem::WaveStretching::kWheeler);
+}
+
+namespace {
+
 /// The realised sea of the scenario: JONSWAP, random phases and frequencies from the stream
 /// "waves" of the run seed, and the hull's response to it.
 class Sea final : public vessel::SeaResponse {
  public:
   Sea(const scenarios::WavesSpec& spec, const vessel::HydroData& hydro, double gravity,
       std::uint64_t seed)
-      : spectrum_({.significant_height = spec.significant_height,
-                   .peak_period = spec.peak_period,
-                   .peak_enhancement = spec.gamma}),
-        realisation_(MakeRealisation(spectrum_, spec, gravity, seed)),
+      : realisation_(RealiseSea(spec, gravity, seed)),
         response_(hydro, realisation_, {.gravity = gravity}) {}
   void Evaluate(double t, double x, double y, double psi, Vec6* xi, Vec6* xi_dot,
                 Vec6* drift) const override {
@@ -129,19 +157,6 @@ class Sea final : public vessel::SeaResponse {
   const vessel::WaveRealisation& realisation() const { return realisation_; }
 
  private:
-  static vessel::WaveRealisation MakeRealisation(const vessel::JonswapSpectrum& spectrum,
-                                                 const scenarios::WavesSpec& spec, double gravity,
-                                                 std::uint64_t seed) {
-    RandomStream stream = RandomStream::Derive(seed, "waves");
-    vessel::WaveRealisationOptions options;
-    options.mean_direction = spec.direction_toward;
-    options.spreading_exponent = spec.spreading;
-    options.components = spec.components;
-    options.gravity = gravity;
-    return vessel::WaveRealisation(spectrum, options, stream);
-  }
-
-  vessel::JonswapSpectrum spectrum_;
   vessel::WaveRealisation realisation_;
   vessel::WaveResponse response_;
 };
@@ -351,16 +366,8 @@ Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed)
   if (env.waves.enabled) {
     parts_->sea.emplace(env.waves, *hydro_, scenario_.mooring.water.gravity, seed_);
     plant_->SetSea(&*parts_->sea);
-    if (env.waves.on_lines) {  // the same components, in the lines' finite depth
-      std::vector<mooring_fem::WaveTrain> trains;
-      for (const vessel::WaveComponent& c : parts_->sea->realisation().components()) {
-        trains.push_back({c.omega, c.amplitude, c.phase, c.direction});
-      }
-      mooring_.SetWaves(std::make_shared<const mooring_fem::WaveKinematics>(
-          trains, scenario_.mooring.water.depth, scenario_.mooring.water.gravity,
-          env.waves.stretching == "none" ? mooring_fem::WaveStretching::kNone
-                                         : mooring_fem::WaveStretching::kWheeler));
-    }
+    // The same components, in the lines' finite depth.
+    if (env.waves.on_lines) mooring_.SetWaves(LineWaves(scenario_, parts_->sea->realisation()));
   }
   if (env.wind.enabled) {
     parts_->wind.emplace(ToWindParameters(v), env.wind, seed_);

@@ -32,6 +32,7 @@
 #include "vessel/hull_loads.h"
 #include "vessel/hydro_data.h"
 #include "vessel/vessel_plant.h"
+#include "vessel/waves.h"
 
 namespace moorsim::vessel {
 class PositionController;
@@ -114,6 +115,16 @@ vessel::WindParameters ToWindParameters(const scenarios::VesselSpec& spec);
 /// controller.heading is given.
 vessel::ControllerSpec ToControllerSpec(const scenarios::ControllerSpec& c, const Vec3& initial,
                                         const vessel::VesselModel& vessel);
+
+/// The realised sea of `environment.waves` for the run seed `seed` (its own stream, "waves"):
+/// the hull's and, where the lines see them, the lines' wave components.
+vessel::WaveRealisation RealiseSea(const scenarios::WavesSpec& spec, double gravity,
+                                   std::uint64_t seed);
+
+/// The lines' wave kinematics of a realised sea (`environment.waves.on_lines`), in the
+/// mooring's water depth, with the scenario's stretching rule.
+std::shared_ptr<const mooring_fem::WaveKinematics> LineWaves(const scenarios::Scenario& scenario,
+                                                             const vessel::WaveRealisation& sea);
 
 /// The scenario's detection as a run of it builds it, without the run: the plant is built
 /// and put at its moored static start (the models depend on it) and nothing is integrated.
