@@ -74,14 +74,12 @@ void Check(int err, const char* what) {
 
 int main(int argc, char** argv) {
   if (argc < 7) {
-    std::fprintf(stderr,
-                 "usage: %s INPUT OUT.csv DURATION COUPLING_DT OUTPUT_INTERVAL MOTION...\n",
+    std::fprintf(stderr, "usage: %s INPUT OUT.csv DURATION COUPLING_DT OUTPUT_INTERVAL MOTION...\n",
                  argv[0]);
     return 2;
   }
   const std::string input = argv[1], out_path = argv[2];
-  const double duration = std::atof(argv[3]), dtc = std::atof(argv[4]),
-               dto = std::atof(argv[5]);
+  const double duration = std::atof(argv[3]), dtc = std::atof(argv[4]), dto = std::atof(argv[5]);
   std::vector<Harmonic> motion;
   try {
     for (int i = 6; i < argc; ++i) {
@@ -187,8 +185,7 @@ int main(int argc, char** argv) {
     t = tk;
     const int err = MoorDyn_Step(md, x.data(), xd.data(), f.data(), &t, &dt);
     if (err != MOORDYN_SUCCESS) {
-      std::fprintf(stderr, "moordyn_driver: MoorDyn_Step failed at t = %g s (error %d)\n", tk,
-                   err);
+      std::fprintf(stderr, "moordyn_driver: MoorDyn_Step failed at t = %g s (error %d)\n", tk, err);
       return 1;
     }
     if ((k + 1) % per_output == 0) record((k + 1) * dtc);
