@@ -446,6 +446,27 @@ std::string Rows(int n, int blank = -1, int from = 0) {
   return csv;
 }
 
+// A run made with a relative scenario path (its WAMIT stem relative to the scenario's
+// folder) replays from any other folder: the run records where its scenario was.
+TEST(DetectCommandInput, ARunMadeFromARelativePathReplaysFromAnywhere) {
+  TempDirectory dir(::testing::TempDir());
+  const std::string out = (dir.path() / "run").string();
+  // moorsim started in the source tree, then in the scratch folder.
+  const CliResult run = RunProgram(
+      "/bin/sh",
+      {"-c", "cd '" MOORSIM_SOURCE_DIR "' && '" MOORSIM_CLI
+             "' run scenarios/library/thesis_no_failure.yaml --duration 30 --quiet --out '" +
+                 out + "'"},
+      dir.path());
+  ASSERT_EQ(run.exit_code, 0) << run.Describe();
+  const CliResult replay = RunProgram(
+      "/bin/sh",
+      {"-c", "cd '" + dir.path().string() + "' && '" MOORSIM_CLI "' detect run/run.h5 --out d"},
+      dir.path());
+  EXPECT_EQ(replay.exit_code, 0) << replay.Describe();
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "d" / "summary.json"));
+}
+
 TEST(DetectCommandInput, EveryBadInputIsOneLineNamingFileRowAndColumn) {
   const std::string header = "time,north,east,heading,thrust_surge,thrust_sway,thrust_yaw\n";
   ExpectOneLocatedLine("time,north,east,heading,thrust_surge,thrust_sway\n0,0,0,0,0,0\n", "1",

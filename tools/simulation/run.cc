@@ -4,6 +4,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <memory>
 #include <new>
@@ -37,7 +38,13 @@ class RunWriter {
       : file_(std::move(file)) {
     file_.SetAttribute("/", "scenario", scenario.text);
     file_.SetAttribute("/", "scenario_name", scenario.name);
-    file_.SetAttribute("/", "scenario_path", scenario.source_path);
+    // Absolute, so that the run replays from any folder (`moorsim detect RUN.h5`): the
+    // scenario's relative paths (WAMIT stem, seabed grid) are relative to its folder.
+    file_.SetAttribute(
+        "/", "scenario_path",
+        scenario.source_path.empty()
+            ? scenario.source_path
+            : std::filesystem::absolute(scenario.source_path).lexically_normal().string());
     file_.SetAttribute("/", "overrides", Join(scenario.overrides));
     file_.SetAttribute("/", "seed", sim.seed());
     file_.SetAttribute("/", "version", std::string(moorsim::kVersion));
