@@ -16,6 +16,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -312,6 +314,34 @@ namespace {
 TEST(CompositeMooring, TheDeficitTestNamesThePartedLine) {
   RunRequest request;
   request.scenario_path = MOORSIM_SOURCE_DIR "/scenarios/library/composite_line6.yaml";
+  request.write_files = false;
+  const RunResult r = RunScenario(request);
+  ASSERT_EQ(r.status, RunStatus::kOk) << r.message;
+  const nlohmann::json& deficit = r.summary.at("detectors").at("deficit");
+  EXPECT_EQ(deficit.at("isolated_line"), 6) << deficit.dump();
+  EXPECT_EQ(deficit.at("false_alarms"), 0) << deficit.dump();
+  const double delay = deficit.at("delay").get<double>();
+  EXPECT_GT(delay, 0.0);
+  EXPECT_LT(delay, 120.0);
+}
+
+// The thesis case with line 6 parting, on a seabed sloping 1.5 deg (deeper toward east,
+// each anchor moved onto it: 51 m deeper at y = 1950 m, 51 m shallower at y = -1950 m): the
+// detectors' line model lays each chain on its slope, and the deficit test still names the
+// parted line.
+TEST(SlopingSeabed, TheDeficitTestNamesThePartedLine) {
+  auto scenario = std::make_shared<scenarios::Scenario>(
+      scenarios::LoadScenario(MOORSIM_SOURCE_DIR "/scenarios/library/thesis_line6.yaml"));
+  const double slope = 1.5 * std::numbers::pi / 180.0;
+  scenario->mooring.seabed.slope = slope;
+  scenario->mooring.seabed.slope_direction = 0.5 * std::numbers::pi;
+  for (scenarios::LineSpec& line : scenario->mooring.lines) {
+    line.anchor.z() = scenario->mooring.water.depth + std::tan(slope) * line.anchor.y();
+  }
+  ASSERT_NO_THROW(scenarios::Validate(*scenario));
+  RunRequest request;
+  request.scenario_path = scenario->source_path;
+  request.scenario = scenario;
   request.write_files = false;
   const RunResult r = RunScenario(request);
   ASSERT_EQ(r.status, RunStatus::kOk) << r.message;
