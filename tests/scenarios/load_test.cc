@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <sstream>
@@ -51,6 +52,21 @@ std::string ReadFile(const std::string& path) {
   std::ostringstream text;
   text << file.rdbuf();
   return text.str();
+}
+
+// ---------------------------------------------------------------------------------------
+// The library: every scenario loads as shipped, with the files it names (WAMIT data, a
+// seabed grid) where it says.
+
+TEST(Library, EveryScenarioLoadsWithTheFilesItNames) {
+  const std::filesystem::path library = std::string(MOORSIM_SOURCE_DIR) + "/scenarios/library";
+  int loaded = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(library)) {
+    if (entry.path().extension() != ".yaml") continue;
+    EXPECT_NO_THROW(LoadScenario(entry.path().string())) << entry.path();
+    ++loaded;
+  }
+  EXPECT_GE(loaded, 12);
 }
 
 // ---------------------------------------------------------------------------------------
