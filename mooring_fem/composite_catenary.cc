@@ -78,6 +78,10 @@ double GroundedTension(const CompositeLine& line, double h, double v) {
 // linearly from t1 to t2 (slack where negative): exact for a linear section, Simpson's rule
 // on 64 intervals for a curve.
 double GroundedStretch(double t1, double t2, double l, double ea, const AxialCurve* curve) {
+  if (t1 == t2) {  // a flat seabed: one tension along it
+    const double t = std::max(0.0, t1);
+    return l * (1.0 + (curve != nullptr ? curve->Strain(t) : t / ea));
+  }
   if (curve != nullptr) {
     constexpr int kIntervals = 64;
     double sum = 0.0;
@@ -149,14 +153,10 @@ Eigen::Vector2d Point(const CompositeLine& line, const Layout& layout, double h,
     // The grounded part of this section, then the hanging part.
     const double grounded_top = std::clamp(layout.grounded, lower, upper);
     const AxialCurve* curve = line.CurveOf(i);
-    if (line.seabed_rise == 0.0) {
-      const double grounded_strain = curve ? curve->Strain(h) : h / section.axial_stiffness;
-      p.x() += (grounded_top - lower) * (1.0 + grounded_strain);
-    } else if (grounded_top > lower) {
-      const double w = section.weight_per_length;
-      const double t1 =
-          h * std::cos(line.seabed_rise) + layout.bottom[i] * std::sin(line.seabed_rise);
-      const double t2 = t1 + w * (grounded_top - lower) * std::sin(line.seabed_rise);
+    if (grounded_top > lower) {  // along the seabed, the tension set by V (file comment)
+      const double t1 = GroundedTension(line, h, layout.bottom[i]);
+      const double t2 = GroundedTension(
+          line, h, layout.bottom[i] + section.weight_per_length * (grounded_top - lower));
       p += GroundedStretch(t1, t2, grounded_top - lower, section.axial_stiffness, curve) *
            Eigen::Vector2d(std::cos(line.seabed_rise), std::sin(line.seabed_rise));
     }
@@ -204,9 +204,7 @@ double CompositeCatenary::VerticalTensionAt(double s) const {
       const double v =
           layout.bottom[i] + line.sections[i].weight_per_length * (s - layout.start[i]);
       if (!(s < layout.grounded)) return v;
-      return line.seabed_rise == 0.0
-                 ? 0.0
-                 : GroundedTension(line, horizontal_tension, v) * std::sin(line.seabed_rise);
+      return GroundedTension(line, horizontal_tension, v) * std::sin(line.seabed_rise);
     }
   }
   return vertical_tension;
@@ -316,9 +314,7 @@ CompositeCatenary SolveCompositeCatenary(const CompositeLine& line, double span,
   out.grounded_length = final_layout.grounded;
   out.anchor_vertical =
       final_layout.grounded > 0.0
-          ? (line.seabed_rise == 0.0 ? 0.0
-                                     : GroundedTension(line, h, final_layout.bottom.front()) *
-                                           std::sin(line.seabed_rise))
+          ? GroundedTension(line, h, final_layout.bottom.front()) * std::sin(line.seabed_rise)
           : final_layout.bottom.front();
   return out;
 }

@@ -45,21 +45,19 @@ Vec3 CurrentField::GradientAt(double z) const {
   return (speed_[i + 1] - speed_[i]) / (depth_[i + 1] - depth_[i]) * direction_;
 }
 
-SeabedFrame SeabedContact::SlopedFrame(const Vec3& r, bool with_derivatives) const {
+SeabedFrame SeabedContact::SlopedFrame(const Vec3& r, SeabedFrameDerivatives* derivatives) const {
   const SeabedPoint p = surface.At(r.x(), r.y());
   const Vec3 G(-p.dx, -p.dy, 1.0);  // grad (z - h)
   const double norm = G.norm();
   const double g = r.z() - p.depth;
-  SeabedFrame f;
-  f.normal = G / norm;
-  f.penetration = g / norm;
-  if (!with_derivatives) return f;
+  SeabedFrame f{G / norm, g / norm};
+  if (derivatives == nullptr) return f;
   // dG/dr = -C with C the padded Hessian of h: only h_xy is nonzero (seabed.h).
   const Vec3 Cn(p.dxy * f.normal.y(), p.dxy * f.normal.x(), 0.0);
-  f.d_penetration = f.normal + (g / (norm * norm)) * Cn;
+  derivatives->d_penetration = f.normal + (g / (norm * norm)) * Cn;
   Mat3 C = Mat3::Zero();
   C(0, 1) = C(1, 0) = p.dxy;
-  f.d_normal = -(Mat3::Identity() - f.normal * f.normal.transpose()) * C / norm;
+  derivatives->d_normal = -(Mat3::Identity() - f.normal * f.normal.transpose()) * C / norm;
   return f;
 }
 

@@ -29,12 +29,15 @@ class CurrentField {
   std::vector<double> speed_;
 };
 
-/// Where a node touches the seabed: the unit normal into the seabed, the penetration along
-/// it and, for the Jacobian, their derivatives with respect to the node's position
-/// (seabed.h).
+/// Where a node touches the seabed: the unit normal into the seabed and the penetration
+/// along it (seabed.h).
 struct SeabedFrame {
   Vec3 normal = Vec3::UnitZ();
-  double penetration = 0.0;            ///< [m]
+  double penetration = 0.0;  ///< [m]
+};
+
+/// For the Jacobian: the frame's derivatives with respect to the node's position.
+struct SeabedFrameDerivatives {
   Vec3 d_penetration = Vec3::UnitZ();  ///< d penetration / d r
   Mat3 d_normal = Mat3::Zero();        ///< d normal / d r [1/m]
 };
@@ -54,21 +57,20 @@ struct SeabedContact {
 
   /// How far `r` is below the seabed, vertically [m] (> 0: in contact).
   double Below(const Vec3& r) const { return r.z() - surface.DepthAt(r.x(), r.y()); }
-  /// The normal and penetration at `r` (in contact), with their derivatives if asked.
-  SeabedFrame Frame(const Vec3& r, bool with_derivatives) const {
+  /// The normal and penetration at `r` (in contact), and their derivatives if asked.
+  SeabedFrame Frame(const Vec3& r, SeabedFrameDerivatives* derivatives = nullptr) const {
     if (surface.flat()) {  // the common case, inline: every grounded node
-      SeabedFrame f;
-      f.penetration = Below(r);
-      return f;
+      if (derivatives != nullptr) *derivatives = {};
+      return {Vec3::UnitZ(), Below(r)};
     }
-    return SlopedFrame(r, with_derivatives);
+    return SlopedFrame(r, derivatives);
   }
+  /// Frame() on a seabed that is not flat.
+  SeabedFrame SlopedFrame(const Vec3& r, SeabedFrameDerivatives* derivatives) const;
   /// Smoothed penetration q(delta) [m] and dq/ddelta.
   void Penetration(double delta, double* q, double* dq) const;
   /// Smoothstep weight of the damper in [0, 1] and its derivative [1/m].
   void DamperWeight(double delta, double* s, double* ds) const;
-  /// Frame() on a seabed that is not flat.
-  SeabedFrame SlopedFrame(const Vec3& r, bool with_derivatives) const;
   /// Energy stored per unit spring constant: integral of q from 0 to delta [m^2].
   double PenetrationEnergy(double delta) const;
 };

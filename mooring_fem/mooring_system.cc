@@ -504,17 +504,12 @@ void MooringSystem::NodeForceIn(const Chain& c, int k, Vec3* F_out, NodeMass* M_
     }
   }
 
-  if (const double below = seabed_.Below(r); below > 0.0) {
-    Vec3 n = Vec3::UnitZ();
-    double penetration = below;
-    if (!seabed_.surface.flat()) {
-      const SeabedFrame frame = seabed_.SlopedFrame(r, false);
-      n = frame.normal;
-      penetration = frame.penetration;
-    }
+  if (seabed_.Below(r) > 0.0) {
+    const SeabedFrame frame = seabed_.Frame(r);
+    const Vec3& n = frame.normal;
     double q, dq, s, ds;
-    seabed_.Penetration(penetration, &q, &dq);
-    seabed_.DamperWeight(penetration, &s, &ds);
+    seabed_.Penetration(frame.penetration, &q, &dq);
+    seabed_.DamperWeight(frame.penetration, &s, &ds);
     const double contact = share.contact;
     const double normal = seabed_.stiffness * contact * q;
     F -= (normal + seabed_.damping * contact * n.dot(v) * s) * n;
@@ -626,9 +621,10 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, Node
   }
 
   if (seabed_.Below(r) > 0.0) {
-    const SeabedFrame frame = seabed_.Frame(r, true);
+    SeabedFrameDerivatives moving;  // how the frame turns and deepens with r
+    const SeabedFrame frame = seabed_.Frame(r, &moving);
     const Vec3& n = frame.normal;
-    const Mat3& Dn = frame.d_normal;
+    const Mat3& Dn = moving.d_normal;
     double q, dq, s, ds;
     seabed_.Penetration(frame.penetration, &q, &dq);
     seabed_.DamperWeight(frame.penetration, &s, &ds);
@@ -638,7 +634,7 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, Node
     const double normal = k_n * q;
     const double vn = n.dot(v);
     // Spring and damper -X n, X = k_n q(delta) + c_n s(delta) (n . v).
-    const Eigen::RowVector3d dX_dr = (k_n * dq + c_n * vn * ds) * frame.d_penetration.transpose() +
+    const Eigen::RowVector3d dX_dr = (k_n * dq + c_n * vn * ds) * moving.d_penetration.transpose() +
                                      c_n * s * (v.transpose() * Dn);
     J->dF_dr[kSelf] -= n * dX_dr + (normal + c_n * vn * s) * Dn;
     J->dF_dv[kSelf] -= c_n * s * n * n.transpose();
@@ -664,7 +660,7 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, Node
       const Mat3 dvt_dr = -vn * Dn - n * (v.transpose() * Dn);
       J->dF_dv[kSelf] +=
           -(normal / rho) * A * P + (normal / (rho * rho * rho)) * Av * v_t.transpose();
-      J->dF_dr[kSelf] += -(k_n * dq / rho) * Av * frame.d_penetration.transpose() -
+      J->dF_dr[kSelf] += -(k_n * dq / rho) * Av * moving.d_penetration.transpose() -
                          (normal / rho) * A * dvt_dr +
                          (normal / (rho * rho * rho)) * Av * (v_t.transpose() * dvt_dr);
       if (qn > 1e-12) {
@@ -823,7 +819,7 @@ std::vector<LineLoad> MooringSystem::LineLoads(const double* x,
     double grounded_fraction_of_node_1 = 0.0;
     for (int k = 0; k <= c.segments; ++k) {
       if (!(seabed_.Below(pos_[k]) > 0.0)) continue;
-      const SeabedFrame frame = seabed_.Frame(pos_[k], false);
+      const SeabedFrame frame = seabed_.Frame(pos_[k]);
       double q, dq;
       seabed_.Penetration(frame.penetration, &q, &dq);
       const NodeShare share = ShareOf(lp, c.first_node + k, k > 0, k < c.segments);
@@ -871,7 +867,7 @@ double MooringSystem::MechanicalEnergy(const double* x,
       energy -= share.weight * pos_[k].z();
       if (seabed_.Below(pos_[k]) > 0.0) {
         energy += seabed_.stiffness * share.contact *
-                  seabed_.PenetrationEnergy(seabed_.Frame(pos_[k], false).penetration);
+                  seabed_.PenetrationEnergy(seabed_.Frame(pos_[k]).penetration);
       }
     }
   }
