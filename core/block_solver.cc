@@ -115,6 +115,25 @@ BorderedBlockSolver::BorderedBlockSolver(const SparsityPattern& pattern,
         cs.coupled = cs.coupled || cs.border_node[b * 6 + c] >= 0;
       }
     }
+    if (cs.nodes < 2) continue;
+    // The head: the border states the first node's rows or columns meet.
+    const NodeSlots& first = nodes_[cs.first_node];
+    for (int b = 0; b < nb; ++b) {
+      bool meets = false;
+      for (int a = 0; a < 3; ++a) meets = meets || Find(pattern, first.state + 3 + a, b) >= 0;
+      for (int c = 0; c < 6; ++c) meets = meets || Find(pattern, b, first.state + c) >= 0;
+      if (meets) cs.head.push_back(b);
+    }
+    const int nh = static_cast<int>(cs.head.size());
+    cs.head_node_border.resize(3 * nh);
+    cs.head_border_node.resize(nh * 6);
+    for (int h = 0; h < nh; ++h) {
+      for (int a = 0; a < 3; ++a)
+        cs.head_node_border[a * nh + h] = slot(first.state + 3 + a, cs.head[h]);
+      for (int c = 0; c < 6; ++c)
+        cs.head_border_node[h * 6 + c] = slot(cs.head[h], first.state + c);
+    }
+    cs.coupled = cs.coupled || nh > 0;
   }
   for (int r = 0; r < n; ++r) {
     for (int64_t s = pattern.row_start[r]; s < pattern.row_start[r + 1]; ++s) {
@@ -133,12 +152,63 @@ BorderedBlockSolver::BorderedBlockSolver(const SparsityPattern& pattern,
     f.C = Mat3X::Zero(3, nb);
     f.B = MatX3::Zero(nb, 3);
     f.Wb = MatX3::Zero(nb, 3);
+    const int nh = static_cast<int>(chains_[c].head.size());
+    if (nh == 0) continue;
+    f.F.assign(chains_[c].nodes - 1, Mat3X::Zero(3, nh));
+    f.RG.assign(chains_[c].nodes - 1, MatX3::Zero(nh, 3));
+    f.Wh = MatX3::Zero(nh, 3);
   }
   y_.resize(nodes_.size());
   border_matrix_ = MatX::Zero(nb, nb);
   gc_ = Mat3X::Zero(3, nb);
   border_rhs_ = VecX::Zero(nb);
   border_x_ = VecX::Zero(nb);
+}
+
+void BorderedBlockSolver::FactorHead(const double* jacobian, double gamma, const ChainSlots& cs,
+                                     ChainFactor* cf) {
+  const int nh = static_cast<int>(cs.head.size());
+  const int n = cs.nodes;
+  const NodeFactor& ff = node_factors_[cs.first_node];
+  // The first node: its rows in the head columns, the head rows in its reduced unknowns.
+  Mat3X& f0 = cf->F[0];
+  for (int a = 0; a < 3; ++a) {
+    for (int h = 0; h < nh; ++h)
+      f0(a, h) = OffDiagonal(jacobian, cs.head_node_border[a * nh + h], gamma);
+  }
+  MatX3& r = head_fill_;
+  r.resize(nh, 3);
+  for (int h = 0; h < nh; ++h) {
+    for (int c = 0; c < 3; ++c) {
+      const double m_br = OffDiagonal(jacobian, cs.head_border_node[h * 6 + c], gamma);
+      const double m_bv = OffDiagonal(jacobian, cs.head_border_node[h * 6 + 3 + c], gamma);
+      cf->Wh(h, c) = m_br * ff.p_inverse[c];
+      r(h, c) = m_bv - m_br * ff.q_over_p[c];
+    }
+  }
+  // Down the chain: F_k = -E_k F_{k-1}, R_k = -R_{k-1} G_{k-1} U_{k-1}, and each eliminated
+  // node's R_k G_k F_k off the border's head block.
+  for (int k = 0; k < n - 1; ++k) {
+    const NodeFactor& f = node_factors_[cs.first_node + k];
+    if (k > 0) {
+      cf->F[k].noalias() = -f.E * cf->F[k - 1];
+      r.noalias() = -cf->RG[k - 1] * node_factors_[cs.first_node + k - 1].U;
+    }
+    cf->RG[k].noalias() = r * f.G;
+    for (int i = 0; i < nh; ++i) {
+      for (int j = 0; j < nh; ++j) {
+        border_matrix_(cs.head[i], cs.head[j]) -= cf->RG[k].row(i).dot(cf->F[k].col(j));
+      }
+    }
+  }
+  // The last node's fill joins its own border coupling.
+  const NodeFactor& lf = node_factors_[cs.first_node + n - 1];
+  const Mat3X fill_column = -lf.E * cf->F[n - 2];
+  const MatX3 fill_row = -cf->RG[n - 2] * node_factors_[cs.first_node + n - 2].U;
+  for (int h = 0; h < nh; ++h) {
+    cf->C.col(cs.head[h]) += fill_column.col(h);
+    cf->B.row(cs.head[h]) += fill_row.row(h);
+  }
 }
 
 bool BorderedBlockSolver::Factor(const double* jacobian, double gamma) {
@@ -214,6 +284,7 @@ bool BorderedBlockSolver::Factor(const double* jacobian, double gamma) {
         cf.B(b, c) = m_bv - m_br * lf.q_over_p[c];
       }
     }
+    if (!cs.head.empty()) FactorHead(jacobian, gamma, cs, &cf);
     gc_.noalias() = lf.G * cf.C;
     border.noalias() -= cf.B * gc_;
   }
@@ -244,9 +315,15 @@ void BorderedBlockSolver::Solve(const double* b, double* x) {
       if (k > 0) y.noalias() -= f.E * y_[g - 1];
       y_[g] = y;
     }
+    const ChainFactor& cf = chain_factors_[ci];
+    if (!cs.head.empty()) {
+      // The head rows: -Wh b_r of the first node - sum_k R_k G_k y_k.
+      head_x_.noalias() = cf.Wh * Eigen::Map<const Vec3>(b + nodes_[cs.first_node].state);
+      for (int k = 0; k < cs.nodes - 1; ++k) head_x_.noalias() += cf.RG[k] * y_[cs.first_node + k];
+      for (std::size_t h = 0; h < cs.head.size(); ++h) border_rhs_[cs.head[h]] -= head_x_[h];
+    }
     if (cs.coupled) {
       const int g = cs.first_node + cs.nodes - 1;
-      const ChainFactor& cf = chain_factors_[ci];
       border_rhs_.noalias() -= cf.Wb * Eigen::Map<const Vec3>(b + nodes_[g].state);
       border_rhs_.noalias() -= cf.B * (node_factors_[g].G * y_[g]);
     }
@@ -257,14 +334,21 @@ void BorderedBlockSolver::Solve(const double* b, double* x) {
   // at each node (b_r of a node is only needed by itself here).
   for (std::size_t ci = 0; ci < chains_.size(); ++ci) {
     const ChainSlots& cs = chains_[ci];
+    const ChainFactor& cf = chain_factors_[ci];
+    const int nh = static_cast<int>(cs.head.size());
+    if (nh > 0) {
+      head_x_.resize(nh);
+      for (int h = 0; h < nh; ++h) head_x_[h] = border_x_[cs.head[h]];
+    }
     for (int k = cs.nodes - 1; k >= 0; --k) {
       const int g = cs.first_node + k;
       const NodeFactor& f = node_factors_[g];
       Vec3 rhs = y_[g];
       if (k == cs.nodes - 1) {
-        if (cs.coupled) rhs.noalias() -= chain_factors_[ci].C * border_x_;
+        if (cs.coupled) rhs.noalias() -= cf.C * border_x_;
       } else {
         rhs.noalias() -= f.U * y_[g + 1];
+        if (nh > 0) rhs.noalias() -= cf.F[k] * head_x_;
       }
       const Vec3 dv = f.G * rhs;
       y_[g] = dv;

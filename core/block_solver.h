@@ -9,10 +9,14 @@
 //   * each node's velocity rows couple to its two neighbours only: the reduced chain is block
 //     tridiagonal and is factored by block Gaussian elimination from the chain's first node
 //     to its last (the block Thomas algorithm), with no fill-in;
-//   * a dense border (the body's states) couples to the last node of each chain only (the
-//     node next to the fairlead), so the pivot left at the last node is exactly that node's
-//     Schur complement and the border's reduced matrix is its own block minus one 3x3
-//     correction per chain, factored densely with partial pivoting.
+//   * a dense border (the body's states, the free points where lines meet) couples to the
+//     last node of each chain (the node next to the fairlead or the point above) and may
+//     couple to its first node (the node next to a point below). The last node's pivot is
+//     that node's Schur complement and the border's reduced matrix is its own block minus
+//     one correction per chain; a chain coupled at its first node carries that coupling down
+//     the sweep as a fill of a few columns and rows (the border states the first node sees,
+//     six for a point), so its cost grows with those columns only. The border is factored
+//     densely with partial pivoting.
 //
 // No pivoting across nodes: every pivot block is checked (a singular or non-finite one makes
 // Factor() return false, which the integrator reports to CVODE as a recoverable failure, so
@@ -62,6 +66,11 @@ class BorderedBlockSolver {
     bool coupled = false;              // the last node couples to the border
     std::vector<int64_t> node_border;  // (v_a of the last node, border column b): 3 x nb
     std::vector<int64_t> border_node;  // (border row b, column c of the last node): nb x 6
+    // The border states the first node couples to (chains of two nodes or more; empty: none)
+    // and their slots: (v_a of the first node, head[h]) 3 x nh, (head[h], column c) nh x 6.
+    std::vector<int> head;
+    std::vector<int64_t> head_node_border;
+    std::vector<int64_t> head_border_node;
   };
   // The factorisation, per node: the pivot's inverse G, the multiplier E = L G_prev, the
   // upper block U (coupling to the next node), the right-hand side transforms W_j = M_vr(j)
@@ -75,7 +84,16 @@ class BorderedBlockSolver {
     Mat3X C;   // the last node's velocity rows in the border columns (3 x nb)
     MatX3 B;   // the border rows in the last node's reduced unknowns dv (nb x 3)
     MatX3 Wb;  // the border rows' transform of the last node's b_r (nb x 3)
+    // With a head coupling, per node but the last: the fill F_k of its rows in the head
+    // columns (3 x nh) and R_k G_k, the head rows' fill times the pivot's inverse (nh x 3);
+    // and the head rows' transform of the first node's b_r (nh x 3).
+    std::vector<Mat3X> F;
+    std::vector<MatX3> RG;
+    MatX3 Wh;
   };
+
+  // The fill a chain's head coupling leaves down the chain and on the border.
+  void FactorHead(const double* jacobian, double gamma, const ChainSlots& cs, ChainFactor* cf);
 
   int size_ = 0;
   int border_ = 0;
@@ -86,6 +104,8 @@ class BorderedBlockSolver {
   std::vector<ChainFactor> chain_factors_;
   MatX border_matrix_;  // the border's reduced matrix, factored into border_lu_
   Mat3X gc_;            // scratch: G C of one chain
+  MatX3 head_fill_;     // scratch: the head rows' fill R_k of the node being eliminated
+  VecX head_x_;         // scratch: the border's solution in one chain's head columns
   Eigen::PartialPivLU<MatX> border_lu_;
   // Scratch for Solve(): the reduced right-hand sides y, then the velocity unknowns.
   std::vector<Vec3> y_;

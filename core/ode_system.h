@@ -28,7 +28,8 @@ struct NodeChain {
 
 /// The block structure of a Jacobian that BorderedBlockSolver (core/block_solver.h) factors:
 /// a dense border of the first `border` states, then chains of lumped masses, the border
-/// coupled to the last node of each chain only. Every state is in the border or a chain.
+/// coupled to the first and last node of each chain only. Every state is in the border or a
+/// chain.
 struct BlockStructure {
   int border = 0;
   std::vector<NodeChain> chains;
