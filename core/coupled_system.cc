@@ -19,8 +19,9 @@ void CoupledSystem::Rebuild() {
   size_ = nb + sub.size;
   const int attachments = attached_.NumAttachments();
   const BlockStructure* sub_blocks = attached_.Blocks();
-  has_blocks_ = sub_blocks != nullptr && sub_blocks->border == 0;
-  blocks_.border = nb;
+  has_blocks_ = sub_blocks != nullptr;
+  // The subsystem's own border (its states first) joins the body's.
+  blocks_.border = nb + (has_blocks_ ? sub_blocks->border : 0);
   blocks_.chains.clear();
   if (has_blocks_) {
     for (NodeChain chain : sub_blocks->chains) {

@@ -137,7 +137,8 @@ class CoupledSystem : public OdeSystem {
   int StateSize() const override { return size_; }
   void Derivatives(double t, const double* x, double* xdot) override;
   const SparsityPattern& JacobianPattern() const override { return pattern_; }
-  /// The body as the border, the subsystem's chains after it (if it has a structure).
+  /// The body and the subsystem's own border (its first states) as the border, the
+  /// subsystem's chains after them (if it has a structure).
   const BlockStructure* Blocks() const override { return has_blocks_ ? &blocks_ : nullptr; }
   void Jacobian(double t, const double* x, const double* xdot, double* values) override;
 

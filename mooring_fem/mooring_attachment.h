@@ -1,5 +1,6 @@
 // The mooring lines as the attached subsystem of the coupled simulation
-// (core/coupled_system.h): one attachment per line, at its body-frame fairlead.
+// (core/coupled_system.h): one attachment per line, at its body-frame fairlead (a line
+// between free points, or up to one, never loads the vessel: not Attached()).
 #pragma once
 
 #include "core/coupled_system.h"
@@ -16,7 +17,7 @@ class MooringAttachment final : public AttachedSubsystem {
   const BlockStructure* Blocks() const override { return &mooring_.Blocks(); }
   int NumAttachments() const override { return mooring_.num_lines(); }
   Vec3 AttachmentPoint(int i) const override { return mooring_.line(i).fairlead_body; }
-  bool Attached(int i) const override { return mooring_.attached(i); }
+  bool Attached(int i) const override { return mooring_.at_vessel(i); }
   int CouplingNode(int i) const override { return mooring_.CouplingNode(i); }
   void SetTime(double t) override { mooring_.SetTime(t); }
   void Derivatives(const double* x, std::span<const PointKinematics> points, double* xdot,

@@ -89,6 +89,29 @@ HalfSegmentDrag Drag(const Vec3& u, const Vec3& t, double L, double c_n, double 
   return d;
 }
 
+// A body's drag -b |u| u on the water's velocity relative to it u and, in waves, its
+// Froude-Krylov and added-mass force (rho V + C_A rho V) a_w.
+Vec3 BodyFluidForce(const PointBodyProperties& body, const Vec3& u,
+                    const Vec3* water_acceleration) {
+  Vec3 F = -(body.drag * u.norm()) * u;
+  if (water_acceleration != nullptr)
+    F += (body.displaced_mass + body.added_mass) * *water_acceleration;
+  return F;
+}
+
+// Its derivatives, with du/dr = du_dr and du/dv = I.
+void AddBodyFluidJacobian(const PointBodyProperties& body, const Vec3& u, const Mat3& du_dr,
+                          const WaterMotion* water, Mat3* dF_dr, Mat3* dF_dv) {
+  // d(-b |u| u)/du = -b (|u| I + u u^T / |u|).
+  const double speed = u.norm();
+  Mat3 d_du = speed * Mat3::Identity();
+  if (speed > 1e-300) d_du += u * u.transpose() / speed;
+  d_du *= -body.drag;
+  *dF_dv += d_du;
+  *dF_dr += d_du * du_dr;
+  if (water != nullptr) *dF_dr += (body.displaced_mass + body.added_mass) * water->d_acceleration;
+}
+
 }  // namespace
 
 LineParameters LineParameters::Uniform(int id, const std::string& type, double length, int segments,
@@ -180,16 +203,20 @@ LineProperties MakeLineProperties(const MooringParameters& spec, const LineParam
     node += line.sections[k].segments;
     const PointBody& body = line.joints[k];
     if (body.mass == 0.0 && body.volume == 0.0 && body.drag_area == 0.0) continue;
-    PointBodyProperties b;
-    b.mass = body.mass;
-    b.weight = (body.mass - rho * body.volume) * spec.water.gravity;
-    b.added_mass = body.added_mass * rho * body.volume;
-    b.drag = 0.5 * rho * body.drag_area;
-    b.displaced_mass = rho * body.volume;
     p.body_at[node] = static_cast<int>(p.bodies.size());
-    p.bodies.push_back(b);
+    p.bodies.push_back(BodyProperties(body, spec.water));
   }
   return p;
+}
+
+PointBodyProperties BodyProperties(const PointBody& body, const Water& water) {
+  PointBodyProperties b;
+  b.mass = body.mass;
+  b.weight = (body.mass - water.density * body.volume) * water.gravity;
+  b.added_mass = body.added_mass * water.density * body.volume;
+  b.drag = 0.5 * water.density * body.drag_area;
+  b.displaced_mass = water.density * body.volume;
+  return b;
 }
 
 CompositeLine CatenaryLineOf(const LineProperties& line, double seabed_rise) {
@@ -303,9 +330,41 @@ MooringSystem::MooringSystem(const MooringParameters& spec) : current_(spec.curr
     c.line = static_cast<int>(lines_.size()) - 1;
     c.segments = lines_.back().segments;
     c.anchor = line.anchor;
+    c.lower_point = line.lower_point;
+    c.upper_point = line.upper_point;
+    if (line.lower_point >= 0) c.lower = EndCondition::kPoint;
+    if (line.upper_point >= 0) c.upper = EndCondition::kPoint;
     chains_.push_back(c);
     max_segments = std::max(max_segments, c.segments);
   }
+  // The free points, and the lines' ends at them.
+  std::vector<int> lines_at(spec.points.size(), 0);
+  for (const FreePoint& point : spec.points) {
+    point_bodies_.push_back(BodyProperties(point.body, spec.water));
+    point_start_.push_back(point.position);
+  }
+  for (const Chain& c : chains_) {
+    const std::string where = "mooring.lines[" + std::to_string(lines_[c.line].id) + "]";
+    for (const int point : {c.lower_point, c.upper_point}) {
+      if (point < -1 || point >= num_points()) {
+        throw InputError(where + ": no free point " + std::to_string(point + 1));
+      }
+      if (point >= 0) ++lines_at[point];
+    }
+    if (c.lower_point >= 0 && c.lower_point == c.upper_point) {
+      throw InputError(where + ": both ends at free point " + std::to_string(c.lower_point + 1));
+    }
+    if (c.lower == EndCondition::kPoint && c.upper == EndCondition::kFairlead && c.segments < 2) {
+      throw InputError(where + ": a line from a free point to the vessel needs 2 segments or more");
+    }
+  }
+  for (int p = 0; p < num_points(); ++p) {
+    if (lines_at[p] == 0) {
+      throw InputError("mooring.points[" + std::to_string(p) + "]: no line ends at this point");
+    }
+  }
+  point_force_.resize(spec.points.size());
+  point_mass_.resize(spec.points.size());
   pos_.resize(max_segments + 1);
   vel_.resize(max_segments + 1);
   seg_.resize(max_segments);
@@ -313,7 +372,7 @@ MooringSystem::MooringSystem(const MooringParameters& spec) : current_(spec.curr
 }
 
 void MooringSystem::Layout() {
-  int offset = 0;
+  int offset = 6 * num_points();
   for (auto& c : chains_) {
     c.state_offset = offset;
     offset += 6 * c.num_state_nodes();
@@ -324,8 +383,68 @@ void MooringSystem::Layout() {
 
 bool MooringSystem::attached(int index) const {
   return std::any_of(chains_.begin(), chains_.end(), [&](const Chain& c) {
+    return c.line == index &&
+           (c.upper == EndCondition::kFairlead || c.upper == EndCondition::kPoint);
+  });
+}
+
+bool MooringSystem::at_vessel(int index) const {
+  return std::any_of(chains_.begin(), chains_.end(), [&](const Chain& c) {
     return c.line == index && c.upper == EndCondition::kFairlead;
   });
+}
+
+namespace {
+
+// Nodes of a line between two points at rest, a start for the static solve: on the chord if
+// the line is no longer than it, else on a parabola hanging below it with about the line's
+// length (sag h over chord D: length D + 8 h^2 / (3 D)), kept above the seabed.
+Eigen::Matrix3Xd SagPoints(const LineProperties& lp, const Vec3& lower, const Vec3& upper,
+                           const SeabedSurface& seabed) {
+  const std::vector<double> arc = NodeArcLengths(lp);
+  const Vec3 chord = upper - lower;
+  const double D = chord.norm();
+  const double sag = lp.length > D ? std::sqrt(3.0 * D * (lp.length - D) / 8.0) : 0.0;
+  Eigen::Matrix3Xd nodes(3, arc.size());
+  for (std::size_t k = 0; k < arc.size(); ++k) {
+    const double xi = arc[k] / lp.length;
+    Vec3 r = lower + xi * chord + 4.0 * sag * xi * (1.0 - xi) * kDown;
+    r.z() = std::min(r.z(), seabed.DepthAt(r.x(), r.y()));
+    nodes.col(static_cast<Eigen::Index>(k)) = r;
+  }
+  return nodes;
+}
+
+// The free points chain state node i's rows have columns in (its held neighbours), in
+// ascending order, with the NodeJacobian slot each is at; returns how many (0..2).
+int HeldPoints(const Chain& c, int i, int points[2], int slots[2]) {
+  int n = 0;
+  if (i == 0 && c.lower == EndCondition::kPoint) {
+    points[n] = c.lower_point;
+    slots[n++] = kBelow;
+  }
+  if (i == c.num_state_nodes() - 1 && c.upper == EndCondition::kPoint) {
+    points[n] = c.upper_point;
+    slots[n++] = kAbove;
+  }
+  if (n == 2 && points[0] > points[1]) {
+    std::swap(points[0], points[1]);
+    std::swap(slots[0], slots[1]);
+  }
+  return n;
+}
+
+}  // namespace
+
+int MooringSystem::EndNeighbourState(const Chain& c, bool lower) const {
+  const int k = lower ? 1 : c.segments - 1;
+  if (k >= c.first_state_node() && k <= c.last_state_node()) {
+    return c.state_offset + 6 * (k - c.first_state_node());
+  }
+  // One segment: the neighbour is the other end.
+  const EndCondition other = lower ? c.upper : c.lower;
+  if (other != EndCondition::kPoint) return -1;
+  return 6 * (lower ? c.upper_point : c.lower_point);
 }
 
 std::vector<char> MooringSystem::StateKinds() const {
@@ -340,17 +459,49 @@ void MooringSystem::BuildPattern() {
   p.row_start.assign(1, 0);
   p.column.clear();
   blocks_.chains.clear();
+  blocks_.border = 6 * num_points();
+  auto kinematic_rows = [&](int base) {  // r' = v rows: the diagonal and v_comp
+    for (int comp = 0; comp < 3; ++comp) {
+      p.column.push_back(base + comp);
+      p.column.push_back(base + 3 + comp);
+      p.row_start.push_back(static_cast<int64_t>(p.column.size()));
+    }
+  };
+  // The points' rows: their own states and each line end's neighbour node.
+  point_blocks_.assign(num_points(), {});
+  for (int q = 0; q < num_points(); ++q) point_blocks_[q].push_back(6 * q);
+  for (const Chain& c : chains_) {
+    if (c.lower == EndCondition::kPoint && EndNeighbourState(c, true) >= 0) {
+      point_blocks_[c.lower_point].push_back(EndNeighbourState(c, true));
+    }
+    if (c.upper == EndCondition::kPoint && EndNeighbourState(c, false) >= 0) {
+      point_blocks_[c.upper_point].push_back(EndNeighbourState(c, false));
+    }
+  }
+  for (int q = 0; q < num_points(); ++q) {
+    std::vector<int>& blocks = point_blocks_[q];
+    std::sort(blocks.begin(), blocks.end());
+    blocks.erase(std::unique(blocks.begin(), blocks.end()), blocks.end());
+    kinematic_rows(6 * q);
+    for (int comp = 0; comp < 3; ++comp) {
+      for (const int block : blocks) {
+        for (int col = 0; col < 6; ++col) p.column.push_back(block + col);
+      }
+      p.row_start.push_back(static_cast<int64_t>(p.column.size()));
+    }
+  }
   for (const Chain& c : chains_) {
     const int S = c.num_state_nodes();
     if (S > 0) blocks_.chains.push_back({c.state_offset, S});
     for (int i = 0; i < S; ++i) {
       const int base = c.state_offset + 6 * i;
-      for (int comp = 0; comp < 3; ++comp) {  // r' = v rows: the diagonal and v_comp
-        p.column.push_back(base + comp);
-        p.column.push_back(base + 3 + comp);
-        p.row_start.push_back(static_cast<int64_t>(p.column.size()));
-      }
-      for (int comp = 0; comp < 3; ++comp) {  // v' rows: nodes i-1, i, i+1
+      kinematic_rows(base);
+      for (int comp = 0; comp < 3; ++comp) {  // v' rows: the points held, nodes i-1, i, i+1
+        int points[2], slots[2];
+        const int held = HeldPoints(c, i, points, slots);
+        for (int h = 0; h < held; ++h) {
+          for (int col = 0; col < 6; ++col) p.column.push_back(6 * points[h] + col);
+        }
         for (int j = std::max(0, i - 1); j <= std::min(S - 1, i + 1); ++j) {
           for (int col = 0; col < 6; ++col) p.column.push_back(c.state_offset + 6 * j + col);
         }
@@ -376,6 +527,14 @@ void MooringSystem::GatherChain(const Chain& c, const double* x,
   if (c.upper == EndCondition::kFairlead) {
     pos_[c.segments] = fairleads[c.line].position;
     vel_[c.segments] = fairleads[c.line].velocity;
+  }
+  if (c.lower == EndCondition::kPoint) {
+    pos_[0] = Vec3(x + 6 * c.lower_point);
+    vel_[0] = Vec3(x + 6 * c.lower_point + 3);
+  }
+  if (c.upper == EndCondition::kPoint) {
+    pos_[c.segments] = Vec3(x + 6 * c.upper_point);
+    vel_[c.segments] = Vec3(x + 6 * c.upper_point + 3);
   }
 }
 
@@ -492,16 +651,14 @@ void MooringSystem::NodeForceIn(const Chain& c, int k, Vec3* F_out, NodeMass* M_
   };
   if (has_above) add_segment(k, lp.sections[share.above], +1.0);
   if (has_below) add_segment(k - 1, lp.sections[share.below], -1.0);
-  if (share.body >= 0) F -= (lp.bodies[share.body].drag * u.norm()) * u;
   if constexpr (kWaves) {
     const Vec3& a = water_acceleration;
     if (has_above) F += FluidInertiaForce(a, seg_[k].t, seg_[k].L, lp.sections[share.above]);
     if (has_below)
       F += FluidInertiaForce(a, seg_[k - 1].t, seg_[k - 1].L, lp.sections[share.below]);
-    if (share.body >= 0) {
-      const PointBodyProperties& body = lp.bodies[share.body];
-      F += (body.displaced_mass + body.added_mass) * a;
-    }
+    if (share.body >= 0) F += BodyFluidForce(lp.bodies[share.body], u, &a);
+  } else {
+    if (share.body >= 0) F += BodyFluidForce(lp.bodies[share.body], u, nullptr);
   }
 
   if (seabed_.Below(r) > 0.0) {
@@ -609,15 +766,9 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, Node
   };
   if (has_above) add_segment(k, lp.sections[share.above], kAbove, -1.0);
   if (has_below) add_segment(k - 1, lp.sections[share.below], kBelow, +1.0);
-  if (share.body >= 0) {  // drag -b |u| u of the body: d/du = -b (|u| I + u u^T / |u|)
-    const double speed = u.norm();
-    Mat3 d_du = speed * I;
-    if (speed > 1e-300) d_du += u * u.transpose() / speed;
-    const PointBodyProperties& body = lp.bodies[share.body];
-    d_du *= -body.drag;
-    J->dF_dv[kSelf] += d_du;
-    J->dF_dr[kSelf] += d_du * du_dr;
-    if (water) J->dF_dr[kSelf] += (body.displaced_mass + body.added_mass) * water->d_acceleration;
+  if (share.body >= 0) {
+    AddBodyFluidJacobian(lp.bodies[share.body], u, du_dr, water ? &*water : nullptr,
+                         &J->dF_dr[kSelf], &J->dF_dv[kSelf]);
   }
 
   if (seabed_.Below(r) > 0.0) {
@@ -678,6 +829,7 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, Node
 void MooringSystem::Derivatives(const double* x, std::span<const PointKinematics> fairleads,
                                 double* xdot, std::span<Vec3> forces) {
   for (auto& f : forces) f.setZero();
+  for (int q = 0; q < num_points(); ++q) PointBodyLoad(q, x);
   for (const Chain& c : chains_) {
     GatherChain(c, x, fairleads);
     ComputeSegments(c);
@@ -687,6 +839,8 @@ void MooringSystem::Derivatives(const double* x, std::span<const PointKinematics
       NodeForce(c, c.segments, &F, &M);
       forces[c.line] = F - M.Matrix() * fairleads[c.line].acceleration;
     }
+    if (c.lower == EndCondition::kPoint) AddEndToPoint(c, 0, c.lower_point);
+    if (c.upper == EndCondition::kPoint) AddEndToPoint(c, c.segments, c.upper_point);
     const int first = c.first_state_node();
     for (int k = first; k <= c.last_state_node(); ++k) {
       Vec3 F;
@@ -702,14 +856,110 @@ void MooringSystem::Derivatives(const double* x, std::span<const PointKinematics
       out[5] = a.z();
     }
   }
+  for (int q = 0; q < num_points(); ++q) {
+    const Vec3 a = PointAcceleration(q);
+    double* out = xdot + 6 * q;
+    for (int m = 0; m < 3; ++m) {
+      out[m] = x[6 * q + 3 + m];
+      out[3 + m] = a(m);
+    }
+  }
+}
+
+void MooringSystem::PointBodyLoad(int q, const double* x) {
+  const PointBodyProperties& body = point_bodies_[q];
+  const Vec3 r(x + 6 * q);
+  const Vec3 v(x + 6 * q + 3);
+  Vec3 u = v - current_.VelocityAt(r.z());
+  point_force_[q] = body.weight * kDown;
+  if (waves_ != nullptr) {
+    const WaterMotion water = waves_->At(time_, r, false);
+    u -= water.velocity;
+    point_force_[q] += BodyFluidForce(body, u, &water.acceleration);
+  } else {
+    point_force_[q] += BodyFluidForce(body, u, nullptr);
+  }
+  point_mass_[q] = (body.mass + body.added_mass) * Mat3::Identity();
+}
+
+void MooringSystem::AddEndToPoint(const Chain& c, int k, int point) {
+  Vec3 F;
+  NodeMass M;
+  NodeForce(c, k, &F, &M);
+  point_force_[point] += F;
+  point_mass_[point] += M.Matrix();
+}
+
+void MooringSystem::PointLoads(const double* x, std::span<const PointKinematics> fairleads) {
+  for (int q = 0; q < num_points(); ++q) PointBodyLoad(q, x);
+  for (const Chain& c : chains_) {
+    if (c.lower != EndCondition::kPoint && c.upper != EndCondition::kPoint) continue;
+    GatherChain(c, x, fairleads);
+    ComputeSegments(c);
+    if (c.lower == EndCondition::kPoint) AddEndToPoint(c, 0, c.lower_point);
+    if (c.upper == EndCondition::kPoint) AddEndToPoint(c, c.segments, c.upper_point);
+  }
+}
+
+Vec3 MooringSystem::PointAcceleration(int q) const {
+  // A point with nothing left on it and no mass of its own stays where it is.
+  if (!(point_mass_[q].trace() > 0.0)) return Vec3::Zero();
+  return point_mass_[q].inverse() * point_force_[q];
 }
 
 void MooringSystem::Jacobian(const double* x, std::span<const PointKinematics> fairleads,
                              double* values) {
   NodeJacobian J;
+  // The points' accelerations first (their added mass's derivative needs them), and their
+  // own bodies' force derivatives.
+  const int np = num_points();
+  std::vector<Vec3> point_accel(np);
+  std::vector<std::vector<Mat3>> dR(np), dV(np);
+  auto block_of = [&](int q, int state) {
+    const std::vector<int>& blocks = point_blocks_[q];
+    return static_cast<int>(std::lower_bound(blocks.begin(), blocks.end(), state) - blocks.begin());
+  };
+  if (np > 0) {
+    PointLoads(x, fairleads);
+    for (int q = 0; q < np; ++q) {
+      point_accel[q] = PointAcceleration(q);
+      dR[q].assign(point_blocks_[q].size(), Mat3::Zero());
+      dV[q].assign(point_blocks_[q].size(), Mat3::Zero());
+      const Vec3 r(x + 6 * q);
+      const Vec3 v(x + 6 * q + 3);
+      std::optional<WaterMotion> water;
+      if (waves_ != nullptr) water = waves_->At(time_, r, true);
+      Vec3 u = v - current_.VelocityAt(r.z());
+      Mat3 du_dr = Mat3::Zero();
+      du_dr.col(2) = -current_.GradientAt(r.z());
+      if (water) {
+        u -= water->velocity;
+        du_dr -= water->d_velocity;
+      }
+      const int self = block_of(q, 6 * q);
+      AddBodyFluidJacobian(point_bodies_[q], u, du_dr, water ? &*water : nullptr, &dR[q][self],
+                           &dV[q][self]);
+    }
+  }
+  // A line end's share of its point's force derivatives.
+  auto add_end = [&](const Chain& c, bool lower) {
+    const int q = lower ? c.lower_point : c.upper_point;
+    NodeForceJacobian(c, lower ? 0 : c.segments, point_accel[q], &J);
+    const int self = block_of(q, 6 * q);
+    dR[q][self] += J.dF_dr[kSelf] - J.dMa_dr[kSelf];
+    dV[q][self] += J.dF_dv[kSelf];
+    const int neighbour = EndNeighbourState(c, lower);
+    if (neighbour < 0) return;
+    const int slot = lower ? kAbove : kBelow;
+    const int b = block_of(q, neighbour);
+    dR[q][b] += J.dF_dr[slot] - J.dMa_dr[slot];
+    dV[q][b] += J.dF_dv[slot];
+  };
   for (const Chain& c : chains_) {
     GatherChain(c, x, fairleads);
     ComputeSegments(c);
+    if (c.lower == EndCondition::kPoint) add_end(c, true);
+    if (c.upper == EndCondition::kPoint) add_end(c, false);
     const int first = c.first_state_node();
     const int S = c.num_state_nodes();
     for (int i = 0; i < S; ++i) {
@@ -726,8 +976,17 @@ void MooringSystem::Jacobian(const double* x, std::span<const PointKinematics> f
       const Mat3 Minv = M.Matrix().inverse();
       const Vec3 a = Minv * F;
       NodeForceJacobian(c, k, a, &J);
+      int points[2], slots[2];
+      const int held = HeldPoints(c, i, points, slots);
       for (int comp = 0; comp < 3; ++comp) {
         double* v = values + pattern_.row_start[row + 3 + comp];
+        for (int h = 0; h < held; ++h) {
+          const int slot = slots[h];
+          const Eigen::RowVector3d dr = Minv.row(comp) * (J.dF_dr[slot] - J.dMa_dr[slot]);
+          const Eigen::RowVector3d dv = Minv.row(comp) * J.dF_dv[slot];
+          for (int m = 0; m < 3; ++m) *v++ = dr(m);
+          for (int m = 0; m < 3; ++m) *v++ = dv(m);
+        }
         for (int j = std::max(0, i - 1); j <= std::min(S - 1, i + 1); ++j) {
           const int slot = j - i + 1;  // kBelow, kSelf, kAbove
           const Eigen::RowVector3d dr = Minv.row(comp) * (J.dF_dr[slot] - J.dMa_dr[slot]);
@@ -735,6 +994,25 @@ void MooringSystem::Jacobian(const double* x, std::span<const PointKinematics> f
           for (int m = 0; m < 3; ++m) *v++ = dr(m);
           for (int m = 0; m < 3; ++m) *v++ = dv(m);
         }
+      }
+    }
+  }
+  for (int q = 0; q < np; ++q) {
+    const int row = 6 * q;
+    for (int comp = 0; comp < 3; ++comp) {  // r' = v
+      double* v = values + pattern_.row_start[row + comp];
+      v[0] = 0.0;
+      v[1] = 1.0;
+    }
+    const Mat3 Minv =
+        point_mass_[q].trace() > 0.0 ? Mat3(point_mass_[q].inverse()) : Mat3(Mat3::Zero());
+    for (int comp = 0; comp < 3; ++comp) {
+      double* v = values + pattern_.row_start[row + 3 + comp];
+      for (std::size_t b = 0; b < dR[q].size(); ++b) {
+        const Eigen::RowVector3d dr = Minv.row(comp) * dR[q][b];
+        const Eigen::RowVector3d dv = Minv.row(comp) * dV[q][b];
+        for (int m = 0; m < 3; ++m) *v++ = dr(m);
+        for (int m = 0; m < 3; ++m) *v++ = dv(m);
       }
     }
   }
@@ -870,6 +1148,26 @@ double MooringSystem::MechanicalEnergy(const double* x,
                   seabed_.PenetrationEnergy(seabed_.Frame(pos_[k]).penetration);
       }
     }
+    // The line's end nodes at free points move with them.
+    for (const int k : {0, c.segments}) {
+      const bool at_point =
+          k == 0 ? c.lower == EndCondition::kPoint : c.upper == EndCondition::kPoint;
+      if (!at_point) continue;
+      Vec3 F;
+      NodeMass mass;
+      NodeForce(c, k, &F, &mass);
+      const NodeShare share = ShareOf(lp, c.first_node + k, k > 0, k < c.segments);
+      energy += 0.5 * vel_[k].dot(mass.Matrix() * vel_[k]) - share.weight * pos_[k].z();
+      if (seabed_.Below(pos_[k]) > 0.0) {
+        energy += seabed_.stiffness * share.contact *
+                  seabed_.PenetrationEnergy(seabed_.Frame(pos_[k]).penetration);
+      }
+    }
+  }
+  for (int q = 0; q < num_points(); ++q) {
+    const PointBodyProperties& body = point_bodies_[q];
+    const Vec3 v(x + 6 * q + 3);
+    energy += 0.5 * (body.mass + body.added_mass) * v.squaredNorm() - body.weight * x[6 * q + 2];
   }
   return energy;
 }
@@ -881,6 +1179,8 @@ Vec3 MooringSystem::NodePosition(const double* x, int line, int node,
     const int k = node - c.first_node;
     if (k == 0 && c.lower == EndCondition::kAnchored) return c.anchor;
     if (k == c.segments && c.upper == EndCondition::kFairlead) return fairleads[line].position;
+    if (k == 0 && c.lower == EndCondition::kPoint) return PointPosition(x, c.lower_point);
+    if (k == c.segments && c.upper == EndCondition::kPoint) return PointPosition(x, c.upper_point);
     const double* p = x + c.state_offset + 6 * (k - c.first_state_node());
     return Vec3(p[0], p[1], p[2]);
   }
@@ -888,23 +1188,39 @@ Vec3 MooringSystem::NodePosition(const double* x, int line, int node,
 }
 
 void MooringSystem::CatenaryState(std::span<const Vec3> fairleads, double* x) const {
+  for (int q = 0; q < num_points(); ++q) {
+    for (int m = 0; m < 3; ++m) {
+      x[6 * q + m] = point_start_[q](m);
+      x[6 * q + 3 + m] = 0.0;
+    }
+  }
   for (const Chain& c : chains_) {
-    if (c.lower != EndCondition::kAnchored || c.upper != EndCondition::kFairlead) {
+    if (c.lower == EndCondition::kFree || c.upper == EndCondition::kFree) {
       throw Error("catenary initial state needs intact lines");
     }
     const LineProperties& lp = lines_[c.line];
+    const Vec3 lower = c.lower == EndCondition::kPoint ? point_start_[c.lower_point] : lp.anchor;
+    const Vec3 upper =
+        c.upper == EndCondition::kPoint ? point_start_[c.upper_point] : fairleads[c.line];
     Eigen::Matrix3Xd nodes;
-    try {
-      const CompositeLine line =
-          CatenaryLineOf(lp, seabed_.surface.RiseAlong(lp.anchor, fairleads[c.line]));
-      if (line.Uniform()) {
-        nodes = SolveLineCatenary(line.sections.front(), lp.anchor, fairleads[c.line])
-                    .NodePositions(c.segments);
-      } else {
-        nodes = CompositeCatenaryPoints(line, lp.anchor, fairleads[c.line], NodeArcLengths(lp));
+    if (c.lower == EndCondition::kPoint) {
+      nodes = SagPoints(lp, lower, upper, seabed_.surface);
+    } else {
+      try {
+        const CompositeLine line = CatenaryLineOf(lp, seabed_.surface.RiseAlong(lower, upper));
+        if (line.Uniform()) {
+          nodes = SolveLineCatenary(line.sections.front(), lower, upper).NodePositions(c.segments);
+        } else {
+          nodes = CompositeCatenaryPoints(line, lower, upper, NodeArcLengths(lp));
+        }
+      } catch (const Error& e) {
+        // A line up to a free point may not reach it as a catenary from the point's start
+        // position; the static solve moves the point.
+        if (c.upper != EndCondition::kPoint) {
+          throw Error("line " + std::to_string(lp.id) + ": " + e.what());
+        }
+        nodes = SagPoints(lp, lower, upper, seabed_.surface);
       }
-    } catch (const Error& e) {
-      throw Error("line " + std::to_string(lp.id) + ": " + e.what());
     }
     for (int k = 1; k < c.segments; ++k) {
       double* p = x + c.state_offset + 6 * (k - 1);
@@ -919,6 +1235,89 @@ void MooringSystem::CatenaryState(std::span<const Vec3> fairleads, double* x) co
 double MooringSystem::SettleStatic(std::span<const Vec3> fairlead_positions, double* x) {
   std::vector<PointKinematics> fairleads(lines_.size());
   for (size_t i = 0; i < lines_.size(); ++i) fairleads[i].position = fairlead_positions[i];
+  const int np = num_points();
+  if (np == 0) return SettleChains(fairleads, x);
+  for (int q = 0; q < np; ++q) std::fill(x + 6 * q + 3, x + 6 * q + 6, 0.0);
+  // The points' tolerance, 1e-9 EA, is a hundred times the lines' own (1e-11 EA): the
+  // settled lines' end forces carry noise of that order.
+  double axial_stiffness = 0.0;
+  for (const LineProperties& lp : lines_) {
+    for (const SectionProperties& sp : lp.sections) {
+      axial_stiffness = std::max(axial_stiffness, sp.axial_stiffness);
+    }
+  }
+  const double tolerance = 1e-9 * axial_stiffness;
+  const int n = 3 * np;
+  VecX residual(n), trial(n);
+  // The points' net force with the lines settled to the points' positions in x.
+  double lines_residual = 0.0;
+  auto balance = [&](VecX* R) {
+    lines_residual = SettleChains(fairleads, x);
+    PointLoads(x, fairleads);
+    for (int q = 0; q < np; ++q) R->segment<3>(3 * q) = point_force_[q];
+    return R->lpNorm<Eigen::Infinity>();
+  };
+  auto worst_point = [&](const VecX& R) {
+    Eigen::Index i = 0;
+    R.cwiseAbs().maxCoeff(&i);
+    return std::to_string(i / 3 + 1);
+  };
+  auto check_afloat = [&]() {
+    for (int q = 0; q < np; ++q) {
+      if (x[6 * q + 2] < 0.0) {
+        throw Error("free point " + std::to_string(q + 1) +
+                    " rises above the water: its buoyancy is more than its lines hold down");
+      }
+    }
+  };
+  double norm = balance(&residual);
+  std::vector<double> base(x, x + state_size_);
+  MatX K(n, n);
+  constexpr double kStep = 1e-3;  // [m], the finite difference
+  for (int iteration = 0; norm > tolerance; ++iteration) {
+    if (iteration == 100) {
+      std::ostringstream msg;
+      msg << "static equilibrium of free point " << worst_point(residual)
+          << " did not converge: residual force " << norm << " N after 100 iterations";
+      throw Error(msg.str());
+    }
+    base.assign(x, x + state_size_);
+    for (int j = 0; j < n; ++j) {
+      std::copy(base.begin(), base.end(), x);
+      x[6 * (j / 3) + j % 3] += kStep;
+      balance(&trial);
+      K.col(j) = (trial - residual) / kStep;
+    }
+    const VecX step = K.fullPivLu().solve(-residual);
+    double lambda = 1.0;
+    bool moved = false;
+    for (int k = 0; k < 30 && !moved; ++k, lambda *= 0.5) {
+      std::copy(base.begin(), base.end(), x);
+      for (int j = 0; j < n; ++j) x[6 * (j / 3) + j % 3] += lambda * step(j);
+      double trial_norm = std::numeric_limits<double>::infinity();
+      try {
+        trial_norm = balance(&trial);
+      } catch (const Error&) {  // the lines found no equilibrium there: a shorter step
+      }
+      if (trial_norm < norm) {
+        moved = true;
+        norm = trial_norm;
+        residual = trial;
+      }
+    }
+    if (!moved) {
+      std::copy(base.begin(), base.end(), x);
+      std::ostringstream msg;
+      msg << "static equilibrium of free point " << worst_point(residual)
+          << " did not converge: residual force " << norm << " N and no step reduces it";
+      throw Error(msg.str());
+    }
+    check_afloat();
+  }
+  return std::max(norm, lines_residual);
+}
+
+double MooringSystem::SettleChains(std::span<const PointKinematics> fairleads, double* x) {
   double worst = 0.0;
   NodeJacobian J;
   for (const Chain& c : chains_) {
@@ -1120,7 +1519,8 @@ std::vector<double> MooringSystem::ApplyFailure(const LineFailure& failure, cons
     Chain freed = c;
     const bool at_fairlead = failure.mode == FailureMode::kFairlead;
     EndCondition& end = at_fairlead ? freed.upper : freed.lower;
-    if (end == (at_fairlead ? EndCondition::kFairlead : EndCondition::kAnchored)) {
+    if (end == (at_fairlead ? EndCondition::kFairlead : EndCondition::kAnchored) ||
+        end == EndCondition::kPoint) {
       end = EndCondition::kFree;
       applied = true;
     }
@@ -1143,6 +1543,7 @@ std::vector<double> MooringSystem::ApplyFailure(const LineFailure& failure, cons
   chains_ = next;
   Layout();
   std::vector<double> x_new(state_size_);
+  std::copy(x, x + 6 * num_points(), x_new.begin());  // the points keep their states
   for (size_t ci = 0; ci < chains_.size(); ++ci) {
     const Chain& oc = old[source[ci]];
     GatherChain(oc, x, fairleads);  // pos_/vel_ now hold the old chain's nodes

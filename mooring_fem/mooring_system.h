@@ -108,6 +108,8 @@ NodeShare ShareOf(const LineProperties& line, int node, bool has_below, bool has
 /// Throws moorsim::InputError if a section's type is not one of spec.line_types, the line
 /// has no section or a section no segment, or the joints do not match the sections.
 LineProperties MakeLineProperties(const MooringParameters& spec, const LineParameters& line);
+/// A body's constants in the water.
+PointBodyProperties BodyProperties(const PointBody& body, const Water& water);
 
 /// The line as the composite catenary sees it (composite_catenary.h): its sections'
 /// lengths, weights and stiffnesses, the bodies' weights at the joints, and the seabed's
@@ -121,7 +123,9 @@ std::vector<double> NodeArcLengths(const LineProperties& line);
 double CatenaryFairleadTension(const LineProperties& line, const Vec3& fairlead,
                                const SeabedSurface& seabed);
 
-enum class EndCondition { kAnchored, kFairlead, kFree };
+/// A chain's end: held at its anchor or at the vessel's fairlead, hanging from a free point
+/// (whose states the mooring integrates), or free.
+enum class EndCondition { kAnchored, kFairlead, kPoint, kFree };
 
 /// A connected run of a line's nodes first_node..first_node+segments.
 struct Chain {
@@ -131,6 +135,8 @@ struct Chain {
   EndCondition lower = EndCondition::kAnchored;
   EndCondition upper = EndCondition::kFairlead;
   Vec3 anchor = Vec3::Zero();  ///< held position of the lower end when kAnchored
+  int lower_point = -1;        ///< the free point (0-based) of a kPoint lower end
+  int upper_point = -1;        ///< and of a kPoint upper end
   int state_offset = 0;        ///< index of the first state component of the chain
 
   int first_state_node() const { return lower == EndCondition::kFree ? 0 : 1; }
@@ -180,6 +186,10 @@ class MooringSystem {
   explicit MooringSystem(const MooringParameters& spec);
 
   int num_lines() const { return static_cast<int>(lines_.size()); }
+  /// The free points: states 6 p .. 6 p + 5 are point p's [r (3), v (3)] (the points come
+  /// first in the state, then the chains).
+  int num_points() const { return static_cast<int>(point_bodies_.size()); }
+  Vec3 PointPosition(const double* x, int point) const { return Vec3(x + 6 * point); }
   const LineProperties& line(int index) const { return lines_[index]; }
   const std::vector<Chain>& chains() const { return chains_; }
   const SeabedContact& seabed() const { return seabed_; }
@@ -192,14 +202,19 @@ class MooringSystem {
   /// its Jacobian depend on time only through them).
   void SetTime(double t) { time_ = t; }
   int StateSize() const { return state_size_; }
-  /// Whether line `index` is still attached to its fairlead.
+  /// Whether line `index` is still attached at its upper end (the vessel's fairlead or a
+  /// free point).
   bool attached(int index) const;
+  /// Whether line `index` ends at the vessel and is still attached there (the lines whose
+  /// force the vessel feels).
+  bool at_vessel(int index) const;
 
   /// Per state component: position components 'p', velocity components 'v'.
   std::vector<char> StateKinds() const;
 
   /// Places every node on the analytic elastic catenary between its anchor and the given
-  /// fairlead position (Earth frame), at rest. Intact topology only.
+  /// fairlead position (Earth frame), at rest; the free points at their given positions and
+  /// the lines between them on a sag of their length. Intact topology only.
   void CatenaryState(std::span<const Vec3> fairleads, double* x) const;
 
   /// Moves the positions in x to the FEM's own static equilibrium (v = 0) for the given
@@ -208,6 +223,11 @@ class MooringSystem {
   /// the potential energy. Returns the largest residual node force [N], below 1e-11 EA.
   /// Throws moorsim::Error naming the line and the residual if it does not converge (500
   /// iterations, or no step makes progress) or the start state is degenerate.
+  ///
+  /// With free points, the lines are settled with the points held, and the points moved by
+  /// Newton's method on their force balance (a finite-difference Jacobian over the settled
+  /// lines) until the largest residual point force is below 1e-9 EA. Throws moorsim::Error
+  /// naming the point if it does not converge or a point rises above the water.
   double SettleStatic(std::span<const Vec3> fairleads, double* x);
 
   /// x' = f(x) for the given fairlead kinematics (one per line, Earth frame). If `forces`
@@ -265,6 +285,19 @@ class MooringSystem {
 
   void Layout();
   void BuildPattern();
+  /// SettleStatic for the chains with the points held.
+  double SettleChains(std::span<const PointKinematics> fairleads, double* x);
+  /// The free points' net force with their bodies and the lines' end shares, and their mass
+  /// matrices, into point_force_ and point_mass_ (chains with a point end are gathered).
+  void PointLoads(const double* x, std::span<const PointKinematics> fairleads);
+  /// Sets point q's force and mass to its own body's (weight, drag, fluid inertia).
+  void PointBodyLoad(int q, const double* x);
+  /// Adds a chain end node k's force and mass to its point's (pos_, seg_ gathered).
+  void AddEndToPoint(const Chain& chain, int k, int point);
+  Vec3 PointAcceleration(int point) const;
+  /// The first state of the 6-block a chain end's neighbour node is (the next node along
+  /// the chain, or the point at its other end), or -1 when that is held (an anchor).
+  int EndNeighbourState(const Chain& chain, bool lower) const;
   void GatherChain(const Chain& chain, const double* x, std::span<const PointKinematics> fairleads);
   void ComputeSegments(const Chain& chain);
   /// Net force F and mass M of chain node k from the gathered state.
@@ -277,6 +310,12 @@ class MooringSystem {
   void NodeForceJacobian(const Chain& chain, int k, const Vec3& accel, NodeJacobian* J) const;
 
   std::vector<LineProperties> lines_;
+  std::vector<PointBodyProperties> point_bodies_;
+  std::vector<Vec3> point_start_;
+  // Per point, the 6-blocks (first states, ascending) its velocity rows have columns in.
+  std::vector<std::vector<int>> point_blocks_;
+  std::vector<Vec3> point_force_;  // scratch: PointLoads()
+  std::vector<Mat3> point_mass_;
   /// Per line, the share of every interior node (with both its half segments).
   std::vector<std::vector<NodeShare>> shares_;
   std::vector<Chain> chains_;

@@ -94,6 +94,14 @@ struct PointBody {
   double drag_area = 0.0;   ///< C_D A [m^2]: drag 0.5 rho C_D A |u| u
 };
 
+/// A free point of the mooring: where lines meet (a bridle's apex, a buoy or clump weight
+/// shared by lines) or a line's free end. Its position and velocity are states of the
+/// mooring; it carries its body and the end nodes' shares of the lines it holds.
+struct FreePoint {
+  Vec3 position = Vec3::Zero();  ///< where it starts, Earth frame [m] (the static solve moves it)
+  PointBody body;                ///< what sits there (a default PointBody: a plain connection)
+};
+
 /// A stretch of a line of one line type, split into equal segments.
 struct LineSection {
   std::string type;     ///< name of a LineType
@@ -112,6 +120,10 @@ struct LineParameters {
   /// joints[k] sits between sections k and k + 1 (sections.size() - 1 of them, or none: no
   /// bodies); a default PointBody is a plain joint.
   std::vector<PointBody> joints;
+  /// The free points the line's ends hang from (0-based indices into MooringParameters::
+  /// points), or -1: the lower end at `anchor`, the upper end at the vessel's `fairlead_body`.
+  int lower_point = -1;
+  int upper_point = -1;
 
   /// A homogeneous line: one section.
   static LineParameters Uniform(int id, const std::string& type, double length, int segments,
@@ -129,6 +141,7 @@ struct MooringParameters {
   CurrentProfile current;  ///< empty profile = no current
   std::vector<LineType> line_types;
   std::vector<LineParameters> lines;  ///< ordered by id: lines[k - 1] is line k
+  std::vector<FreePoint> points;      ///< the free points lines may end at
 };
 
 /// Integrator settings (CVODE BDF).
