@@ -38,6 +38,50 @@ constexpr int kMaxStaticIterations = 500;
 constexpr int kMaxLineSearchSteps = 60;
 constexpr double kMaxLineSearchExtrapolation = 1e9;
 
+// The static solves' line search for phi(lambda) = 0 (Crisfield), phi being the force
+// along the step, minus the potential energy's slope there: a step is accepted once |phi|
+// has fallen to half of phi0 (or the residual below the tolerance); it extrapolates while
+// phi stays positive (a node or a buoy moving slack through the water feels the same force
+// all the way) and bisects once phi turns negative. `move_to(lambda)` moves the state,
+// leaves its force in `force` and returns its norm (infinite where the state is
+// inadmissible). Returns the accepted lambda (0: no progress), and the last lambda moved to.
+struct StepSearch {
+  double accepted = 0.0;
+  double evaluated_at = 0.0;
+  double norm = 0.0;  // at evaluated_at
+};
+template <class MoveTo>
+StepSearch SearchAlongStep(MoveTo&& move_to, const Eigen::VectorXd& force,
+                           const Eigen::VectorXd& step, double tolerance, double norm) {
+  const double phi0 = force.dot(step);
+  StepSearch out;
+  out.norm = norm;
+  double below = 0.0;  // largest lambda known to have phi > 0
+  double above = std::numeric_limits<double>::infinity();
+  double lambda = 1.0;
+  for (int k = 0; k < kMaxLineSearchSteps; ++k) {
+    const double trial = move_to(lambda);
+    out.norm = trial;
+    out.evaluated_at = lambda;
+    const double phi =
+        std::isfinite(trial) ? force.dot(step) : -std::numeric_limits<double>::infinity();
+    if (trial <= tolerance || std::abs(phi) <= 0.5 * phi0) {
+      out.accepted = lambda;
+      return out;
+    }
+    if (phi > 0.0) {
+      below = lambda;
+      lambda = std::isinf(above) ? 2.0 * lambda : 0.5 * (below + above);
+      if (lambda > kMaxLineSearchExtrapolation) break;
+    } else {
+      above = lambda;
+      lambda = 0.5 * (below + above);
+    }
+  }
+  out.accepted = below;  // the energy fell all the way to `below`
+  return out;
+}
+
 // Morison drag of half a segment (stretched length L) on relative velocity u, and its
 // derivatives w.r.t. u and the segment vector l. Normal part -c_n (L/2)|u_n| u_n,
 // tangential part -c_t (L/2) |s| s t with s = u . t (Ren & Skjetne 2016, eq. 7, drag on the
@@ -360,7 +404,7 @@ MooringSystem::MooringSystem(const MooringParameters& spec) : current_(spec.curr
   }
   for (int p = 0; p < num_points(); ++p) {
     if (lines_at[p] == 0) {
-      throw InputError("mooring.points[" + std::to_string(p) + "]: no line ends at this point");
+      throw InputError("free point " + std::to_string(p + 1) + ": no line ends at it");
     }
   }
   point_force_.resize(spec.points.size());
@@ -1274,44 +1318,73 @@ double MooringSystem::SettleStatic(std::span<const Vec3> fairlead_positions, dou
   std::vector<double> base(x, x + state_size_);
   MatX K(n, n);
   constexpr double kStep = 1e-3;  // [m], the finite difference
+  // A point whose lines are all slack has no stiffness (a buoy on a slack pendant): a
+  // Levenberg-Marquardt shift (K - mu I) then steps along its force.
+  double shift = 0.0;
+  bool fresh = false;  // whether K is the Jacobian at x
   for (int iteration = 0; norm > tolerance; ++iteration) {
-    if (iteration == 100) {
+    if (iteration == 200) {
       std::ostringstream msg;
       msg << "static equilibrium of free point " << worst_point(residual)
-          << " did not converge: residual force " << norm << " N after 100 iterations";
+          << " did not converge: residual force " << norm << " N after 200 iterations";
       throw Error(msg.str());
     }
-    base.assign(x, x + state_size_);
-    for (int j = 0; j < n; ++j) {
+    if (!fresh) {
+      base.assign(x, x + state_size_);
+      for (int j = 0; j < n; ++j) {
+        std::copy(base.begin(), base.end(), x);
+        x[6 * (j / 3) + j % 3] += kStep;
+        balance(&trial);
+        K.col(j) = (trial - residual) / kStep;
+      }
       std::copy(base.begin(), base.end(), x);
-      x[6 * (j / 3) + j % 3] += kStep;
-      balance(&trial);
-      K.col(j) = (trial - residual) / kStep;
+      fresh = true;
     }
-    const VecX step = K.fullPivLu().solve(-residual);
-    double lambda = 1.0;
-    bool moved = false;
-    for (int k = 0; k < 30 && !moved; ++k, lambda *= 0.5) {
+    const auto raise_shift = [&]() {
+      std::copy(base.begin(), base.end(), x);
+      const double scale = K.diagonal().cwiseAbs().maxCoeff() + axial_stiffness * 1e-9;
+      shift = shift == 0.0 ? 1e-6 * scale : 10.0 * shift;
+      if (shift > 1e6 * scale) {
+        std::ostringstream msg;
+        msg << "static equilibrium of free point " << worst_point(residual)
+            << " did not converge: residual force " << norm << " N and no step reduces it";
+        throw Error(msg.str());
+      }
+    };
+    const VecX step = (K - shift * MatX::Identity(n, n)).fullPivLu().solve(-residual);
+    // As for the lines (SettleChains): phi(lambda) = F(x + lambda step) . step, minus the
+    // potential energy's slope along the step, searched for its zero.
+    const double phi0 = residual.dot(step);
+    if (!step.allFinite() || !(phi0 > 0.0)) {
+      raise_shift();
+      continue;
+    }
+    const auto move_to = [&](double lambda) {
       std::copy(base.begin(), base.end(), x);
       for (int j = 0; j < n; ++j) x[6 * (j / 3) + j % 3] += lambda * step(j);
-      double trial_norm = std::numeric_limits<double>::infinity();
       try {
-        trial_norm = balance(&trial);
-      } catch (const Error&) {  // the lines found no equilibrium there: a shorter step
+        return balance(&trial);
+      } catch (const Error&) {  // the lines found no equilibrium there
+        return std::numeric_limits<double>::infinity();
       }
-      if (trial_norm < norm) {
-        moved = true;
-        norm = trial_norm;
-        residual = trial;
-      }
+    };
+    trial = residual;  // the search's phi0
+    const StepSearch search = SearchAlongStep(move_to, trial, step, tolerance, norm);
+    const double accepted = search.accepted;
+    double trial_norm = search.norm;
+    if (accepted == 0.0) {
+      raise_shift();
+      continue;
     }
-    if (!moved) {
-      std::copy(base.begin(), base.end(), x);
-      std::ostringstream msg;
-      msg << "static equilibrium of free point " << worst_point(residual)
-          << " did not converge: residual force " << norm << " N and no step reduces it";
-      throw Error(msg.str());
+    if (search.evaluated_at != accepted) trial_norm = move_to(accepted);
+    if (!std::isfinite(trial_norm)) {
+      raise_shift();
+      continue;
     }
+    norm = trial_norm;
+    residual = trial;
+    fresh = false;
+    if (accepted == 1.0) shift = shift / 10.0 < 1e-12 ? 0.0 : shift / 10.0;
     check_afloat();
   }
   return std::max(norm, lines_residual);
@@ -1433,41 +1506,16 @@ double MooringSystem::SettleChains(std::span<const PointKinematics> fairleads, d
         }
         return evaluate();
       };
-      // Line search for phi = 0 (Crisfield): accept a step once |phi| has fallen to half
-      // of phi0; extrapolate while phi stays positive (a node falling slack through the
-      // water feels the same force all the way), bisect once it turns negative.
-      double below = 0.0;  // largest lambda known to have phi > 0
-      double above = std::numeric_limits<double>::infinity();
-      double lambda = 1.0;
-      double accepted = 0.0;
-      double trial = norm;
-      double evaluated_at = 0.0;
-      for (int k = 0; k < kMaxLineSearchSteps; ++k) {
-        trial = move_to(lambda);
-        evaluated_at = lambda;
-        const double phi =
-            std::isfinite(trial) ? residual.dot(step) : -std::numeric_limits<double>::infinity();
-        if (trial <= tolerance || std::abs(phi) <= 0.5 * phi0) {
-          accepted = lambda;
-          break;
-        }
-        if (phi > 0.0) {
-          below = lambda;
-          lambda = std::isinf(above) ? 2.0 * lambda : 0.5 * (below + above);
-          if (lambda > kMaxLineSearchExtrapolation) break;
-        } else {
-          above = lambda;
-          lambda = 0.5 * (below + above);
-        }
-      }
-      if (accepted == 0.0) accepted = below;  // the energy fell all the way to `below`
-      if (accepted == 0.0) {                  // no progress along this step
+      const StepSearch search = SearchAlongStep(move_to, residual, step, tolerance, norm);
+      const double accepted = search.accepted;
+      double trial = search.norm;
+      if (accepted == 0.0) {  // no progress along this step
         std::copy(saved.begin(), saved.end(), xc);
         norm = evaluate();
         raise_shift();
         continue;
       }
-      if (evaluated_at != accepted) trial = move_to(accepted);
+      if (search.evaluated_at != accepted) trial = move_to(accepted);
       if (!std::isfinite(trial)) fail("the node forces are not finite");
       norm = trial;
       // A full step is Newton doing well: relax the shift toward plain Newton.

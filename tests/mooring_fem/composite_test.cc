@@ -15,6 +15,7 @@
 #include <ostream>
 #include <vector>
 
+#include "catenary_reference.h"
 #include "core/error.h"
 #include "mooring_fem/composite_catenary.h"
 #include "mooring_fem/mooring_system.h"
@@ -26,127 +27,9 @@ namespace {
 constexpr double kSeaWater = 1025.0;
 constexpr double kGravity = 9.81;
 
-// On a seabed that rises at the angle a from the anchor toward the fairlead, the reference
-// lays the line on the slope up to where V reaches H tan(a), with the tension along it
-// H cos(a) + V sin(a) (frictionless: the weight's component along the slope changes it),
-// integrated by Simpson's rule too.
-
-// --- The reference: a line of sections (w, EA, L) with point weights at the joints.
-
-struct RefSection {
-  double length, weight, stiffness;   // [m], in water [N/m], EA [N]
-  const AxialCurve* curve = nullptr;  // in place of EA
-  double Strain(double tension) const {
-    return curve != nullptr ? curve->Strain(tension) : tension / stiffness;
-  }
-};
-
-struct Reference {
-  double h = 0.0, v_fairlead = 0.0, v_anchor = 0.0, grounded = 0.0, anchor_tension = 0.0;
-  double FairleadTension() const { return std::hypot(h, v_fairlead); }
-  double AnchorTension() const { return anchor_tension; }
-};
-
-// x and z of the fairlead relative to the anchor for (H, V_f), by quadrature of
-// dx/ds = H/T + H/EA, dz/ds = V/T + V/EA on each suspended stretch.
-Eigen::Vector2d Closure(const std::vector<RefSection>& sections, const std::vector<double>& joints,
-                        double rise, double h, double v_f, Reference* out = nullptr) {
-  const std::size_t n = sections.size();
-  // V just above the lower end of each section, walking down from the fairlead.
-  std::vector<double> v_low(n);
-  double v = v_f;
-  for (std::size_t i = n; i-- > 0;) {
-    v -= sections[i].weight * sections[i].length;
-    v_low[i] = v;
-    if (i > 0) v -= joints[i - 1];
-  }
-  // The grounded stretch from the anchor: while V < H tan(rise) (weights below are all >= 0
-  // here).
-  const double lift_off = h * std::tan(rise);
-  double grounded = 0.0;
-  if (v_low[0] < lift_off) {
-    double start = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double top = v_low[i] + sections[i].weight * sections[i].length;
-      if (top >= lift_off) {
-        grounded = start + (lift_off - v_low[i]) / sections[i].weight;
-        break;
-      }
-      start += sections[i].length;
-      if (i + 1 < n && v_low[i + 1] >= lift_off) {
-        grounded = start;
-        break;
-      }
-    }
-  }
-  Eigen::Vector2d p(0.0, 0.0);
-  double start = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const RefSection& s = sections[i];
-    const double g = std::clamp(grounded - start, 0.0, s.length);  // grounded part here
-    if (g > 0.0) {  // along the slope, its tension varying with V (slack where it is <= 0)
-      constexpr int kIntervals = 2000;
-      const double step = g / kIntervals;
-      double sum = 0.0;
-      for (int k = 0; k <= kIntervals; ++k) {
-        const double vs = v_low[i] + s.weight * k * step;
-        const double t = std::max(0.0, h * std::cos(rise) + vs * std::sin(rise));
-        sum += (k == 0 || k == kIntervals ? 1.0 : (k % 2 == 1 ? 4.0 : 2.0)) * (1.0 + s.Strain(t));
-      }
-      p += sum * step / 3.0 * Eigen::Vector2d(std::cos(rise), std::sin(rise));
-    }
-    const double a = g, b = s.length;
-    if (b > a) {
-      constexpr int kIntervals = 4000;  // even: Simpson
-      const double step = (b - a) / kIntervals;
-      Eigen::Vector2d sum(0.0, 0.0);
-      for (int k = 0; k <= kIntervals; ++k) {
-        const double vs = v_low[i] + s.weight * (a + k * step);
-        const double t = std::hypot(h, vs);
-        const double stretch = 1.0 + s.Strain(t);
-        const Eigen::Vector2d f(h / t * stretch, vs / t * stretch);
-        sum += (k == 0 || k == kIntervals ? 1.0 : (k % 2 == 1 ? 4.0 : 2.0)) * f;
-      }
-      p += sum * step / 3.0;
-    }
-    start += s.length;
-  }
-  if (out != nullptr) {
-    out->h = h;
-    out->v_fairlead = v_f;
-    out->v_anchor = grounded > 0.0 ? 0.0 : v_low[0];
-    out->anchor_tension = grounded > 0.0
-                              ? std::max(0.0, h * std::cos(rise) + v_low[0] * std::sin(rise))
-                              : std::hypot(h, v_low[0]);
-    out->grounded = grounded;
-  }
-  return p;
-}
-
-Reference SolveReference(const std::vector<RefSection>& sections, const std::vector<double>& joints,
-                         double rise, double span, double height, double h, double v) {
-  const Eigen::Vector2d target(span, height);
-  const auto closure = [&](double hh, double vv) {
-    return Closure(sections, joints, rise, hh, vv);
-  };
-  for (int iteration = 0; iteration < 100; ++iteration) {
-    const Eigen::Vector2d r = closure(h, v) - target;
-    if (r.norm() < 1e-9) break;
-    Eigen::Matrix2d j;
-    const double dh = 1e-4 * h, dv = 1e-4 * h;
-    j.col(0) = (closure(h + dh, v) - closure(h - dh, v)) / (2.0 * dh);
-    j.col(1) = (closure(h, v + dv) - closure(h, v - dv)) / (2.0 * dv);
-    const Eigen::Vector2d step = j.partialPivLu().solve(-r);
-    double lambda = 1.0;
-    while (h + lambda * step.x() <= 0.0) lambda *= 0.5;
-    h += lambda * step.x();
-    v += lambda * step.y();
-  }
-  Reference out;
-  const Eigen::Vector2d r = Closure(sections, joints, rise, h, v, &out) - target;
-  EXPECT_LT(r.norm(), 1e-8) << "the reference did not close";
-  return out;
-}
+using reference::Reference;
+using reference::RefSection;
+using reference::SolveReference;
 
 // --- The case: a deepwater chain-polyester-chain line in 1000 m.
 

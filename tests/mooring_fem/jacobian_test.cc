@@ -242,6 +242,64 @@ TEST(MooringJacobian, FreeEndsAfterFailuresMatchFiniteDifferences) {
   ExpectJacobianMatchesFiniteDifferences(f.mooring, x, f.fairleads);
 }
 
+// TestSpec's two lines and a bridle: a ground line from an anchor up to an apex carrying a
+// clump weight with drag and added mass, two legs from the apex up to fairleads (one of
+// two segments, whose only node neighbours both the apex and the fairlead), and a buoy on
+// a one-segment pendant above the apex (two points coupled directly).
+MooringParameters BridleTestSpec() {
+  MooringParameters spec = TestSpec(12);
+  const double angle = 4.0 * std::numbers::pi / 3.0;
+  const Vec3 out(std::cos(angle), std::sin(angle), 0.0);
+  const Vec3 side(-out.y(), out.x(), 0.0);
+  FreePoint apex;
+  apex.position = 120.0 * out + Vec3(0.0, 0.0, 100.0);
+  apex.body = {8000.0, 1.0, 1.2, 3.0};
+  FreePoint buoy;
+  buoy.position = apex.position - Vec3(0.0, 0.0, 29.0);
+  buoy.body = {500.0, 3.0, 0.8, 2.0};
+  spec.points = {apex, buoy};
+  LineParameters ground =
+      LineParameters::Uniform(3, "chain", 2250.0, 10, 1950.0 * out + Vec3(0.0, 0.0, 1000.0), {});
+  ground.upper_point = 0;
+  spec.lines.push_back(ground);
+  for (int k : {0, 1}) {
+    LineParameters leg =
+        LineParameters::Uniform(4 + k, "chain", 140.0, k == 0 ? 6 : 2, Vec3::Zero(),
+                                20.0 * out + (k == 0 ? 6.0 : -6.0) * side + Vec3(0.0, 0.0, 12.0));
+    leg.lower_point = 0;
+    spec.lines.push_back(leg);
+  }
+  LineParameters pendant = LineParameters::Uniform(6, "chain", 30.0, 1, Vec3::Zero(), {});
+  pendant.lower_point = 0;
+  pendant.upper_point = 1;
+  spec.lines.push_back(pendant);
+  return spec;
+}
+
+TEST(MooringJacobian, FreePointsMatchFiniteDifferences) {
+  Fixture f(BridleTestSpec());
+  ExpectJacobianMatchesFiniteDifferences(f.mooring, f.x, f.fairleads);
+  // In waves: the water's inertia and velocity on the points' bodies too.
+  const std::vector<WaveTrain> sea = {{0.35, 3.0, 0.4, 0.5}, {0.55, 2.0, 1.9, -0.3}};
+  f.mooring.SetWaves(
+      std::make_shared<const WaveKinematics>(sea, 1000.0, 9.81, WaveStretching::kWheeler));
+  f.mooring.SetTime(4.1);
+  ExpectJacobianMatchesFiniteDifferences(f.mooring, f.x, f.fairleads);
+}
+
+TEST(MooringJacobian, LinesLeavingFreePointsMatchFiniteDifferences) {
+  Fixture f(BridleTestSpec());
+  // The pendant lets go of the buoy, the ground line of the apex, a leg's lower end of it.
+  std::vector<double> x =
+      f.mooring.ApplyFailure({5, FailureMode::kFairlead, 0}, f.x.data(), f.fairleads);
+  x = f.mooring.ApplyFailure({2, FailureMode::kFairlead, 0}, x.data(), f.fairleads);
+  x = f.mooring.ApplyFailure({3, FailureMode::kAnchor, 0}, x.data(), f.fairleads);
+  EXPECT_FALSE(f.mooring.attached(5));
+  EXPECT_FALSE(f.mooring.attached(2));
+  EXPECT_TRUE(f.mooring.at_vessel(3));
+  ExpectJacobianMatchesFiniteDifferences(f.mooring, x, f.fairleads);
+}
+
 TEST(MooringJacobian, PatternHasDiagonalAndBlockTridiagonalShape) {
   Fixture f(20);
   const SparsityPattern& p = f.mooring.JacobianPattern();
