@@ -257,7 +257,9 @@ void LineSimulation::AdvanceTo(double t) {
 
 std::vector<Vec3> LineSimulation::FairleadForces() {
   std::vector<Vec3> forces(mooring_.num_lines());
-  mooring_.FairleadForces(x_.data(), system_.Fairleads(t_), forces);
+  const auto fairleads = system_.Fairleads(t_);
+  mooring_.FairleadForces(x_.data(), fairleads, forces);
+  mooring_.PointEndForces(x_.data(), fairleads, forces);
   return forces;
 }
 

@@ -125,7 +125,7 @@ class LineSimulation {
   const std::vector<double>& state() const { return x_; }
   MooringSystem& mooring() { return mooring_; }
   std::span<const PointKinematics> Fairleads() { return system_.Fairleads(t_); }
-  /// Force of each line on the body at its fairlead, Earth frame [N].
+  /// Each line's force on what holds its upper end: the fairlead, or a free point.
   std::vector<Vec3> FairleadForces();
   double MechanicalEnergy();
   /// Largest residual node force of the static start [N].

@@ -192,6 +192,8 @@ LineProperties MakeLineProperties(const MooringParameters& spec, const LineParam
   p.id = line.id;
   p.anchor = line.anchor;
   p.fairlead_body = line.fairlead_body;
+  p.lower_point = line.lower_point;
+  p.upper_point = line.upper_point;
   for (std::size_t k = 0; k < line.sections.size(); ++k) {
     const LineSection& section = line.sections[k];
     const auto type = std::find_if(spec.line_types.begin(), spec.line_types.end(),
@@ -1067,13 +1069,29 @@ void MooringSystem::FairleadForces(const double* x, std::span<const PointKinemat
   for (auto& f : forces) f.setZero();
   for (const Chain& c : chains_) {
     if (c.upper != EndCondition::kFairlead) continue;
-    GatherChain(c, x, fairleads);
-    ComputeSegments(c);
-    Vec3 F;
-    NodeMass M;
-    NodeForce(c, c.segments, &F, &M);
-    // The node's equation M a = F + F_body gives the line's force on the body F - M a.
-    forces[c.line] = F - M.Matrix() * fairleads[c.line].acceleration;
+    forces[c.line] = UpperEndForce(c, x, fairleads, fairleads[c.line].acceleration);
+  }
+}
+
+Vec3 MooringSystem::UpperEndForce(const Chain& c, const double* x,
+                                  std::span<const PointKinematics> fairleads,
+                                  const Vec3& acceleration) {
+  GatherChain(c, x, fairleads);
+  ComputeSegments(c);
+  Vec3 F;
+  NodeMass M;
+  NodeForce(c, c.segments, &F, &M);
+  // The node's equation M a = F + F_holder gives the line's force on its holder F - M a.
+  return F - M.Matrix() * acceleration;
+}
+
+void MooringSystem::PointEndForces(const double* x, std::span<const PointKinematics> fairleads,
+                                   std::span<Vec3> forces) {
+  if (num_points() == 0) return;
+  PointLoads(x, fairleads);
+  for (const Chain& c : chains_) {
+    if (c.upper != EndCondition::kPoint) continue;
+    forces[c.line] = UpperEndForce(c, x, fairleads, PointAcceleration(c.upper_point));
   }
 }
 
@@ -1129,7 +1147,13 @@ std::vector<LineLoad> MooringSystem::LineLoads(const double* x,
   FairleadForces(x, fairleads, forces);
   for (size_t i = 0; i < lines_.size(); ++i) {
     loads[i].fairlead_force = forces[i];
+    loads[i].upper_end_force = forces[i];
     loads[i].attached = attached(static_cast<int>(i));
+  }
+  if (num_points() > 0) {
+    for (size_t i = 0; i < lines_.size(); ++i) forces[i] = loads[i].upper_end_force;
+    PointEndForces(x, fairleads, forces);
+    for (size_t i = 0; i < lines_.size(); ++i) loads[i].upper_end_force = forces[i];
   }
   // Grounded length: the seabed's share of the line's weight divided by the weight per
   // metre, which converges to the catenary's unstretched grounded length as n grows. A held

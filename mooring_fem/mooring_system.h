@@ -77,6 +77,8 @@ struct LineProperties {
   std::vector<SectionProperties> sections;
   Vec3 anchor = Vec3::Zero();         ///< Earth frame [m]
   Vec3 fairlead_body = Vec3::Zero();  ///< body frame [m]
+  int lower_point = -1;               ///< the free point at the lower end, or -1: the anchor
+  int upper_point = -1;               ///< the free point at the upper end, or -1: the fairlead
   /// Per segment: the index of its section.
   std::vector<int> section_of;
   /// The bodies on the line's joints, and per node the index of the one there (-1: none).
@@ -177,7 +179,10 @@ struct LineFailure {
 /// Per-line static/quasi-static summary.
 struct LineLoad {
   Vec3 fairlead_force = Vec3::Zero();  ///< force of the line on the body, Earth frame [N]
-  double grounded_length = 0.0;        ///< unstretched length carried by the seabed [m]
+  /// Force of the line on what holds its upper end: the vessel (fairlead_force) or a free
+  /// point, Earth frame [N].
+  Vec3 upper_end_force = Vec3::Zero();
+  double grounded_length = 0.0;  ///< unstretched length carried by the seabed [m]
   bool attached = true;
 };
 
@@ -248,6 +253,11 @@ class MooringSystem {
   void FairleadForces(const double* x, std::span<const PointKinematics> fairleads,
                       std::span<Vec3> forces);
 
+  /// For each line whose upper end is at a free point (and only those), the force it
+  /// exerts on the point, Earth frame (what a load cell there reads).
+  void PointEndForces(const double* x, std::span<const PointKinematics> fairleads,
+                      std::span<Vec3> forces);
+
   /// State index of node n-1 of line `index` if it is attached to its fairlead and has a
   /// free node below it, else -1.
   int CouplingNode(int index) const;
@@ -295,6 +305,9 @@ class MooringSystem {
   /// Adds a chain end node k's force and mass to its point's (pos_, seg_ gathered).
   void AddEndToPoint(const Chain& chain, int k, int point);
   Vec3 PointAcceleration(int point) const;
+  /// The force of chain c's top node on what holds it, moving with `acceleration`.
+  Vec3 UpperEndForce(const Chain& c, const double* x, std::span<const PointKinematics> fairleads,
+                     const Vec3& acceleration);
   /// The first state of the 6-block a chain end's neighbour node is (the next node along
   /// the chain, or the point at its other end), or -1 when that is held (an anchor).
   int EndNeighbourState(const Chain& chain, bool lower) const;

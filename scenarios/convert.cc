@@ -12,6 +12,7 @@ mooring_fem::MooringParameters ToMooringParameters(const MooringSpec& spec) {
   p.current = spec.current;
   p.line_types.assign(spec.line_types.begin(), spec.line_types.end());
   p.lines.assign(spec.lines.begin(), spec.lines.end());
+  p.points.assign(spec.points.begin(), spec.points.end());
   return p;
 }
 
@@ -21,6 +22,7 @@ double TurretRadius(const Scenario& scenario) {
   if (t.radius) return *t.radius;
   double radius = 0.0;
   for (const LineSpec& line : scenario.mooring.lines) {
+    if (line.upper_point >= 0) continue;  // not at the vessel
     radius =
         std::max(radius, std::hypot(line.fairlead_body.x() - t.x, line.fairlead_body.y() - t.y));
   }

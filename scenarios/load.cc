@@ -127,14 +127,57 @@ LineType ParseLineType(const Reader& r) {
   return type;
 }
 
-LineSpec ParseLine(const Reader& r, int entry, int default_segments) {
+PointSpec ParsePoint(const Reader& r) {
+  r.CheckKeys();
+  PointSpec point;
+  point.name = r.Required<std::string>("name");
+  point.position = r.Required<Vec3>("position");
+  r.Optional("mass", point.body.mass);
+  r.Optional("volume", point.body.volume);
+  r.Optional("added_mass", point.body.added_mass);
+  r.Optional("drag_area", point.body.drag_area);
+  point.mark = r.mark();
+  return point;
+}
+
+// A line's end: the fixed position under `fixed` (anchor, fairlead) or the free point named
+// under `point` (from, to): one of them. Returns the point's index, or -1.
+int ParseLineEnd(const Reader& r, const char* fixed, const char* point, Vec3* position,
+                 std::string* name, const std::vector<PointSpec>& points) {
+  const std::optional<Reader> at_point = r.Find(point);
+  if (!at_point) {
+    const std::optional<Reader> at = r.Find(fixed);
+    if (!at) {
+      r.Fail(std::string("needs ") + fixed + " or " + point + " (a free point's name)");
+    }
+    *position = at->As<Vec3>();
+    return -1;
+  }
+  if (r.Find(fixed)) {
+    r.Child(fixed).Fail(std::string("give a line's end either ") + fixed + " or " + point +
+                        ", not both");
+  }
+  *name = at_point->As<std::string>();
+  std::vector<std::string> known;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    if (points[k].name == *name) return static_cast<int>(k);
+    known.push_back(points[k].name);
+  }
+  at_point->Fail(
+      "unknown point '" + *name + "' (" +
+      (known.empty() ? std::string("mooring.points lists none") : "known: " + JoinSorted(known)) +
+      ")");
+}
+
+LineSpec ParseLine(const Reader& r, int entry, int default_segments,
+                   const std::vector<PointSpec>& points) {
   r.CheckKeys();
   LineSpec line;
   line.entry = entry;
   line.id = entry;
   r.Optional("id", line.id);
-  line.anchor = r.Required<Vec3>("anchor");
-  line.fairlead_body = r.Required<Vec3>("fairlead");
+  line.lower_point = ParseLineEnd(r, "anchor", "from", &line.anchor, &line.from, points);
+  line.upper_point = ParseLineEnd(r, "fairlead", "to", &line.fairlead_body, &line.to, points);
   line.mark = r.mark();
   const std::optional<Reader> sections = r.Find("sections");
   if (!sections) {  // a line of one type
@@ -205,8 +248,20 @@ void ParseMooring(const Reader& r, Scenario& scenario) {
     defaults->CheckKeys();
     defaults->Optional("segments", mooring.defaults.segments);
   }
+  if (std::optional<Reader> points = r.Find("points")) {
+    points->ForEachItem([&](const Reader& point, std::size_t i) {
+      mooring.points.push_back(ParsePoint(point));
+      for (std::size_t j = 0; j < i; ++j) {
+        if (mooring.points[j].name == mooring.points[i].name) {
+          point.Child("name").Fail("'" + mooring.points[i].name + "' is already the name of " +
+                                   ItemPath("mooring.points", j));
+        }
+      }
+    });
+  }
   r.Child("lines").ForEachItem([&](const Reader& line, std::size_t i) {
-    mooring.lines.push_back(ParseLine(line, static_cast<int>(i) + 1, mooring.defaults.segments));
+    mooring.lines.push_back(
+        ParseLine(line, static_cast<int>(i) + 1, mooring.defaults.segments, mooring.points));
   });
 }
 
@@ -624,7 +679,10 @@ void CheckLineTypes(const Checker& check, const MooringSpec& mooring) {
     for (const LineSpec& line : mooring.lines) {
       for (const mooring_fem::LineSection& section : line.sections) {
         if (section.type != mooring.line_types[i].name) continue;
-        (line.sections.size() > 1 ? in_composites : alone) = true;
+        // Buoyant sections may hang between heavier ones, and lines between free points
+        // float or sink as a whole (CheckPoints).
+        const bool between_points = line.lower_point >= 0 || line.upper_point >= 0;
+        (line.sections.size() > 1 || between_points ? in_composites : alone) = true;
       }
     }
     CheckLineType(check, mooring.line_types[i], path, mooring.water, in_composites && !alone);
@@ -705,6 +763,7 @@ void CheckLines(const Checker& check, const MooringSpec& mooring) {
       }
     }
 
+    if (line.lower_point >= 0 || line.upper_point >= 0) continue;  // CheckPoints
     const double depth = seabed.DepthAt(line.anchor.x(), line.anchor.y());
     const std::string seabed_there =
         (seabed.flat() ? "the seabed at depth " : "the seabed there, at depth ") +
@@ -775,6 +834,7 @@ void CheckLinesAtInitialPose(const Checker& check, const Scenario& scenario) {
   }
   const std::vector<LineSpec>& lines = scenario.mooring.lines;
   for (std::size_t i = 0; i < lines.size(); ++i) {
+    if (lines[i].lower_point >= 0 || lines[i].upper_point >= 0) continue;
     const Vec3 on_turret = centre + FairleadAt(lines[i].fairlead_body - centre, 0.0, 0.0, alpha);
     const Vec3 fairlead = FairleadAt(on_turret, pose.x(), pose.y(), pose.z());
     if (const std::string problem = LineGeometryProblem(lines[i], fairlead); !problem.empty()) {
@@ -783,6 +843,126 @@ void CheckLinesAtInitialPose(const Checker& check, const Scenario& scenario) {
                      (lines[i].written_in_sections ? ".sections " : ".length ") + problem);
     }
   }
+}
+
+// Free points: in the water, apart from each other, each with a line; the lines at them long
+// enough for a start; and every set of points joined by lines that reaches no anchor or
+// fairlead heavier than the water it displaces (else it floats away).
+void CheckPoints(const Checker& check, const MooringSpec& mooring) {
+  const std::vector<PointSpec>& points = mooring.points;
+  const std::vector<LineSpec>& lines = mooring.lines;
+  const mooring_fem::SeabedSurface seabed(mooring.seabed, mooring.water.depth);
+  const Water& water = mooring.water;
+  const int np = static_cast<int>(points.size());
+  constexpr double kApart = 0.01;  // [m]
+  for (int p = 0; p < np; ++p) {
+    const std::string path = ItemPath("mooring.points", p) + ".position";
+    const Vec3& r = points[p].position;
+    if (!(r.z() > 0.0)) {
+      check.Fail(path, "z = " + WithUnit(r.z(), "m") +
+                           " is not below the water surface (z points down, 0 at the surface)");
+    }
+    const double depth = seabed.DepthAt(r.x(), r.y());
+    if (r.z() > depth + kAnchorBelowSeabed) {
+      check.Fail(path, "z = " + WithUnit(r.z(), "m") + " is below the seabed there, at depth " +
+                           Significant(depth, 6) + " m");
+    }
+    for (int q = 0; q < p; ++q) {
+      if ((points[q].position - r).norm() < kApart) {
+        check.Fail(path, "coincides with " + ItemPath("mooring.points", q) +
+                             " (points must be at least " + WithUnit(kApart, "m") + " apart)");
+      }
+    }
+  }
+  // Union-find over the points, joined by lines; a set is held if a line of it has a fixed
+  // end. Weight in water of each set: its bodies and its lines.
+  std::vector<int> parent(np);
+  for (int p = 0; p < np; ++p) parent[p] = p;
+  const auto root = [&](int p) {
+    while (parent[p] != p) p = parent[p] = parent[parent[p]];
+    return p;
+  };
+  std::vector<int> lines_at(np, 0);
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const LineSpec& line = lines[i];
+    if (line.lower_point < 0 && line.upper_point < 0) continue;
+    const std::string path = LinePath(line, i);
+    for (const int p : {line.lower_point, line.upper_point}) {
+      if (p >= 0) ++lines_at[p];
+    }
+    if (line.lower_point >= 0 && line.lower_point == line.upper_point) {
+      check.Fail(path + ".to", "'" + line.to + "' is the point the line starts from too");
+    }
+    if (line.lower_point >= 0 && line.upper_point >= 0) {
+      parent[root(line.lower_point)] = root(line.upper_point);
+    }
+    if (line.lower_point >= 0 && line.upper_point < 0 && line.Segments() < 2) {
+      check.Fail(path + (line.written_in_sections ? ".sections" : ".segments"),
+                 "a line from a free point to the vessel needs 2 segments or more");
+    }
+    // Where its ends start: they must be apart.
+    const Vec3 lower = line.lower_point >= 0 ? points[line.lower_point].position : line.anchor;
+    const Vec3 upper =
+        line.upper_point >= 0 ? points[line.upper_point].position : line.fairlead_body;
+    if ((upper - lower).norm() < kApart) {
+      check.Fail(path + (line.upper_point >= 0 ? ".to" : ".fairlead"),
+                 "starts where the line's lower end does; its ends must be at least " +
+                     WithUnit(kApart, "m") + " apart");
+    }
+    if (line.lower_point < 0) {
+      const double depth = seabed.DepthAt(line.anchor.x(), line.anchor.y());
+      if (line.anchor.z() > depth + kAnchorBelowSeabed) {
+        check.Fail(path + ".anchor", "z = " + WithUnit(line.anchor.z(), "m") +
+                                         " is below the seabed there, at depth " +
+                                         Significant(depth, 6) + " m");
+      }
+    }
+  }
+  for (int p = 0; p < np; ++p) {
+    if (lines_at[p] == 0) {
+      check.Fail(ItemPath("mooring.points", p),
+                 "no line starts or ends at '" + points[p].name + "' (from, to)");
+    }
+  }
+  std::vector<char> held(np, 0);
+  std::vector<double> weight(np, 0.0);  // per set root [N]
+  for (int p = 0; p < np; ++p) {
+    const mooring_fem::PointBody& b = points[p].body;
+    weight[root(p)] += (b.mass - water.density * b.volume) * water.gravity;
+  }
+  for (const LineSpec& line : lines) {
+    if (line.lower_point < 0 && line.upper_point < 0) continue;
+    const int r = root(line.lower_point >= 0 ? line.lower_point : line.upper_point);
+    if (line.lower_point < 0 || line.upper_point < 0) held[r] = 1;
+    for (const mooring_fem::LineSection& section : line.sections) {
+      for (const LineType& type : mooring.line_types) {
+        if (type.name != section.type) continue;
+        weight[r] +=
+            (type.mass_per_length - DisplacedMass(type, water)) * water.gravity * section.length;
+      }
+    }
+    for (const mooring_fem::PointBody& body : line.joints) {
+      weight[r] += (body.mass - water.density * body.volume) * water.gravity;
+    }
+  }
+  for (int p = 0; p < np; ++p) {
+    if (root(p) != p || held[p] || weight[p] > 0.0) continue;
+    check.Fail(ItemPath("mooring.points", p),
+               "'" + points[p].name + "' and the points and lines joined to it reach no anchor " +
+                   "or fairlead and weigh " + Significant(weight[p] / 1e3, 4) +
+                   " kN in water: they would float away");
+  }
+}
+
+// The detectors' quasi-static mooring model and the load cells take every line from its
+// anchor to the vessel.
+void CheckDetectionOnPoints(const Checker& check, const Scenario& scenario) {
+  if (scenario.mooring.points.empty()) return;
+  const std::string why =
+      " take every line from its anchor to the vessel; a mooring with free points "
+      "(mooring.points) is not supported by them yet";
+  if (!scenario.detectors.empty()) check.Fail("detectors", "the detectors" + why);
+  if (scenario.sensors.tension_cells) check.Fail("sensors.tension_cells", "load cells" + why);
 }
 
 // The turret: on the hull, the fairleads on it, a physical bearing.
@@ -802,6 +982,7 @@ void CheckTurret(const Checker& check, const Scenario& scenario) {
     const std::vector<LineSpec>& lines = scenario.mooring.lines;
     for (std::size_t i = 0; i < lines.size(); ++i) {
       const Vec3& f = lines[i].fairlead_body;
+      if (lines[i].upper_point >= 0) continue;  // not at the vessel
       if (!(std::abs(f.x()) <= half_length && std::abs(f.y()) <= half_beam)) {
         check.Fail(LinePath(lines[i], i) + ".fairlead",
                    "(" + Number(f.x()) + ", " + Number(f.y()) +
@@ -999,6 +1180,7 @@ void Validate(const Scenario& scenario) {
   group([&] { CheckLineTypes(check, mooring); });
   group([&] { CheckSeabed(check, mooring.seabed); });
   if (errors.size() == before_lines) group([&] { CheckLines(check, mooring); });
+  if (errors.size() == before_lines) group([&] { CheckPoints(check, mooring); });
   const bool lines_hold = errors.size() == before_lines;
   if (scenario.vessel) group([&] { CheckVessel(check, *scenario.vessel); });
   group([&] { CheckTurret(check, scenario); });
@@ -1009,6 +1191,7 @@ void Validate(const Scenario& scenario) {
   group([&] { CheckSimulation(check, scenario.simulation); });
   group([&] { CheckFailure(check, scenario); });
   group([&] { CheckDetectors(check, scenario); });
+  group([&] { CheckDetectionOnPoints(check, scenario); });
   group([&] {
     const bool vessel_needed = scenario.marks.contains("controller") ||
                                scenario.marks.contains("sensors") ||

@@ -36,9 +36,18 @@ struct LineType : mooring_fem::LineType {
   SourceMark mark;
 };
 
+/// A free point (mooring_fem::FreePoint), its name and where it was written.
+struct PointSpec : mooring_fem::FreePoint {
+  std::string name;
+  SourceMark mark;  ///< the list entry
+};
+
 /// A line (mooring_fem::LineParameters) and where it was written.
 struct LineSpec : mooring_fem::LineParameters {
-  SourceMark mark;         ///< the list entry
+  SourceMark mark;  ///< the list entry
+  /// The free points' names its ends are at (`from`, `to`), "" for the anchor and the
+  /// fairlead; lower_point and upper_point are their indices.
+  std::string from, to;
   SourceMark length_mark;  ///< the `length` key's value, or `sections` (for the distance check)
   bool written_in_sections = false;  ///< given as `sections` (messages name them)
   /// 1-based position of the entry in the YAML list (0 = not from YAML). Lines are sorted
@@ -63,7 +72,8 @@ struct MooringSpec {
   CurrentProfile current;  ///< empty profile = no current
   std::vector<LineType> line_types;
   LineDefaults defaults;
-  std::vector<LineSpec> lines;  ///< ordered by id after loading: lines[k - 1] is line k
+  std::vector<LineSpec> lines;    ///< ordered by id after loading: lines[k - 1] is line k
+  std::vector<PointSpec> points;  ///< the free points, in the order written
 };
 
 /// The vessel (docs/design.md section 5). Defaults are the seed FPSO (docs/design.md section 9).

@@ -290,43 +290,77 @@ constexpr Key kSectionKeys[] = {
 };
 constexpr Block kSection{"A section of a line: one line type over a length.", kSectionKeys};
 
-constexpr Key kBodyKeys[] = {
-    {.name = "added_mass",
-     .description = "Added-mass coefficient C_A on the displaced volume (isotropic).",
-     .minimum = AtLeast(0.0),
-     .maximum = AtMost(kMaxCoefficient, kCoefficientWhy)},
+// What a body at a joint and a free point have alike.
+constexpr Key kBodyAddedMass{
+    .name = "added_mass",
+    .description = "Added-mass coefficient C_A on the displaced volume (isotropic).",
+    .minimum = AtLeast(0.0),
+    .maximum = AtMost(kMaxCoefficient, kCoefficientWhy)};
+constexpr Key kBodyDragArea =
     NonNegative("drag_area", "m^2", 1000.0,
                 "C_D A: drag 0.5 rho C_D A |u| u on the water's velocity relative to the body.",
-                "a buoy 35 m across"),
+                "a buoy 35 m across");
+constexpr Key kBodyMass =
+    NonNegative("mass", "kg", 1e7, "Dry mass (a clump weight: heavier than its displaced water).",
+                "ten thousand tonnes");
+constexpr Key kBodyVolume =
+    NonNegative("volume", "m^3", 1e4, "Displaced volume (a buoy: more than mass / water density).",
+                "a buoy 27 m across");
+
+constexpr Key kBodyKeys[] = {
+    kBodyAddedMass,
+    kBodyDragArea,
     {.name = "joint",
      .kind = Kind::kInteger,
      .description = "The joint it sits on: 1 between sections 1 and 2 (from the anchor), ...",
      .required = true,
      .minimum = AtLeast(1.0),
      .maximum = AtMost(1000.0)},
-    NonNegative("mass", "kg", 1e7, "Dry mass (a clump weight: heavier than its displaced water).",
-                "ten thousand tonnes"),
-    NonNegative("volume", "m^3", 1e4, "Displaced volume (a buoy: more than mass / water density).",
-                "a buoy 27 m across"),
+    kBodyMass,
+    kBodyVolume,
 };
 constexpr Block kBody{"A clump weight or buoy on a joint between two sections of a line.",
                       kBodyKeys};
+
+constexpr Key kPointKeys[] = {
+    kBodyAddedMass,
+    kBodyDragArea,
+    kBodyMass,
+    {.name = "name",
+     .kind = Kind::kString,
+     .description = "What lines call it in their from and to.",
+     .required = true},
+    {.name = "position",
+     .kind = Kind::kVector,
+     .unit = "m",
+     .description = "Where it starts, Earth frame NED; the static solution moves it to rest.",
+     .required = true},
+    kBodyVolume,
+};
+constexpr Block kPoint{
+    "A free point: where lines meet (a bridle's apex, a shared buoy or clump weight) or a line "
+    "ends in the water, with the body there.",
+    kPointKeys};
 
 constexpr Key kLineKeys[] = {
     {.name = "anchor",
      .kind = Kind::kVector,
      .unit = "m",
-     .description = "Anchor, Earth frame NED (z down: on a 1000 m seabed z = +1000).",
-     .required = true},
+     .description = "Anchor, Earth frame NED (z down: on a 1000 m seabed z = +1000); or from.",
+     .required = false},
     List("bodies", kBody, "Clump weights and buoys on the joints between sections."),
     {.name = "fairlead",
      .kind = Kind::kVector,
      .unit = "m",
-     .description = "Fairlead, body frame (x forward, y starboard, z down).",
-     .required = true,
+     .description = "Fairlead, body frame (x forward, y starboard, z down); or to.",
+     .required = false,
      .minimum = AtLeast(-kMaxBodyCoordinate),
      .maximum = AtMost(kMaxBodyCoordinate, kVesselPointWhy),
      .interval = true},
+    {.name = "from",
+     .kind = Kind::kString,
+     .description = "A mooring.points name: the line's lower end hangs from that free point (in "
+                    "place of anchor)."},
     {.name = "id",
      .kind = Kind::kInteger,
      .description = "Line number, 1..N in any order; default: the position in the list."},
@@ -343,17 +377,25 @@ constexpr Key kLineKeys[] = {
                     "mooring.defaults.segments.",
      .minimum = AtLeast(2.0),
      .maximum = AtMost(10000.0)},
+    {.name = "to",
+     .kind = Kind::kString,
+     .description = "A mooring.points name: the line's upper end is held by that free point (in "
+                    "place of fairlead)."},
     {.name = "type",
      .kind = Kind::kString,
      .description = "A line_types name, for a line of one type (not with sections)."},
 };
-constexpr Block kLine{"One mooring line.", kLineKeys};
+constexpr Block kLine{
+    "One mooring line, from its lower end (an anchor or a free point) to its "
+    "upper end (a fairlead or a free point).",
+    kLineKeys};
 
 constexpr Key kMooringKeys[] = {
     Map("current", kCurrent, "A steady current (or give it under environment.current)."),
     Map("defaults", kDefaults, "Values that apply to every line unless it says otherwise."),
     List("line_types", kLineType, "The cable types the lines use.", true),
     List("lines", kLine, "The mooring lines, numbered 1..N.", true),
+    List("points", kPoint, "Free points where lines meet or end."),
     Map("seabed", kSeabed, "The seabed's shape, contact and friction."),
     Map("water", kWater, "Water density, gravity and depth.", true),
 };

@@ -37,7 +37,8 @@ struct StaticLineResult {
   bool broken = false;
   Vec3 force = Vec3::Zero();
   double grounded_length = 0.0;
-  double catenary_tension = 0.0;
+  double catenary_tension = 0.0;  ///< NaN: none (a line with a free point end)
+  bool at_vessel = true;          ///< its upper end at the vessel (else at a free point)
 };
 
 int RunStatic(const StaticOptions& o) {
@@ -73,6 +74,7 @@ int RunStatic(const StaticOptions& o) {
     if (results[i].broken) results[i].grounded_length = scenario.mooring.lines[i].Length();
   }
   double residual = 0.0;
+  std::vector<Vec3> points;  // the free points at rest
   if (!spec.lines.empty()) {
     mooring_fem::MooringSystem mooring(spec);
     std::vector<Vec3> positions;
@@ -88,20 +90,27 @@ int RunStatic(const StaticOptions& o) {
       throw InputError("--offset " + o.offset + ": " + e.what());
     }
     residual = mooring.SettleStatic(positions, x.data());
+    for (int p = 0; p < mooring.num_points(); ++p)
+      points.push_back(mooring.PointPosition(x.data(), p));
     const std::vector<mooring_fem::LineLoad> loads = mooring.LineLoads(x.data(), fairleads);
     for (int i = 0; i < mooring.num_lines(); ++i) {
       const mooring_fem::LineProperties& lp = mooring.line(i);
       StaticLineResult& r = results[lp.id - 1];
-      r.force = loads[i].fairlead_force;
+      r.force = loads[i].upper_end_force;
       r.grounded_length = loads[i].grounded_length;
+      // The catenary from the anchor to the fairlead; none for a line with a free point end.
+      r.at_vessel = lp.upper_point < 0;
       r.catenary_tension =
-          mooring_fem::CatenaryFairleadTension(lp, positions[i], mooring.seabed().surface);
+          lp.lower_point < 0 && lp.upper_point < 0
+              ? mooring_fem::CatenaryFairleadTension(lp, positions[i], mooring.seabed().surface)
+              : std::numeric_limits<double>::quiet_NaN();
     }
   }
 
   Vec3 net = Vec3::Zero();  // Fx, Fy, Mz about the vessel's reference point
   for (const auto& line : scenario.mooring.lines) {
     const StaticLineResult& r = results[line.id - 1];
+    if (!r.at_vessel) continue;  // its force is on a free point
     const Vec3 arm =
         mooring_fem::FairleadPosition(pose, line.fairlead_body) - Vec3(pose.x, pose.y, 0);
     net += Vec3(r.force.x(), r.force.y(), arm.x() * r.force.y() - arm.y() * r.force.x());
@@ -126,6 +135,12 @@ int RunStatic(const StaticOptions& o) {
                        {"catenary_fairlead_tension", r.catenary_tension}});
     }
     out["lines"] = lines;
+    nlohmann::json at_rest = nlohmann::json::array();
+    for (std::size_t p = 0; p < points.size(); ++p) {
+      at_rest.push_back({{"name", scenario.mooring.points[p].name},
+                         {"position", {points[p].x(), points[p].y(), points[p].z()}}});
+    }
+    out["points"] = at_rest;
     out["net_force"] = {net.x(), net.y(), net.z()};
     std::cout << out.dump(2) << "\n";
     return 0;
@@ -140,9 +155,19 @@ int RunStatic(const StaticOptions& o) {
       std::printf("%4d %14s\n", r.id, "broken");
       continue;
     }
-    std::printf("%4d %14.2f %14.2f %14.2f %10.1f %16.2f\n", r.id, r.force.norm() / 1e3,
-                std::hypot(r.force.x(), r.force.y()) / 1e3, r.force.z() / 1e3, r.grounded_length,
-                r.catenary_tension / 1e3);
+    std::printf("%4d %14.2f %14.2f %14.2f %10.1f ", r.id, r.force.norm() / 1e3,
+                std::hypot(r.force.x(), r.force.y()) / 1e3, r.force.z() / 1e3, r.grounded_length);
+    if (std::isnan(r.catenary_tension)) {
+      std::printf("%16s\n", "-");
+    } else {
+      std::printf("%16.2f\n", r.catenary_tension / 1e3);
+    }
+  }
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    if (p == 0) std::printf("\nfree points at rest (Earth frame NED):\n");
+    std::printf("  %-20s x %10.3f m, y %10.3f m, z %10.3f m\n",
+                scenario.mooring.points[p].name.c_str(), points[p].x(), points[p].y(),
+                points[p].z());
   }
   std::printf("\nnet force on the vessel (Earth frame): Fx %.2f kN, Fy %.2f kN, Mz %.2f kN m\n",
               net.x() / 1e3, net.y() / 1e3, net.z() / 1e3);
@@ -164,6 +189,8 @@ Command AddStaticCommand(CLI::App& app) {
       "exerts on the vessel at the fairlead (what a load cell there reads); vertical_tension\n"
       "is its downward component; grounded_length is the seabed's share of the line's weight\n"
       "divided by the weight per metre. The analytic catenary tension is printed alongside.\n"
+      "A line up to a free point (mooring.points) shows the tension at its upper end, on the\n"
+      "point, and no catenary; the free points are moved to rest with the lines.\n"
       "Units: N, m, N m; Earth frame NED (x north, y east, z down).");
   sub->add_option("scenario", o->scenario, "scenario YAML file")->required();
   sub->add_option("--set", o->sets, "override a scenario value: key.path=value (repeatable)");

@@ -10,6 +10,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/error.h"
+#include "scenarios/load.h"
+
 namespace moorsim::scenarios::test_cases {
 
 // A valid scenario that uses every key; each error case edits one spot of it.
@@ -125,6 +128,18 @@ detectors:
   - {type: mle, forgetting_factor: 0.99}
   - {type: glr, threshold: 120}
 )";
+
+// The loader's message for `text` as file test.yaml, or "(no error)".
+inline std::string ErrorOf(const std::string& text) {
+  try {
+    ParseScenario(text, "test.yaml");
+  } catch (const InputError& error) {
+    return error.what();
+  } catch (const std::exception& error) {
+    return std::string("not an InputError: ") + error.what();
+  }
+  return "(no error)";
+}
 
 // Replaces the first `old_text` at or after the first `after` ("" = the start).
 inline std::string Edit(const std::string& text, const std::string& after,

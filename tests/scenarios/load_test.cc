@@ -22,21 +22,11 @@ namespace {
 
 using test_cases::BadInput;
 using test_cases::Edit;
+using test_cases::ErrorOf;
 using test_cases::kBase;
 using test_cases::kParseErrors;
 using test_cases::kValidationErrors;
 using test_cases::PositionOf;
-
-std::string ErrorOf(const std::string& text) {
-  try {
-    ParseScenario(text, "test.yaml");
-  } catch (const InputError& error) {
-    return error.what();
-  } catch (const std::exception& error) {
-    return std::string("not an InputError: ") + error.what();
-  }
-  return "(no error)";
-}
 
 std::string ValidateError(const Scenario& scenario) {
   try {

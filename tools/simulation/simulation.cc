@@ -688,8 +688,11 @@ Sample Simulation::Record() {
 std::vector<double> Simulation::FairleadTensions() {
   std::vector<double> xdot(x_.size());
   system_->Derivatives(t_, x_.data(), xdot.data());
+  std::vector<Vec3> forces(system_->forces().begin(), system_->forces().end());
+  // The lines up to free points: their tension at the point.
+  mooring_.PointEndForces(x_.data() + plant_->StateSize(), system_->points(), forces);
   std::vector<double> tensions(mooring_.num_lines());
-  for (int i = 0; i < mooring_.num_lines(); ++i) tensions[i] = system_->forces()[i].norm();
+  for (int i = 0; i < mooring_.num_lines(); ++i) tensions[i] = forces[i].norm();
   return tensions;
 }
 
