@@ -646,8 +646,7 @@ double DisplacedMass(const LineType& type, const Water& water) {
   return water.density * std::numbers::pi * type.diameter * type.diameter / 4.0;
 }
 
-// `buoyant_allowed`: only composite lines use the type (where a buoyant section hangs
-// between heavier ones, CheckLines checks the line's weight as a whole).
+// `buoyant_allowed`: no line of one type from an anchor to the vessel uses the type.
 void CheckLineType(const Checker& check, const LineType& type, const std::string& path,
                    const Water& water, bool buoyant_allowed) {
   // A line no heavier than the water it displaces has no submerged weight: no catenary,
@@ -674,18 +673,19 @@ void CheckLineTypes(const Checker& check, const MooringSpec& mooring) {
                                        ItemPath("mooring.line_types", j));
       }
     }
-    // Used by composite lines only (and at least one).
-    bool in_composites = false, alone = false;
+    // A buoyant type is for sections of composite lines and lines between free points (whose
+    // weight CheckLines and CheckPoints check as a whole); one no line uses floats nothing.
+    bool alone = false;
     for (const LineSpec& line : mooring.lines) {
       for (const mooring_fem::LineSection& section : line.sections) {
         if (section.type != mooring.line_types[i].name) continue;
         // Buoyant sections may hang between heavier ones, and lines between free points
         // float or sink as a whole (CheckPoints).
         const bool between_points = line.lower_point >= 0 || line.upper_point >= 0;
-        (line.sections.size() > 1 || between_points ? in_composites : alone) = true;
+        if (line.sections.size() == 1 && !between_points) alone = true;
       }
     }
-    CheckLineType(check, mooring.line_types[i], path, mooring.water, in_composites && !alone);
+    CheckLineType(check, mooring.line_types[i], path, mooring.water, !alone);
   }
 }
 

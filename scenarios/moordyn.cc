@@ -228,6 +228,9 @@ class Problems {
   std::vector<std::string> lines_;
 };
 
+// A free point's name in the scenario.
+std::string PointName(const Point& p) { return Text("point_" + p.id); }
+
 std::string Vector(double x, double y, double z) {
   // MoorDyn (z up, y to port) to moorsim (z down, y to starboard).
   std::string text = "[";
@@ -478,66 +481,108 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command)
     }
   }
   problems.ThrowIfAny();
-  for (const Point& p : points) {
-    if (p.kind == PointKind::kFree && p.lines.size() != 2) {
-      problems.Add(p.line, "free point " + p.id + " joins " + std::to_string(p.lines.size()) +
-                               " line" + (p.lines.size() == 1 ? "" : "s") +
-                               (p.lines.size() == 1
-                                    ? ": a line ending free is not supported"
-                                    : ": lines meeting at a free point (a bridle or a shared "
-                                      "buoy) are not supported yet; a free point may join two "
-                                      "lines in series"));
-    }
+  // The topology. A free point joining two lines is a joint of one moorsim line through
+  // it; one joining one line or three and more (a free end, a bridle's apex, a shared buoy)
+  // is a moorsim free point, and so is a joint on no path from a fixed point (between two
+  // vessel points). Each moorsim line is a path of MoorDyn lines through joints between two
+  // ends that are not joints, written from its lower end (a fixed point, else the deeper
+  // free point) to its upper end (a vessel point, else a free point).
+  std::vector<bool> junction(points.size(), false);
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    junction[k] = points[k].kind == PointKind::kFree && points[k].lines.size() != 2;
   }
-  problems.ThrowIfAny();
-
   struct Chain {
-    std::vector<std::size_t> lines;   // from the anchor up
+    std::vector<std::size_t> lines;   // from the lower end up
     std::vector<std::size_t> joints;  // the free points between them
-    std::size_t anchor = 0, fairlead = 0;
+    std::size_t lower = 0, upper = 0;
   };
   std::vector<Chain> chains;
   std::vector<bool> used(lines.size(), false);
-  for (std::size_t a = 0; a < points.size(); ++a) {
-    if (points[a].kind != PointKind::kFixed) continue;
-    for (const std::size_t first : points[a].lines) {
-      Chain chain;
-      chain.anchor = a;
-      std::size_t at = a;
-      std::size_t line = first;
-      bool ok = true;
-      while (true) {
-        chain.lines.push_back(line);
-        used[line] = true;
-        const std::size_t next =
-            *point_index(lines[line].a == points[at].id ? lines[line].b : lines[line].a);
-        if (points[next].kind == PointKind::kVessel) {
-          chain.fairlead = next;
-          break;
-        }
-        if (points[next].kind == PointKind::kFixed) {
-          problems.Add(lines[line].line, "line " + lines[line].id + " leads from fixed point " +
-                                             points[a].id + " to fixed point " + points[next].id +
-                                             " without reaching the vessel");
-          ok = false;
-          break;
-        }
-        chain.joints.push_back(next);
-        at = next;
-        line = points[next].lines[0] == line ? points[next].lines[1] : points[next].lines[0];
-        if (used[line]) {
-          ok = false;
-          break;
+  const auto is_end = [&](std::size_t k) {
+    return points[k].kind != PointKind::kFree || junction[k];
+  };
+  // The path from end point `from` along line `first`, or nothing if it loops.
+  const auto walk = [&](std::size_t from, std::size_t first) -> std::optional<Chain> {
+    Chain chain;
+    chain.lower = from;
+    std::size_t at = from;
+    std::size_t line = first;
+    while (true) {
+      chain.lines.push_back(line);
+      used[line] = true;
+      const std::size_t next =
+          *point_index(lines[line].a == points[at].id ? lines[line].b : lines[line].a);
+      if (is_end(next)) {
+        chain.upper = next;
+        return chain;
+      }
+      chain.joints.push_back(next);
+      at = next;
+      line = points[next].lines[0] == line ? points[next].lines[1] : points[next].lines[0];
+      if (used[line]) return std::nullopt;
+    }
+  };
+  // Which end is the lower: a fixed point, else a free point below the other; never a vessel
+  // point.
+  const auto rank = [&](std::size_t k) {
+    return points[k].kind == PointKind::kFixed ? 0 : points[k].kind == PointKind::kFree ? 1 : 2;
+  };
+  const auto add = [&](Chain chain) {
+    const Point& a = points[chain.lower];
+    const Point& b = points[chain.upper];
+    if (rank(chain.upper) < rank(chain.lower) ||
+        (rank(chain.lower) == 1 && rank(chain.upper) == 1 && b.z < a.z)) {
+      std::swap(chain.lower, chain.upper);
+      std::reverse(chain.lines.begin(), chain.lines.end());
+      std::reverse(chain.joints.begin(), chain.joints.end());
+    }
+    const MdLine& first = lines[chain.lines.front()];
+    const Point& lower = points[chain.lower];
+    const Point& upper = points[chain.upper];
+    if (chain.lower == chain.upper) {
+      problems.Add(first.line,
+                   "line " + first.id + " runs in a loop from point " + lower.id + " back to it");
+    } else if (lower.kind == PointKind::kFixed && upper.kind == PointKind::kFixed) {
+      problems.Add(first.line, "line " + first.id + " leads from fixed point " + lower.id +
+                                   " to fixed point " + upper.id + ", which moorsim does not hold");
+    } else if (lower.kind == PointKind::kVessel) {
+      problems.Add(first.line, "line " + first.id + " runs between vessel points " + lower.id +
+                                   " and " + upper.id);
+    } else {
+      chains.push_back(chain);
+    }
+  };
+  for (int pass = 0; pass < 2; ++pass) {
+    // Fixed points first (so lines read from their anchors), then the free points.
+    // A vessel point's lines last, after the joints between two vessel points have become
+    // free points.
+    for (const PointKind kind : {PointKind::kFixed, PointKind::kFree, PointKind::kVessel}) {
+      if (kind == PointKind::kVessel && pass == 0) continue;
+      for (std::size_t k = 0; k < points.size(); ++k) {
+        if (points[k].kind != kind || !is_end(k)) continue;
+        for (const std::size_t line : points[k].lines) {
+          if (used[line]) continue;
+          if (const std::optional<Chain> chain = walk(k, line)) {
+            add(*chain);
+          } else {
+            problems.Add(lines[line].line, "line " + lines[line].id +
+                                               " leads into a loop of free points from point " +
+                                               points[k].id);
+          }
         }
       }
-      if (ok) chains.push_back(chain);
+    }
+    // Joints still on no path (between two vessel points): free points of their own.
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      if (points[k].kind != PointKind::kFree || junction[k]) continue;
+      junction[k] = std::any_of(points[k].lines.begin(), points[k].lines.end(),
+                                [&](std::size_t line) { return !used[line]; });
     }
   }
   for (std::size_t i = 0; i < lines.size(); ++i) {
     if (!used[i]) {
-      problems.Add(lines[i].line, "line " + lines[i].id +
-                                      " is on no path from a fixed point to the vessel "
-                                      "(between two vessel points, or in a loop of free points)");
+      problems.Add(lines[i].line,
+                   "line " + lines[i].id + " is in a loop of free points that reaches no end");
     }
   }
   const auto option = [&](const std::string& name) -> std::optional<std::pair<double, int>> {
@@ -547,7 +592,7 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command)
   };
   const auto depth = option("wtrdpth");
   if (!depth) problems.Add(1, "no WtrDpth option: the water depth is needed");
-  if (chains.empty()) problems.Add(1, "no line leads from a fixed point to the vessel");
+  if (chains.empty()) problems.Add(1, "no line moorsim can hold");
   problems.ThrowIfAny();
 
   // The scenario.
@@ -559,8 +604,9 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command)
   y << "# Frames: MoorDyn's z points up from the still water level and its y to port; here z\n"
        "# points down and y to starboard, so (x, y, z) there is (x, -y, -z) here. Fixed points\n"
        "# are anchors (Earth frame), vessel points fairleads (body frame), free points joining\n"
-       "# two lines the joints of a line's sections. Line numbers are moorsim's, from 1; each\n"
-       "# says which MoorDyn lines and points it is made of.\n";
+       "# two lines the joints of a line's sections, other free points (free ends, bridles,\n"
+       "# shared buoys) moorsim's free points. Line numbers are moorsim's, from 1; each says\n"
+       "# which MoorDyn lines and points it is made of.\n";
   if (!settings.empty()) {
     y << "# Integration and output settings of the file, not part of the model (moorsim's\n"
          "# integrator chooses its own steps):";
@@ -611,11 +657,22 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command)
       y << "      friction_lateral: " << Number(friction->first) << "\n";
     }
   }
+  bool any_point = false;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const Point& p = points[k];
+    if (p.kind != PointKind::kFree || !junction[k]) continue;
+    if (!any_point) y << "  points:\n";
+    any_point = true;
+    y << "    - {name: " << PointName(p) << ", position: " << Vector(p.x, p.y, p.z)
+      << ", mass: " << Number(p.mass) << ", volume: " << Number(p.volume)
+      << ", added_mass: " << Number(p.ca) << ", drag_area: " << Number(p.cda) << "}  # point "
+      << p.id << " (line " << p.line << ")\n";
+  }
   y << "  lines:\n";
   int id = 0;
   for (const Chain& chain : chains) {
-    const Point& anchor = points[chain.anchor];
-    const Point& fairlead = points[chain.fairlead];
+    const Point& anchor = points[chain.lower];
+    const Point& fairlead = points[chain.upper];
     y << "    - id: " << ++id << "  # MoorDyn line";
     y << (chain.lines.size() > 1 ? "s " : " ");
     for (std::size_t k = 0; k < chain.lines.size(); ++k) {
@@ -624,10 +681,18 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command)
     y << ": point " << anchor.id;
     for (const std::size_t j : chain.joints) y << " -> " << points[j].id;
     y << " -> " << fairlead.id << "\n";
-    y << "      anchor: " << Vector(anchor.x, anchor.y, anchor.z) << "  # point " << anchor.id
-      << " (line " << anchor.line << ")\n";
-    y << "      fairlead: " << Vector(fairlead.x, fairlead.y, fairlead.z) << "  # point "
-      << fairlead.id << " (line " << fairlead.line << ")\n";
+    if (anchor.kind == PointKind::kFixed) {
+      y << "      anchor: " << Vector(anchor.x, anchor.y, anchor.z);
+    } else {
+      y << "      from: " << PointName(anchor);
+    }
+    y << "  # point " << anchor.id << " (line " << anchor.line << ")\n";
+    if (fairlead.kind == PointKind::kVessel) {
+      y << "      fairlead: " << Vector(fairlead.x, fairlead.y, fairlead.z);
+    } else {
+      y << "      to: " << PointName(fairlead);
+    }
+    y << "  # point " << fairlead.id << " (line " << fairlead.line << ")\n";
     // A chain written from the fairlead down is reversed: sections go from the anchor up.
     const MdLine& only = lines[chain.lines.front()];
     if (chain.lines.size() == 1 && only.segments >= 2) {

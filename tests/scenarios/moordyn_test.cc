@@ -1,7 +1,8 @@
 // MoorDyn input files as scenarios (scenarios/moordyn.h): the files are written here, in
 // both of MoorDyn's table layouts, with this test's own numbers. What maps must arrive
 // converted (frames, the tangential drag's circumference, damping ratios, a composite line
-// through a free point written fairlead first); what does not must be one located line each.
+// through a free point written fairlead first, free points where lines meet or end); what
+// does not must be one located line each.
 #include "scenarios/moordyn.h"
 
 #include <gtest/gtest.h>
@@ -167,6 +168,42 @@ Line     LineType  UnstrLen  NumSegs   NodeAnch  NodeFair  Flags/Outputs
   fs::remove_all(dir);
 }
 
+// A free point where three lines meet (a bridle's apex, here with its clump weight) becomes
+// one of moorsim's free points, the lines running from and to it; a line's free end too.
+TEST(MoorDynImport, FreePointsWhereLinesMeetOrEndArriveAsPoints) {
+  const fs::path dir = moorsim::testing::FreshDirectory("moordyn_bridle");
+  std::string text = kSpread;
+  text.replace(text.find("4     chain      7        3"), 0,
+               "5     chain      7        1         300       10      p\n"
+               "6     wire       5        8         40        8       p\n");
+  text.replace(text.find("---------------------- LINES"), 0,
+               "8     Free      -5      20      -40     0      2.0     1.0    1.0\n");
+  const fs::path file = Write(dir, "bridle.txt", text);
+  const MoorDynImport imported = ImportMoorDyn(file.string(), "test");
+  const std::string& y = imported.yaml;
+  EXPECT_EQ(imported.lines, 6);
+  EXPECT_NE(y.find("  points:\n    - {name: point_7, position: [-150, 260, 190], mass: 5000, "
+                   "volume: 0.64, added_mass: 0.8, drag_area: 1.5}  # point 7 (line 17)"),
+            std::string::npos)
+      << y;
+  EXPECT_NE(y.find("{name: point_8, position: [-5, -20, 40]"), std::string::npos) << y;
+  // The wire from the vessel down to the apex runs from the apex up; the chains from the
+  // fixed points up to it; the buoy's pendant from the buoy (the deeper end) up to the
+  // vessel point.
+  EXPECT_NE(y.find("MoorDyn line 3: point 7 -> 6\n      from: point_7  # point 7 (line 17)\n"
+                   "      fairlead: [-5, 8.66, 15]"),
+            std::string::npos)
+      << y;
+  EXPECT_NE(y.find("MoorDyn line 4: point 3 -> 7\n      anchor: [-300, 520, 200]  # point 3 "
+                   "(line 13)\n      to: point_7"),
+            std::string::npos)
+      << y;
+  EXPECT_NE(y.find("MoorDyn line 5: point 1 -> 7\n"), std::string::npos) << y;
+  const Scenario s = ParseScenario(y, "bridle.yaml");
+  EXPECT_EQ(s.mooring.points.size(), 2u);
+  fs::remove_all(dir);
+}
+
 // What moorsim cannot represent: one located line each, all of them at once.
 TEST(MoorDynImport, WhatDoesNotMapIsOneLocatedLineEach) {
   const fs::path dir = moorsim::testing::FreshDirectory("moordyn_refused");
@@ -186,15 +223,12 @@ TEST(MoorDynImport, WhatDoesNotMapIsOneLocatedLineEach) {
       << error;
   EXPECT_NE(error.find(f + ":11: rods are not supported"), std::string::npos) << error;
   EXPECT_EQ(std::count(error.begin(), error.end(), '\n'), 1) << error;  // two lines so far
-  // Without the table and the rod, the bridle.
-  std::string bridle = kSpread;
-  bridle.replace(bridle.find("4     chain      7        3"), 0,
-                 "5     chain      7        1         300       10      p\n");
-  const fs::path second = Write(dir, "bridle.txt", bridle);
-  EXPECT_EQ(ErrorOf(second), second.string() +
-                                 ":17: free point 7 joins 3 lines: lines meeting at a free point "
-                                 "(a bridle or a shared buoy) are not supported yet; a free "
-                                 "point may join two lines in series");
+  // Lines that run between two vessel points.
+  std::string between = kSpread;
+  between.replace(between.find("4     chain      7        3"), 0,
+                  "5     chain      4        5         30        10      p\n");
+  const fs::path second = Write(dir, "between.txt", between);
+  EXPECT_EQ(ErrorOf(second), second.string() + ":24: line 5 runs between vessel points 4 and 5");
   // Not a MoorDyn file at all.
   EXPECT_NE(ErrorOf(Write(dir, "other.txt", "hello\n")).find("no LINE TYPES, POINTS or LINES"),
             std::string::npos);
