@@ -274,8 +274,8 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command)
     if (kind == Kind::kRodTypes || kind == Kind::kRods || kind == Kind::kBodies) {
       problems.Add(section.rows[2].line,
                    (kind == Kind::kBodies ? "bodies" : "rods") +
-                       std::string(" are not supported (moorsim models lines, their joints and "
-                                   "the vessel)"));
+                       std::string(" are not supported (moorsim models lines, points and the "
+                                   "vessel)"));
       continue;
     }
     if (kind == Kind::kOther) {
