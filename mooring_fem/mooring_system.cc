@@ -443,18 +443,22 @@ bool MooringSystem::at_vessel(int index) const {
 namespace {
 
 // Nodes of a line between two points at rest, a start for the static solve: on the chord if
-// the line is no longer than it, else on a parabola hanging below it with about the line's
-// length (sag h over chord D: length D + 8 h^2 / (3 D)), kept above the seabed.
+// the line is no longer than it, else on a parabola sagging across it, downward as far as
+// the chord allows (sideways under a vertical chord), with about the line's length (sag h
+// over chord D: length D + 8 h^2 / (3 D)), kept above the seabed.
 Eigen::Matrix3Xd SagPoints(const LineProperties& lp, const Vec3& lower, const Vec3& upper,
                            const SeabedSurface& seabed) {
   const std::vector<double> arc = NodeArcLengths(lp);
   const Vec3 chord = upper - lower;
   const double D = chord.norm();
   const double sag = lp.length > D ? std::sqrt(3.0 * D * (lp.length - D) / 8.0) : 0.0;
+  Vec3 across = kDown - kDown.dot(chord) / (D * D) * chord;
+  if (!(across.norm() > 0.1)) across = Vec3(1.0, 0.0, 0.0) - chord.x() / (D * D) * chord;
+  across.normalize();
   Eigen::Matrix3Xd nodes(3, arc.size());
   for (std::size_t k = 0; k < arc.size(); ++k) {
     const double xi = arc[k] / lp.length;
-    Vec3 r = lower + xi * chord + 4.0 * sag * xi * (1.0 - xi) * kDown;
+    Vec3 r = lower + xi * chord + 4.0 * sag * xi * (1.0 - xi) * across;
     r.z() = std::min(r.z(), seabed.DepthAt(r.x(), r.y()));
     nodes.col(static_cast<Eigen::Index>(k)) = r;
   }
@@ -1289,6 +1293,12 @@ void MooringSystem::CatenaryState(std::span<const Vec3> fairleads, double* x) co
         }
         nodes = SagPoints(lp, lower, upper, seabed_.surface);
       }
+      // Nor, right below its anchor, as one with no span (its grounded nodes would
+      // coincide).
+      const double span = (upper - lower).head<2>().norm();
+      if (c.upper == EndCondition::kPoint && !(span > 1e-3 * lp.length)) {
+        nodes = SagPoints(lp, lower, upper, seabed_.surface);
+      }
     }
     for (int k = 1; k < c.segments; ++k) {
       double* p = x + c.state_offset + 6 * (k - 1);
@@ -1333,8 +1343,10 @@ double MooringSystem::SettleStatic(std::span<const Vec3> fairlead_positions, dou
   auto check_afloat = [&]() {
     for (int q = 0; q < np; ++q) {
       if (x[6 * q + 2] < 0.0) {
-        throw Error("free point " + std::to_string(q + 1) +
-                    " rises above the water: its buoyancy is more than its lines hold down");
+        // The geometry given, not the numerics: a tether longer than the water is deep.
+        throw InputError("mooring.points[" + std::to_string(q + 1) +
+                         "]: rises above the water at rest: its buoyancy is more than its "
+                         "lines hold down below the surface");
       }
     }
   };

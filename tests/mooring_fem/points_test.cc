@@ -81,6 +81,30 @@ TEST(FreePoints, ABuoyOnAVerticalTetherFloatsAtItsClosedFormHeight) {
   for (double v : xdot) EXPECT_NEAR(v, 0.0, 1e-5);
 }
 
+TEST(FreePoints, ABuoyOnATetherLongerThanTheWaterIsDeepIsRefused) {
+  MooringParameters spec;
+  spec.water.depth = 100.0;
+  spec.line_types = {testing::ChainType()};
+  FreePoint buoy;
+  buoy.position = Vec3(0.0, 0.0, 40.0);
+  buoy.body = {20000.0, 120.0, 1.0, 5.0};
+  spec.points = {buoy};
+  LineParameters tether =
+      LineParameters::Uniform(1, "chain", 150.0, 30, Vec3(0.0, 0.0, 100.0), Vec3::Zero());
+  tether.upper_point = 0;
+  spec.lines = {tether};
+  MooringSystem mooring(spec);
+  std::vector<PointKinematics> fairleads;
+  try {
+    AtRest(mooring, &fairleads);
+    ADD_FAILURE() << "a buoy 50 m above the surface at rest was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "mooring.points[1]: rises above the water at rest: its buoyancy is more than its "
+              "lines hold down below the surface");
+  }
+}
+
 // A bridle in 500 m: a chain from an anchor 1400 m away up to the apex, which carries a
 // clump weight, and two legs from the apex up to two fairleads 30 m apart.
 MooringParameters Bridle(int scale) {
