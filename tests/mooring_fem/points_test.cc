@@ -42,19 +42,27 @@ std::vector<double> AtRest(MooringSystem& mooring, std::vector<PointKinematics>*
   return x;
 }
 
-TEST(FreePoints, ABuoyOnAVerticalTetherFloatsAtItsClosedFormHeight) {
+// A buoy of 120 m^3 and 20 t (1.01 MN of net lift) starting at `start` on 150 m of chain
+// (397 kN in water) from an anchor on the seabed right below the origin.
+MooringParameters BuoyOnATether(double depth, const Vec3& start) {
   MooringParameters spec;
-  spec.water.depth = 1000.0;
+  spec.water.depth = depth;
   spec.line_types = {testing::ChainType()};
-  // 120 m^3 and 20 t: 1.01 MN of net lift on 150 m of chain weighing 397 kN in water.
   FreePoint buoy;
-  buoy.position = Vec3(6.0, -4.0, 820.0);  // off its equilibrium: the solve moves it
+  buoy.position = start;
   buoy.body = {20000.0, 120.0, 1.0, 5.0};
   spec.points = {buoy};
   LineParameters tether =
-      LineParameters::Uniform(1, "chain", 150.0, 30, Vec3(0.0, 0.0, 1000.0), Vec3::Zero());
+      LineParameters::Uniform(1, "chain", 150.0, 30, Vec3(0.0, 0.0, depth), Vec3::Zero());
   tether.upper_point = 0;
   spec.lines = {tether};
+  return spec;
+}
+
+TEST(FreePoints, ABuoyOnAVerticalTetherFloatsAtItsClosedFormHeight) {
+  // Off its equilibrium: the solve moves it.
+  const MooringParameters spec = BuoyOnATether(1000.0, Vec3(6.0, -4.0, 820.0));
+  const LineParameters& tether = spec.lines.front();
   MooringSystem mooring(spec);
   std::vector<PointKinematics> fairleads;
   const std::vector<double> x = AtRest(mooring, &fairleads);
@@ -82,18 +90,7 @@ TEST(FreePoints, ABuoyOnAVerticalTetherFloatsAtItsClosedFormHeight) {
 }
 
 TEST(FreePoints, ABuoyOnATetherLongerThanTheWaterIsDeepIsRefused) {
-  MooringParameters spec;
-  spec.water.depth = 100.0;
-  spec.line_types = {testing::ChainType()};
-  FreePoint buoy;
-  buoy.position = Vec3(0.0, 0.0, 40.0);
-  buoy.body = {20000.0, 120.0, 1.0, 5.0};
-  spec.points = {buoy};
-  LineParameters tether =
-      LineParameters::Uniform(1, "chain", 150.0, 30, Vec3(0.0, 0.0, 100.0), Vec3::Zero());
-  tether.upper_point = 0;
-  spec.lines = {tether};
-  MooringSystem mooring(spec);
+  MooringSystem mooring(BuoyOnATether(100.0, Vec3(0.0, 0.0, 40.0)));
   std::vector<PointKinematics> fairleads;
   try {
     AtRest(mooring, &fairleads);
