@@ -198,7 +198,8 @@ IntegratorOptions MakeIntegratorOptions(const SolverSettings& solver,
   o.linear_solver = solver.linear_solver == "klu" ? IntegratorOptions::LinearSolver::kKlu
                                                   : IntegratorOptions::LinearSolver::kBlock;
   for (char kind : mooring.StateKinds()) {
-    o.atol.push_back(kind == 'p' ? solver.atol_position : solver.atol_velocity);
+    // Positions and creep stretches [m] in metres, velocities in m/s.
+    o.atol.push_back(kind == 'v' ? solver.atol_velocity : solver.atol_position);
   }
   return o;
 }

@@ -91,7 +91,9 @@ class PrescribedMotionSystem : public OdeSystem {
   int StateSize() const override { return mooring_.StateSize(); }
   void Derivatives(double t, const double* x, double* xdot) override;
   const SparsityPattern& JacobianPattern() const override { return mooring_.JacobianPattern(); }
-  const BlockStructure* Blocks() const override { return &mooring_.Blocks(); }
+  const BlockStructure* Blocks() const override {
+    return mooring_.has_blocks() ? &mooring_.Blocks() : nullptr;
+  }
   void Jacobian(double t, const double* x, const double* xdot, double* values) override;
 
   /// Fairlead kinematics of every line at time t.

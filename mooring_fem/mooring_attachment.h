@@ -14,7 +14,9 @@ class MooringAttachment final : public AttachedSubsystem {
 
   int StateSize() const override { return mooring_.StateSize(); }
   const SparsityPattern& JacobianPattern() const override { return mooring_.JacobianPattern(); }
-  const BlockStructure* Blocks() const override { return &mooring_.Blocks(); }
+  const BlockStructure* Blocks() const override {
+    return mooring_.has_blocks() ? &mooring_.Blocks() : nullptr;
+  }
   int NumAttachments() const override { return mooring_.num_lines(); }
   Vec3 AttachmentPoint(int i) const override { return mooring_.line(i).fairlead_body; }
   bool Attached(int i) const override { return mooring_.at_vessel(i); }

@@ -222,14 +222,28 @@ LineProperties MakeLineProperties(const MooringParameters& spec, const LineParam
       }
       sp.axial_stiffness = sp.curve->MaxSlope();
     }
+    if (type->visco_elastic) {
+      const ViscoElastic& v = *type->visco_elastic;
+      if (sp.curve || !(v.dynamic_stiffness > sp.axial_stiffness) || !(v.creep_time > 0.0)) {
+        throw InputError("mooring.line_types '" + type->name +
+                         "': a visco-elastic rope needs a dynamic stiffness above its "
+                         "quasi-static one, a positive creep time and no tension-strain table");
+      }
+      sp.visco = true;
+      sp.dynamic_stiffness = v.dynamic_stiffness;
+      sp.creep_stiffness =
+          sp.axial_stiffness * v.dynamic_stiffness / (v.dynamic_stiffness - sp.axial_stiffness);
+      sp.creep_damping = sp.creep_stiffness * v.creep_time;
+    }
     if (type->axial_damping) {
       sp.axial_damping = *type->axial_damping;
     } else {
       // Damping ratio of the highest axial mode of the discretised line (neighbouring nodes
-      // moving in opposition, w_max = 2 (n / L) sqrt(EA / m)): c = zeta l0 sqrt(EA m).
+      // moving in opposition, w_max = 2 (n / L) sqrt(EA / m)): c = zeta l0 sqrt(EA m), with
+      // a visco-elastic rope's dynamic EA (that mode is fast).
       const double zeta = type->axial_damping_ratio.value_or(0.0);
-      sp.axial_damping =
-          zeta * sp.segment_length * std::sqrt(sp.axial_stiffness * type->mass_per_length);
+      const double fastest = sp.visco ? sp.dynamic_stiffness : sp.axial_stiffness;
+      sp.axial_damping = zeta * sp.segment_length * std::sqrt(fastest * type->mass_per_length);
     }
     sp.displaced_mass_per_length = rho * area;
     sp.added_mass_per_length = type->added_mass_normal * rho * area;
@@ -411,6 +425,14 @@ MooringSystem::MooringSystem(const MooringParameters& spec) : current_(spec.curr
   }
   point_force_.resize(spec.points.size());
   point_mass_.resize(spec.points.size());
+  for (std::size_t line = 0; line < lines_.size(); ++line) {
+    creep_index_.emplace_back(lines_[line].segments, -1);
+    for (int s = 0; s < lines_[line].segments; ++s) {
+      if (!lines_[line].SectionOf(s).visco) continue;
+      creep_index_[line][s] = static_cast<int>(creep_.size());
+      creep_.push_back({static_cast<int>(line), s});
+    }
+  }
   pos_.resize(max_segments + 1);
   vel_.resize(max_segments + 1);
   seg_.resize(max_segments);
@@ -423,7 +445,8 @@ void MooringSystem::Layout() {
     c.state_offset = offset;
     offset += 6 * c.num_state_nodes();
   }
-  state_size_ = offset;
+  creep_offset_ = offset;
+  state_size_ = offset + static_cast<int>(creep_.size());
   BuildPattern();
 }
 
@@ -499,7 +522,8 @@ int MooringSystem::EndNeighbourState(const Chain& c, bool lower) const {
 
 std::vector<char> MooringSystem::StateKinds() const {
   std::vector<char> kinds(state_size_);
-  for (int i = 0; i < state_size_; ++i) kinds[i] = (i % 6) < 3 ? 'p' : 'v';
+  for (int i = 0; i < creep_offset_; ++i) kinds[i] = (i % 6) < 3 ? 'p' : 'v';
+  for (int i = creep_offset_; i < state_size_; ++i) kinds[i] = 's';
   return kinds;
 }
 
@@ -528,15 +552,27 @@ void MooringSystem::BuildPattern() {
       point_blocks_[c.upper_point].push_back(EndNeighbourState(c, false));
     }
   }
+  // And the creep stretches of the lines' end segments at them.
+  point_creep_.assign(num_points(), {});
+  for (const Chain& c : chains_) {
+    const int lower = CreepState(c.line, c.first_node);
+    const int upper = CreepState(c.line, c.first_node + c.segments - 1);
+    if (c.lower == EndCondition::kPoint && lower >= 0) point_creep_[c.lower_point].push_back(lower);
+    if (c.upper == EndCondition::kPoint && upper >= 0) point_creep_[c.upper_point].push_back(upper);
+  }
   for (int q = 0; q < num_points(); ++q) {
     std::vector<int>& blocks = point_blocks_[q];
     std::sort(blocks.begin(), blocks.end());
     blocks.erase(std::unique(blocks.begin(), blocks.end()), blocks.end());
+    std::vector<int>& creep = point_creep_[q];
+    std::sort(creep.begin(), creep.end());
+    creep.erase(std::unique(creep.begin(), creep.end()), creep.end());
     kinematic_rows(6 * q);
     for (int comp = 0; comp < 3; ++comp) {
       for (const int block : blocks) {
         for (int col = 0; col < 6; ++col) p.column.push_back(block + col);
       }
+      for (const int state : creep) p.column.push_back(state);
       p.row_start.push_back(static_cast<int64_t>(p.column.size()));
     }
   }
@@ -555,10 +591,51 @@ void MooringSystem::BuildPattern() {
         for (int j = std::max(0, i - 1); j <= std::min(S - 1, i + 1); ++j) {
           for (int col = 0; col < 6; ++col) p.column.push_back(c.state_offset + 6 * j + col);
         }
+        for (const int state : NodeCreepStates(c, c.first_state_node() + i)) {
+          if (state >= 0) p.column.push_back(state);
+        }
         p.row_start.push_back(static_cast<int64_t>(p.column.size()));
       }
     }
   }
+  // The creep rows: the segment's two nodes' positions (where they are states) and itself.
+  creep_rows_.assign(creep_.size(), {});
+  for (const Chain& c : chains_) {
+    for (int k = 0; k < c.segments; ++k) {
+      const int i = creep_index_.empty() ? -1 : creep_index_[c.line][c.first_node + k];
+      if (i >= 0) creep_rows_[i] = {NodeStateOf(c, k), NodeStateOf(c, k + 1)};
+    }
+  }
+  for (std::size_t i = 0; i < creep_.size(); ++i) {
+    int a = creep_rows_[i].lower, b = creep_rows_[i].upper;
+    if (a > b) std::swap(a, b);
+    for (const int block : {a, b}) {
+      if (block < 0) continue;
+      for (int col = 0; col < 3; ++col) p.column.push_back(block + col);
+    }
+    p.column.push_back(creep_offset_ + static_cast<int>(i));
+    p.row_start.push_back(static_cast<int64_t>(p.column.size()));
+  }
+}
+
+int MooringSystem::CreepState(int line, int segment) const {
+  const int i = creep_index_[line][segment];
+  return i < 0 ? -1 : creep_offset_ + i;
+}
+
+std::array<int, 2> MooringSystem::NodeCreepStates(const Chain& c, int k) const {
+  if (creep_.empty()) return {-1, -1};
+  return {k > 0 ? CreepState(c.line, c.first_node + k - 1) : -1,
+          k < c.segments ? CreepState(c.line, c.first_node + k) : -1};
+}
+
+int MooringSystem::NodeStateOf(const Chain& c, int k) const {
+  if (k >= c.first_state_node() && k <= c.last_state_node()) {
+    return c.state_offset + 6 * (k - c.first_state_node());
+  }
+  if (k == 0 && c.lower == EndCondition::kPoint) return 6 * c.lower_point;
+  if (k == c.segments && c.upper == EndCondition::kPoint) return 6 * c.upper_point;
+  return -1;
 }
 
 void MooringSystem::GatherChain(const Chain& c, const double* x,
@@ -577,6 +654,15 @@ void MooringSystem::GatherChain(const Chain& c, const double* x,
   if (c.upper == EndCondition::kFairlead) {
     pos_[c.segments] = fairleads[c.line].position;
     vel_[c.segments] = fairleads[c.line].velocity;
+  }
+  if (!creep_.empty()) {
+    const LineProperties& lp = lines_[c.line];
+    for (int s = 0; s < c.segments; ++s) {
+      const int i = creep_index_[c.line][c.first_node + s];
+      seg_[s].creep = i < 0 ? -1 : creep_offset_ + i;
+      seg_[s].creep_strain =
+          i < 0 ? 0.0 : x[creep_offset_ + i] / lp.SectionOf(c.first_node + s).segment_length;
+    }
   }
   if (c.lower == EndCondition::kPoint) {
     pos_[0] = Vec3(x + 6 * c.lower_point);
@@ -613,6 +699,10 @@ void MooringSystem::ComputeSegments(const Chain& c) {
     const double strain = L * inverse_l0 - 1.0;
     if (!(strain > 0.0)) {
       g.T = 0.0;
+    } else if (sp.visco) {
+      const double elastic =
+          settling_ ? sp.axial_stiffness * strain : CreepTension(sp, strain, g.creep_strain);
+      g.T = elastic > 0.0 ? elastic + sp.axial_damping * g.rate : 0.0;
     } else if (sp.curve) {
       g.T = sp.curve->Tension(strain) + sp.axial_damping * g.rate;
     } else {
@@ -776,9 +866,16 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, Node
     const Mat3 Pn = I - t * t.transpose();
     // Elastic + structural damping: force on the lower node is T t, on the upper -T t.
     // d(T t)/dl = t (dT/dl)^T + T Pn / L, dT/dl = EA/l0 t + c/l0 Pn dv / L.
-    if (g.L / l0 - 1.0 > 0.0) {
+    // A visco-elastic segment pulls through its dynamic spring while that is stretched (at
+    // its quasi-static stiffness while settling).
+    bool taut = g.L / l0 - 1.0 > 0.0;
+    double slope = EA;  // dT/de
+    if (sp.visco && !settling_) {
+      slope = sp.dynamic_stiffness;
+      taut = taut && CreepTension(sp, g.L / l0 - 1.0, g.creep_strain) > 0.0;
+    }
+    if (taut) {
       const Vec3 dv = vel_[s + 1] - vel_[s];
-      double slope = EA;  // dT/de
       if (sp.curve) sp.curve->Tension(g.L / l0 - 1.0, &slope);
       const Vec3 dT_dl = slope / l0 * t + cd / l0 * (Pn * dv) / g.L;
       const Mat3 K = t * dT_dl.transpose() + g.T * Pn / g.L;
@@ -905,6 +1002,21 @@ void MooringSystem::Derivatives(const double* x, std::span<const PointKinematics
       out[4] = a.y();
       out[5] = a.z();
     }
+    if (!creep_.empty()) {
+      // The creep element's dashpot carries the elastic tension less its spring's:
+      // c de/dt = T - K e, for the stretch l0 e.
+      const LineProperties& lp = lines_[c.line];
+      for (int s = 0; s < c.segments; ++s) {
+        const SegmentState& g = seg_[s];
+        if (g.creep < 0) continue;
+        const SectionProperties& sp = lp.SectionOf(c.first_node + s);
+        const double strain = g.L / sp.segment_length - 1.0;
+        const double carried =
+            strain > 0.0 ? std::max(0.0, CreepTension(sp, strain, g.creep_strain)) : 0.0;
+        xdot[g.creep] =
+            sp.segment_length * (carried - sp.creep_stiffness * g.creep_strain) / sp.creep_damping;
+      }
+    }
   }
   for (int q = 0; q < num_points(); ++q) {
     const Vec3 a = PointAcceleration(q);
@@ -951,6 +1063,31 @@ void MooringSystem::PointLoads(const double* x, std::span<const PointKinematics>
   }
 }
 
+double MooringSystem::CreepSlope(const SegmentState& g, const SectionProperties& sp) const {
+  if (settling_ || !sp.visco) return 0.0;
+  const double strain = g.L / sp.segment_length - 1.0;
+  const bool taut = strain > 0.0 && CreepTension(sp, strain, g.creep_strain) > 0.0;
+  return taut ? -sp.dynamic_stiffness / sp.segment_length : 0.0;
+}
+
+double MooringSystem::CreepTension(const SectionProperties& sp, double strain,
+                                   double creep_strain) const {
+  return sp.dynamic_stiffness * (strain - creep_strain);
+}
+
+void MooringSystem::CreepAtRest(double* x, std::span<const PointKinematics> fairleads) const {
+  for (std::size_t i = 0; i < creep_.size(); ++i) {
+    const CreepSegment& cs = creep_[i];
+    const SectionProperties& sp = lines_[cs.line].SectionOf(cs.segment);
+    const double L = (NodePosition(x, cs.line, cs.segment + 1, fairleads) -
+                      NodePosition(x, cs.line, cs.segment, fairleads))
+                         .norm();
+    // At rest both springs carry T = EA_s e: the creep strain is T / K.
+    const double strain = std::max(0.0, L / sp.segment_length - 1.0);
+    x[creep_offset_ + i] = sp.segment_length * sp.axial_stiffness * strain / sp.creep_stiffness;
+  }
+}
+
 Vec3 MooringSystem::PointAcceleration(int q) const {
   // A point with nothing left on it and no mass of its own stays where it is.
   if (!(point_mass_[q].trace() > 0.0)) return Vec3::Zero();
@@ -965,6 +1102,7 @@ void MooringSystem::Jacobian(const double* x, std::span<const PointKinematics> f
   const int np = num_points();
   std::vector<Vec3> point_accel(np);
   std::vector<std::vector<Mat3>> dR(np), dV(np);
+  std::vector<std::vector<Vec3>> dQ(np);  // d F_point / d(creep stretch), per creep column
   auto block_of = [&](int q, int state) {
     const std::vector<int>& blocks = point_blocks_[q];
     return static_cast<int>(std::lower_bound(blocks.begin(), blocks.end(), state) - blocks.begin());
@@ -975,6 +1113,7 @@ void MooringSystem::Jacobian(const double* x, std::span<const PointKinematics> f
       point_accel[q] = PointAcceleration(q);
       dR[q].assign(point_blocks_[q].size(), Mat3::Zero());
       dV[q].assign(point_blocks_[q].size(), Mat3::Zero());
+      dQ[q].assign(point_creep_[q].size(), Vec3::Zero());
       const Vec3 r(x + 6 * q);
       const Vec3 v(x + 6 * q + 3);
       std::optional<WaterMotion> water;
@@ -998,6 +1137,15 @@ void MooringSystem::Jacobian(const double* x, std::span<const PointKinematics> f
     const int self = block_of(q, 6 * q);
     dR[q][self] += J.dF_dr[kSelf] - J.dMa_dr[kSelf];
     dV[q][self] += J.dF_dv[kSelf];
+    // The end segment's creep: it pulls the point along t at its lower end, -t at its upper.
+    const int end_segment = lower ? 0 : c.segments - 1;
+    const SegmentState& g = seg_[end_segment];
+    if (g.creep >= 0) {
+      const std::vector<int>& creep = point_creep_[q];
+      const auto at = std::lower_bound(creep.begin(), creep.end(), g.creep) - creep.begin();
+      const double slope = CreepSlope(g, lines_[c.line].SectionOf(c.first_node + end_segment));
+      dQ[q][at] += (lower ? slope : -slope) * g.t;
+    }
     const int neighbour = EndNeighbourState(c, lower);
     if (neighbour < 0) return;
     const int slot = lower ? kAbove : kBelow;
@@ -1044,7 +1192,32 @@ void MooringSystem::Jacobian(const double* x, std::span<const PointKinematics> f
           for (int m = 0; m < 3; ++m) *v++ = dr(m);
           for (int m = 0; m < 3; ++m) *v++ = dv(m);
         }
+        // The creep of the segments below and above: -T t below, T t above.
+        const std::array<int, 2> creep = NodeCreepStates(c, k);
+        for (int side = 0; side < 2; ++side) {
+          if (creep[side] < 0) continue;
+          const int s = side == 0 ? k - 1 : k;
+          const double slope = CreepSlope(seg_[s], lines_[c.line].SectionOf(c.first_node + s));
+          *v++ = Minv.row(comp).dot((side == 0 ? -slope : slope) * seg_[s].t);
+        }
       }
+    }
+    // The creep rows: d(stretch)/dt = l0 (T_e - K e) / c, T_e = EA_d (e - stretch / l0).
+    for (int s = 0; s < c.segments && !creep_.empty(); ++s) {
+      const SegmentState& g = seg_[s];
+      if (g.creep < 0) continue;
+      const SectionProperties& sp = lines_[c.line].SectionOf(c.first_node + s);
+      const CreepRow& plan = creep_rows_[g.creep - creep_offset_];
+      const bool taut = CreepSlope(g, sp) != 0.0;
+      const double k = taut ? sp.dynamic_stiffness / sp.creep_damping : 0.0;
+      double* v = values + pattern_.row_start[g.creep];
+      const bool lower_first = plan.lower < plan.upper;
+      for (const bool lower : {lower_first, !lower_first}) {
+        if ((lower ? plan.lower : plan.upper) < 0) continue;
+        const Vec3 d = (lower ? -k : k) * g.t;
+        for (int m = 0; m < 3; ++m) *v++ = d(m);
+      }
+      *v = -((taut ? sp.dynamic_stiffness : 0.0) + sp.creep_stiffness) / sp.creep_damping;
     }
   }
   for (int q = 0; q < np; ++q) {
@@ -1064,6 +1237,7 @@ void MooringSystem::Jacobian(const double* x, std::span<const PointKinematics> f
         for (int m = 0; m < 3; ++m) *v++ = dr(m);
         for (int m = 0; m < 3; ++m) *v++ = dv(m);
       }
+      for (const Vec3& d : dQ[q]) *v++ = Minv.row(comp).dot(d);
     }
   }
 }
@@ -1201,7 +1375,12 @@ double MooringSystem::MechanicalEnergy(const double* x,
     for (int s = 0; s < c.segments; ++s) {
       const SectionProperties& sp = lp.SectionOf(c.first_node + s);
       const double strain = seg_[s].L / sp.segment_length - 1.0;
-      if (strain > 0.0) {
+      if (sp.visco) {  // both springs of the segment; the dashpot only dissipates
+        const double e = seg_[s].creep_strain;
+        const double elastic = strain > 0.0 ? std::max(0.0, strain - e) : 0.0;
+        energy += 0.5 * sp.segment_length *
+                  (sp.dynamic_stiffness * elastic * elastic + sp.creep_stiffness * e * e);
+      } else if (strain > 0.0) {
         energy +=
             (sp.curve ? sp.curve->Energy(strain) : 0.5 * sp.axial_stiffness * strain * strain) *
             sp.segment_length;
@@ -1308,11 +1487,30 @@ void MooringSystem::CatenaryState(std::span<const Vec3> fairleads, double* x) co
       }
     }
   }
+  if (!creep_.empty()) {
+    std::vector<PointKinematics> held(lines_.size());
+    for (std::size_t i = 0; i < lines_.size(); ++i) held[i].position = fairleads[i];
+    CreepAtRest(x, held);
+  }
 }
 
 double MooringSystem::SettleStatic(std::span<const Vec3> fairlead_positions, double* x) {
   std::vector<PointKinematics> fairleads(lines_.size());
   for (size_t i = 0; i < lines_.size(); ++i) fairleads[i].position = fairlead_positions[i];
+  // At rest a visco-elastic segment has crept to its quasi-static stiffness.
+  struct Settling {
+    MooringSystem& m;
+    double* x;
+    std::span<const PointKinematics> fairleads;
+    explicit Settling(MooringSystem& s, double* state, std::span<const PointKinematics> f)
+        : m(s), x(state), fairleads(f) {
+      m.settling_ = true;
+    }
+    ~Settling() {
+      m.settling_ = false;
+      m.CreepAtRest(x, fairleads);
+    }
+  } settling(*this, x, fairleads);
   const int np = num_points();
   if (np == 0) return SettleChains(fairleads, x);
   for (int q = 0; q < np; ++q) std::fill(x + 6 * q + 3, x + 6 * q + 6, 0.0);
@@ -1624,10 +1822,13 @@ std::vector<double> MooringSystem::ApplyFailure(const LineFailure& failure, cons
   }
 
   const std::vector<Chain> old = chains_;
+  const int old_creep_offset = creep_offset_;
   chains_ = next;
   Layout();
   std::vector<double> x_new(state_size_);
   std::copy(x, x + 6 * num_points(), x_new.begin());  // the points keep their states
+  std::copy(x + old_creep_offset, x + old_creep_offset + creep_.size(),
+            x_new.begin() + creep_offset_);  // and the segments their creep
   for (size_t ci = 0; ci < chains_.size(); ++ci) {
     const Chain& oc = old[source[ci]];
     GatherChain(oc, x, fairleads);  // pos_/vel_ now hold the old chain's nodes

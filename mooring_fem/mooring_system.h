@@ -21,6 +21,7 @@
 // two ends are each anchored, attached to a fairlead, or free.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <span>
@@ -52,10 +53,17 @@ struct SectionProperties {
   double displaced_mass_per_length = 0.0;   ///< rho pi d^2/4 [kg/m]
   double added_mass_per_length = 0.0;       ///< C1 = C_MN rho pi d^2/4 [kg/m]
   double tangential_added_mass_per_length = 0.0;  ///< C_MT rho pi d^2/4 [kg/m]
-  double drag_normal = 0.0;                       ///< 0.5 rho C_DN d [kg/m^2]
-  double drag_tangential = 0.0;                   ///< 0.5 rho C_DT d [kg/m^2]
-  double friction_axial = 0.0;                    ///< [-]
-  double friction_lateral = 0.0;                  ///< [-]
+  /// A visco-elastic rope (ViscoElastic): axial_stiffness is its quasi-static stiffness EA_s,
+  /// and each segment a spring EA_d in series with a creep spring K and dashpot c in
+  /// parallel (1 / EA_s = 1 / EA_d + 1 / K, c = K x the creep time).
+  bool visco = false;
+  double dynamic_stiffness = 0.0;  ///< EA_d [N]
+  double creep_stiffness = 0.0;    ///< K [N]
+  double creep_damping = 0.0;      ///< c [N s]
+  double drag_normal = 0.0;        ///< 0.5 rho C_DN d [kg/m^2]
+  double drag_tangential = 0.0;    ///< 0.5 rho C_DT d [kg/m^2]
+  double friction_axial = 0.0;     ///< [-]
+  double friction_lateral = 0.0;   ///< [-]
 };
 
 /// Constants of a body at a joint (PointBody with the water).
@@ -214,8 +222,12 @@ class MooringSystem {
   /// force the vessel feels).
   bool at_vessel(int index) const;
 
-  /// Per state component: position components 'p', velocity components 'v'.
+  /// Per state component: position components 'p', velocity components 'v', and the
+  /// visco-elastic segments' creep stretches 's' [m].
   std::vector<char> StateKinds() const;
+  /// Whether Blocks() covers the whole state: not with visco-elastic segments, whose creep
+  /// states a general sparse LU then solves with the rest.
+  bool has_blocks() const { return creep_.empty(); }
 
   /// Places every node on the analytic elastic catenary between its anchor and the given
   /// fairlead position (Earth frame), at rest; the free points at their given positions and
@@ -288,6 +300,9 @@ class MooringSystem {
     double L;     // stretched length
     double T;     // tension
     double rate;  // strain rate
+    // A visco-elastic segment's creep stretch state (-1: none) and creep strain.
+    int creep = -1;
+    double creep_strain = 0.0;
   };
   struct NodeJacobian {
     Mat3 dF_dr[3], dF_dv[3], dMa_dr[3];  // w.r.t. node k-1, k, k+1
@@ -323,6 +338,37 @@ class MooringSystem {
   void NodeForceJacobian(const Chain& chain, int k, const Vec3& accel, NodeJacobian* J) const;
 
   std::vector<LineProperties> lines_;
+  /// The visco-elastic segments: state creep_offset_ + i is segment creep_[i]'s creep
+  /// stretch [m]; creep_index_[line][segment] is i, or -1.
+  struct CreepSegment {
+    int line, segment;
+  };
+  std::vector<CreepSegment> creep_;
+  std::vector<std::vector<int>> creep_index_;
+  int creep_offset_ = 0;
+  /// Set while SettleStatic runs: the visco-elastic segments at their quasi-static stiffness
+  /// (their creep at rest, slaved to the tension).
+  bool settling_ = false;
+  /// The state of segment `segment` of line `line`'s creep stretch, or -1.
+  int CreepState(int line, int segment) const;
+  /// Chain node k's segments' creep states, below and above (-1: none).
+  std::array<int, 2> NodeCreepStates(const Chain& c, int k) const;
+  /// The first state of chain node k's 6-block (a node or a point), or -1 where it is held.
+  int NodeStateOf(const Chain& c, int k) const;
+  /// dT / d(creep stretch) of a gathered segment: -EA_d / l0 while its dynamic spring is
+  /// stretched, else (and while settling) 0.
+  double CreepSlope(const SegmentState& g, const SectionProperties& sp) const;
+  /// Per creep state, its segment's lower and upper node's 6-blocks (NodeStateOf).
+  struct CreepRow {
+    int lower = -1, upper = -1;
+  };
+  std::vector<CreepRow> creep_rows_;
+  /// Per point, the creep states (ascending) of its lines' end segments.
+  std::vector<std::vector<int>> point_creep_;
+  /// Each creep stretch at rest for the segment's stretch in x (T = EA_s e through both).
+  void CreepAtRest(double* x, std::span<const PointKinematics> fairleads) const;
+  /// The elastic tension a visco-elastic segment carries through its creep element.
+  double CreepTension(const SectionProperties& sp, double strain, double creep_strain) const;
   std::vector<PointBodyProperties> point_bodies_;
   std::vector<Vec3> point_start_;
   // Per point, the 6-blocks (first states, ascending) its velocity rows have columns in.

@@ -62,6 +62,18 @@ struct CurrentProfile {
   double SurfaceSpeed() const { return speed.empty() ? 0.0 : speed.front(); }
 };
 
+/// A fibre rope's two stiffnesses (Hall, Duong & Lozon 2023): under slow loading (a mean
+/// load that changes over minutes and hours: drift, current, the static offset) it is
+/// softer than under the waves' cycles. Each segment is a spring of the dynamic stiffness in
+/// series with a creep element, a spring and a dashpot in parallel, whose stretch (the
+/// creep strain, a state of every segment) follows the tension with the creep time: slow
+/// loading sees both springs in series, the quasi-static stiffness; fast loading finds the
+/// dashpot rigid and sees the dynamic stiffness alone.
+struct ViscoElastic {
+  double dynamic_stiffness = 0.0;  ///< EA_d [N], > the quasi-static EA
+  double creep_time = 0.0;  ///< [s]: under a constant tension, the creep strain's time constant
+};
+
 /// Material and hydrodynamic properties of one line type (Ren & Skjetne 2016, Table 2 style).
 struct LineType {
   std::string name;
@@ -76,6 +88,10 @@ struct LineType {
   /// as segments shrink). Neither set = no axial damping.
   std::optional<double> axial_damping;
   std::optional<double> axial_damping_ratio;
+  /// A visco-elastic rope (a fibre rope: polyester): axial_stiffness is then its quasi-static
+  /// stiffness, and this its dynamic stiffness and creep time (ViscoElastic). Not with a
+  /// tension-strain table.
+  std::optional<ViscoElastic> visco_elastic;
   double drag_normal = 0.0;            ///< C_DN [-]
   double drag_tangential = 0.0;        ///< C_DT [-]
   double added_mass_normal = 0.0;      ///< C_MN [-]

@@ -76,6 +76,16 @@ void ExpectJacobianMatchesFiniteDifferences(MooringSystem& mooring, std::vector<
     }
   }
   EXPECT_GT(checked, 0);
+  // Row by row too, for the rows and columns past the last whole block (the creep states
+  // of visco-elastic segments, one each).
+  for (int r = 3 * (n / 3); r < n; ++r) {
+    ASSERT_LT((analytic.row(r) - fd.row(r)).norm(), 1e-5 * fd.row(r).norm() + 1e-12)
+        << "row " << r << "\nanalytic " << analytic.row(r) << "\nfinite difference " << fd.row(r);
+  }
+  for (int c = 3 * (n / 3); c < n; ++c) {
+    ASSERT_LT((analytic.col(c) - fd.col(c)).norm(), 1e-5 * fd.col(c).norm() + 1e-12)
+        << "column " << c;
+  }
 }
 
 // Line 2 made of three sections (chain, a lighter and more compliant rope, chain) with a
@@ -297,6 +307,22 @@ TEST(MooringJacobian, LinesLeavingFreePointsMatchFiniteDifferences) {
   EXPECT_FALSE(f.mooring.attached(5));
   EXPECT_FALSE(f.mooring.attached(2));
   EXPECT_TRUE(f.mooring.at_vessel(3));
+  ExpectJacobianMatchesFiniteDifferences(f.mooring, x, f.fairleads);
+}
+
+TEST(MooringJacobian, ViscoElasticRopesMatchFiniteDifferences) {
+  // Every line of the bridle a visco-elastic rope: creep states on the chains' segments, on
+  // the segments at the points and on the pendant between them.
+  MooringParameters spec = BridleTestSpec();
+  spec.line_types[0].visco_elastic = ViscoElastic{3.0 * spec.line_types[0].axial_stiffness, 30.0};
+  Fixture f(spec);
+  ASSERT_FALSE(f.mooring.has_blocks());
+  ExpectJacobianMatchesFiniteDifferences(f.mooring, f.x, f.fairleads);
+  // With lines parted at a node, at a point and at the vessel: the creep states stay.
+  std::vector<double> x =
+      f.mooring.ApplyFailure({1, FailureMode::kNode, 5}, f.x.data(), f.fairleads);
+  x = f.mooring.ApplyFailure({3, FailureMode::kAnchor, 0}, x.data(), f.fairleads);
+  x = f.mooring.ApplyFailure({0, FailureMode::kFairlead, 0}, x.data(), f.fairleads);
   ExpectJacobianMatchesFiniteDifferences(f.mooring, x, f.fairleads);
 }
 
