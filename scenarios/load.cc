@@ -112,6 +112,25 @@ LineType ParseLineType(const Reader& r) {
   } else {
     type.axial_stiffness = r.Needed("axial_stiffness").As<double>();
   }
+  const std::optional<double> dynamic = r.Maybe<double>("dynamic_axial_stiffness");
+  const std::optional<double> creep = r.Maybe<double>("creep_time");
+  const bool dynamic_given = r.Find("dynamic_axial_stiffness").has_value();
+  if (dynamic_given != r.Find("creep_time").has_value()) {
+    r.Child(dynamic_given ? "dynamic_axial_stiffness" : "creep_time")
+        .Fail("a visco-elastic rope needs both dynamic_axial_stiffness and creep_time");
+  }
+  if (dynamic && creep) {
+    if (!type.tension_strain.empty()) {
+      r.Child("dynamic_axial_stiffness")
+          .Fail("a visco-elastic rope takes axial_stiffness, not a tension_strain table");
+    }
+    if (!(*dynamic > type.axial_stiffness)) {
+      r.Child("dynamic_axial_stiffness")
+          .Fail(WithUnit(*dynamic, "N") + " must exceed the quasi-static axial_stiffness " +
+                WithUnit(type.axial_stiffness, "N"));
+    }
+    type.visco_elastic = mooring_fem::ViscoElastic{*dynamic, *creep};
+  }
   type.axial_damping = r.Maybe<double>("axial_damping");
   type.axial_damping_ratio = r.Maybe<double>("axial_damping_ratio");
   if (!type.axial_damping && !type.axial_damping_ratio) {

@@ -180,7 +180,20 @@ struct MdLineType {
   std::string name;
   int line = 0;
   double diameter = 0, mass = 0, ea = 0, ba = 0, cd = 0, ca = 0, cdax = 0, caax = 0;
+  // A visco-elastic rope (EA_s|EA_D with BA_s|BA_D): MoorDyn's creep spring EA_D and
+  // dashpot BA_D in series with the spring that makes the series EA_s; 0: none.
+  double creep_spring = 0, creep_dashpot = 0;
 };
+
+// "a|b" as two numbers, or nothing.
+std::optional<std::pair<double, double>> Pair(const std::string& text) {
+  const std::size_t bar = text.find('|');
+  if (bar == std::string::npos || text.find('|', bar + 1) != std::string::npos) return {};
+  const std::optional<double> a = ToNumber(text.substr(0, bar));
+  const std::optional<double> b = ToNumber(text.substr(bar + 1));
+  if (!a || !b) return {};
+  return std::pair(*a, *b);
+}
 
 enum class PointKind { kFixed, kVessel, kFree };
 
@@ -337,13 +350,22 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command)
           t.diameter = c.Value(row, "diameter");
           t.mass = c.Value(row, "mass");
           const std::string ea = c.Field(row, "EA");
-          if (!ToNumber(ea)) {
+          const std::string ba = c.Has("BA") ? c.Field(row, "BA") : "0";
+          const auto visco = Pair(ea);
+          const auto visco_ba = Pair(ba);
+          if (visco && visco_ba && visco->second > visco->first && visco_ba->second > 0.0) {
+            t.ea = visco->first;
+            t.creep_spring = visco->second;
+            t.creep_dashpot = visco_ba->second;
+            t.ba = visco_ba->first;
+          } else if (!ToNumber(ea)) {
             throw InputError(path + ":" + std::to_string(row.line) + ": EA '" + ea +
-                             "': a non-linear or visco-elastic stiffness is not supported yet "
-                             "(give a constant EA)");
+                             "': a load-dependent or tabulated stiffness is not supported yet "
+                             "(give a constant EA, or EA_s|EA_d with BA_s|BA_d)");
+          } else {
+            t.ea = *ToNumber(ea);
+            t.ba = c.Has("BA") ? c.Value(row, "BA") : 0.0;
           }
-          t.ea = *ToNumber(ea);
-          t.ba = c.Has("BA") ? c.Value(row, "BA") : 0.0;
           t.cd = c.Value(row, "Cd");
           t.ca = c.Value(row, "Ca");
           t.cdax = c.Value(row, "CdAx");
@@ -640,6 +662,14 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command)
     y << "      diameter: " << Number(t.diameter) << "\n";
     y << "      mass_per_length: " << Number(t.mass) << "\n";
     y << "      axial_stiffness: " << Number(t.ea) << "\n";
+    if (t.creep_spring > 0.0) {
+      // moorsim's dynamic stiffness is the spring in series with MoorDyn's creep element.
+      y << "      dynamic_axial_stiffness: "
+        << Number(t.creep_spring * t.ea / (t.creep_spring - t.ea)) << "  # EA_s|EA_D "
+        << Number(t.ea) << "|" << Number(t.creep_spring) << ": EA_D EA_s / (EA_D - EA_s)\n";
+      y << "      creep_time: " << Number(t.creep_dashpot / t.creep_spring)
+        << "  # BA_D / EA_D, BA_D " << Number(t.creep_dashpot) << "\n";
+    }
     if (t.ba < 0.0) {
       y << "      axial_damping_ratio: " << Number(-t.ba) << "  # BA/-zeta " << Number(t.ba)
         << "\n";

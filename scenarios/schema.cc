@@ -226,8 +226,14 @@ constexpr Key kLineTypeKeys[] = {
      .minimum = AtLeast(0.0),
      .maximum = AtMost(10.0),
      .interval = true},
-    Positive("axial_stiffness", "N", 1e11, "Axial stiffness EA (or give tension_strain instead).",
+    Positive("axial_stiffness", "N", 1e11,
+             "Axial stiffness EA (or give tension_strain instead); a visco-elastic rope's "
+             "quasi-static stiffness.",
              "a solid steel bar 0.8 m thick"),
+    Positive("creep_time", "s", 1e6,
+             "A visco-elastic rope's creep time: under a constant tension its creep strain "
+             "settles with this time constant. With dynamic_axial_stiffness.",
+             "eleven days"),
     Required(Positive("diameter", "m", 1.0, "Hydrodynamic and displacement diameter.",
                       "the thickest mooring lines are about 0.3 m")),
     {.name = "drag_normal",
@@ -240,6 +246,10 @@ constexpr Key kLineTypeKeys[] = {
      .required = true,
      .minimum = AtLeast(0.0),
      .maximum = AtMost(kMaxCoefficient, kCoefficientWhy)},
+    Positive("dynamic_axial_stiffness", "N", 1e11,
+             "A visco-elastic rope's dynamic stiffness, above axial_stiffness: what it shows to "
+             "loads faster than the creep time (the waves' cycles). With creep_time.",
+             "a solid steel bar 0.8 m thick"),
     WithDefault({.name = "friction_axial",
                  .description = "Seabed Coulomb friction coefficient along the line.",
                  .minimum = AtLeast(0.0),

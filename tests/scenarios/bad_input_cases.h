@@ -489,6 +489,17 @@ inline const BadInput kValidationErrors[] = {
      "mooring.current.profile[2].depth: 13000 m must be <= 12000 (the deepest ocean is 11 km)"},
     {"DuplicateLineTypeName", "friction_lateral", "name: wire", "name: chain", "name: ^chain",
      "mooring.line_types[2].name: 'chain' is already the name of mooring.line_types[1]"},
+    {"DynamicStiffnessWithoutCreepTime", "name: wire", "axial_stiffness: 8.0e8",
+     "axial_stiffness: 8.0e8\n      dynamic_axial_stiffness: 1.2e9", "1.2e9",
+     "mooring.line_types[2].dynamic_axial_stiffness: a visco-elastic rope needs both "
+     "dynamic_axial_stiffness and creep_time"},
+    {"DynamicStiffnessBelowTheQuasiStatic", "name: wire", "axial_stiffness: 8.0e8",
+     "axial_stiffness: 8.0e8\n      dynamic_axial_stiffness: 5.0e8\n      creep_time: 20", "5.0e8",
+     "mooring.line_types[2].dynamic_axial_stiffness: 5e+08 N must exceed the "
+     "quasi-static axial_stiffness 8e+08 N"},
+    {"CreepTimeZero", "name: wire", "axial_stiffness: 8.0e8",
+     "axial_stiffness: 8.0e8\n      dynamic_axial_stiffness: 1.2e9\n      creep_time: 0",
+     "creep_time: ^0", "mooring.line_types[2].creep_time: 0 s must be > 0"},
     {"UnknownLineType", "- id: 2", "type: wire", "type: wier", "wier",
      "mooring.lines[2].type: unknown line type 'wier' (known: chain, wire)"},
     {"UnknownSectionType", "- id: 2",

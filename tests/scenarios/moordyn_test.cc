@@ -204,6 +204,25 @@ TEST(MoorDynImport, FreePointsWhereLinesMeetOrEndArriveAsPoints) {
   fs::remove_all(dir);
 }
 
+// MoorDyn's visco-elastic rope (EA_s|EA_D, BA_s|BA_D): its creep spring and dashpot in
+// series with the spring that makes the series EA_s, which is moorsim's dynamic stiffness.
+TEST(MoorDynImport, AViscoElasticRopeArrivesWithItsDynamicStiffnessAndCreepTime) {
+  const fs::path dir = moorsim::testing::FreshDirectory("moordyn_visco");
+  std::string text = kSpread;
+  text.replace(text.find("5.0e8      2.0e5"), 16, "2.0e8|5.0e8 2.0e5|1.0e7");
+  const fs::path file = Write(dir, "visco.txt", text);
+  const std::string y = ImportMoorDyn(file.string(), "test").yaml;
+  // 5e8 x 2e8 / (5e8 - 2e8) and 1e7 / 5e8.
+  EXPECT_NE(
+      y.find("      axial_stiffness: 2e+08\n      dynamic_axial_stiffness: 333333333.3333333"),
+      std::string::npos)
+      << y;
+  EXPECT_NE(y.find("      creep_time: 0.02  # BA_D / EA_D"), std::string::npos) << y;
+  EXPECT_NE(y.find("      axial_damping: 2e+05  # BA"), std::string::npos) << y;
+  EXPECT_EQ(ParseScenario(y, "visco.yaml").mooring.line_types[1].visco_elastic->creep_time, 0.02);
+  fs::remove_all(dir);
+}
+
 // What moorsim cannot represent: one located line each, all of them at once.
 TEST(MoorDynImport, WhatDoesNotMapIsOneLocatedLineEach) {
   const fs::path dir = moorsim::testing::FreshDirectory("moordyn_refused");
@@ -218,7 +237,7 @@ TEST(MoorDynImport, WhatDoesNotMapIsOneLocatedLineEach) {
   const fs::path file = Write(dir, "refused.txt", text);
   const std::string error = ErrorOf(file);
   const std::string f = file.string();
-  EXPECT_NE(error.find(f + ":6: EA 'chain_ea.txt': a non-linear or visco-elastic stiffness"),
+  EXPECT_NE(error.find(f + ":6: EA 'chain_ea.txt': a load-dependent or tabulated stiffness"),
             std::string::npos)
       << error;
   EXPECT_NE(error.find(f + ":11: rods are not supported"), std::string::npos) << error;
