@@ -33,8 +33,10 @@ void CoupledSystem::Rebuild() {
   coupled_.clear();
   r_body_.resize(attachments);
   uncoupled_.clear();
+  creep_.clear();
   for (int i = 0; i < attachments; ++i) {
     r_body_[i] = attached_.AttachmentPoint(i);
+    if (const int creep = attached_.CouplingCreep(i); creep >= 0) creep_.push_back({i, creep});
     const int node = attached_.CouplingNode(i);
     if (node >= 0) {
       coupled_.push_back({i, node});
@@ -45,11 +47,15 @@ void CoupledSystem::Rebuild() {
   std::sort(coupled_.begin(), coupled_.end(),
             [](const Coupled& a, const Coupled& b) { return a.node_state < b.node_state; });
 
-  // The rows of the coupled nodes' accelerations also depend on eta and nu.
+  std::sort(creep_.begin(), creep_.end(),
+            [](const Creep& a, const Creep& b) { return a.state < b.state; });
+  // The rows of the coupled nodes' accelerations (and of the creep the points pull) also
+  // depend on eta and nu.
   std::vector<char> velocity_row_coupled(sub.size, 0);
   for (const Coupled& c : coupled_) {
     for (int k = 3; k < 6; ++k) velocity_row_coupled[c.node_state + k] = 1;
   }
+  for (const Creep& c : creep_) velocity_row_coupled[c.state] = 1;
 
   pattern_.size = size_;
   pattern_.row_start.assign(1, 0);
@@ -59,6 +65,7 @@ void CoupledSystem::Rebuild() {
     for (const Coupled& c : coupled_) {
       for (int k = 0; k < 6; ++k) pattern_.column.push_back(nb + c.node_state + k);
     }
+    for (const Creep& c : creep_) pattern_.column.push_back(nb + c.state);
     pattern_.row_start.push_back(static_cast<int64_t>(pattern_.column.size()));
   }
   sub_row_destination_.resize(sub.size);
@@ -82,6 +89,8 @@ void CoupledSystem::Rebuild() {
   body_jacobian_.setZero(nb, nb);
   dtau_dnode_.assign(coupled_.size(), Mat6::Zero());
   daccel_dbody_.assign(coupled_.size(), BodyColumns3::Zero());
+  dtau_dcreep_.assign(creep_.size(), Vec6::Zero());
+  dcreep_dbody_.assign(creep_.size(), BodyColumns1::Zero());
   load_sensitivity_.setZero(nb, 6);
 }
 
@@ -146,6 +155,21 @@ void CoupledSystem::Jacobian(double t, const double* x, const double* /*xdot*/, 
           C.J_accel_fairlead_pos * P.J_pos_extra + C.J_accel_fairlead_vel * P.J_vel_extra;
     }
   }
+  // A creep stretch the fairlead force depends on, and which the point's position drives.
+  for (std::size_t k = 0; k < creep_.size(); ++k) {
+    const int i = creep_[k].attachment;
+    const PointMotionJacobian& P = point_jacobians_[i];
+    PointLoadJacobian L;
+    body_.PointLoad(x, r_body_[i], forces_[i], &L);
+    const FairleadCoupling C = attached_.Coupling(x_sub, points_, i);
+    dtau_dcreep_[k] = L.J_load_force * C.J_force_creep;
+    dcreep_dbody_[k].setZero();
+    dcreep_dbody_[k].leftCols<6>() = C.J_creep_fairlead_pos * P.J_pos_eta;
+    if (extra) {
+      dcreep_dbody_[k].rightCols<kMaxExtraKinematicStates>() =
+          C.J_creep_fairlead_pos * P.J_pos_extra;
+    }
+  }
   // Attachments without a free node (a one-segment chain) still load the body.
   for (const int i : uncoupled_) {
     PointLoadJacobian L;
@@ -169,6 +193,7 @@ void CoupledSystem::Jacobian(double t, const double* x, const double* /*xdot*/, 
       const Eigen::Matrix<double, 1, 6> row = load_sensitivity_.row(r) * dtau_dnode[ci];
       for (int k = 0; k < 6; ++k) *v++ = row(k);
     }
+    for (const Vec6& d : dtau_dcreep_) *v++ = load_sensitivity_.row(r).dot(d);
   }
 
   const SparsityPattern& sub = attached_.JacobianPattern();
@@ -183,6 +208,10 @@ void CoupledSystem::Jacobian(double t, const double* x, const double* /*xdot*/, 
       double* row = values + sub_row_destination_[coupled_[ci].node_state + 3 + k] - kinematic;
       for (int col = 0; col < kinematic; ++col) row[col] = daccel_dbody[ci](k, col);
     }
+  }
+  for (std::size_t k = 0; k < creep_.size(); ++k) {
+    double* row = values + sub_row_destination_[creep_[k].state] - kinematic;
+    for (int col = 0; col < kinematic; ++col) row[col] = dcreep_dbody_[k](col);
   }
 }
 

@@ -66,6 +66,11 @@ struct FairleadCoupling {
   Mat3 J_force_node_vel = Mat3::Zero();      ///< d F_fairlead / d v_{n-1}
   Mat3 J_force_fairlead_pos = Mat3::Zero();  ///< d F_fairlead / d r_n
   Mat3 J_force_fairlead_vel = Mat3::Zero();  ///< d F_fairlead / d v_n (acceleration held)
+  /// A state of the subsystem besides the node's that the fairlead force depends on and that
+  /// depends on the point's position (a visco-elastic top segment's creep stretch), or -1.
+  int creep_state = -1;
+  Vec3 J_force_creep = Vec3::Zero();                                     ///< d F_fairlead / d creep
+  Eigen::RowVector3d J_creep_fairlead_pos = Eigen::RowVector3d::Zero();  ///< d creep' / d r_n
 };
 
 /// The rigid body: states [eta (6), nu (6), extra...].
@@ -119,6 +124,8 @@ class AttachedSubsystem {
   /// Index of the state of the node coupled to attachment i (its first component, in this
   /// subsystem's numbering), or -1 if the attachment is detached or has no free node.
   virtual int CouplingNode(int i) const = 0;
+  /// FairleadCoupling::creep_state of attachment i, fixed per topology (-1: none).
+  virtual int CouplingCreep(int /*i*/) const { return -1; }
   /// Coupling blocks of attachment i (which must be attached).
   virtual FairleadCoupling Coupling(const double* x, std::span<const PointKinematics> points,
                                     int i) = 0;
@@ -173,6 +180,13 @@ class CoupledSystem : public OdeSystem {
   std::vector<Coupled> coupled_;
   // Attached, but with no free node to couple (a one-segment chain): load only.
   std::vector<int> uncoupled_;
+  // Attachments whose force depends on a creep state, in increasing state order (columns of
+  // the body rows after the coupled nodes').
+  struct Creep {
+    int attachment;
+    int state;  // in the subsystem's numbering
+  };
+  std::vector<Creep> creep_;
 
   // Scratch.
   std::vector<Vec3> r_body_;
@@ -185,6 +199,10 @@ class CoupledSystem : public OdeSystem {
   // d a_node / d(eta, nu, extra kinematic states).
   using BodyColumns3 = Eigen::Matrix<double, 3, 12 + kMaxExtraKinematicStates>;
   std::vector<BodyColumns3> daccel_dbody_;
+  // Per creep-coupled attachment: d tau / d creep and d creep' / d(eta, nu, extra).
+  using BodyColumns1 = Eigen::Matrix<double, 1, 12 + kMaxExtraKinematicStates>;
+  std::vector<Vec6> dtau_dcreep_;
+  std::vector<BodyColumns1> dcreep_dbody_;
   std::vector<int> extra_;      // the body's extra kinematic states
   int kinematic_columns_ = 12;  // 12 + extra_.size()
   MatX body_jacobian_;

@@ -21,6 +21,7 @@ class MooringAttachment final : public AttachedSubsystem {
   Vec3 AttachmentPoint(int i) const override { return mooring_.line(i).fairlead_body; }
   bool Attached(int i) const override { return mooring_.at_vessel(i); }
   int CouplingNode(int i) const override { return mooring_.CouplingNode(i); }
+  int CouplingCreep(int i) const override { return mooring_.CouplingCreep(i); }
   void SetTime(double t) override { mooring_.SetTime(t); }
   void Derivatives(const double* x, std::span<const PointKinematics> points, double* xdot,
                    std::span<Vec3> forces) override {

@@ -1315,7 +1315,27 @@ FairleadCoupling MooringSystem::FairleadJacobian(const double* x,
     out.J_accel_fairlead_pos = Minv * (J.dF_dr[kAbove] - J.dMa_dr[kAbove]);
     out.J_accel_fairlead_vel = Minv * J.dF_dv[kAbove];
   }
+  // The top segment's creep: the fairlead node is its upper end (force -T t), and its rate
+  // l0 (T_e - K e) / c grows with the fairlead's pull, EA_d / c along t.
+  const SegmentState& top = seg_[n - 1];
+  if (top.creep >= 0) {
+    const SectionProperties& sp = lines_[c.line].SectionOf(c.first_node + n - 1);
+    const double slope = CreepSlope(top, sp);
+    out.creep_state = top.creep;
+    out.J_force_creep = -slope * top.t;
+    if (slope != 0.0) {
+      out.J_creep_fairlead_pos = (sp.dynamic_stiffness / sp.creep_damping) * top.t.transpose();
+    }
+  }
   return out;
+}
+
+int MooringSystem::CouplingCreep(int index) const {
+  for (const Chain& c : chains_) {
+    if (c.line != index || c.upper != EndCondition::kFairlead) continue;
+    return CreepState(c.line, c.first_node + c.segments - 1);
+  }
+  return -1;
 }
 
 std::vector<LineLoad> MooringSystem::LineLoads(const double* x,
@@ -1829,6 +1849,9 @@ std::vector<double> MooringSystem::ApplyFailure(const LineFailure& failure, cons
   std::copy(x, x + 6 * num_points(), x_new.begin());  // the points keep their states
   std::copy(x + old_creep_offset, x + old_creep_offset + creep_.size(),
             x_new.begin() + creep_offset_);  // and the segments their creep
+  // Gathering from the old state reads its creep where the old layout kept it.
+  const int new_creep_offset = creep_offset_;
+  creep_offset_ = old_creep_offset;
   for (size_t ci = 0; ci < chains_.size(); ++ci) {
     const Chain& oc = old[source[ci]];
     GatherChain(oc, x, fairleads);  // pos_/vel_ now hold the old chain's nodes
@@ -1842,6 +1865,7 @@ std::vector<double> MooringSystem::ApplyFailure(const LineFailure& failure, cons
       }
     }
   }
+  creep_offset_ = new_creep_offset;
   return x_new;
 }
 

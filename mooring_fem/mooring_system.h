@@ -273,6 +273,9 @@ class MooringSystem {
   /// State index of node n-1 of line `index` if it is attached to its fairlead and has a
   /// free node below it, else -1.
   int CouplingNode(int index) const;
+  /// The creep state of line `index`'s top segment if it is visco-elastic and attached to
+  /// its fairlead, else -1.
+  int CouplingCreep(int index) const;
   /// Coupling blocks of line `index` (0-based), which must be attached to its fairlead.
   FairleadCoupling FairleadJacobian(const double* x, std::span<const PointKinematics> fairleads,
                                     int index);

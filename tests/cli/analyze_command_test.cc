@@ -115,5 +115,14 @@ TEST_F(AnalyzeCommandTest, BadInputIsOneLineAndExitCodeTwo) {
                           {"controller.rate_hz", "2", "1 Hz"});
 }
 
+// A mooring with free points: the detectors' quasi-static model does not take it yet.
+TEST_F(AnalyzeCommandTest, AMooringWithFreePointsIsOneLine) {
+  ExpectOneLineInputError(
+      Run({"analyze", MOORSIM_SOURCE_DIR "/scenarios/library/seed_bridled.yaml"}),
+      {"seed_bridled.yaml: mooring.points: analyze studies the detectors' quasi-static mooring "
+       "model",
+       "not supported by it yet"});
+}
+
 }  // namespace
 }  // namespace moorsim::testing

@@ -2,6 +2,7 @@
 // finite differences of its own right-hand side, over the whole state.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -9,6 +10,7 @@
 #include <Eigen/LU>
 
 #include "core/block_solver.h"
+#include "scenarios/load.h"
 #include "tests/simulation/test_scenarios.h"
 #include "tools/simulation/simulation.h"
 
@@ -108,8 +110,9 @@ std::vector<double> AwayFromRest(Simulation& sim, double turret_rate = 0.0) {
     x[a + 1] = velocity[5] + turret_rate;
   }
   const std::size_t nodes = static_cast<std::size_t>(sim.plant().StateSize());
-  for (std::size_t i = nodes; i < x.size(); i += 6) {
-    for (int c = 3; c < 6; ++c) x[i + c] = 0.05 * std::sin(0.37 * i + c);
+  const std::vector<char> kinds = sim.mooring().StateKinds();
+  for (std::size_t i = 0; i < kinds.size(); ++i) {
+    if (kinds[i] == 'v') x[nodes + i] = 0.05 * std::sin(0.37 * (nodes + i - i % 6) + i % 6);
   }
   return x;
 }
@@ -141,6 +144,41 @@ TEST(CoupledJacobian, BlockSolverAfterLinesPart) {
     EXPECT_EQ(sim.system().Blocks()->chains.size(), chains);
     CheckBlockSolve(sim, AwayFromRest(sim), 1.0);
   }
+}
+
+// The bridled library mooring: the apex's states join the vessel's in the border, the
+// legs hang from it to the turret (chains coupled to the border at both ends), the ground
+// line rises to it.
+TEST(CoupledJacobian, AFreePointInTheBorder) {
+  scenarios::Scenario scenario =
+      scenarios::LoadScenario(MOORSIM_SOURCE_DIR "/scenarios/library/seed_bridled.yaml");
+  scenario.environment = {};  // still water, as in the tests above (the sea's hull loads
+                              // are the plant's own)
+  for (auto& line : scenario.mooring.lines) {
+    line.sections.front().segments = std::min(line.sections.front().segments, 10);
+  }
+  Simulation sim(scenario, 1);
+  ASSERT_NE(sim.system().Blocks(), nullptr);
+  EXPECT_EQ(sim.system().Blocks()->border, sim.plant().StateSize() + 6);
+  CheckJacobian(sim, AwayFromRest(sim), 10.0);
+  CheckBlockSolve(sim, AwayFromRest(sim), 10.0);
+}
+
+// The visco-elastic composite library mooring: the top segments' creep stretches load the
+// vessel and are stretched by it; no block structure (KLU).
+TEST(CoupledJacobian, ViscoElasticTopSegments) {
+  scenarios::Scenario scenario =
+      scenarios::LoadScenario(MOORSIM_SOURCE_DIR "/scenarios/library/composite_viscoelastic.yaml");
+  scenario.environment = {};
+  scenario.mooring.current = {};
+  for (auto& line : scenario.mooring.lines) {
+    // A few segments a section, the rope at the top: its creep couples to the vessel.
+    line.sections = {{"chain_seed", 400.0, 3}, {"polyester", 1800.0, 5}};
+    line.joints.clear();
+  }
+  Simulation sim(scenario, 1);
+  EXPECT_EQ(sim.system().Blocks(), nullptr);
+  CheckJacobian(sim, AwayFromRest(sim), 10.0);
 }
 
 // A turret on its bearing adds two states (angle, rate) after the thrust; the fairleads
