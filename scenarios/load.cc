@@ -1179,6 +1179,13 @@ void FailAt(const Scenario& scenario, const std::string& path, const std::string
   Checker(scenario).Fail(path, what);
 }
 
+void PlaceAtKey(const Scenario& scenario, const InputError& error, std::string_view prefix) {
+  const std::string message = error.what();
+  const std::size_t colon = message.find(": ");
+  if (colon == std::string::npos || message.compare(0, prefix.size(), prefix) != 0) throw error;
+  FailAt(scenario, message.substr(0, colon), message.substr(colon + 2));
+}
+
 void Validate(const Scenario& scenario) {
   std::vector<std::string> errors;
   const Checker check(scenario);

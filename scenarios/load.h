@@ -87,8 +87,10 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "core/error.h"
 #include "scenarios/scenario.h"
 
 namespace moorsim::scenarios {
@@ -122,5 +124,11 @@ void Validate(const Scenario& scenario);
 /// that live outside this module (the detector registry).
 [[noreturn]] void FailAt(const Scenario& scenario, const std::string& path,
                          const std::string& what);
+
+/// Rethrows `error`, an InputError a module raised about a key ("<path>: <what>", the path
+/// starting with `prefix`: "detectors[2].floor: ...", "mooring.points[1]: ..."), placed at
+/// that key as FailAt places it; any other error as it is.
+[[noreturn]] void PlaceAtKey(const Scenario& scenario, const InputError& error,
+                             std::string_view prefix);
 
 }  // namespace moorsim::scenarios

@@ -291,8 +291,13 @@ int RunSimulateLines(const SimulateLinesOptions& o) {
 
   using Clock = std::chrono::steady_clock;
   const auto t_start = Clock::now();
-  mooring_fem::LineSimulation sim(scenarios::ToMooringParameters(scenario.mooring), scenario.solver,
-                                  motion);
+  std::optional<mooring_fem::LineSimulation> started;
+  try {
+    started.emplace(scenarios::ToMooringParameters(scenario.mooring), scenario.solver, motion);
+  } catch (const InputError& e) {  // a free point that cannot be at rest where it is
+    scenarios::PlaceAtKey(scenario, e, "mooring.points[");
+  }
+  mooring_fem::LineSimulation& sim = *started;
   for (const ScheduledPart& p : parts) sim.ScheduleFailure(p.time, p.failure);
   // The scenario's waves on the lines (environment.waves.on_lines), realised from its seed
   // as a run of it would realise them; the motion stays the one prescribed.

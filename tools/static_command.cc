@@ -89,7 +89,11 @@ int RunStatic(const StaticOptions& o) {
     } catch (const Error& e) {  // the pose asked for is not one the mooring can reach
       throw InputError("--offset " + o.offset + ": " + e.what());
     }
-    residual = mooring.SettleStatic(positions, x.data());
+    try {
+      residual = mooring.SettleStatic(positions, x.data());
+    } catch (const InputError& e) {  // a free point that cannot be at rest where it is
+      scenarios::PlaceAtKey(scenario, e, "mooring.points[");
+    }
     for (int p = 0; p < mooring.num_points(); ++p)
       points.push_back(mooring.PointPosition(x.data(), p));
     const std::vector<mooring_fem::LineLoad> loads = mooring.LineLoads(x.data(), fairleads);

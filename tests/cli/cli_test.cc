@@ -17,6 +17,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <ostream>
@@ -243,6 +244,33 @@ TEST_F(CliTest, MissingScenarioFileIsExit2WithOneLine) {
     ASSERT_TRUE(IsOneLineInputError(r, path, {"cannot open"}));
     EXPECT_EQ(r.err,
               "moorsim: " + path + ": cannot open the scenario file: No such file or directory\n");
+  }
+}
+
+// A buoy on a tether longer than the water is deep: the static solve cannot leave it under
+// water. static, simulate-lines and run each say so in one line at the point's entry.
+TEST_F(CliTest, ABuoyThatWouldSurfaceIsOneLineAtThePoint) {
+  const std::string path = Scratch("surfacing.yaml").string();
+  std::ofstream(path) << R"(name: surfacing
+mooring:
+  water: {density: 1025, gravity: 9.81, depth: 100}
+  line_types:
+    - {name: chain, diameter: 0.08, mass_per_length: 275, axial_stiffness: 2.28785e8, drag_normal: 0.3, drag_tangential: 1.0, added_mass_normal: 1.5}
+  points:
+    - {name: buoy, position: [0, 0, 40], mass: 20000, volume: 120}
+  lines:
+    - {id: 1, type: chain, anchor: [5, 0, 100], to: buoy, length: 150, segments: 30}
+)";
+  const std::string expected = "moorsim: " + path +
+                               ":7:7: mooring.points[1]: rises above the water at rest: its "
+                               "buoyancy is more than its lines hold down below the surface\n";
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"static", path},
+        std::vector<std::string>{"simulate-lines", path, "--duration", "10", "--motion",
+                                 "surge:1,20"}}) {
+    const CliResult r = Run(args);
+    EXPECT_TRUE(IsOneLineInputError(r, "mooring.points[1]", {"rises above the water"}));
+    EXPECT_EQ(r.err, expected);
   }
 }
 

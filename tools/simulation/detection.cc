@@ -43,10 +43,7 @@ std::unique_ptr<detectors::Detector> BuildDetector(const scenarios::Scenario& sc
     }
     return detector;
   } catch (const InputError& e) {
-    const std::string message = e.what();
-    const std::size_t colon = message.find(": ");
-    if (colon == std::string::npos || message.compare(0, path.size(), path) != 0) throw;
-    scenarios::FailAt(scenario, message.substr(0, colon), message.substr(colon + 2));
+    scenarios::PlaceAtKey(scenario, e, path);
   }
 }
 

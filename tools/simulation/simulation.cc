@@ -400,7 +400,11 @@ Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed)
 
   system_ = std::make_unique<CoupledSystem>(*plant_, attachment_);
   x_.assign(system_->StateSize(), 0.0);
-  SettleMooredEquilibrium();
+  try {
+    SettleMooredEquilibrium();
+  } catch (const InputError& e) {  // a free point that cannot be at rest where it is
+    scenarios::PlaceAtKey(scenario_, e, "mooring.points[");
+  }
   if (!scenario_.detectors.empty()) {
     detection_ = std::make_unique<Detection>(scenario_, plant_->model(), initial_pose_);
   }
