@@ -203,11 +203,11 @@ void BorderedBlockSolver::FactorHead(const double* jacobian, double gamma, const
   }
   // The last node's fill joins its own border coupling.
   const NodeFactor& lf = node_factors_[cs.first_node + n - 1];
-  const Mat3X fill_column = -lf.E * cf->F[n - 2];
-  const MatX3 fill_row = -cf->RG[n - 2] * node_factors_[cs.first_node + n - 2].U;
+  head_column_.noalias() = -lf.E * cf->F[n - 2];
+  r.noalias() = -cf->RG[n - 2] * node_factors_[cs.first_node + n - 2].U;
   for (int h = 0; h < nh; ++h) {
-    cf->C.col(cs.head[h]) += fill_column.col(h);
-    cf->B.row(cs.head[h]) += fill_row.row(h);
+    cf->C.col(cs.head[h]) += head_column_.col(h);
+    cf->B.row(cs.head[h]) += r.row(h);
   }
 }
 

@@ -105,6 +105,7 @@ class BorderedBlockSolver {
   MatX border_matrix_;  // the border's reduced matrix, factored into border_lu_
   Mat3X gc_;            // scratch: G C of one chain
   MatX3 head_fill_;     // scratch: the head rows' fill R_k of the node being eliminated
+  Mat3X head_column_;   // scratch: the last node's fill in the head columns
   VecX head_x_;         // scratch: the border's solution in one chain's head columns
   Eigen::PartialPivLU<MatX> border_lu_;
   // Scratch for Solve(): the reduced right-hand sides y, then the velocity unknowns.

@@ -554,6 +554,11 @@ void MooringSystem::BuildPattern() {
   }
   // And the creep stretches of the lines' end segments at them.
   point_creep_.assign(num_points(), {});
+  // The Jacobian's scratch for the points' rows, sized once per topology.
+  point_accel_.resize(num_points());
+  point_dr_.resize(num_points());
+  point_dv_.resize(num_points());
+  point_dq_.resize(num_points());
   for (const Chain& c : chains_) {
     const int lower = CreepState(c.line, c.first_node);
     const int upper = CreepState(c.line, c.first_node + c.segments - 1);
@@ -567,6 +572,9 @@ void MooringSystem::BuildPattern() {
     std::vector<int>& creep = point_creep_[q];
     std::sort(creep.begin(), creep.end());
     creep.erase(std::unique(creep.begin(), creep.end()), creep.end());
+    point_dr_[q].resize(blocks.size());
+    point_dv_[q].resize(blocks.size());
+    point_dq_[q].resize(creep.size());
     kinematic_rows(6 * q);
     for (int comp = 0; comp < 3; ++comp) {
       for (const int block : blocks) {
@@ -640,6 +648,20 @@ int MooringSystem::NodeStateOf(const Chain& c, int k) const {
 
 void MooringSystem::GatherChain(const Chain& c, const double* x,
                                 std::span<const PointKinematics> fairleads) {
+  GatherNodes(c, x, fairleads);
+  if (!creep_.empty()) {
+    const LineProperties& lp = lines_[c.line];
+    for (int s = 0; s < c.segments; ++s) {
+      const int i = creep_index_[c.line][c.first_node + s];
+      seg_[s].creep = i < 0 ? -1 : creep_offset_ + i;
+      seg_[s].creep_strain =
+          i < 0 ? 0.0 : x[creep_offset_ + i] / lp.SectionOf(c.first_node + s).segment_length;
+    }
+  }
+}
+
+void MooringSystem::GatherNodes(const Chain& c, const double* x,
+                                std::span<const PointKinematics> fairleads) {
   const int first = c.first_state_node();
   const int last = c.last_state_node();
   for (int k = first; k <= last; ++k) {
@@ -654,15 +676,6 @@ void MooringSystem::GatherChain(const Chain& c, const double* x,
   if (c.upper == EndCondition::kFairlead) {
     pos_[c.segments] = fairleads[c.line].position;
     vel_[c.segments] = fairleads[c.line].velocity;
-  }
-  if (!creep_.empty()) {
-    const LineProperties& lp = lines_[c.line];
-    for (int s = 0; s < c.segments; ++s) {
-      const int i = creep_index_[c.line][c.first_node + s];
-      seg_[s].creep = i < 0 ? -1 : creep_offset_ + i;
-      seg_[s].creep_strain =
-          i < 0 ? 0.0 : x[creep_offset_ + i] / lp.SectionOf(c.first_node + s).segment_length;
-    }
   }
   if (c.lower == EndCondition::kPoint) {
     pos_[0] = Vec3(x + 6 * c.lower_point);
@@ -1100,9 +1113,10 @@ void MooringSystem::Jacobian(const double* x, std::span<const PointKinematics> f
   // The points' accelerations first (their added mass's derivative needs them), and their
   // own bodies' force derivatives.
   const int np = num_points();
-  std::vector<Vec3> point_accel(np);
-  std::vector<std::vector<Mat3>> dR(np), dV(np);
-  std::vector<std::vector<Vec3>> dQ(np);  // d F_point / d(creep stretch), per creep column
+  std::vector<Vec3>& point_accel = point_accel_;
+  std::vector<std::vector<Mat3>>& dR = point_dr_;
+  std::vector<std::vector<Mat3>>& dV = point_dv_;
+  std::vector<std::vector<Vec3>>& dQ = point_dq_;  // d F_point / d(creep stretch)
   auto block_of = [&](int q, int state) {
     const std::vector<int>& blocks = point_blocks_[q];
     return static_cast<int>(std::lower_bound(blocks.begin(), blocks.end(), state) - blocks.begin());
@@ -1111,9 +1125,9 @@ void MooringSystem::Jacobian(const double* x, std::span<const PointKinematics> f
     PointLoads(x, fairleads);
     for (int q = 0; q < np; ++q) {
       point_accel[q] = PointAcceleration(q);
-      dR[q].assign(point_blocks_[q].size(), Mat3::Zero());
-      dV[q].assign(point_blocks_[q].size(), Mat3::Zero());
-      dQ[q].assign(point_creep_[q].size(), Vec3::Zero());
+      for (Mat3& m : dR[q]) m.setZero();
+      for (Mat3& m : dV[q]) m.setZero();
+      for (Vec3& d : dQ[q]) d.setZero();
       const Vec3 r(x + 6 * q);
       const Vec3 v(x + 6 * q + 3);
       std::optional<WaterMotion> water;
@@ -1517,20 +1531,23 @@ void MooringSystem::CatenaryState(std::span<const Vec3> fairleads, double* x) co
 double MooringSystem::SettleStatic(std::span<const Vec3> fairlead_positions, double* x) {
   std::vector<PointKinematics> fairleads(lines_.size());
   for (size_t i = 0; i < lines_.size(); ++i) fairleads[i].position = fairlead_positions[i];
-  // At rest a visco-elastic segment has crept to its quasi-static stiffness.
+  // At rest a visco-elastic segment has crept to its quasi-static stiffness: the lines settle
+  // with it, and the creep is set to match.
   struct Settling {
-    MooringSystem& m;
-    double* x;
-    std::span<const PointKinematics> fairleads;
-    explicit Settling(MooringSystem& s, double* state, std::span<const PointKinematics> f)
-        : m(s), x(state), fairleads(f) {
-      m.settling_ = true;
-    }
-    ~Settling() {
-      m.settling_ = false;
-      m.CreepAtRest(x, fairleads);
-    }
-  } settling(*this, x, fairleads);
+    bool& flag;
+    explicit Settling(bool& f) : flag(f) { flag = true; }
+    ~Settling() { flag = false; }
+  };
+  double residual = 0.0;
+  {
+    const Settling settling(settling_);
+    residual = SettleLinesAndPoints(fairleads, x);
+  }
+  CreepAtRest(x, fairleads);
+  return residual;
+}
+
+double MooringSystem::SettleLinesAndPoints(std::span<const PointKinematics> fairleads, double* x) {
   const int np = num_points();
   if (np == 0) return SettleChains(fairleads, x);
   for (int q = 0; q < np; ++q) std::fill(x + 6 * q + 3, x + 6 * q + 6, 0.0);
@@ -1849,12 +1866,9 @@ std::vector<double> MooringSystem::ApplyFailure(const LineFailure& failure, cons
   std::copy(x, x + 6 * num_points(), x_new.begin());  // the points keep their states
   std::copy(x + old_creep_offset, x + old_creep_offset + creep_.size(),
             x_new.begin() + creep_offset_);  // and the segments their creep
-  // Gathering from the old state reads its creep where the old layout kept it.
-  const int new_creep_offset = creep_offset_;
-  creep_offset_ = old_creep_offset;
   for (size_t ci = 0; ci < chains_.size(); ++ci) {
     const Chain& oc = old[source[ci]];
-    GatherChain(oc, x, fairleads);  // pos_/vel_ now hold the old chain's nodes
+    GatherNodes(oc, x, fairleads);  // pos_/vel_ now hold the old chain's nodes
     const Chain& c = chains_[ci];
     for (int k = c.first_state_node(); k <= c.last_state_node(); ++k) {
       const int old_k = c.first_node + k - oc.first_node;
@@ -1865,7 +1879,6 @@ std::vector<double> MooringSystem::ApplyFailure(const LineFailure& failure, cons
       }
     }
   }
-  creep_offset_ = new_creep_offset;
   return x_new;
 }
 

@@ -313,6 +313,8 @@ class MooringSystem {
 
   void Layout();
   void BuildPattern();
+  /// SettleStatic's work: the chains, then the points over them.
+  double SettleLinesAndPoints(std::span<const PointKinematics> fairleads, double* x);
   /// SettleStatic for the chains with the points held.
   double SettleChains(std::span<const PointKinematics> fairleads, double* x);
   /// The free points' net force with their bodies and the lines' end shares, and their mass
@@ -329,7 +331,10 @@ class MooringSystem {
   /// The first state of the 6-block a chain end's neighbour node is (the next node along
   /// the chain, or the point at its other end), or -1 when that is held (an anchor).
   int EndNeighbourState(const Chain& chain, bool lower) const;
+  /// pos_, vel_ and the segments' creep of a chain from the state x.
   void GatherChain(const Chain& chain, const double* x, std::span<const PointKinematics> fairleads);
+  /// pos_ and vel_ alone (x may be of another layout's creep).
+  void GatherNodes(const Chain& chain, const double* x, std::span<const PointKinematics> fairleads);
   void ComputeSegments(const Chain& chain);
   /// Net force F and mass M of chain node k from the gathered state.
   void NodeForce(const Chain& chain, int k, Vec3* F, NodeMass* M) const;
@@ -377,6 +382,10 @@ class MooringSystem {
   // Per point, the 6-blocks (first states, ascending) its velocity rows have columns in.
   std::vector<std::vector<int>> point_blocks_;
   std::vector<Vec3> point_force_;  // scratch: PointLoads()
+  // Scratch of Jacobian(): the points' accelerations and their rows' blocks per column.
+  std::vector<Vec3> point_accel_;
+  std::vector<std::vector<Mat3>> point_dr_, point_dv_;
+  std::vector<std::vector<Vec3>> point_dq_;
   std::vector<Mat3> point_mass_;
   /// Per line, the share of every interior node (with both its half segments).
   std::vector<std::vector<NodeShare>> shares_;

@@ -874,6 +874,13 @@ void CheckPoints(const Checker& check, const MooringSpec& mooring) {
   const Water& water = mooring.water;
   const int np = static_cast<int>(points.size());
   constexpr double kApart = 0.01;  // [m]
+  const auto not_below_seabed = [&](const std::string& key, const Vec3& r) {
+    const double depth = seabed.DepthAt(r.x(), r.y());
+    if (r.z() > depth + kAnchorBelowSeabed) {
+      check.Fail(key, "z = " + WithUnit(r.z(), "m") + " is below the seabed there, at depth " +
+                          Significant(depth, 6) + " m");
+    }
+  };
   for (int p = 0; p < np; ++p) {
     const std::string path = ItemPath("mooring.points", p) + ".position";
     const Vec3& r = points[p].position;
@@ -881,11 +888,7 @@ void CheckPoints(const Checker& check, const MooringSpec& mooring) {
       check.Fail(path, "z = " + WithUnit(r.z(), "m") +
                            " is not below the water surface (z points down, 0 at the surface)");
     }
-    const double depth = seabed.DepthAt(r.x(), r.y());
-    if (r.z() > depth + kAnchorBelowSeabed) {
-      check.Fail(path, "z = " + WithUnit(r.z(), "m") + " is below the seabed there, at depth " +
-                           Significant(depth, 6) + " m");
-    }
+    not_below_seabed(path, r);
     for (int q = 0; q < p; ++q) {
       if ((points[q].position - r).norm() < kApart) {
         check.Fail(path, "coincides with " + ItemPath("mooring.points", q) +
@@ -928,14 +931,7 @@ void CheckPoints(const Checker& check, const MooringSpec& mooring) {
                  "starts where the line's lower end does; its ends must be at least " +
                      WithUnit(kApart, "m") + " apart");
     }
-    if (line.lower_point < 0) {
-      const double depth = seabed.DepthAt(line.anchor.x(), line.anchor.y());
-      if (line.anchor.z() > depth + kAnchorBelowSeabed) {
-        check.Fail(path + ".anchor", "z = " + WithUnit(line.anchor.z(), "m") +
-                                         " is below the seabed there, at depth " +
-                                         Significant(depth, 6) + " m");
-      }
-    }
+    if (line.lower_point < 0) not_below_seabed(path + ".anchor", line.anchor);
   }
   for (int p = 0; p < np; ++p) {
     if (lines_at[p] == 0) {

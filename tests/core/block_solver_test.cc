@@ -110,16 +110,22 @@ double RelativeError(const VecX& x, const VecX& reference) {
   return (x - reference).norm() / reference.norm();
 }
 
+// A normally distributed right-hand side of the matrix's size, from `seed`.
+VecX RandomRightHandSide(const Bordered& m, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g;
+  VecX b(m.pattern.size);
+  for (int i = 0; i < b.size(); ++i) b[i] = g(rng);
+  return b;
+}
+
 TEST(BorderedBlockSolver, MatchesDenseLuOnBorderedChains) {
   // Chains of 1, 2, 5 and 40 nodes, one of them not coupled to the border; several seeds.
   for (unsigned seed = 1; seed <= 5; ++seed) {
     Bordered m = MakeBordered(14, {1, 2, 5, 40, 7}, {true, true, true, true, false}, seed);
     BorderedBlockSolver solver(m.pattern, m.structure);
     ASSERT_TRUE(solver.Factor(m.Jacobian(m.values).data(), m.gamma));
-    std::mt19937 rng(seed + 100);
-    std::normal_distribution<double> g;
-    VecX b(m.pattern.size);
-    for (int i = 0; i < b.size(); ++i) b[i] = g(rng);
+    const VecX b = RandomRightHandSide(m, seed + 100);
     const VecX reference = m.dense.fullPivLu().solve(b);
     VecX x(b.size());
     solver.Solve(b.data(), x.data());
@@ -142,10 +148,7 @@ TEST(BorderedBlockSolver, MatchesDenseLuWithChainsCoupledAtBothEnds) {
                               seed, {true, true, true, true, false, false});
     BorderedBlockSolver solver(m.pattern, m.structure);
     ASSERT_TRUE(solver.Factor(m.Jacobian(m.values).data(), m.gamma));
-    std::mt19937 rng(seed + 200);
-    std::normal_distribution<double> g;
-    VecX b(m.pattern.size);
-    for (int i = 0; i < b.size(); ++i) b[i] = g(rng);
+    const VecX b = RandomRightHandSide(m, seed + 200);
     const VecX reference = m.dense.fullPivLu().solve(b);
     VecX x = b;
     solver.Solve(x.data(), x.data());
