@@ -363,6 +363,11 @@ ObserverBank::ObserverBank(const HypothesisBank& bank, const LowFrequencyModel& 
       for (int id : bank.failed_lines(h)) failed_[h].push_back(id - 1);
     }
     line_load_.resize(static_cast<std::size_t>(bank.num_lines()));
+    for (int i = 0; i < bank.num_lines(); ++i)
+      line_index_.push_back(intact_mooring_.IndexOf(i + 1));
+    if (bank.has_networks()) {
+      for (int h = 0; h < bank.size(); ++h) hypothesis_moorings_.push_back(bank.mooring(h));
+    }
   }
   evidence_.hypotheses.resize(n);
   log_probability_.resize(n);
@@ -498,11 +503,17 @@ void ObserverBank::UpdateLoadEvidence(const HypothesisEkf& intact) {
       intact.covariance().block<3, 3>(HypothesisEkf::kBias, HypothesisEkf::kBias);
   const Vec3 pose = intact.pose();
   for (std::size_t i = 0; i < line_load_.size(); ++i) {
-    line_load_[i] = intact_mooring_.LineLoad(static_cast<int>(i), pose);
+    line_load_[i] =
+        line_index_[i] >= 0 ? intact_mooring_.LineLoad(line_index_[i], pose) : Vec3::Zero();
   }
+  const Vec3 network_load =
+      hypothesis_moorings_.empty() ? Vec3::Zero() : intact_mooring_.NetworkLoad(pose);
   for (std::size_t h = 0; h < failed_.size(); ++h) {
     Vec3 sum = Vec3::Zero();
     for (int index : failed_[h]) sum += line_load_[static_cast<std::size_t>(index)];
+    if (!hypothesis_moorings_.empty()) {
+      sum += network_load - hypothesis_moorings_[h].NetworkLoad(pose);
+    }
     load.line_load[h] = sum;
   }
 }

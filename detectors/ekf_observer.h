@@ -274,10 +274,14 @@ class ObserverBank {
   std::vector<HypothesisEkf::State> difference_;  // x_i - x_j, heading wrapped
   std::vector<double> weight_;
   // The load evidence: the intact mooring, each hypothesis's failed lines (0-based) and
-  // the per-line load scratch.
+  // the per-line load scratch; each line's index among the intact mooring's straight
+  // lines (-1: in a network) and, where lines meet at free points, each hypothesis's
+  // mooring (the load it loses is the networks' load less theirs).
   QuasiStaticMooring intact_mooring_;
   std::vector<std::vector<int>> failed_;
   std::vector<Vec3> line_load_;
+  std::vector<int> line_index_;
+  std::vector<QuasiStaticMooring> hypothesis_moorings_;
 };
 
 }  // namespace moorsim::detectors

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -21,6 +22,17 @@ namespace {
 constexpr double kSlopeStep = 1e-2;
 
 std::string LineKey(int line_id) { return "mooring.lines[" + std::to_string(line_id) + "]"; }
+
+// "intact", "line 6", "lines 2+5".
+std::string FailedLabel(const std::vector<int>& failed) {
+  if (failed.empty()) return "intact";
+  std::string label = failed.size() == 1 ? "line " : "lines ";
+  for (std::size_t i = 0; i < failed.size(); ++i) {
+    if (i > 0) label += "+";
+    label += std::to_string(failed[i]);
+  }
+  return label;
+}
 
 [[noreturn]] void ThrowOption(const std::string& key, double value, const std::string& rule) {
   std::ostringstream out;
@@ -201,8 +213,17 @@ double LineForceTable::VerticalTension(double span, double* d_dspan) const {
 // QuasiStaticMooring
 
 QuasiStaticMooring::QuasiStaticMooring(std::vector<std::shared_ptr<const LineForceTable>> lines,
-                                       std::optional<TurretModel> turret)
-    : lines_(std::move(lines)), turret_(turret) {
+                                       std::optional<TurretModel> turret,
+                                       std::vector<AttachedNetwork> networks)
+    : lines_(std::move(lines)), turret_(turret), networks_(std::move(networks)) {
+  for (const AttachedNetwork& attached : networks_) {
+    if (attached.network == nullptr ||
+        attached.fairlead_body.size() !=
+            static_cast<std::size_t>(attached.network->num_fairleads()) ||
+        attached.fairlead_depth.size() != attached.fairlead_body.size()) {
+      throw Error("QuasiStaticMooring: a network without its fairleads");
+    }
+  }
   if (turret_ && !(turret_->centre.allFinite() && std::isfinite(turret_->heading))) {
     throw InputError("hypothesis_bank.turret: centre and heading must be finite");
   }
@@ -211,15 +232,18 @@ QuasiStaticMooring::QuasiStaticMooring(std::vector<std::shared_ptr<const LineFor
   }
 }
 
-void QuasiStaticMooring::FairleadOffset(const LineForceTable& table, const Vec3& eta,
-                                        Eigen::Vector2d* r, Eigen::Vector2d* lever) const {
+namespace internal {
+namespace {
+
+// The fairlead's offset r from (x, y) and the lever of its force (QuasiStaticMooring).
+void FairleadOffset(const std::optional<TurretModel>& turret, const Eigen::Vector2d& rb,
+                    const Vec3& eta, Eigen::Vector2d* r, Eigen::Vector2d* lever) {
   const double c = std::cos(eta.z());
   const double s = std::sin(eta.z());
-  const Eigen::Vector2d& rb = table.fairlead_body().head<2>();
-  if (turret_) {
-    const Eigen::Vector2d& centre = turret_->centre;
+  if (turret) {
+    const Eigen::Vector2d& centre = turret->centre;
     *lever = Eigen::Vector2d(c * centre.x() - s * centre.y(), s * centre.x() + c * centre.y());
-    const double ct = std::cos(turret_->heading), st = std::sin(turret_->heading);
+    const double ct = std::cos(turret->heading), st = std::sin(turret->heading);
     const Eigen::Vector2d arm = rb - centre;
     *r = *lever + Eigen::Vector2d(ct * arm.x() - st * arm.y(), st * arm.x() + ct * arm.y());
   } else {
@@ -228,10 +252,73 @@ void QuasiStaticMooring::FairleadOffset(const LineForceTable& table, const Vec3&
   }
 }
 
+// The network's fairleads in the Earth frame with the vessel at eta; their levers too.
+Eigen::Matrix3Xd NetworkFairleads(const std::optional<TurretModel>& turret,
+                                  const AttachedNetwork& attached, const Vec3& eta,
+                                  Eigen::Matrix2Xd* levers = nullptr) {
+  const int nf = static_cast<int>(attached.fairlead_body.size());
+  Eigen::Matrix3Xd fairleads(3, nf);
+  if (levers != nullptr) levers->resize(2, nf);
+  for (int f = 0; f < nf; ++f) {
+    Eigen::Vector2d r, lever;
+    FairleadOffset(turret, attached.fairlead_body[static_cast<std::size_t>(f)].head<2>(), eta, &r,
+                   &lever);
+    fairleads.col(f) << eta.x() + r.x(), eta.y() + r.y(),
+        attached.fairlead_depth[static_cast<std::size_t>(f)];
+    if (levers != nullptr) levers->col(f) = lever;
+  }
+  return fairleads;
+}
+
+}  // namespace
+}  // namespace internal
+
+void QuasiStaticMooring::FairleadOffset(const Eigen::Vector2d& fairlead_body, const Vec3& eta,
+                                        Eigen::Vector2d* r, Eigen::Vector2d* lever) const {
+  internal::FairleadOffset(turret_, fairlead_body, eta, r, lever);
+}
+
+int QuasiStaticMooring::IndexOf(int line_id) const {
+  for (int i = 0; i < num_lines(); ++i) {
+    if (lines_[static_cast<std::size_t>(i)]->line_id() == line_id) return i;
+  }
+  return -1;
+}
+
+Vec3 QuasiStaticMooring::NetworkLoad(const Vec3& eta, Mat3* J_load_eta) const {
+  Vec3 load = Vec3::Zero();
+  if (J_load_eta != nullptr) J_load_eta->setZero();
+  Eigen::Matrix2Xd levers;
+  for (const AttachedNetwork& attached : networks_) {
+    const Eigen::Matrix3Xd fairleads = internal::NetworkFairleads(turret_, attached, eta, &levers);
+    const PointNetwork::Equilibrium eq = attached.network->Solve(fairleads, J_load_eta != nullptr);
+    const int nf = static_cast<int>(fairleads.cols());
+    for (int f = 0; f < nf; ++f) {
+      const Eigen::Vector2d force = eq.fairlead_forces.col(f).head<2>();
+      const Eigen::Vector2d lever = levers.col(f);
+      load += Vec3(force.x(), force.y(), lever.x() * force.y() - lever.y() * force.x());
+      if (J_load_eta == nullptr) continue;
+      // dF_f/deta = sum_g dF_f/dp_g [I, dp_g/dpsi], dp_g/dpsi = perp(lever_g).
+      Eigen::Matrix<double, 2, 3> dF = Eigen::Matrix<double, 2, 3>::Zero();
+      for (int g = 0; g < nf; ++g) {
+        const Eigen::Matrix2d block = eq.d_horizontal.block<2, 2>(2 * f, 2 * g);
+        dF.leftCols<2>() += block;
+        dF.col(2) += block * Eigen::Vector2d(-levers(1, g), levers(0, g));
+      }
+      Mat3& J = *J_load_eta;
+      J.topRows<2>() += dF;
+      for (int k = 0; k < 3; ++k) J(2, k) += lever.x() * dF(1, k) - lever.y() * dF(0, k);
+      // The lever turns with the hull: d lever/dpsi = perp(lever).
+      J(2, 2) += -lever.y() * force.y() - lever.x() * force.x();
+    }
+  }
+  return load;
+}
+
 double QuasiStaticMooring::LineTension(int index, const Vec3& eta) const {
   const LineForceTable& table = *lines_[index];
   Eigen::Vector2d r, lever;
-  FairleadOffset(table, eta, &r, &lever);
+  FairleadOffset(table.fairlead_body().head<2>(), eta, &r, &lever);
   const double span = (table.anchor().head<2>() - eta.head<2>() - r).norm();
   return std::hypot(table.HorizontalTension(span), table.VerticalTension(span));
 }
@@ -239,7 +326,7 @@ double QuasiStaticMooring::LineTension(int index, const Vec3& eta) const {
 Vec3 QuasiStaticMooring::LineLoad(int index, const Vec3& eta, Mat3* J_load_eta) const {
   const LineForceTable& table = *lines_[index];
   Eigen::Vector2d r, lever;
-  FairleadOffset(table, eta, &r, &lever);
+  FairleadOffset(table.fairlead_body().head<2>(), eta, &r, &lever);
   const Eigen::Vector2d dr_dpsi(-lever.y(), lever.x());                    // = d lever / d psi
   const Eigen::Vector2d d = table.anchor().head<2>() - eta.head<2>() - r;  // fairlead->anchor
   const double span = d.norm();
@@ -273,6 +360,10 @@ Vec3 QuasiStaticMooring::Load(const Vec3& eta, Mat3* J_load_eta) const {
   Mat3 J_line;
   for (int i = 0; i < num_lines(); ++i) {
     load += LineLoad(i, eta, J_load_eta != nullptr ? &J_line : nullptr);
+    if (J_load_eta != nullptr) *J_load_eta += J_line;
+  }
+  if (!networks_.empty()) {
+    load += NetworkLoad(eta, J_load_eta != nullptr ? &J_line : nullptr);
     if (J_load_eta != nullptr) *J_load_eta += J_line;
   }
   return load;
@@ -344,6 +435,11 @@ HypothesisBank::HypothesisBank(const mooring_fem::MooringParameters& spec,
   turret_ = options.turret;
   const mooring_fem::SeabedSurface seabed(spec.seabed, spec.water.depth);
   for (const mooring_fem::LineParameters& line_spec : spec.lines) {
+    if (line_spec.lower_point >= 0 || line_spec.upper_point >= 0) {
+      tables_.push_back(nullptr);  // in a network
+      network_lines_.push_back(line_spec.id);
+      continue;
+    }
     const mooring_fem::LineProperties p = mooring_fem::MakeLineProperties(spec, line_spec);
     // The seabed's rise from the anchor toward the fairlead with the vessel at the
     // reference pose (a turret's rotation moves the fairlead too little to matter).
@@ -354,25 +450,284 @@ HypothesisBank::HypothesisBank(const mooring_fem::MooringParameters& spec,
         p.fairlead_body, p.fairlead_body.z() + options.moored_heave, options.table));
   }
   const int n = num_lines();
-  Add({});
-  for (int k = 1; k <= n; ++k) Add({k});
+  std::vector<std::vector<int>> failed_sets = {{}};
+  for (int k = 1; k <= n; ++k) failed_sets.push_back({k});
   if (options.include_pairs) {
     for (int i = 1; i <= n; ++i) {
-      for (int j = i + 1; j <= n; ++j) Add({i, j});
+      for (int j = i + 1; j <= n; ++j) failed_sets.push_back({i, j});
     }
+  }
+  if (!network_lines_.empty()) BuildNetworks(spec, options, failed_sets);
+  for (std::vector<int>& failed : failed_sets) Add(std::move(failed));
+}
+
+const LineForceTable& HypothesisBank::table(int index) const {
+  const std::shared_ptr<const LineForceTable>& table = tables_.at(index);
+  if (table == nullptr) {
+    throw Error("line " + std::to_string(index + 1) +
+                " ends at a free point: its load is its network's");
+  }
+  return *table;
+}
+
+void HypothesisBank::BuildNetworks(const mooring_fem::MooringParameters& spec,
+                                   const HypothesisBankOptions& options,
+                                   const std::vector<std::vector<int>>& failed_sets) {
+  const mooring_fem::SeabedSurface seabed(spec.seabed, spec.water.depth);
+  const int np = static_cast<int>(spec.points.size());
+  std::vector<mooring_fem::LineProperties> props;
+  for (const mooring_fem::LineParameters& line_spec : spec.lines) {
+    props.push_back(mooring_fem::MakeLineProperties(spec, line_spec));
+  }
+  const auto& point_of = [&](int id) {
+    const mooring_fem::LineProperties& p = props[static_cast<std::size_t>(id - 1)];
+    return p.lower_point >= 0 ? p.lower_point : p.upper_point;
+  };
+
+  // A network: the lines of one connected set of points that reaches both an anchor and
+  // the vessel (a set that reaches no anchor only hangs from the vessel: no horizontal
+  // load; one that reaches no fairlead does not load the vessel at all).
+  struct Unique {
+    std::vector<int> ids;     // its lines, ascending
+    std::vector<int> points;  // global indices, in local order
+    std::shared_ptr<PointNetwork> direct;
+    AttachedNetwork attached;
+  };
+  std::vector<Unique> uniques;
+  std::vector<std::vector<int>> set_networks;  // per failed set: indices into uniques
+  std::vector<Vec3> rest(spec.points.size());
+  for (int p = 0; p < np; ++p) rest[static_cast<std::size_t>(p)] = spec.points[p].position;
+  const double weight_per_kg = spec.water.gravity;
+
+  for (std::size_t set = 0; set < failed_sets.size(); ++set) {
+    const std::vector<int>& failed = failed_sets[set];
+    std::vector<int> intact;
+    for (int id : network_lines_) {
+      if (std::find(failed.begin(), failed.end(), id) == failed.end()) intact.push_back(id);
+    }
+    // Union-find over the points.
+    std::vector<int> parent(static_cast<std::size_t>(np));
+    for (int p = 0; p < np; ++p) parent[static_cast<std::size_t>(p)] = p;
+    const auto root = [&](int p) {
+      while (parent[static_cast<std::size_t>(p)] != p) p = parent[static_cast<std::size_t>(p)];
+      return p;
+    };
+    for (int id : intact) {
+      const mooring_fem::LineProperties& lp = props[static_cast<std::size_t>(id - 1)];
+      if (lp.lower_point >= 0 && lp.upper_point >= 0) {
+        parent[static_cast<std::size_t>(root(lp.lower_point))] = root(lp.upper_point);
+      }
+    }
+    std::vector<int> networks;
+    for (int r = 0; r < np; ++r) {
+      if (root(r) != r) continue;
+      std::vector<int> ids;
+      bool anchored = false, attached = false;
+      for (int id : intact) {
+        if (root(point_of(id)) != r) continue;
+        ids.push_back(id);
+        const mooring_fem::LineProperties& lp = props[static_cast<std::size_t>(id - 1)];
+        anchored = anchored || lp.lower_point < 0;
+        attached = attached || lp.upper_point < 0;
+      }
+      if (!anchored || !attached) continue;
+      const auto found = std::find_if(uniques.begin(), uniques.end(),
+                                      [&](const Unique& u) { return u.ids == ids; });
+      if (found != uniques.end()) {
+        networks.push_back(static_cast<int>(found - uniques.begin()));
+        continue;
+      }
+      // A new network, solved straight from the catenaries at the reference pose.
+      Unique u;
+      u.ids = ids;
+      std::vector<int> local(static_cast<std::size_t>(np), -1);
+      std::vector<NetworkLine> lines;
+      std::vector<Vec3> anchors;
+      const auto point_end = [&](int p) {
+        if (local[static_cast<std::size_t>(p)] < 0) {
+          local[static_cast<std::size_t>(p)] = static_cast<int>(u.points.size());
+          u.points.push_back(p);
+        }
+        return NetworkEnd{NetworkEnd::Kind::kPoint, local[static_cast<std::size_t>(p)]};
+      };
+      for (int id : ids) {
+        const mooring_fem::LineProperties& lp = props[static_cast<std::size_t>(id - 1)];
+        NetworkLine line;
+        line.id = id;
+        double rise = 0.0;
+        if (lp.lower_point >= 0) {
+          line.lower = point_end(lp.lower_point);
+        } else {
+          line.lower = {NetworkEnd::Kind::kAnchor, static_cast<int>(anchors.size())};
+          anchors.push_back(lp.anchor);
+          rise = seabed.RiseAlong(lp.anchor, rest[static_cast<std::size_t>(lp.upper_point)]);
+        }
+        if (lp.upper_point >= 0) {
+          line.upper = point_end(lp.upper_point);
+        } else {
+          line.upper = {NetworkEnd::Kind::kFairlead,
+                        static_cast<int>(u.attached.fairlead_body.size())};
+          u.attached.fairlead_body.push_back(lp.fairlead_body);
+          u.attached.fairlead_depth.push_back(lp.fairlead_body.z() + options.moored_heave);
+        }
+        line.line = mooring_fem::CatenaryLineOf(lp, rise);
+        line.line.lower_on_seabed = lp.lower_point < 0;
+        lines.push_back(std::move(line));
+      }
+      std::vector<double> weights;
+      Eigen::Matrix3Xd start(3, static_cast<Eigen::Index>(u.points.size()));
+      for (std::size_t k = 0; k < u.points.size(); ++k) {
+        const mooring_fem::FreePoint& point = spec.points[static_cast<std::size_t>(u.points[k])];
+        weights.push_back((point.body.mass - spec.water.density * point.body.volume) *
+                          weight_per_kg);
+        start.col(static_cast<Eigen::Index>(k)) = rest[static_cast<std::size_t>(u.points[k])];
+      }
+      const int nf = static_cast<int>(u.attached.fairlead_body.size());
+      u.direct = std::make_shared<PointNetwork>(std::move(lines), std::move(weights),
+                                                std::move(anchors), nf, start);
+      std::string where = "lines";
+      for (int id : ids) where += " " + std::to_string(id);
+      if (!failed.empty()) where += " (" + internal::FailedLabel(failed) + " failed)";
+      PointNetwork::Equilibrium eq;
+      eq.points = start;
+      try {
+        eq = u.direct->Solve(internal::NetworkFairleads(turret_, u.attached, reference_pose_),
+                             false);
+      } catch (const Error&) {
+        eq.converged = false;
+      }
+      // A point that sinks to the seabed (or below its anchors, where no catenary reaches)
+      // is outside the model; so is one that finds no rest at all.
+      for (std::size_t k = 0; k < u.points.size(); ++k) {
+        const Vec3 q = eq.points.col(static_cast<Eigen::Index>(k));
+        if (q.z() > seabed.DepthAt(q.x(), q.y()) - (eq.converged ? 1e-2 : 1.0)) {
+          throw InputError("mooring.points[" + std::to_string(u.points[k] + 1) + "]" +
+                           ": sinks to the seabed; the detectors' quasi-static model holds "
+                           "free points in the water");
+        }
+      }
+      if (!eq.converged) {
+        throw InputError(
+            "mooring.points: the detectors' quasi-static model finds no rest for the "
+            "free points of " +
+            where + " with the vessel at its reference pose");
+      }
+      for (std::size_t k = 0; k < u.points.size(); ++k) {
+        if (set == 0) rest[static_cast<std::size_t>(u.points[k])] = eq.points.col(k);
+      }
+      *u.direct = u.direct->WithTables(
+          std::vector<std::shared_ptr<const LineEndTable>>(u.ids.size()), eq.points);
+      networks.push_back(static_cast<int>(uniques.size()));
+      uniques.push_back(std::move(u));
+    }
+    set_networks.push_back(std::move(networks));
+  }
+
+  // Where each line's ends go with the vessel offset up to the tables' margin and turned,
+  // in every network it is in: the range of its end-tension table.
+  struct Extent {
+    double chord_min = 1e300, chord_max = -1e300, angle_min = 1e300, angle_max = -1e300;
+  };
+  std::vector<Extent> extent(spec.lines.size());
+  const double margin = options.table.span_margin;
+  std::vector<Vec3> poses = {reference_pose_, reference_pose_ + Vec3(0.0, 0.0, 0.1),
+                             reference_pose_ - Vec3(0.0, 0.0, 0.1)};
+  for (double radius : {0.5 * margin, margin}) {
+    for (int k = 0; k < 8; ++k) {
+      const double angle = k * std::numbers::pi / 4.0;
+      poses.push_back(reference_pose_ +
+                      Vec3(radius * std::cos(angle), radius * std::sin(angle), 0.0));
+    }
+  }
+  for (const Unique& u : uniques) {
+    for (const Vec3& pose : poses) {
+      const Eigen::Matrix3Xd fairleads = internal::NetworkFairleads(turret_, u.attached, pose);
+      PointNetwork::Equilibrium eq;
+      try {
+        eq = u.direct->Solve(fairleads, false);
+      } catch (const Error&) {
+        continue;
+      }
+      if (!eq.converged) continue;
+      for (const NetworkLine& line : u.direct->lines()) {
+        const auto end = [&](const NetworkEnd& e) -> Vec3 {
+          if (e.kind == NetworkEnd::Kind::kPoint) return eq.points.col(e.index);
+          if (e.kind == NetworkEnd::Kind::kFairlead) return fairleads.col(e.index);
+          return props[static_cast<std::size_t>(line.id - 1)].anchor;
+        };
+        const Vec3 a = end(line.lower), b = end(line.upper);
+        Extent& x = extent[static_cast<std::size_t>(line.id - 1)];
+        const double span = (b - a).head<2>().norm(), height = a.z() - b.z();
+        const double chord = std::hypot(span, height), angle = std::atan2(height, span);
+        x.chord_min = std::min(x.chord_min, chord);
+        x.chord_max = std::max(x.chord_max, chord);
+        x.angle_min = std::min(x.angle_min, angle);
+        x.angle_max = std::max(x.angle_max, angle);
+      }
+    }
+  }
+  std::vector<std::shared_ptr<const LineEndTable>> tables(spec.lines.size());
+  for (const Unique& u : uniques) {
+    for (const NetworkLine& line : u.direct->lines()) {
+      std::shared_ptr<const LineEndTable>& table = tables[static_cast<std::size_t>(line.id - 1)];
+      if (table != nullptr) continue;
+      const Extent& x = extent[static_cast<std::size_t>(line.id - 1)];
+      std::string problem;
+      // Padded by a quarter of the range, at least 2 m and 0.02 rad; less where the
+      // catenary has no solution that far out.
+      for (double pad : {1.0, 0.5, 0.25, 0.0}) {
+        const double pc = pad * std::max(0.25 * (x.chord_max - x.chord_min), 2.0);
+        const double pa = pad * std::max(0.25 * (x.angle_max - x.angle_min), 0.02);
+        LineEndTable::Range range;
+        range.chord_min = std::max(x.chord_min - pc, 0.1);
+        range.chord_max = std::max(x.chord_max + pc, range.chord_min + 0.1);
+        range.angle_min = std::max(x.angle_min - pa, line.line.lower_on_seabed ? 1e-3 : -1.5);
+        range.angle_max = std::min(std::max(x.angle_max + pa, range.angle_min + 1e-3), 1.57);
+        try {
+          table =
+              std::make_shared<const LineEndTable>(line.line, range, options.table.network_step);
+          break;
+        } catch (const Error& e) {
+          problem = e.what();
+        }
+      }
+      if (table == nullptr) {
+        throw InputError(internal::LineKey(line.id) +
+                         ": the detectors' quasi-static model cannot tabulate its end "
+                         "tensions: " +
+                         problem);
+      }
+    }
+  }
+  for (Unique& u : uniques) {
+    std::vector<std::shared_ptr<const LineEndTable>> own;
+    for (const NetworkLine& line : u.direct->lines()) {
+      own.push_back(tables[static_cast<std::size_t>(line.id - 1)]);
+    }
+    u.attached.network =
+        std::make_shared<const PointNetwork>(u.direct->WithTables(own, u.direct->rest()));
+  }
+  networks_.clear();
+  for (const std::vector<int>& set : set_networks) {
+    std::vector<AttachedNetwork> attached;
+    for (int k : set) attached.push_back(uniques[static_cast<std::size_t>(k)].attached);
+    networks_.push_back(std::move(attached));
   }
 }
 
 void HypothesisBank::Add(std::vector<int> failed) {
   std::vector<std::shared_ptr<const LineForceTable>> intact;
   for (const auto& table : tables_) {
-    if (std::find(failed.begin(), failed.end(), table->line_id()) == failed.end()) {
+    if (table != nullptr &&
+        std::find(failed.begin(), failed.end(), table->line_id()) == failed.end()) {
       intact.push_back(table);
     }
   }
+  std::vector<AttachedNetwork> networks;
+  if (hypotheses_.size() < networks_.size()) networks = networks_[hypotheses_.size()];
   Hypothesis hypothesis;
   hypothesis.failed = std::move(failed);
-  hypothesis.mooring = QuasiStaticMooring(std::move(intact), turret_);
+  hypothesis.mooring = QuasiStaticMooring(std::move(intact), turret_, std::move(networks));
   Mat3 J;
   hypothesis.mooring.Load(reference_pose_, &J);
   hypothesis.stiffness = -J;
@@ -380,14 +735,7 @@ void HypothesisBank::Add(std::vector<int> failed) {
 }
 
 std::string HypothesisBank::Label(int h) const {
-  const std::vector<int>& failed = hypotheses_.at(h).failed;
-  if (failed.empty()) return "intact";
-  std::string label = failed.size() == 1 ? "line " : "lines ";
-  for (std::size_t i = 0; i < failed.size(); ++i) {
-    if (i > 0) label += "+";
-    label += std::to_string(failed[i]);
-  }
-  return label;
+  return internal::FailedLabel(hypotheses_.at(h).failed);
 }
 
 int HypothesisBank::Find(std::span<const int> lines) const {

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "core/types.h"
+#include "detectors/point_network.h"
 #include "mooring_fem/catenary.h"
 #include "mooring_fem/composite_catenary.h"
 #include "mooring_fem/parameters.h"
@@ -38,6 +39,11 @@ struct LineForceTableOptions {
   /// ~3e-11 of H where H is smooth and 3.1e-7 in the interval that holds the lift-off of
   /// the anchor end; the bound tested is 1e-6 (tests/detectors/hypothesis_bank_test.cc).
   double span_step = 1.0;
+  /// Largest grid spacing [m] of the two-dimensional end-tension tables of the lines that
+  /// end at free points (point_network.h: LineEndTable). With 2 m the interpolated
+  /// tensions of the library's bridle lie within 1e-5 of the catenary's
+  /// (tests/detectors/point_network_test.cc).
+  double network_step = 2.0;
 };
 
 /// Horizontal (and vertical) fairlead tension of one line as a function of the horizontal
@@ -121,6 +127,14 @@ struct TurretModel {
   double heading = 0.0;  ///< [rad]
 };
 
+/// Lines that meet at free points and reach the vessel (point_network.h), with where their
+/// fairleads are on it.
+struct AttachedNetwork {
+  std::shared_ptr<const PointNetwork> network;
+  std::vector<Vec3> fairlead_body;     ///< per network fairlead, body frame [m] (z unused)
+  std::vector<double> fairlead_depth;  ///< per network fairlead, Earth z [m] (NED)
+};
+
 /// Net horizontal load of a set of intact lines on the vessel (TAPM thesis eq. 3.15-3.16 with
 /// the fairleads' true positions): line i's fairlead is at
 ///   p_i = (x, y) + Rz(psi) fairlead_body_i.xy,
@@ -132,17 +146,30 @@ struct TurretModel {
 /// With a turning turret (TurretModel: centre c, heading psi_t) the fairleads sit at
 ///   p_i = (x, y) + Rz(psi) c + Rz(psi_t) (fairlead_body_i.xy - c)
 /// and the hull feels the lines' net force at the turret centre: Mz = sum_i (R c) x F_i
-/// (dp/dpsi = S R c). Allocates nothing per call.
+/// (dp/dpsi = S R c). Lines that meet at free points are networks (AttachedNetwork): their
+/// points are solved into balance at each call and their load joins the sum, with the
+/// Jacobian of the points following the vessel. Allocates nothing per call without
+/// networks.
 class QuasiStaticMooring {
  public:
   /// No lines: zero load.
   QuasiStaticMooring() = default;
-  /// `turret`: unset = the fairleads fixed to the hull (a locked turret).
+  /// `lines`: the lines from an anchor straight to the vessel; `turret`: unset = the
+  /// fairleads fixed to the hull (a locked turret); `networks`: lines meeting at points.
   explicit QuasiStaticMooring(std::vector<std::shared_ptr<const LineForceTable>> lines,
-                              std::optional<TurretModel> turret = std::nullopt);
+                              std::optional<TurretModel> turret = std::nullopt,
+                              std::vector<AttachedNetwork> networks = {});
 
+  /// The lines straight from an anchor to the vessel (the networks' lines not counted).
   int num_lines() const { return static_cast<int>(lines_.size()); }
   const LineForceTable& line(int index) const { return *lines_[index]; }
+  /// The list index of line `line_id` (1-based) among num_lines(), or -1 (a network's
+  /// line, or a line this mooring does not hold).
+  int IndexOf(int line_id) const;
+  bool has_networks() const { return !networks_.empty(); }
+  const std::vector<AttachedNetwork>& networks() const { return networks_; }
+  /// The networks' share of Load (zero without networks), with its Jacobian.
+  Vec3 NetworkLoad(const Vec3& eta, Mat3* J_load_eta = nullptr) const;
 
   /// [Fx, Fy, Mz] in the Earth frame [N, N, N m] at eta = (x, y, psi); if J_load_eta is
   /// given, d load / d eta [N/m, N/rad ...].
@@ -161,11 +188,12 @@ class QuasiStaticMooring {
   /// The fairlead's offset r from (x, y) and the lever of its force about (x, y): the
   /// fairlead itself on a locked turret; on a turning one, the turret centre (R c), about
   /// which the fairlead holds its absolute direction.
-  void FairleadOffset(const LineForceTable& table, const Vec3& eta, Eigen::Vector2d* r,
+  void FairleadOffset(const Eigen::Vector2d& fairlead_body, const Vec3& eta, Eigen::Vector2d* r,
                       Eigen::Vector2d* lever) const;
 
   std::vector<std::shared_ptr<const LineForceTable>> lines_;
   std::optional<TurretModel> turret_;
+  std::vector<AttachedNetwork> networks_;
 };
 
 /// The low-frequency manoeuvring model of the vessel in surge, sway and yaw (TAPM thesis eq.
@@ -212,6 +240,8 @@ class HypothesisBank {
 
   int size() const { return static_cast<int>(hypotheses_.size()); }
   int num_lines() const { return static_cast<int>(tables_.size()); }
+  /// Whether some lines meet at free points (their hypotheses' moorings hold networks).
+  bool has_networks() const { return !network_lines_.empty(); }
   bool has_pairs() const { return size() > num_lines() + 1; }
 
   /// 1-based ids of the lines failed under hypothesis h (empty for h = 0).
@@ -232,8 +262,9 @@ class HypothesisBank {
   /// MooringDampingMatrix(stiffness(h), mass, ratio).
   Mat3 MooringDamping(int h, const Mat3& mass, const Vec3& ratio) const;
 
-  /// The table of line `index` (0-based; line id index + 1).
-  const LineForceTable& table(int index) const { return *tables_.at(index); }
+  /// The table of line `index` (0-based; line id index + 1). Throws moorsim::Error for a
+  /// line that ends at a free point (it has none: it is in a network).
+  const LineForceTable& table(int index) const;
 
  private:
   struct Hypothesis {
@@ -242,10 +273,19 @@ class HypothesisBank {
     Mat3 stiffness = Mat3::Zero();
   };
   void Add(std::vector<int> failed);
+  // The networks of the lines meeting at free points, for each failed set (networks_, in
+  // the order Add will be called).
+  void BuildNetworks(const mooring_fem::MooringParameters& spec,
+                     const HypothesisBankOptions& options,
+                     const std::vector<std::vector<int>>& failed_sets);
 
   Vec3 reference_pose_ = Vec3::Zero();
   std::optional<TurretModel> turret_;
+  /// Per line (index id - 1); null for a line that ends at a free point.
   std::vector<std::shared_ptr<const LineForceTable>> tables_;
+  std::vector<int> network_lines_;  // ids of the lines that end at free points
+  /// Per failed set (in the order of the hypotheses), its networks.
+  std::vector<std::vector<AttachedNetwork>> networks_;
   std::vector<Hypothesis> hypotheses_;
 };
 

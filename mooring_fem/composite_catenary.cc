@@ -116,7 +116,7 @@ Layout LayOut(const CompositeLine& line, double h, double v_fairlead) {
   // Touchdown: walking up from the anchor while V < H tan(rise) the line lies on the
   // seabed.
   const double touchdown = TouchdownVertical(line, h);
-  if (out.bottom[0] >= touchdown) return out;  // the whole line hangs
+  if (!line.lower_on_seabed || out.bottom[0] >= touchdown) return out;  // the whole line hangs
   for (std::size_t i = 0; i < n; ++i) {
     const CatenaryLineProperties& section = line.sections[i];
     if (out.top[i] >= touchdown) {
@@ -214,12 +214,15 @@ Eigen::Vector2d CompositeCatenary::PointAt(double s) const {
   return Point(line, LayOut(line, horizontal_tension, vertical_tension), horizontal_tension, s);
 }
 
-CompositeCatenary SolveCompositeCatenary(const CompositeLine& line, double span, double height) {
+CompositeCatenary SolveCompositeCatenary(const CompositeLine& line, double span, double height,
+                                         double max_strain) {
   CheckLine(line);
-  if (!(std::isfinite(span) && span >= 0.0 && std::isfinite(height) && height > 0.0)) {
+  const bool ends_apart = line.lower_on_seabed ? height > 0.0 : std::hypot(span, height) > 0.0;
+  if (!(std::isfinite(span) && span >= 0.0 && std::isfinite(height) && ends_apart)) {
     std::ostringstream out;
-    out << "catenary: the fairlead must be above the anchor (span " << span << " m, height "
-        << height << " m)";
+    out << "catenary: the fairlead must be "
+        << (line.lower_on_seabed ? "above the anchor" : "apart from the lower end") << " (span "
+        << span << " m, height " << height << " m)";
     throw Error(out.str());
   }
   // The start: the homogeneous line of the same length, weight and compliance.
@@ -236,6 +239,7 @@ CompositeCatenary SolveCompositeCatenary(const CompositeLine& line, double span,
   double h = 0.0;
   double v = 0.0;
   try {
+    if (!(height > 0.0)) throw Error("no hanging start below the lower end");
     const CatenarySolution uniform =
         SolveCatenary({length, std::max(weight / length, 1e-6 * std::abs(weight) / length + 1e-9),
                        length / compliance},
@@ -298,11 +302,11 @@ CompositeCatenary SolveCompositeCatenary(const CompositeLine& line, double span,
     const AxialCurve* curve = line.CurveOf(i);
     const double strain =
         curve ? curve->Strain(tension) : tension / line.sections[i].axial_stiffness;
-    if (strain > kMaxCatenaryStrain) {
+    if (strain > max_strain) {
       std::ostringstream out;
       out << "catenary: the composite line cannot reach (span " << span << " m, height " << height
           << " m) without a strain of " << 100.0 * strain << " % in section " << i + 1 << " (limit "
-          << 100.0 * kMaxCatenaryStrain << " %)";
+          << 100.0 * max_strain << " %)";
       throw Error(out.str());
     }
   }

@@ -47,10 +47,15 @@ struct CompositeLine {
   /// The seabed's angle of rise from the anchor toward the fairlead [rad], in (-pi/2,
   /// pi/2): 0 for a flat seabed, positive where it gets shallower toward the fairlead.
   double seabed_rise = 0.0;
+  /// Whether the lower end is on the seabed (an anchor). False for a line whose lower end
+  /// hangs in the water (from a free point): it never touches the seabed, its vertical
+  /// tension may change sign along it (a sag below both ends), and its "anchor" may even
+  /// lie above its "fairlead".
+  bool lower_on_seabed = true;
   /// One linear section, no joint weight and a flat seabed: the homogeneous catenary
   /// (catenary.h) is it.
   bool Uniform() const {
-    return sections.size() == 1 && CurveOf(0) == nullptr &&
+    return lower_on_seabed && sections.size() == 1 && CurveOf(0) == nullptr &&
            (joint_weights.empty() || joint_weights.front() == 0.0) && seabed_rise == 0.0;
   }
   /// The curve of section `i`, or null.
@@ -65,7 +70,7 @@ struct CompositeCatenary {
   double vertical_tension = 0.0;    ///< V at the fairlead [N]
   double fairlead_tension = 0.0;    ///< sqrt(H^2 + V^2) [N]
   double anchor_vertical = 0.0;     ///< upward pull on the anchor [N] (0 with touchdown
-                                    ///< on a flat seabed)
+                                    ///< on a flat seabed; < 0 pulls a free lower end down)
   double grounded_length = 0.0;     ///< unstretched length on the seabed [m]
   /// The point at unstretched arc length s from the anchor, in the vertical plane through
   /// anchor and fairlead: x horizontal toward the fairlead, z up, from the anchor [m].
@@ -76,11 +81,15 @@ struct CompositeCatenary {
 };
 
 /// Solves the composite catenary for a fairlead `span` >= 0 away from and `height` > 0
-/// above the anchor. Throws moorsim::InputError for a line it cannot represent (no section,
-/// a non-positive length or stiffness, joints that do not match the sections, a buoyant
+/// above the anchor (any height but a coincident pair of ends for a line whose lower end
+/// hangs free, !lower_on_seabed). Throws moorsim::InputError for a line it cannot represent (no
+/// section, a non-positive length or stiffness, joints that do not match the sections, a buoyant
 /// section or a buoy on the part resting on the seabed) and moorsim::Error if no solution
 /// is found (e.g. the line cannot reach).
-CompositeCatenary SolveCompositeCatenary(const CompositeLine& line, double span, double height);
+/// `max_strain`: the largest strain accepted (a tabulation that must extend a taut line's
+/// values smoothly past the elastic model's meaningful range may raise it).
+CompositeCatenary SolveCompositeCatenary(const CompositeLine& line, double span, double height,
+                                         double max_strain = kMaxCatenaryStrain);
 
 /// The composite catenary between an anchor and a fairlead in the Earth frame (NED), and
 /// the positions of the points at unstretched arc lengths `arc` (from the anchor).

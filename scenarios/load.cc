@@ -969,15 +969,12 @@ void CheckPoints(const Checker& check, const MooringSpec& mooring) {
   }
 }
 
-// The detectors' quasi-static mooring model and the load cells take every line from its
-// anchor to the vessel.
+// The load cells' expected tensions take every line from its anchor to the vessel.
 void CheckDetectionOnPoints(const Checker& check, const Scenario& scenario) {
-  if (scenario.mooring.points.empty()) return;
-  const std::string why =
-      " take every line from its anchor to the vessel; a mooring with free points "
-      "(mooring.points) is not supported by them yet";
-  if (!scenario.detectors.empty()) check.Fail("detectors", "the detectors" + why);
-  if (scenario.sensors.tension_cells) check.Fail("sensors.tension_cells", "load cells" + why);
+  if (scenario.mooring.points.empty() || !scenario.sensors.tension_cells) return;
+  check.Fail("sensors.tension_cells",
+             "load cells take every line from its anchor to the vessel; a mooring with free "
+             "points (mooring.points) is not supported by them yet");
 }
 
 // The turret: on the hull, the fairleads on it, a physical bearing.

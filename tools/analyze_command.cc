@@ -67,12 +67,6 @@ int Analyze(const AnalyzeOptions& o) {
                      ": vessel: the section is missing; analyze needs the vessel's mass and "
                      "damping for the observers' model");
   }
-  if (!scenario.mooring.points.empty()) {
-    throw InputError(scenario.source_path +
-                     ": mooring.points: analyze studies the detectors' quasi-static mooring "
-                     "model, which takes every line from its anchor to the vessel; a mooring "
-                     "with free points is not supported by it yet");
-  }
   const auto start = std::chrono::steady_clock::now();
   // The simulation's static start gives the moored heave the bank's fairleads sit at, and
   // its plant the observers' mass and damping: the same models a run would detect with.

@@ -115,13 +115,13 @@ TEST_F(AnalyzeCommandTest, BadInputIsOneLineAndExitCodeTwo) {
                           {"controller.rate_hz", "2", "1 Hz"});
 }
 
-// A mooring with free points: the detectors' quasi-static model does not take it yet.
-TEST_F(AnalyzeCommandTest, AMooringWithFreePointsIsOneLine) {
-  ExpectOneLineInputError(
-      Run({"analyze", MOORSIM_SOURCE_DIR "/scenarios/library/seed_bridled.yaml"}),
-      {"seed_bridled.yaml: mooring.points: analyze studies the detectors' quasi-static mooring "
-       "model",
-       "not supported by it yet"});
+// A mooring with free points (a bridle): the detectors' quasi-static model solves the
+// apex's balance, and every line is a hypothesis, the bridle's legs too.
+TEST_F(AnalyzeCommandTest, AMooringWithFreePointsIsAnalysed) {
+  const auto r = Run({"analyze", MOORSIM_SOURCE_DIR "/scenarios/library/seed_bridled.yaml"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("11 hypotheses"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("line 10"), std::string::npos) << r.out;
 }
 
 }  // namespace

@@ -202,6 +202,40 @@ TEST(CompositeLine, TwoSectionsOfOneTypeAreTheHomogeneousLine) {
   for (std::size_t i = 0; i < x.size(); ++i) ASSERT_EQ(fa[i], fb[i]) << i;
 }
 
+// A line whose lower end hangs free (a line between two points in the water): no seabed
+// under it, its vertical tension changing sign along a sag below both ends, and ends at
+// any height (upper end below the lower one too): H and both ends' V within 1e-6 of the
+// independent quadrature.
+TEST(CompositeCatenary, AFreeLowerEndHangsAgainstTheReference) {
+  CompositeLine line;
+  line.sections = {{120.0, 900.0, 6e8}, {200.0, 40.0, 2e8}, {80.0, 900.0, 6e8}};
+  line.joint_weights = {2e4, -3e4};
+  line.lower_on_seabed = false;
+  const std::vector<RefSection> sections = {
+      {120.0, 900.0, 6e8}, {200.0, 40.0, 2e8}, {80.0, 900.0, 6e8}};
+  const std::vector<double> joints = {2e4, -3e4};
+  struct End {
+    double span, height;
+  };
+  for (const End end : {End{300.0, 60.0}, End{340.0, 0.0}, End{250.0, -40.0}, End{380.0, 5.0}}) {
+    const CompositeCatenary c = SolveCompositeCatenary(line, end.span, end.height);
+    const Reference ref = SolveReference(sections, joints, 0.0, end.span, end.height,
+                                         c.horizontal_tension * 1.01, c.vertical_tension, false);
+    const double scale = c.fairlead_tension;
+    EXPECT_NEAR(c.horizontal_tension, ref.h, 1e-6 * scale) << end.span << " " << end.height;
+    EXPECT_NEAR(c.vertical_tension, ref.v_fairlead, 1e-6 * scale) << end.span << " " << end.height;
+    EXPECT_NEAR(c.anchor_vertical, ref.v_anchor, 1e-6 * scale) << end.span << " " << end.height;
+    EXPECT_DOUBLE_EQ(c.grounded_length, 0.0);
+  }
+  // A sag below both ends: the lower end is pulled down.
+  EXPECT_LT(SolveCompositeCatenary(line, 300.0, 0.0).anchor_vertical, 0.0);
+  // On the seabed the same ends give a grounded line, not a hanging one.
+  line.lower_on_seabed = true;
+  line.joint_weights = {2e4, 3e4};
+  EXPECT_GT(SolveCompositeCatenary(line, 340.0, 80.0).grounded_length, 0.0);
+  EXPECT_THROW(SolveCompositeCatenary(line, 300.0, -40.0), Error);
+}
+
 TEST(CompositeCatenary, LinesItCannotRepresentAreOneMessage) {
   CompositeLine line;
   EXPECT_THROW(SolveCompositeCatenary(line, 1000.0, 500.0), InputError);

@@ -308,13 +308,13 @@ TEST_F(RunTest, BadInputIsRejectedBeforeAnythingIsWritten) {
 namespace moorsim::simulation {
 namespace {
 
-// Runs `request` (line 6 parts at 400 s): the force-deficit test names line 6 within
+// Runs `request` (line `line` parts at 400 s): the force-deficit test names it within
 // 2 min, with no false alarm before.
-void ExpectTheDeficitTestNamesLineSix(const RunRequest& request) {
+void ExpectTheDeficitTestNames(const RunRequest& request, int line = 6) {
   const RunResult r = RunScenario(request);
   ASSERT_EQ(r.status, RunStatus::kOk) << r.message;
   const nlohmann::json& deficit = r.summary.at("detectors").at("deficit");
-  EXPECT_EQ(deficit.at("isolated_line"), 6) << deficit.dump();
+  EXPECT_EQ(deficit.at("isolated_line"), line) << deficit.dump();
   EXPECT_EQ(deficit.at("false_alarms"), 0) << deficit.dump();
   const double delay = deficit.at("delay").get<double>();
   EXPECT_GT(delay, 0.0);
@@ -328,7 +328,7 @@ TEST(CompositeMooring, TheDeficitTestNamesThePartedLine) {
   RunRequest request;
   request.scenario_path = MOORSIM_SOURCE_DIR "/scenarios/library/composite_line6.yaml";
   request.write_files = false;
-  ExpectTheDeficitTestNamesLineSix(request);
+  ExpectTheDeficitTestNames(request);
 }
 
 // The thesis case with line 6 parting, on a seabed sloping 1.5 deg (deeper toward east,
@@ -349,7 +349,20 @@ TEST(SlopingSeabed, TheDeficitTestNamesThePartedLine) {
   request.scenario_path = scenario->source_path;
   request.scenario = scenario;
   request.write_files = false;
-  ExpectTheDeficitTestNamesLineSix(request);
+  ExpectTheDeficitTestNames(request);
+}
+
+// The seed mooring with its north line on a bridle (a free point where the anchor line
+// meets two legs to the turret): the detectors' quasi-static model solves the apex's
+// balance at every pose, and the force-deficit test names the anchor line when it parts
+// at the apex, as it names the seed's own line 1.
+TEST(BridledMooring, TheDeficitTestNamesThePartedLine) {
+  RunRequest request;
+  request.scenario_path = MOORSIM_SOURCE_DIR "/scenarios/library/seed_bridled.yaml";
+  request.overrides = {"failure={line: 1, time: 400, mode: fairlead}",
+                       "detectors=[{type: deficit}]", "simulation.duration=800"};
+  request.write_files = false;
+  ExpectTheDeficitTestNames(request, 1);
 }
 
 }  // namespace
