@@ -467,16 +467,30 @@ namespace {
 
 // Nodes of a line between two points at rest, a start for the static solve: on the chord if
 // the line is no longer than it, else on a parabola sagging across it, downward as far as
-// the chord allows (sideways under a vertical chord), with about the line's length (sag h
-// over chord D: length D + 8 h^2 / (3 D)), kept above the seabed.
+// the chord allows (sideways under a vertical chord rising from an anchor, folded along one
+// hanging down), with about the line's length (sag h over chord D: length D + 8 h^2 /
+// (3 D)), kept above the seabed. A neutral line stays on the chord.
 Eigen::Matrix3Xd SagPoints(const LineProperties& lp, const Vec3& lower, const Vec3& upper,
                            const SeabedSurface& seabed) {
   const std::vector<double> arc = NodeArcLengths(lp);
   const Vec3 chord = upper - lower;
   const double D = chord.norm();
-  const double sag = lp.length > D ? std::sqrt(3.0 * D * (lp.length - D) / 8.0) : 0.0;
+  // A line whose weight in water is below the static solve's force tolerance (1e-9 EA: a
+  // neutral rope) has no sag to take: it folds along its chord, slack.
+  double weight = 0.0, stiffness = 0.0;
+  for (const SectionProperties& sp : lp.sections) {
+    weight += std::abs(sp.weight_per_length) * sp.length;
+    stiffness = std::max(stiffness, sp.axial_stiffness);
+  }
+  const bool neutral = weight < 1e-9 * stiffness;
+  const double sag = lp.length > D && !neutral ? std::sqrt(3.0 * D * (lp.length - D) / 8.0) : 0.0;
   Vec3 across = kDown - kDown.dot(chord) / (D * D) * chord;
-  if (!(across.norm() > 0.1)) across = Vec3(1.0, 0.0, 0.0) - chord.x() / (D * D) * chord;
+  if (!(across.norm() > 0.1)) {
+    // A vertical chord: a line hanging down from its lower end (a pendulum, a lifted mass)
+    // folds along it, below; one rising from an anchor (a buoy's tether) sags sideways,
+    // since below it is the seabed.
+    across = chord.z() > 0.0 ? kDown : Vec3(1.0, 0.0, 0.0) - chord.x() / (D * D) * chord;
+  }
   across.normalize();
   Eigen::Matrix3Xd nodes(3, arc.size());
   for (std::size_t k = 0; k < arc.size(); ++k) {

@@ -19,6 +19,7 @@
 
 #include "core/angles.h"
 #include "core/error.h"
+#include "mooring_fem/catenary.h"
 #include "mooring_fem/seabed.h"
 #include "scenarios/convert.h"
 #include "scenarios/depth_grid.h"
@@ -722,14 +723,16 @@ Vec3 FairleadAt(const Vec3& body, double x, double y, double psi) {
 
 // What keeps `line` from being held with its fairlead at `fairlead` (a message tail
 // starting with the length), or "" if nothing does. It must reach: the straight
-// anchor-fairlead distance is the least length that does. It must not be slack: a line as
+// anchor-fairlead distance, stretched by at most the elastic catenary's strain limit (10 %:
+// a shorter line is a taut leg, stretched at rest, as polyester taut moorings are), is the
+// least length that does. It must not be slack: a line as
 // long as the horizontal distance plus the fairlead's height above the anchor lies on the
 // seabed with no horizontal tension (the catenary's parameter H/w goes to 0), holds
 // nothing and has no unique static shape. The tension grows smoothly between the two.
 std::string LineGeometryProblem(const LineSpec& line, const Vec3& fairlead) {
   const double distance = (line.anchor - fairlead).norm();
   const double length = line.Length();
-  if (length < distance) {
+  if (length * (1.0 + mooring_fem::kMaxCatenaryStrain) < distance) {
     return WithUnit(length, "m") + " is shorter than the anchor-fairlead distance " +
            Fixed(distance, 1) + " m";
   }

@@ -4,7 +4,9 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -16,6 +18,7 @@
 #include "core/error.h"
 #include "core/version.h"
 #include "scenarios/load.h"
+#include "scenarios/schema.h"
 #include "scenarios/strict_yaml.h"
 
 namespace moorsim::scenarios {
@@ -251,9 +254,77 @@ std::string Vector(double x, double y, double z) {
   return text.append(", ").append(Number(z == 0.0 ? 0.0 : -z)).append("]");
 }
 
+// MoorDyn's bathymetry file (SeafloorFile): the counts nx and ny, the nx x coordinates,
+// the ny y coordinates, then nx ny rows "x y z" (z up, the seabed's height), x major. It is
+// looked for beside the input file and then in each folder above it (MoorDyn reads it from
+// its working directory). Returns moorsim's grid file (scenarios/README.md): x north, y
+// east (MoorDyn's -y, so the y axis is reversed), depths down, moved by the shift.
+std::string SeafloorGrid(const std::string& path, int line, const std::string& name, double shift_x,
+                         double shift_y) {
+  const std::string where = path + ":" + std::to_string(line) + ": SeafloorFile " + name;
+  std::filesystem::path found;
+  for (std::filesystem::path dir = std::filesystem::absolute(path).parent_path();;
+       dir = dir.parent_path()) {
+    if (std::filesystem::is_regular_file(dir / name)) {
+      found = dir / name;
+      break;
+    }
+    if (dir == dir.parent_path()) break;
+  }
+  if (found.empty()) {
+    throw InputError(where + ": not found beside the input file or in a folder above it");
+  }
+  const std::string text =
+      strict_yaml::ReadInputFile(found.string(), kMaxFileBytes, "MoorDyn seafloor");
+  std::istringstream in(text);
+  std::vector<double> numbers;
+  for (std::string token; in >> token;) {
+    const std::optional<double> value = ToNumber(token);
+    if (!value) throw InputError(where + ": '" + token + "' is not a number");
+    numbers.push_back(*value);
+  }
+  const auto bad = [&](const std::string& what) { return InputError(where + ": " + what); };
+  if (numbers.size() < 2 || numbers[0] < 2 || numbers[1] < 2 ||
+      numbers[0] != std::floor(numbers[0]) || numbers[1] != std::floor(numbers[1])) {
+    throw bad("it must start with the point counts nx and ny (2 or more each)");
+  }
+  const std::size_t nx = static_cast<std::size_t>(numbers[0]);
+  const std::size_t ny = static_cast<std::size_t>(numbers[1]);
+  if (numbers.size() != 2 + nx + ny + 3 * nx * ny) {
+    throw bad("holds " + std::to_string(numbers.size()) + " numbers where " + std::to_string(nx) +
+              " x " + std::to_string(ny) + " points need " +
+              std::to_string(2 + nx + ny + 3 * nx * ny));
+  }
+  const double* xs = numbers.data() + 2;
+  const double* ys = xs + nx;
+  const double* rows = ys + ny;
+  std::ostringstream grid;
+  grid << "# depth [m, down] below (x north, y east) [m]: MoorDyn's SeafloorFile " << name
+       << ", y reversed (MoorDyn's y points to port), heights made depths";
+  if (shift_x != 0.0 || shift_y != 0.0) grid << ", moved with the model";
+  grid << "\nx\\y";
+  for (std::size_t j = ny; j-- > 0;) grid << ", " << Number(-(ys[j] - shift_y) + 0.0);
+  grid << "\n";
+  for (std::size_t i = 0; i < nx; ++i) {
+    grid << Number(xs[i] - shift_x);
+    for (std::size_t j = ny; j-- > 0;) {
+      const double* p = rows + 3 * (i * ny + j);
+      if (p[0] != xs[i] || p[1] != ys[j]) {
+        throw bad("point " + std::to_string(i * ny + j + 1) + " is at (" + Number(p[0]) + ", " +
+                  Number(p[1]) + ") where the axes put (" + Number(xs[i]) + ", " + Number(ys[j]) +
+                  ")");
+      }
+      grid << ", " << Number(-p[2] + 0.0);
+    }
+    grid << "\n";
+  }
+  return grid.str();
+}
+
 }  // namespace
 
-MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command) {
+MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
+                            const std::string& files_stem) {
   const std::string text = strict_yaml::ReadInputFile(path, kMaxFileBytes, "MoorDyn input");
   const std::vector<Section> sections = ReadSections(text);
   Problems problems(path);
@@ -267,6 +338,7 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command)
   std::vector<MdLine> lines;
   std::map<std::string, std::pair<double, int>> options;  // name (lower case) -> value, line
   std::vector<std::string> settings;                      // options that are not the model
+  std::optional<std::pair<std::string, int>> seafloor;    // SeafloorFile: its path, line
   std::string title;
   bool any_table = false;
   for (const Section& section : sections) {
@@ -305,9 +377,11 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command)
         options[name] = {value.value_or(std::nan("")), row.line};
         static const std::set<std::string> kModel = {
             "wtrdpth", "wtrdnsty", "g", "gravity", "kbot", "cbot", "frictioncoefficient"};
-        static const std::set<std::string> kUnsupported = {
-            "seafloorfile", "wavekin", "currents", "watrkin", "seafloor", "bathymetry"};
-        if (kUnsupported.count(name) > 0 && row.fields[0] != "0") {
+        static const std::set<std::string> kUnsupported = {"wavekin", "currents", "watrkin",
+                                                           "seafloor", "bathymetry"};
+        if (name == "seafloorfile") {
+          seafloor = {row.fields[0], row.line};
+        } else if (kUnsupported.count(name) > 0 && row.fields[0] != "0") {
           problems.Add(row.line, "option " + row.fields[1] + " " + row.fields[0] +
                                      " is not supported (a flat seabed and still water, or "
                                      "moorsim's own current and waves)");
@@ -617,6 +691,42 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command)
   if (chains.empty()) problems.Add(1, "no line moorsim can hold");
   problems.ThrowIfAny();
 
+  // Vessel points far from MoorDyn's origin (a Coupled point given where it starts, a line
+  // driven at its end): the model moves horizontally so that their centre is moorsim's
+  // origin, the vessel's reference point, and they are points of the vessel again.
+  double shift_x = 0.0, shift_y = 0.0;
+  {
+    double sum_x = 0.0, sum_y = 0.0, far = 0.0;
+    int count = 0;
+    for (const Point& p : points) {
+      if (p.kind != PointKind::kVessel) continue;
+      sum_x += p.x;
+      sum_y += p.y;
+      far = std::max({far, std::abs(p.x), std::abs(p.y)});
+      ++count;
+    }
+    if (count > 0 && far > schema::kMaxBodyCoordinate) {
+      shift_x = sum_x / count;
+      shift_y = sum_y / count;
+      for (Point& p : points) {
+        p.x -= shift_x;
+        p.y -= shift_y;
+      }
+    }
+  }
+
+  // A bathymetry file: a depth grid beside the scenario.
+  if (seafloor) {
+    problems.Attempt([&] {
+      const std::string stem =
+          files_stem.empty() ? std::filesystem::path(path).stem().string() : files_stem;
+      const std::string grid_name = stem + "_seabed.csv";
+      out.files.push_back(
+          {grid_name, SeafloorGrid(path, seafloor->second, seafloor->first, shift_x, shift_y)});
+    });
+    problems.ThrowIfAny();
+  }
+
   // The scenario.
   std::ostringstream y;
   y << "# yaml-language-server: $schema=moorsim.schema.json\n";
@@ -629,6 +739,11 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command)
        "# two lines the joints of a line's sections, other free points (free ends, bridles,\n"
        "# shared buoys) moorsim's free points. Line numbers are moorsim's, from 1; each says\n"
        "# which MoorDyn lines and points it is made of.\n";
+  if (shift_x != 0.0 || shift_y != 0.0) {
+    y << "# The vessel points lie far from MoorDyn's origin: every point is moved by ("
+      << Number(-shift_x + 0.0) << ", " << Number(-shift_y + 0.0)
+      << ") m in MoorDyn's x and y, so that their centre is the vessel's reference point.\n";
+  }
   if (!settings.empty()) {
     y << "# Integration and output settings of the file, not part of the model (moorsim's\n"
          "# integrator chooses its own steps):";
@@ -653,8 +768,12 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command)
   const auto kbot = option("kbot");
   const auto cbot = option("cbot");
   y << "  seabed: {stiffness: " << Number(kbot ? kbot->first : 3.0e6)
-    << ", damping: " << Number(cbot ? cbot->first : 3.0e5) << "}  # kBot and cBot"
-    << (kbot || cbot ? "" : " (MoorDyn's defaults)") << ", per unit of contact area\n";
+    << ", damping: " << Number(cbot ? cbot->first : 3.0e5);
+  if (!out.files.empty()) y << ", grid: " << Text(out.files.front().first);
+  y << "}  # kBot and cBot" << (kbot || cbot ? "" : " (MoorDyn's defaults)")
+    << ", per unit of contact area";
+  if (seafloor) y << "; SeafloorFile (line " << seafloor->second << ") as a depth grid";
+  y << "\n";
   const auto friction = option("frictioncoefficient");
   y << "  line_types:\n";
   for (const MdLineType& t : types) {
@@ -750,10 +869,38 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command)
   }
   out.yaml = y.str();
   out.lines = id;
+  // The loader checks the scenario; the files it names sit beside it in a scratch folder.
+  std::string folder;
+  if (!out.files.empty()) {
+    std::string pattern =
+        (std::filesystem::temp_directory_path() / "moorsim-import-XXXXXX").string();
+    if (mkdtemp(pattern.data()) == nullptr) {
+      throw Error("import: cannot make a scratch folder in " +
+                  std::filesystem::temp_directory_path().string());
+    }
+    folder = pattern;
+    for (const auto& [name, contents] : out.files) {
+      std::ofstream(std::filesystem::path(folder) / name) << contents;
+    }
+  }
+  std::string refused;
   try {
-    ParseScenario(out.yaml, stem + ".yaml");
+    ParseScenario(out.yaml, folder.empty()
+                                ? stem + ".yaml"
+                                : (std::filesystem::path(folder) / stem).string() + ".yaml");
   } catch (const InputError& e) {
-    throw InputError(path + ": the imported model is one moorsim refuses: " + e.what());
+    refused = e.what();
+    for (std::size_t at;
+         !folder.empty() && (at = refused.find(folder + "/")) != std::string::npos;) {
+      refused.erase(at, folder.size() + 1);
+    }
+  }
+  if (!folder.empty()) {
+    std::error_code ignored;
+    std::filesystem::remove_all(folder, ignored);
+  }
+  if (!refused.empty()) {
+    throw InputError(path + ": the imported model is one moorsim refuses: " + refused);
   }
   return out;
 }

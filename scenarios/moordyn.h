@@ -11,41 +11,55 @@
 //     so the v1 order (Can Cat Cdn Cdt) reads as well.
 //   * POINTS (POINT LIST, CONNECTION PROPERTIES, NODE PROPERTIES): Fixed points are
 //     anchors; Vessel and Coupled points are fairleads on the vessel (their coordinates are
-//     relative to the vessel's reference point); Free points where exactly two lines meet
-//     become the joints of a composite line, with their mass, volume, CdA and Ca as a
-//     clump weight or buoy.
+//     relative to the vessel's reference point; where they lie beyond moorsim's reach of a
+//     vessel point, 1000 m, the whole model moves horizontally so that their centre is the
+//     reference point, and the scenario says by how much); Free points where exactly two
+//     lines meet become the joints of a composite line, with their mass, volume, CdA and
+//     Ca as a clump weight or buoy; other free points (where one line ends, or three or
+//     more meet) are moorsim's free points.
 //   * LINES (LINE LIST, LINE PROPERTIES): each chain of lines from a fixed point through
-//     free points to a vessel point is one moorsim line, its sections from the anchor up.
+//     joints to a vessel point or a free point is one moorsim line, its sections from the
+//     anchor up.
+//   * Visco-elastic ropes (EA_s|EA_D with BA|BA_D): the static and dynamic stiffness and
+//     the creep time (Hall et al. 2023).
 //   * OPTIONS: WtrDpth, WtrDnsty, g (gravity), kBot and cBot (the same per-area seabed
 //     stiffness and damping as moorsim's), FrictionCoefficient (both of moorsim's
-//     friction coefficients of every line type).
+//     friction coefficients of every line type), SeafloorFile (the bathymetry, looked for
+//     beside the input file and in the folders above it, written as moorsim's depth grid
+//     beside the scenario: MoorDynImport::files).
 // Frames: MoorDyn's z points up from the still water level; moorsim's Earth and body
 // frames point z down and y to starboard: (x, y, z) -> (x, -y, -z).
 //
 // What does not map is one located line each ("<file>:<line>: <what>"): rods, bodies,
-// free points where one or more than two lines meet (bridles, shared buoys), lines between
-// two fixed or two vessel points, a line ending nowhere, non-linear or visco-elastic EA
-// (tables, files, `EA|EAd` pairs), seabed bathymetry files and wave or current
-// kinematics options. These are errors (InputError, every line at once). Properties
-// moorsim does not model are imported without them and reported as warnings: bending
-// stiffness EI, vortex-induced vibration. Integration options (time step, scheme,
-// initial-condition settings, outputs) are not part of the model and are listed in a
-// comment.
+// lines between two fixed or two vessel points, a line ending nowhere, tension tables and
+// SYROPE files, a load-dependent dynamic stiffness (EA_s|EA_Dc|EA_D_Lm), and MoorDyn's
+// own wave or current kinematics options. These are errors (InputError, every line at
+// once). Properties moorsim does not model are imported without them and reported as
+// warnings: bending stiffness EI, vortex-induced vibration. Integration options (time
+// step, scheme, initial-condition settings, outputs) are not part of the model and are
+// listed in a comment.
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace moorsim::scenarios {
 
 struct MoorDynImport {
-  std::string yaml;                   ///< the scenario, with comments
+  std::string yaml;  ///< the scenario, with comments
+  /// Files the scenario names, to be written beside it: (file name, contents). The depth
+  /// grid of a SeafloorFile.
+  std::vector<std::pair<std::string, std::string>> files;
   std::vector<std::string> warnings;  ///< "<file>:<line>: <what>", one per approximation
   int lines = 0;                      ///< moorsim lines written
 };
 
 /// Reads the MoorDyn input file at `path` (InputError naming it if it cannot be read) and
 /// converts it as described above. `command` is recorded in the scenario's first comment.
-MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command);
+/// `files_stem` names the files written beside the scenario (`<stem>_seabed.csv`); empty:
+/// the input file's stem.
+MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
+                            const std::string& files_stem = "");
 
 }  // namespace moorsim::scenarios

@@ -39,13 +39,12 @@ std::string Json(const Vec3& v) {
 // period in minutes, 1e308) that would otherwise overflow or stall the solvers deep in a
 // run.
 
-constexpr double kMaxDepth = 12000.0;          // [m]
-constexpr double kMaxLineLength = 20000.0;     // [m]
-constexpr double kMaxCoefficient = 10.0;       // drag, added-mass, friction: of order 1
-constexpr double kMaxTime = 1e7;               // [s], 116 days: run lengths, time constants
-constexpr double kMaxRate = 1000.0;            // [Hz]: sample and output rates
-constexpr double kMaxOffset = 1e5;             // [m]: vessel positions in the field
-constexpr double kMaxBodyCoordinate = 1000.0;  // [m]: points on the vessel
+constexpr double kMaxDepth = 12000.0;       // [m]
+constexpr double kMaxLineLength = 20000.0;  // [m]
+constexpr double kMaxCoefficient = 10.0;    // drag, added-mass, friction: of order 1
+constexpr double kMaxTime = 1e7;            // [s], 116 days: run lengths, time constants
+constexpr double kMaxRate = 1000.0;         // [Hz]: sample and output rates
+constexpr double kMaxOffset = 1e5;          // [m]: vessel positions in the field
 
 constexpr std::string_view kDepthWhy = "the deepest ocean is 11 km";
 constexpr std::string_view kCoefficientWhy = "a dimensionless coefficient, of order 1";

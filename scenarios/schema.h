@@ -14,6 +14,9 @@
 
 namespace moorsim::scenarios::schema {
 
+/// The largest coordinate of a point on the vessel, body frame [m] (fairleads, thrusters).
+inline constexpr double kMaxBodyCoordinate = 1000.0;
+
 /// What a key holds.
 enum class Kind {
   kNumber,    ///< a finite number

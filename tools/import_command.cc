@@ -1,6 +1,7 @@
 // `moorsim import moordyn FILE`: a MoorDyn input file as a moorsim scenario
 // (scenarios/moordyn.h), checked by the loader before it is written.
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -29,13 +30,26 @@ int RunImport(const ImportOptions& o) {
   if (o.out) CheckScenarioOut(RequireText("--out", *o.out), o.force);
   std::string command = "moorsim import moordyn " + file;
   if (o.out) command += " --out " + *o.out;
-  const scenarios::MoorDynImport imported = scenarios::ImportMoorDyn(file, command);
+  const scenarios::MoorDynImport imported = scenarios::ImportMoorDyn(
+      file, command, o.out ? std::filesystem::path(*o.out).stem().string() : "");
   for (const std::string& warning : imported.warnings) {
     std::cerr << "moorsim: warning: " << warning << "\n";
   }
   if (!o.out) {
+    if (!imported.files.empty()) {
+      throw InputError(file + ": the scenario names a file of its own (" +
+                       imported.files.front().first + ") to be written beside it: give --out");
+    }
     std::cout << imported.yaml;
     return 0;
+  }
+  const std::filesystem::path folder = std::filesystem::path(*o.out).parent_path();
+  for (const auto& [name, contents] : imported.files) {
+    const std::string beside = (folder / name).string();
+    if (!o.force && std::filesystem::exists(beside)) {
+      throw InputError("--out: " + beside + " exists (give --force to replace it)");
+    }
+    simulation::WriteFileAtomically(beside, contents);
   }
   simulation::WriteFileAtomically(*o.out, imported.yaml);
   std::printf("%s: %d line%s from %s\n", o.out->c_str(), imported.lines,
@@ -51,15 +65,17 @@ Command AddImportCommand(CLI::App& app) {
       app.add_subcommand("import", "write a scenario from another program's mooring model");
   sub->footer(
       "\nFormats:\n"
-      "  moordyn: a MoorDyn (v1 or v2) input file: its line types, points (fixed: anchors;\n"
-      "    vessel or coupled: fairleads; free points joining two lines: the joints of a\n"
-      "    composite line, with their mass, volume, CdA and Ca) and lines, water depth and\n"
-      "    density, gravity, seabed stiffness, damping and friction. Frames are converted\n"
-      "    (MoorDyn's z up and y to port to moorsim's z down and y to starboard) and the\n"
-      "    tangential drag coefficient multiplied by pi (MoorDyn applies it to the\n"
-      "    circumference). Rods, bodies, bridles, non-linear EA and bathymetry are refused,\n"
-      "    one line each; bending stiffness is left out with a warning. The scenario holds\n"
-      "    the mooring only: `moorsim static` and\n"
+      "  moordyn: a MoorDyn (v1 or v2) input file: its line types (with the static and\n"
+      "    dynamic stiffness of a visco-elastic rope), points (fixed: anchors; vessel or\n"
+      "    coupled: fairleads; free points joining two lines: the joints of a composite\n"
+      "    line; other free points: moorsim's free points, with their mass, volume, CdA and\n"
+      "    Ca) and lines, water depth and density, gravity, seabed stiffness, damping and\n"
+      "    friction, and a SeafloorFile as a depth grid written beside the scenario. Frames\n"
+      "    are converted (MoorDyn's z up and y to port to moorsim's z down and y to\n"
+      "    starboard) and the tangential drag coefficient multiplied by pi (MoorDyn applies\n"
+      "    it to the circumference). Rods, bodies, tension tables and MoorDyn's own wave\n"
+      "    and current kinematics are refused, one line each; bending stiffness is left out\n"
+      "    with a warning. The scenario holds the mooring only: `moorsim static` and\n"
       "    `moorsim simulate-lines` run it; add a vessel for `moorsim run`.\n" +
       std::string(kScenarioOutNote));
   sub->add_option("format", o->format, "the model's format: moordyn")->required();

@@ -89,6 +89,35 @@ TEST(FreePoints, ABuoyOnAVerticalTetherFloatsAtItsClosedFormHeight) {
   for (double v : xdot) EXPECT_NEAR(v, 0.0, 1e-5);
 }
 
+// A mass hanging from a fixed point above it on a line of neutral weight, slack at the
+// start (MoorDyn's lifting test): the line folds along its vertical chord at the start and
+// the mass settles L (1 + m g / EA) below the point.
+TEST(FreePoints, AMassHangsBelowItsPointOnANeutralLine) {
+  MooringParameters spec;
+  spec.water = {1000.0, kG, 500.0};
+  LineType neutral = testing::ChainType();
+  neutral.name = "neutral";
+  neutral.diameter = 0.1;
+  neutral.mass_per_length = 1000.0 * std::numbers::pi / 4.0 * 0.01;  // its displaced water
+  neutral.axial_stiffness = 1e9;
+  spec.line_types = {neutral};
+  FreePoint mass;
+  mass.position = Vec3(0.0, 0.0, 100.0);
+  mass.body = {1000.0, 0.0, 0.0, 0.0};
+  spec.points = {mass};
+  LineParameters line =
+      LineParameters::Uniform(1, "neutral", 100.5, 20, Vec3(0.0, 0.0, 0.0), Vec3::Zero());
+  line.upper_point = 0;
+  spec.lines = {line};
+  MooringSystem mooring(spec);
+  std::vector<PointKinematics> fairleads;
+  const std::vector<double> x = AtRest(mooring, &fairleads);
+  const Vec3 p = mooring.PointPosition(x.data(), 0);
+  EXPECT_NEAR(p.x(), 0.0, 1e-9);
+  EXPECT_NEAR(p.y(), 0.0, 1e-9);
+  EXPECT_NEAR(p.z(), 100.5 * (1.0 + 1000.0 * kG / 1e9), 1e-9 * 100.5);
+}
+
 TEST(FreePoints, ABuoyOnATetherLongerThanTheWaterIsDeepIsRefused) {
   MooringSystem mooring(BuoyOnATether(100.0, Vec3(0.0, 0.0, 40.0)));
   std::vector<PointKinematics> fairleads;

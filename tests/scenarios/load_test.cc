@@ -270,6 +270,21 @@ TEST(ParseScenario, RecordsWhereValuesWereWritten) {
             PositionOf(kBase, "- name: wire", "diameter: ^0.1"));
 }
 
+// A line a little shorter than its anchor-fairlead distance is a taut leg (stretched at
+// rest, as a polyester taut mooring is); one that would stretch more than the catenary's
+// 10 % cannot reach.
+TEST(ParseScenario, ATautLegIsALineShorterThanItsDistance) {
+  // |(-1950, 0, 1000) - (-20, 0, 12)| = 2168.2 m.
+  Scenario s = ParseScenario(kBase, "test.yaml");
+  const std::size_t line = 2;
+  ASSERT_EQ(s.mooring.lines[line].anchor.x(), -1950.0);
+  s.mooring.lines[line].sections[0].length = 2100.0;  // 3.2 % short
+  EXPECT_EQ(ValidateError(s), "(no error)");
+  s.mooring.lines[line].sections[0].length = 1960.0;  // 10.6 % short
+  EXPECT_NE(ValidateError(s).find("1960 m is shorter than the anchor-fairlead distance 2168.2 m"),
+            std::string::npos);
+}
+
 TEST(ParseScenario, OrdersLinesByIdAndNamesEntriesAsWritten) {
   std::string swapped = Edit(kBase, "", "- id: 1", "- id: 3");
   swapped = Edit(swapped, "type: wire", "- id: 3", "- id: 1");

@@ -223,6 +223,63 @@ TEST(MoorDynImport, AViscoElasticRopeArrivesWithItsDynamicStiffnessAndCreepTime)
   fs::remove_all(dir);
 }
 
+// A line driven at its end from far away (a Coupled point given where it starts, 1360 m
+// from MoorDyn's origin): the model moves so that the vessel point is the vessel's
+// reference point, and says so.
+TEST(MoorDynImport, AFarVesselPointMovesTheModelToIt) {
+  const fs::path dir = moorsim::testing::FreshDirectory("moordyn_far");
+  std::string text = kSpread;
+  text.replace(text.find("4     Vessel    10 "), 18, "4     Vessel    1360 ");
+  text.replace(text.find("5     Vessel    -5 "), 18, "5     Vessel    1345 ");
+  text.replace(text.find("6     Vessel    -5 "), 18, "6     Vessel    1345 ");
+  text.replace(text.find("1     Fixed     600 "), 19, "1     Fixed     1950 ");
+  text.replace(text.find("2     Fixed     -300"), 20, "2     Fixed     1050");
+  text.replace(text.find("3     Fixed     -300"), 20, "3     Fixed     1050");
+  text.replace(text.find("7     Free      -150"), 20, "7     Free      1200");
+  const fs::path file = Write(dir, "far.txt", text);
+  const std::string y = ImportMoorDyn(file.string(), "test").yaml;
+  EXPECT_NE(y.find("every point is moved by (-1350, 0) m in MoorDyn's x and y"), std::string::npos)
+      << y;
+  EXPECT_NE(y.find("anchor: [600, 0, 200]"), std::string::npos) << y;
+  EXPECT_NE(y.find("fairlead: [10, 0, 15]"), std::string::npos) << y;
+  fs::remove_all(dir);
+}
+
+// MoorDyn's bathymetry file, named relative to a folder above the input file (MoorDyn reads
+// it from its working directory): a depth grid beside the scenario, y reversed (MoorDyn's
+// y points to port) and heights made depths; a file that does not hold its points is one
+// located line.
+TEST(MoorDynImport, ASeafloorFileArrivesAsADepthGrid) {
+  const fs::path dir = moorsim::testing::FreshDirectory("moordyn_seafloor");
+  fs::create_directories(dir / "Mooring" / "floor");
+  Write(dir / "Mooring" / "floor", "bottom.txt",
+        "2 3\n-1000 1000\n-800 0 800\n"
+        "-1000 -800 -200\n-1000 0 -200.2\n-1000 800 -200.4\n"
+        "1000 -800 -200.1\n1000 0 -200.3\n1000 800 -200.5\n");
+  std::string text = kSpread;
+  text.replace(text.find("0.4           FrictionCoefficient"), 0,
+               "Mooring/floor/bottom.txt    SeafloorFile    bathymetry\n");
+  const fs::path file = Write(dir / "Mooring", "floor.txt", text);
+  const MoorDynImport imported = ImportMoorDyn(file.string(), "test", "field");
+  ASSERT_EQ(imported.files.size(), 1u);
+  EXPECT_EQ(imported.files[0].first, "field_seabed.csv");
+  const std::string& grid = imported.files[0].second;
+  EXPECT_NE(grid.find("x\\y, -800, 0, 800\n-1000, 200.4, 200.2, 200\n1000, 200.5, 200.3, 200.1\n"),
+            std::string::npos)
+      << grid;
+  EXPECT_NE(imported.yaml.find("grid: field_seabed.csv}"), std::string::npos) << imported.yaml;
+  // Eight numbers short.
+  Write(dir / "Mooring" / "floor", "bottom.txt", "2 3\n-1000 1000\n-800 0 800\n");
+  EXPECT_EQ(ErrorOf(file), file.string() +
+                               ":31: SeafloorFile Mooring/floor/bottom.txt: holds 7 numbers "
+                               "where 2 x 3 points need 25");
+  fs::remove_all(dir / "Mooring" / "floor");
+  EXPECT_NE(ErrorOf(file).find(
+                ":31: SeafloorFile Mooring/floor/bottom.txt: not found beside the input file"),
+            std::string::npos);
+  fs::remove_all(dir);
+}
+
 // What moorsim cannot represent: one located line each, all of them at once.
 TEST(MoorDynImport, WhatDoesNotMapIsOneLocatedLineEach) {
   const fs::path dir = moorsim::testing::FreshDirectory("moordyn_refused");
