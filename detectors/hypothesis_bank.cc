@@ -291,7 +291,8 @@ Vec3 QuasiStaticMooring::NetworkLoad(const Vec3& eta, Mat3* J_load_eta) const {
   Eigen::Matrix2Xd levers;
   for (const AttachedNetwork& attached : networks_) {
     const Eigen::Matrix3Xd fairleads = internal::NetworkFairleads(turret_, attached, eta, &levers);
-    const PointNetwork::Equilibrium eq = attached.network->Solve(fairleads, J_load_eta != nullptr);
+    const mooring_fem::PointNetwork::Equilibrium eq =
+        attached.network->Solve(fairleads, J_load_eta != nullptr);
     const int nf = static_cast<int>(fairleads.cols());
     for (int f = 0; f < nf; ++f) {
       const Eigen::Vector2d force = eq.fairlead_forces.col(f).head<2>();
@@ -490,7 +491,7 @@ void HypothesisBank::BuildNetworks(const mooring_fem::MooringParameters& spec,
   struct Unique {
     std::vector<int> ids;     // its lines, ascending
     std::vector<int> points;  // global indices, in local order
-    std::shared_ptr<PointNetwork> direct;
+    std::shared_ptr<mooring_fem::PointNetwork> direct;
     AttachedNetwork attached;
   };
   std::vector<Unique> uniques;
@@ -541,31 +542,32 @@ void HypothesisBank::BuildNetworks(const mooring_fem::MooringParameters& spec,
       Unique u;
       u.ids = ids;
       std::vector<int> local(static_cast<std::size_t>(np), -1);
-      std::vector<NetworkLine> lines;
+      std::vector<mooring_fem::NetworkLine> lines;
       std::vector<Vec3> anchors;
       const auto point_end = [&](int p) {
         if (local[static_cast<std::size_t>(p)] < 0) {
           local[static_cast<std::size_t>(p)] = static_cast<int>(u.points.size());
           u.points.push_back(p);
         }
-        return NetworkEnd{NetworkEnd::Kind::kPoint, local[static_cast<std::size_t>(p)]};
+        return mooring_fem::NetworkEnd{mooring_fem::NetworkEnd::Kind::kPoint,
+                                       local[static_cast<std::size_t>(p)]};
       };
       for (int id : ids) {
         const mooring_fem::LineProperties& lp = props[static_cast<std::size_t>(id - 1)];
-        NetworkLine line;
+        mooring_fem::NetworkLine line;
         line.id = id;
         double rise = 0.0;
         if (lp.lower_point >= 0) {
           line.lower = point_end(lp.lower_point);
         } else {
-          line.lower = {NetworkEnd::Kind::kAnchor, static_cast<int>(anchors.size())};
+          line.lower = {mooring_fem::NetworkEnd::Kind::kAnchor, static_cast<int>(anchors.size())};
           anchors.push_back(lp.anchor);
           rise = seabed.RiseAlong(lp.anchor, rest[static_cast<std::size_t>(lp.upper_point)]);
         }
         if (lp.upper_point >= 0) {
           line.upper = point_end(lp.upper_point);
         } else {
-          line.upper = {NetworkEnd::Kind::kFairlead,
+          line.upper = {mooring_fem::NetworkEnd::Kind::kFairlead,
                         static_cast<int>(u.attached.fairlead_body.size())};
           u.attached.fairlead_body.push_back(lp.fairlead_body);
           u.attached.fairlead_depth.push_back(lp.fairlead_body.z() + options.moored_heave);
@@ -583,12 +585,12 @@ void HypothesisBank::BuildNetworks(const mooring_fem::MooringParameters& spec,
         start.col(static_cast<Eigen::Index>(k)) = rest[static_cast<std::size_t>(u.points[k])];
       }
       const int nf = static_cast<int>(u.attached.fairlead_body.size());
-      u.direct = std::make_shared<PointNetwork>(std::move(lines), std::move(weights),
-                                                std::move(anchors), nf, start);
+      u.direct = std::make_shared<mooring_fem::PointNetwork>(std::move(lines), std::move(weights),
+                                                             std::move(anchors), nf, start);
       std::string where = "lines";
       for (int id : ids) where += " " + std::to_string(id);
       if (!failed.empty()) where += " (" + internal::FailedLabel(failed) + " failed)";
-      PointNetwork::Equilibrium eq;
+      mooring_fem::PointNetwork::Equilibrium eq;
       eq.points = start;
       try {
         eq = u.direct->Solve(internal::NetworkFairleads(turret_, u.attached, reference_pose_),
@@ -616,7 +618,7 @@ void HypothesisBank::BuildNetworks(const mooring_fem::MooringParameters& spec,
         if (set == 0) rest[static_cast<std::size_t>(u.points[k])] = eq.points.col(k);
       }
       *u.direct = u.direct->WithTables(
-          std::vector<std::shared_ptr<const LineEndTable>>(u.ids.size()), eq.points);
+          std::vector<std::shared_ptr<const mooring_fem::LineEndTable>>(u.ids.size()), eq.points);
       networks.push_back(static_cast<int>(uniques.size()));
       uniques.push_back(std::move(u));
     }
@@ -642,17 +644,17 @@ void HypothesisBank::BuildNetworks(const mooring_fem::MooringParameters& spec,
   for (const Unique& u : uniques) {
     for (const Vec3& pose : poses) {
       const Eigen::Matrix3Xd fairleads = internal::NetworkFairleads(turret_, u.attached, pose);
-      PointNetwork::Equilibrium eq;
+      mooring_fem::PointNetwork::Equilibrium eq;
       try {
         eq = u.direct->Solve(fairleads, false);
       } catch (const Error&) {
         continue;
       }
       if (!eq.converged) continue;
-      for (const NetworkLine& line : u.direct->lines()) {
-        const auto end = [&](const NetworkEnd& e) -> Vec3 {
-          if (e.kind == NetworkEnd::Kind::kPoint) return eq.points.col(e.index);
-          if (e.kind == NetworkEnd::Kind::kFairlead) return fairleads.col(e.index);
+      for (const mooring_fem::NetworkLine& line : u.direct->lines()) {
+        const auto end = [&](const mooring_fem::NetworkEnd& e) -> Vec3 {
+          if (e.kind == mooring_fem::NetworkEnd::Kind::kPoint) return eq.points.col(e.index);
+          if (e.kind == mooring_fem::NetworkEnd::Kind::kFairlead) return fairleads.col(e.index);
           return props[static_cast<std::size_t>(line.id - 1)].anchor;
         };
         const Vec3 a = end(line.lower), b = end(line.upper);
@@ -666,10 +668,11 @@ void HypothesisBank::BuildNetworks(const mooring_fem::MooringParameters& spec,
       }
     }
   }
-  std::vector<std::shared_ptr<const LineEndTable>> tables(spec.lines.size());
+  std::vector<std::shared_ptr<const mooring_fem::LineEndTable>> tables(spec.lines.size());
   for (const Unique& u : uniques) {
-    for (const NetworkLine& line : u.direct->lines()) {
-      std::shared_ptr<const LineEndTable>& table = tables[static_cast<std::size_t>(line.id - 1)];
+    for (const mooring_fem::NetworkLine& line : u.direct->lines()) {
+      std::shared_ptr<const mooring_fem::LineEndTable>& table =
+          tables[static_cast<std::size_t>(line.id - 1)];
       if (table != nullptr) continue;
       const Extent& x = extent[static_cast<std::size_t>(line.id - 1)];
       std::string problem;
@@ -678,14 +681,14 @@ void HypothesisBank::BuildNetworks(const mooring_fem::MooringParameters& spec,
       for (double pad : {1.0, 0.5, 0.25, 0.0}) {
         const double pc = pad * std::max(0.25 * (x.chord_max - x.chord_min), 2.0);
         const double pa = pad * std::max(0.25 * (x.angle_max - x.angle_min), 0.02);
-        LineEndTable::Range range;
+        mooring_fem::LineEndTable::Range range;
         range.chord_min = std::max(x.chord_min - pc, 0.1);
         range.chord_max = std::max(x.chord_max + pc, range.chord_min + 0.1);
         range.angle_min = std::max(x.angle_min - pa, line.line.lower_on_seabed ? 1e-3 : -1.5);
         range.angle_max = std::min(std::max(x.angle_max + pa, range.angle_min + 1e-3), 1.57);
         try {
-          table =
-              std::make_shared<const LineEndTable>(line.line, range, options.table.network_step);
+          table = std::make_shared<const mooring_fem::LineEndTable>(line.line, range,
+                                                                    options.table.network_step);
           break;
         } catch (const Error& e) {
           problem = e.what();
@@ -700,12 +703,12 @@ void HypothesisBank::BuildNetworks(const mooring_fem::MooringParameters& spec,
     }
   }
   for (Unique& u : uniques) {
-    std::vector<std::shared_ptr<const LineEndTable>> own;
-    for (const NetworkLine& line : u.direct->lines()) {
+    std::vector<std::shared_ptr<const mooring_fem::LineEndTable>> own;
+    for (const mooring_fem::NetworkLine& line : u.direct->lines()) {
       own.push_back(tables[static_cast<std::size_t>(line.id - 1)]);
     }
-    u.attached.network =
-        std::make_shared<const PointNetwork>(u.direct->WithTables(own, u.direct->rest()));
+    u.attached.network = std::make_shared<const mooring_fem::PointNetwork>(
+        u.direct->WithTables(own, u.direct->rest()));
   }
   networks_.clear();
   for (const std::vector<int>& set : set_networks) {

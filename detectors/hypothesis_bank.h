@@ -23,10 +23,10 @@
 #include <vector>
 
 #include "core/types.h"
-#include "detectors/point_network.h"
 #include "mooring_fem/catenary.h"
 #include "mooring_fem/composite_catenary.h"
 #include "mooring_fem/parameters.h"
+#include "mooring_fem/point_network.h"
 
 namespace moorsim::detectors {
 
@@ -40,7 +40,7 @@ struct LineForceTableOptions {
   /// the anchor end; the bound tested is 1e-6 (tests/detectors/hypothesis_bank_test.cc).
   double span_step = 1.0;
   /// Largest grid spacing [m] of the two-dimensional end-tension tables of the lines that
-  /// end at free points (point_network.h: LineEndTable). With 2 m the interpolated
+  /// end at free points (mooring_fem/point_network.h: LineEndTable). With 2 m the interpolated
   /// tensions of the library's bridle lie within 1e-5 of the catenary's
   /// (tests/detectors/point_network_test.cc).
   double network_step = 2.0;
@@ -127,10 +127,10 @@ struct TurretModel {
   double heading = 0.0;  ///< [rad]
 };
 
-/// Lines that meet at free points and reach the vessel (point_network.h), with where their
-/// fairleads are on it.
+/// Lines that meet at free points and reach the vessel (mooring_fem/point_network.h), with where
+/// their fairleads are on it.
 struct AttachedNetwork {
-  std::shared_ptr<const PointNetwork> network;
+  std::shared_ptr<const mooring_fem::PointNetwork> network;
   std::vector<Vec3> fairlead_body;     ///< per network fairlead, body frame [m] (z unused)
   std::vector<double> fairlead_depth;  ///< per network fairlead, Earth z [m] (NED)
 };

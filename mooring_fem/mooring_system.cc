@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "mooring_fem/catenary.h"
 #include "mooring_fem/composite_catenary.h"
+#include "mooring_fem/point_network.h"
 
 namespace moorsim::mooring_fem {
 
@@ -500,6 +501,17 @@ Eigen::Matrix3Xd SagPoints(const LineProperties& lp, const Vec3& lower, const Ve
     nodes.col(static_cast<Eigen::Index>(k)) = r;
   }
   return nodes;
+}
+
+// Chain c's interior nodes 1..segments-1 in x at `nodes`, at rest.
+void LayNodes(const Chain& c, const Eigen::Matrix3Xd& nodes, double* x) {
+  for (int k = 1; k < c.segments; ++k) {
+    double* p = x + c.state_offset + 6 * (k - 1);
+    for (int m = 0; m < 3; ++m) {
+      p[m] = nodes(m, k);
+      p[m + 3] = 0.0;
+    }
+  }
 }
 
 // The free points chain state node i's rows have columns in (its held neighbours), in
@@ -1506,34 +1518,12 @@ void MooringSystem::CatenaryState(std::span<const Vec3> fairleads, double* x) co
       nodes = SagPoints(lp, lower, upper, seabed_.surface);
     } else {
       try {
-        const CompositeLine line = CatenaryLineOf(lp, seabed_.surface.RiseAlong(lower, upper));
-        if (line.Uniform()) {
-          nodes = SolveLineCatenary(line.sections.front(), lower, upper).NodePositions(c.segments);
-        } else {
-          nodes = CompositeCatenaryPoints(line, lower, upper, NodeArcLengths(lp));
-        }
+        nodes = StartNodes(c, lower, upper);
       } catch (const Error& e) {
-        // A line up to a free point may not reach it as a catenary from the point's start
-        // position; the static solve moves the point.
-        if (c.upper != EndCondition::kPoint) {
-          throw Error("line " + std::to_string(lp.id) + ": " + e.what());
-        }
-        nodes = SagPoints(lp, lower, upper, seabed_.surface);
-      }
-      // Nor, right below its anchor, as one with no span (its grounded nodes would
-      // coincide).
-      const double span = (upper - lower).head<2>().norm();
-      if (c.upper == EndCondition::kPoint && !(span > 1e-3 * lp.length)) {
-        nodes = SagPoints(lp, lower, upper, seabed_.surface);
+        throw Error("line " + std::to_string(lp.id) + ": " + e.what());
       }
     }
-    for (int k = 1; k < c.segments; ++k) {
-      double* p = x + c.state_offset + 6 * (k - 1);
-      for (int m = 0; m < 3; ++m) {
-        p[m] = nodes(m, k);
-        p[3 + m] = 0.0;
-      }
-    }
+    LayNodes(c, nodes, x);
   }
   if (!creep_.empty()) {
     std::vector<PointKinematics> held(lines_.size());
@@ -1561,10 +1551,105 @@ double MooringSystem::SettleStatic(std::span<const Vec3> fairlead_positions, dou
   return residual;
 }
 
+Eigen::Matrix3Xd MooringSystem::StartNodes(const Chain& c, const Vec3& lower,
+                                           const Vec3& upper) const {
+  const LineProperties& lp = lines_[c.line];
+  // A line from a point, or from an anchor held above the seabed (a fixed point in the
+  // water), hangs free of the seabed.
+  const bool free_lower = c.lower == EndCondition::kPoint ||
+                          lower.z() < seabed_.surface.DepthAt(lower.x(), lower.y()) - 1.0;
+  try {
+    CompositeLine line =
+        CatenaryLineOf(lp, free_lower ? 0.0 : seabed_.surface.RiseAlong(lower, upper));
+    line.lower_on_seabed = !free_lower;
+    // Right below its anchor a line with no span lays its grounded nodes onto one another.
+    if (c.upper == EndCondition::kPoint && !free_lower &&
+        !((upper - lower).head<2>().norm() > 1e-3 * lp.length)) {
+      return SagPoints(lp, lower, upper, seabed_.surface);
+    }
+    if (line.Uniform()) {
+      return SolveLineCatenary(line.sections.front(), lower, upper).NodePositions(c.segments);
+    }
+    return CompositeCatenaryPoints(line, lower, upper, NodeArcLengths(lp));
+  } catch (const Error&) {
+    // A line to or from a free point may not reach it as a catenary from the point's start
+    // position; the static solve moves the point.
+    if (c.upper != EndCondition::kPoint && c.lower != EndCondition::kPoint) throw;
+    return SagPoints(lp, lower, upper, seabed_.surface);
+  }
+}
+
+void MooringSystem::CatenaryPointStart(std::span<const PointKinematics> fairleads,
+                                       double* x) const {
+  const int np = num_points();
+  Eigen::Matrix3Xd start(3, np);
+  for (int q = 0; q < np; ++q) start.col(q) = Vec3(x[6 * q], x[6 * q + 1], x[6 * q + 2]);
+  std::vector<NetworkLine> lines;
+  std::vector<Vec3> anchors;
+  std::vector<Vec3> held;  // the fairleads of lines up from points
+  for (const Chain& c : chains_) {
+    if (c.lower != EndCondition::kPoint && c.upper != EndCondition::kPoint) continue;
+    if (c.lower == EndCondition::kFree || c.upper == EndCondition::kFree) return;
+    const LineProperties& lp = lines_[c.line];
+    NetworkLine line;
+    line.id = lp.id;
+    Vec3 lower = lp.anchor, upper = fairleads[c.line].position;
+    if (c.lower == EndCondition::kPoint) {
+      line.lower = {NetworkEnd::Kind::kPoint, c.lower_point};
+      lower = start.col(c.lower_point);
+    } else {
+      line.lower = {NetworkEnd::Kind::kAnchor, static_cast<int>(anchors.size())};
+      anchors.push_back(lp.anchor);
+    }
+    if (c.upper == EndCondition::kPoint) {
+      line.upper = {NetworkEnd::Kind::kPoint, c.upper_point};
+      upper = start.col(c.upper_point);
+    } else {
+      line.upper = {NetworkEnd::Kind::kFairlead, static_cast<int>(held.size())};
+      held.push_back(upper);
+    }
+    const bool free_lower = c.lower == EndCondition::kPoint ||
+                            lower.z() < seabed_.surface.DepthAt(lower.x(), lower.y()) - 1.0;
+    line.line = CatenaryLineOf(lp, free_lower ? 0.0 : seabed_.surface.RiseAlong(lower, upper));
+    line.line.lower_on_seabed = !free_lower;
+    lines.push_back(std::move(line));
+  }
+  std::vector<double> weights;
+  for (const PointBodyProperties& body : point_bodies_) weights.push_back(body.weight);
+  Eigen::Matrix3Xd at(3, static_cast<Eigen::Index>(held.size()));
+  for (std::size_t f = 0; f < held.size(); ++f) at.col(static_cast<Eigen::Index>(f)) = held[f];
+  PointNetwork::Equilibrium rest;
+  try {
+    const PointNetwork network(std::move(lines), std::move(weights), std::move(anchors),
+                               static_cast<int>(held.size()), start);
+    rest = network.Solve(at, false);
+  } catch (const Error&) {
+    return;
+  }
+  if (!rest.converged) return;
+  for (int q = 0; q < np; ++q) {
+    const Vec3 p = rest.points.col(q);
+    if (!(p.z() > 0.0 && p.z() < seabed_.surface.DepthAt(p.x(), p.y()))) return;
+  }
+  for (int q = 0; q < np; ++q) {
+    for (int m = 0; m < 3; ++m) x[6 * q + m] = rest.points(m, q);
+  }
+  for (const Chain& c : chains_) {
+    if (c.lower != EndCondition::kPoint && c.upper != EndCondition::kPoint) continue;
+    const LineProperties& lp = lines_[c.line];
+    const Vec3 lower =
+        c.lower == EndCondition::kPoint ? Vec3(rest.points.col(c.lower_point)) : lp.anchor;
+    const Vec3 upper = c.upper == EndCondition::kPoint ? Vec3(rest.points.col(c.upper_point))
+                                                       : fairleads[c.line].position;
+    LayNodes(c, StartNodes(c, lower, upper), x);
+  }
+}
+
 double MooringSystem::SettleLinesAndPoints(std::span<const PointKinematics> fairleads, double* x) {
   const int np = num_points();
   if (np == 0) return SettleChains(fairleads, x);
   for (int q = 0; q < np; ++q) std::fill(x + 6 * q + 3, x + 6 * q + 6, 0.0);
+  CatenaryPointStart(fairleads, x);
   // The points' tolerance, 1e-9 EA, is a hundred times the lines' own (1e-11 EA): the
   // settled lines' end forces carry noise of that order.
   double axial_stiffness = 0.0;

@@ -315,6 +315,14 @@ class MooringSystem {
   void BuildPattern();
   /// SettleStatic's work: the chains, then the points over them.
   double SettleLinesAndPoints(std::span<const PointKinematics> fairleads, double* x);
+  /// Moves the free points in x to where their lines' catenaries balance them
+  /// (point_network.h) and lays those lines along their catenaries: the start of the
+  /// points' Newton solve. Leaves x as it is where the catenaries find no balance in the
+  /// water.
+  void CatenaryPointStart(std::span<const PointKinematics> fairleads, double* x) const;
+  /// Nodes 0..segments of chain `c` from `lower` to `upper` at rest: its catenary, or a sag
+  /// between the ends where it has none.
+  Eigen::Matrix3Xd StartNodes(const Chain& c, const Vec3& lower, const Vec3& upper) const;
   /// SettleStatic for the chains with the points held.
   double SettleChains(std::span<const PointKinematics> fairleads, double* x);
   /// The free points' net force with their bodies and the lines' end shares, and their mass

@@ -1,9 +1,10 @@
-#include "detectors/point_network.h"
+#include "mooring_fem/point_network.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -11,7 +12,7 @@
 #include "core/error.h"
 #include "mooring_fem/catenary.h"
 
-namespace moorsim::detectors {
+namespace moorsim::mooring_fem {
 
 namespace {
 
@@ -27,19 +28,45 @@ struct EndTensions {
 /// value.
 constexpr double kTableStrain = 1.0;
 
-EndTensions Tensions(const mooring_fem::CompositeLine& line, double span, double height,
-                     double max_strain) {
-  if (line.Uniform() && max_strain == mooring_fem::kMaxCatenaryStrain) {
-    const auto s = mooring_fem::SolveCatenary(line.sections.front(), span, height);
+// A line with no weight in water (every section's |w| l below 1e-9 of its EA, a neutral
+// rope) and no joint weights hangs straight: slack, with no tension, while its ends are
+// closer than its length, and stretched elastically beyond, T = (c - L) / sum(l / EA).
+std::optional<EndTensions> Weightless(const CompositeLine& line, double span, double height) {
+  double length = 0.0, compliance = 0.0;
+  for (std::size_t i = 0; i < line.sections.size(); ++i) {
+    const CatenaryLineProperties& s = line.sections[i];
+    if (line.CurveOf(i) != nullptr ||
+        !(std::abs(s.weight_per_length) * s.length < 1e-9 * s.axial_stiffness)) {
+      return std::nullopt;
+    }
+    length += s.length;
+    compliance += s.length / s.axial_stiffness;
+  }
+  for (double joint : line.joint_weights) {
+    if (joint != 0.0) return std::nullopt;
+  }
+  const double chord = std::hypot(span, height);
+  if (!(chord > length)) return EndTensions{};
+  const double tension = (chord - length) / compliance;
+  const double vertical = tension * height / chord;
+  return EndTensions{tension * span / chord, vertical, vertical};
+}
+
+EndTensions Tensions(const CompositeLine& line, double span, double height, double max_strain) {
+  if (const std::optional<EndTensions> straight = Weightless(line, span, height)) {
+    return *straight;
+  }
+  if (line.Uniform() && max_strain == kMaxCatenaryStrain) {
+    const auto s = SolveCatenary(line.sections.front(), span, height);
     return {s.horizontal_tension, s.vertical_tension, s.anchor_vertical};
   }
-  const auto s = mooring_fem::SolveCompositeCatenary(line, span, height, max_strain);
+  const auto s = SolveCompositeCatenary(line, span, height, max_strain);
   return {s.horizontal_tension, s.vertical_tension, s.anchor_vertical};
 }
 
 // The values alone, or with their central differences.
-LineEnds Ends(const mooring_fem::CompositeLine& line, double span, double height, bool derivatives,
-              double max_strain = mooring_fem::kMaxCatenaryStrain) {
+LineEnds Ends(const CompositeLine& line, double span, double height, bool derivatives,
+              double max_strain = kMaxCatenaryStrain) {
   const EndTensions c = Tensions(line, span, height, max_strain);
   LineEnds out;
   out.horizontal = c.horizontal;
@@ -61,7 +88,7 @@ LineEnds Ends(const mooring_fem::CompositeLine& line, double span, double height
   return out;
 }
 
-double WeightInWater(const mooring_fem::CompositeLine& line) {
+double WeightInWater(const CompositeLine& line) {
   double weight = 0.0;
   for (const auto& section : line.sections) weight += section.weight_per_length * section.length;
   for (double joint : line.joint_weights) weight += joint;
@@ -93,7 +120,7 @@ std::string Describe(double span, double height) {
 
 }  // namespace
 
-LineEnds SolveLineEnds(const mooring_fem::CompositeLine& line, double span, double height) {
+LineEnds SolveLineEnds(const CompositeLine& line, double span, double height) {
   return Ends(line, span, height, true);
 }
 
@@ -107,7 +134,7 @@ constexpr double kTableTolerance = 1e-6;
 
 }  // namespace
 
-LineEndTable::LineEndTable(const mooring_fem::CompositeLine& line, const Range& range, double step,
+LineEndTable::LineEndTable(const CompositeLine& line, const Range& range, double step,
                            int max_nodes)
     : range_(range), free_lower_end_(!line.lower_on_seabed), weight_(WeightInWater(line)) {
   const double chord_length = range.chord_max - range.chord_min;
@@ -173,7 +200,7 @@ LineEndTable::LineEndTable(const mooring_fem::CompositeLine& line, const Range& 
   }
 }
 
-void LineEndTable::Build(const mooring_fem::CompositeLine& line) {
+void LineEndTable::Build(const CompositeLine& line) {
   horizontal_.assign(static_cast<std::size_t>(chords_ * angles_), Eigen::Vector4d::Zero());
   vertical_.assign(horizontal_.size(), Eigen::Vector4d::Zero());
   for (int i = 0; i < chords_; ++i) {
@@ -433,40 +460,73 @@ PointNetwork::Equilibrium PointNetwork::Solve(const Eigen::Matrix3Xd& fairleads,
   if (!Evaluate(fairleads, q, true, &e)) {
     throw Error("point network: a line's catenary has no solution at the start");
   }
-  double mu = 0.0;  // the Levenberg-Marquardt shift, relative to the mean of diag(J^T J)
+  // Newton's method on R(q) = 0, with the Levenberg-Marquardt shift of the FEM's own
+  // static solve where a step does not descend: (dR/dq - mu s I) step = -R, which for a
+  // point on slack lines (dR/dq = 0) steps along its force. A step is taken where the
+  // residual falls or, as in a line search on the potential energy, where the force still
+  // points along it at its end (the energy still falling: a point sinking on slack lines).
+  double mu = 0.0;
   bool converged = e.residual.lpNorm<Eigen::Infinity>() <= tolerance_;
   for (int iteration = 0; iteration < 200 && !converged; ++iteration) {
-    const Eigen::MatrixXd normal = e.d_points.transpose() * e.d_points;
-    const Eigen::VectorXd gradient = e.d_points.transpose() * e.residual;
-    const double scale = std::max(normal.trace() / std::max(n, 1), 1e-300);
+    const double scale =
+        std::max({e.d_points.diagonal().cwiseAbs().maxCoeff(), e.residual.norm() / 1.0, 1e-300});
     const Eigen::Matrix3Xd q_before = q;
     bool accepted = false;
-    for (int attempt = 0; attempt < 16 && !accepted; ++attempt) {
-      Eigen::MatrixXd shifted = normal;
-      shifted.diagonal().array() += mu * scale;
-      const Eigen::VectorXd step = -shifted.ldlt().solve(gradient);
-      if (step.allFinite()) {
-        // Backtracking along the step until the residual falls.
-        double lambda = 1.0, moved = 0.0;
-        for (int k = 0; k < 8 && !accepted; ++k, lambda *= 0.5) {
+    for (int attempt = 0; attempt < 30 && !accepted; ++attempt) {
+      Eigen::MatrixXd shifted = e.d_points;
+      shifted.diagonal().array() -= mu * scale;
+      const Eigen::VectorXd step = shifted.fullPivLu().solve(-e.residual);
+      const double slope = e.residual.dot(step);  // minus the energy's slope along the step
+      if (step.allFinite() && slope > 0.0 && step.lpNorm<Eigen::Infinity>() > 1e-12) {
+        // phi(lambda) = R(q + lambda step) . step is minus the energy's slope along the
+        // step: the full step is taken where the residual falls or phi is still > 0 at its
+        // end; otherwise the first of its halvings where the residual falls; otherwise the
+        // step stops where phi changes sign (bisection), at the energy's least along it (a
+        // slack line drawing taut).
+        const auto phi = [&](double lambda) {
           Eigen::Matrix3Xd q_trial = q;
           q_trial.reshaped() += lambda * step;
-          if (Evaluate(fairleads, q_trial, false, &trial) &&
-              trial.residual.norm() < e.residual.norm()) {
-            q = std::move(q_trial);
-            accepted = true;
-            moved = lambda * step.lpNorm<Eigen::Infinity>();
-          }
+          if (!Evaluate(fairleads, q_trial, false, &trial)) return -1.0;  // beyond: back off
+          return trial.residual.dot(step);
+        };
+        const double full = phi(1.0);
+        double lambda = 1.0;
+        const auto falls = [&](double value) {
+          return value != -1.0 && trial.residual.norm() < e.residual.norm();
+        };
+        bool found = full > 0.0 || falls(full);
+        // Backtracking first, as far as the residual falls; then the sign change of phi.
+        for (int k = 0; k < 8 && !found; ++k) {
+          lambda *= 0.5;
+          found = falls(phi(lambda));
         }
-        if (accepted && moved < 1e-12) {
-          accepted = false;  // no progress left to make
-          break;
+        if (!found) {
+          // Just past the sign change: on the far side of a kink (a line drawn just taut)
+          // the next Newton step sees the line's stiffness.
+          double low = 0.0, high = 1.0;
+          bool high_evaluates = full != -1.0;
+          const double length = step.lpNorm<Eigen::Infinity>();
+          for (int k = 0; k < 60 && (high - low) * length > 1e-9; ++k) {
+            const double middle = 0.5 * (low + high);
+            const double value = phi(middle);
+            if (value > 0.0) {
+              low = middle;
+            } else {
+              high = middle;
+              high_evaluates = value != -1.0;
+            }
+          }
+          lambda = high_evaluates ? high : low;
+        }
+        if (lambda > 0.0) {
+          q.reshaped() += lambda * step;
+          accepted = true;
         }
       }
       if (accepted) {
         mu = mu > 1e-10 ? 0.1 * mu : 0.0;
       } else {
-        mu = mu > 0.0 ? 10.0 * mu : 1e-8;
+        mu = mu > 0.0 ? 10.0 * mu : 1e-6;
       }
     }
     if (!accepted || !Evaluate(fairleads, q, true, &trial)) {
@@ -494,4 +554,4 @@ PointNetwork::Equilibrium PointNetwork::Solve(const Eigen::Matrix3Xd& fairleads,
   return out;
 }
 
-}  // namespace moorsim::detectors
+}  // namespace moorsim::mooring_fem

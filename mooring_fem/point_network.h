@@ -1,8 +1,9 @@
-// The detectors' quasi-static model of lines that meet at free points (a bridle's apex, a
-// buoy or clump weight shared by several lines): the points rest where their weights and
-// their lines' end tensions balance, each line an elastic catenary between its two ends
-// (mooring_fem/composite_catenary.h), and the vessel feels the tensions of the lines that
-// end at its fairleads.
+// Lines that meet at free points (a bridle's apex, a buoy or clump weight shared by several
+// lines) as elastic catenaries: the points rest where their weights and their lines' end
+// tensions balance, each line a composite catenary between its two ends
+// (composite_catenary.h), and the fairleads feel the tensions of the lines that end at
+// them. The detectors' quasi-static mooring model (detectors/hypothesis_bank.h) and the
+// static solve's start for free points (MooringSystem::SettleStatic) use it.
 //
 // A line's end tensions depend on where both its ends are: its horizontal tension H and the
 // vertical tensions at its upper and lower ends are functions of its horizontal span s and
@@ -30,7 +31,7 @@
 #include "core/types.h"
 #include "mooring_fem/composite_catenary.h"
 
-namespace moorsim::detectors {
+namespace moorsim::mooring_fem {
 
 /// A line's end tensions and their derivatives with respect to (span, height) [N/m].
 struct LineEnds {
@@ -47,7 +48,7 @@ struct LineEnds {
 /// lower end's V is given for a line whose lower end hangs free (!line.lower_on_seabed):
 /// an anchor holds whatever it is asked to. Throws moorsim::Error where the catenary has
 /// no solution.
-LineEnds SolveLineEnds(const mooring_fem::CompositeLine& line, double span, double height);
+LineEnds SolveLineEnds(const CompositeLine& line, double span, double height);
 
 /// SolveLineEnds tabulated over the chord between the line's ends: its length c and its
 /// angle of rise a above the horizontal (span = c cos a, height = c sin a), on a uniform
@@ -72,8 +73,7 @@ class LineEndTable {
   /// `step`: the largest grid spacing [m] (along the chord; across it, c times the angle
   /// step); `max_nodes` caps the grid. Throws moorsim::Error where the catenary has no
   /// solution on the grid.
-  LineEndTable(const mooring_fem::CompositeLine& line, const Range& range, double step,
-               int max_nodes = 40000);
+  LineEndTable(const CompositeLine& line, const Range& range, double step, int max_nodes = 40000);
 
   /// At a span `span` >= 0 and height `height` [m] (not both zero).
   LineEnds At(double span, double height) const;
@@ -84,7 +84,7 @@ class LineEndTable {
   double measured_error() const { return measured_error_; }
 
  private:
-  void Build(const mooring_fem::CompositeLine& line);
+  void Build(const CompositeLine& line);
   // Bicubic Hermite interpolation of one quantity's grid (value, d/dc, d/da, d2/dcda per
   // node) at a point inside the grid: the value and its gradient in (c, a).
   double Interpolate(const std::vector<Eigen::Vector4d>& grid, double chord, double angle,
@@ -109,7 +109,7 @@ struct NetworkEnd {
 struct NetworkLine {
   int id = 0;  ///< 1-based, for messages
   NetworkEnd lower, upper;
-  mooring_fem::CompositeLine line;  ///< lower_on_seabed: its lower end is an anchor
+  CompositeLine line;  ///< lower_on_seabed: its lower end is an anchor
   /// Its end tensions; null: SolveLineEnds, straight from the catenary.
   std::shared_ptr<const LineEndTable> table;
 };
@@ -169,4 +169,4 @@ class PointNetwork {
   double tolerance_ = 0.0;  // [N]
 };
 
-}  // namespace moorsim::detectors
+}  // namespace moorsim::mooring_fem
