@@ -556,13 +556,11 @@ void HypothesisBank::BuildNetworks(const mooring_fem::MooringParameters& spec,
         const mooring_fem::LineProperties& lp = props[static_cast<std::size_t>(id - 1)];
         mooring_fem::NetworkLine line;
         line.id = id;
-        double rise = 0.0;
         if (lp.lower_point >= 0) {
           line.lower = point_end(lp.lower_point);
         } else {
           line.lower = {mooring_fem::NetworkEnd::Kind::kAnchor, static_cast<int>(anchors.size())};
           anchors.push_back(lp.anchor);
-          rise = seabed.RiseAlong(lp.anchor, rest[static_cast<std::size_t>(lp.upper_point)]);
         }
         if (lp.upper_point >= 0) {
           line.upper = point_end(lp.upper_point);
@@ -572,8 +570,13 @@ void HypothesisBank::BuildNetworks(const mooring_fem::MooringParameters& spec,
           u.attached.fairlead_body.push_back(lp.fairlead_body);
           u.attached.fairlead_depth.push_back(lp.fairlead_body.z() + options.moored_heave);
         }
-        line.line = mooring_fem::CatenaryLineOf(lp, rise);
-        line.line.lower_on_seabed = lp.lower_point < 0;
+        // Where the line runs at the start: from its anchor or lower point to its upper
+        // point or fairlead (the vessel at the origin).
+        const Vec3 lower =
+            lp.lower_point >= 0 ? rest[static_cast<std::size_t>(lp.lower_point)] : lp.anchor;
+        const Vec3 upper =
+            lp.upper_point >= 0 ? rest[static_cast<std::size_t>(lp.upper_point)] : lp.fairlead_body;
+        line.line = mooring_fem::RestingLineOf(lp, lower, upper, lp.lower_point >= 0, seabed);
         lines.push_back(std::move(line));
       }
       std::vector<double> weights;

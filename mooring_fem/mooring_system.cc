@@ -280,6 +280,14 @@ PointBodyProperties BodyProperties(const PointBody& body, const Water& water) {
   return b;
 }
 
+CompositeLine RestingLineOf(const LineProperties& line, const Vec3& lower, const Vec3& upper,
+                            bool lower_is_point, const SeabedSurface& seabed) {
+  const bool on_seabed = !lower_is_point && lower.z() >= seabed.DepthAt(lower.x(), lower.y()) - 1.0;
+  CompositeLine out = CatenaryLineOf(line, on_seabed ? seabed.RiseAlong(lower, upper) : 0.0);
+  out.lower_on_seabed = on_seabed;
+  return out;
+}
+
 CompositeLine CatenaryLineOf(const LineProperties& line, double seabed_rise) {
   CompositeLine out;
   out.seabed_rise = seabed_rise;
@@ -1554,16 +1562,11 @@ double MooringSystem::SettleStatic(std::span<const Vec3> fairlead_positions, dou
 Eigen::Matrix3Xd MooringSystem::StartNodes(const Chain& c, const Vec3& lower,
                                            const Vec3& upper) const {
   const LineProperties& lp = lines_[c.line];
-  // A line from a point, or from an anchor held above the seabed (a fixed point in the
-  // water), hangs free of the seabed.
-  const bool free_lower = c.lower == EndCondition::kPoint ||
-                          lower.z() < seabed_.surface.DepthAt(lower.x(), lower.y()) - 1.0;
   try {
-    CompositeLine line =
-        CatenaryLineOf(lp, free_lower ? 0.0 : seabed_.surface.RiseAlong(lower, upper));
-    line.lower_on_seabed = !free_lower;
+    const CompositeLine line =
+        RestingLineOf(lp, lower, upper, c.lower == EndCondition::kPoint, seabed_.surface);
     // Right below its anchor a line with no span lays its grounded nodes onto one another.
-    if (c.upper == EndCondition::kPoint && !free_lower &&
+    if (c.upper == EndCondition::kPoint && line.lower_on_seabed &&
         !((upper - lower).head<2>().norm() > 1e-3 * lp.length)) {
       return SagPoints(lp, lower, upper, seabed_.surface);
     }
@@ -1608,10 +1611,7 @@ void MooringSystem::CatenaryPointStart(std::span<const PointKinematics> fairlead
       line.upper = {NetworkEnd::Kind::kFairlead, static_cast<int>(held.size())};
       held.push_back(upper);
     }
-    const bool free_lower = c.lower == EndCondition::kPoint ||
-                            lower.z() < seabed_.surface.DepthAt(lower.x(), lower.y()) - 1.0;
-    line.line = CatenaryLineOf(lp, free_lower ? 0.0 : seabed_.surface.RiseAlong(lower, upper));
-    line.line.lower_on_seabed = !free_lower;
+    line.line = RestingLineOf(lp, lower, upper, c.lower == EndCondition::kPoint, seabed_.surface);
     lines.push_back(std::move(line));
   }
   std::vector<double> weights;

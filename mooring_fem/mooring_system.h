@@ -125,6 +125,11 @@ PointBodyProperties BodyProperties(const PointBody& body, const Water& water);
 /// lengths, weights and stiffnesses, the bodies' weights at the joints, and the seabed's
 /// angle of rise toward the fairlead [rad] (SeabedSurface::RiseAlong).
 CompositeLine CatenaryLineOf(const LineProperties& line, double seabed_rise = 0.0);
+/// CatenaryLineOf for the line at rest from `lower` to `upper`: one from a free point
+/// (`lower_is_point`), or from an anchor held more than 1 m above the seabed, hangs free of
+/// it (!lower_on_seabed); one from an anchor on the seabed lies on it, rising along it.
+CompositeLine RestingLineOf(const LineProperties& line, const Vec3& lower, const Vec3& upper,
+                            bool lower_is_point, const SeabedSurface& seabed);
 /// Unstretched arc length of every node from the anchor [m] (nodes 0..segments).
 std::vector<double> NodeArcLengths(const LineProperties& line);
 /// The fairlead tension [N] of the line's elastic catenary (SolveLineCatenary for a

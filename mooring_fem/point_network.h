@@ -135,11 +135,13 @@ class PointNetwork {
   };
 
   /// The points' rest with the fairleads at `fairleads` (3 x num_fairleads, Earth frame),
-  /// from `start` (or the rest positions). Newton's method with a backtracking line search
-  /// and a Levenberg-Marquardt shift where the step does not reduce the residual, to a
-  /// residual of 1e-9 of the stiffest line's EA. Does not throw for want of convergence:
-  /// `converged` says, and the best iterate is returned; throws moorsim::Error only where
-  /// a line's end tensions cannot be evaluated at the start.
+  /// from `start` (or the rest positions), to a residual of 1e-9 of the stiffest line's EA.
+  /// Newton's method with a line search (the full step where the residual falls or the
+  /// energy still falls at its end, else a halving where the residual falls, else the
+  /// energy's least along the step) and a Levenberg-Marquardt shift (dR/dq - mu s I) where
+  /// no step descends, which moves a point on slack lines along its force. Does not throw
+  /// for want of convergence: `converged` says, and the last iterate is returned; throws
+  /// moorsim::Error only where a line's end tensions cannot be evaluated at the start.
   Equilibrium Solve(const Eigen::Matrix3Xd& fairleads, bool jacobian,
                     const Eigen::Matrix3Xd* start = nullptr) const;
 
