@@ -183,9 +183,11 @@ struct MdLineType {
   std::string name;
   int line = 0;
   double diameter = 0, mass = 0, ea = 0, ba = 0, cd = 0, ca = 0, cdax = 0, caax = 0;
-  // A visco-elastic rope (EA_s|EA_D with BA_s|BA_D): MoorDyn's creep spring EA_D and
-  // dashpot BA_D in series with the spring that makes the series EA_s; 0: none.
-  double creep_spring = 0, creep_dashpot = 0;
+  // A visco-elastic rope (EA_s|EA_D, BA_s or BA_s|BA_D): MoorDyn's segment is its dynamic
+  // spring EA_D (damped by BA_D, held in `ba`) in series with the static spring that makes
+  // the series EA_s, damped by BA_s: moorsim's dynamic spring, and its creep spring and
+  // dashpot. 0: none.
+  double dynamic_ea = 0, static_damping = 0;
 };
 
 // "a|b" as two numbers, or nothing.
@@ -425,13 +427,34 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
           t.mass = c.Value(row, "mass");
           const std::string ea = c.Field(row, "EA");
           const std::string ba = c.Has("BA") ? c.Field(row, "BA") : "0";
-          const auto visco = Pair(ea);
-          const auto visco_ba = Pair(ba);
-          if (visco && visco_ba && visco->second > visco->first && visco_ba->second > 0.0) {
+          const std::string where =
+              path + ":" + std::to_string(row.line) + ": line type " + t.name + ": ";
+          if (const auto visco = Pair(ea)) {
+            // BA_s|BA_D, or BA_s alone (no damping on the dynamic spring).
+            const auto pair = Pair(ba);
+            const std::optional<double> single = ToNumber(ba);
+            if (!pair && !single) {
+              throw InputError(where + "BA '" + ba + "' must be BA_s or BA_s|BA_D [N s]");
+            }
+            const double ba_s = pair ? pair->first : *single, ba_d = pair ? pair->second : 0.0;
+            if (!(visco->second > visco->first && visco->first > 0.0)) {
+              throw InputError(where + "EA '" + ea +
+                               "': the dynamic stiffness EA_D must exceed the static EA_s");
+            }
+            if (!(ba_s > 0.0) || ba_d < 0.0) {
+              throw InputError(where + "BA '" + ba +
+                               "': a visco-elastic rope's static damping BA_s (moorsim's creep "
+                               "dashpot) must be > 0 and its BA_D >= 0, both in N s");
+            }
             t.ea = visco->first;
-            t.creep_spring = visco->second;
-            t.creep_dashpot = visco_ba->second;
-            t.ba = visco_ba->first;
+            t.dynamic_ea = visco->second;
+            t.static_damping = ba_s;
+            t.ba = ba_d;
+            if (ba_d > 0.0) {
+              warn(row.line, "line type " + t.name + ": BA_D " + Number(ba_d) +
+                                 " damps the whole segment's stretch (moorsim's axial "
+                                 "damping), not MoorDyn's dynamic spring alone");
+            }
           } else if (!ToNumber(ea)) {
             throw InputError(path + ":" + std::to_string(row.line) + ": EA '" + ea +
                              "': a load-dependent or tabulated stiffness is not supported yet "
@@ -781,15 +804,16 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
     y << "      diameter: " << Number(t.diameter) << "\n";
     y << "      mass_per_length: " << Number(t.mass) << "\n";
     y << "      axial_stiffness: " << Number(t.ea) << "\n";
-    if (t.creep_spring > 0.0) {
-      // moorsim's dynamic stiffness is the spring in series with MoorDyn's creep element.
-      y << "      dynamic_axial_stiffness: "
-        << Number(t.creep_spring * t.ea / (t.creep_spring - t.ea)) << "  # EA_s|EA_D "
-        << Number(t.ea) << "|" << Number(t.creep_spring) << ": EA_D EA_s / (EA_D - EA_s)\n";
-      y << "      creep_time: " << Number(t.creep_dashpot / t.creep_spring)
-        << "  # BA_D / EA_D, BA_D " << Number(t.creep_dashpot) << "\n";
-    }
-    if (t.ba < 0.0) {
+    if (t.dynamic_ea > 0.0) {
+      // MoorDyn's static spring, in series with EA_D: EA_D EA_s / (EA_D - EA_s).
+      const double creep_spring = t.dynamic_ea * t.ea / (t.dynamic_ea - t.ea);
+      y << "      dynamic_axial_stiffness: " << Number(t.dynamic_ea) << "  # EA_s|EA_D "
+        << Number(t.ea) << "|" << Number(t.dynamic_ea) << "\n";
+      y << "      creep_time: " << Number(t.static_damping / creep_spring)
+        << "  # BA_s / (EA_D EA_s / (EA_D - EA_s)): the static damping " << Number(t.static_damping)
+        << " N s over the static spring " << Number(creep_spring) << " N\n";
+      y << "      axial_damping: " << Number(t.ba) << "  # BA_D [N s]\n";
+    } else if (t.ba < 0.0) {
       y << "      axial_damping_ratio: " << Number(-t.ba) << "  # BA/-zeta " << Number(t.ba)
         << "\n";
     } else {

@@ -20,8 +20,12 @@
 //   * LINES (LINE LIST, LINE PROPERTIES): each chain of lines from a fixed point through
 //     joints to a vessel point or a free point is one moorsim line, its sections from the
 //     anchor up.
-//   * Visco-elastic ropes (EA_s|EA_D with BA|BA_D): the static and dynamic stiffness and
-//     the creep time (Hall et al. 2023).
+//   * Visco-elastic ropes (EA_s|EA_D with BA_s or BA_s|BA_D; Hall et al. 2023): MoorDyn's
+//     segment, the dynamic spring EA_D (damped by BA_D) in series with the static spring
+//     EA_D EA_s / (EA_D - EA_s) (damped by BA_s), is moorsim's dynamic spring in series
+//     with its creep spring and dashpot: dynamic_axial_stiffness EA_D, creep_time BA_s
+//     over the static spring; BA_D becomes the segment's axial damping (with a warning:
+//     moorsim's damps the whole segment).
 //   * OPTIONS: WtrDpth, WtrDnsty, g (gravity), kBot and cBot (the same per-area seabed
 //     stiffness and damping as moorsim's), FrictionCoefficient (both of moorsim's
 //     friction coefficients of every line type), SeafloorFile (the bathymetry, looked for

@@ -204,22 +204,43 @@ TEST(MoorDynImport, FreePointsWhereLinesMeetOrEndArriveAsPoints) {
   fs::remove_all(dir);
 }
 
-// MoorDyn's visco-elastic rope (EA_s|EA_D, BA_s|BA_D): its creep spring and dashpot in
-// series with the spring that makes the series EA_s, which is moorsim's dynamic stiffness.
+// MoorDyn's visco-elastic rope (EA_s|EA_D, BA_s|BA_D; Hall et al. 2023): its segment is the
+// dynamic spring EA_D, damped by BA_D, in series with the static spring EA_D EA_s / (EA_D -
+// EA_s) damped by BA_s. That is moorsim's dynamic spring in series with its creep spring
+// and dashpot: the dynamic stiffness is EA_D and the creep time BA_s over the static
+// spring. BA_D damps moorsim's whole segment instead, with a warning.
 TEST(MoorDynImport, AViscoElasticRopeArrivesWithItsDynamicStiffnessAndCreepTime) {
   const fs::path dir = moorsim::testing::FreshDirectory("moordyn_visco");
   std::string text = kSpread;
-  text.replace(text.find("5.0e8      2.0e5"), 16, "2.0e8|5.0e8 2.0e5|1.0e7");
+  text.replace(text.find("5.0e8      2.0e5"), 16, "2.0e8|5.0e8 2.0e9|1.0e5");
   const fs::path file = Write(dir, "visco.txt", text);
-  const std::string y = ImportMoorDyn(file.string(), "test").yaml;
-  // 5e8 x 2e8 / (5e8 - 2e8) and 1e7 / 5e8.
+  const MoorDynImport imported = ImportMoorDyn(file.string(), "test");
+  const std::string& y = imported.yaml;
   EXPECT_NE(
-      y.find("      axial_stiffness: 2e+08\n      dynamic_axial_stiffness: 333333333.3333333"),
+      y.find("      axial_stiffness: 2e+08\n      dynamic_axial_stiffness: 5e+08  # EA_s|EA_D"),
       std::string::npos)
       << y;
-  EXPECT_NE(y.find("      creep_time: 0.02  # BA_D / EA_D"), std::string::npos) << y;
-  EXPECT_NE(y.find("      axial_damping: 2e+05  # BA"), std::string::npos) << y;
-  EXPECT_EQ(ParseScenario(y, "visco.yaml").mooring.line_types[1].visco_elastic->creep_time, 0.02);
+  // 2e9 / (5e8 x 2e8 / (5e8 - 2e8)) = 6 s.
+  const Scenario s = ParseScenario(y, "visco.yaml");
+  EXPECT_NEAR(s.mooring.line_types[1].visco_elastic->creep_time, 6.0, 1e-12);
+  EXPECT_NE(y.find("      axial_damping: 1e+05  # BA_D [N s]"), std::string::npos) << y;
+  ASSERT_EQ(imported.warnings.size(), 1u);
+  EXPECT_NE(imported.warnings[0].find("BA_D 1e+05 damps the whole segment's stretch"),
+            std::string::npos)
+      << imported.warnings[0];
+  // Without BA_D the dynamic spring is undamped, as in MoorDyn; a static damping that is not a
+  // coefficient (MoorDyn's -zeta) is one located line.
+  std::string undamped = kSpread;
+  undamped.replace(undamped.find("5.0e8      2.0e5"), 16, "2.0e8|5.0e8 2.0e9");
+  EXPECT_TRUE(
+      ImportMoorDyn(Write(dir, "undamped.txt", undamped).string(), "test").warnings.empty());
+  std::string ratio = kSpread;
+  ratio.replace(ratio.find("5.0e8      2.0e5"), 16, "2.0e8|5.0e8 -0.5");
+  const fs::path bad = Write(dir, "ratio.txt", ratio);
+  EXPECT_EQ(ErrorOf(bad), bad.string() +
+                              ":7: line type wire: BA '-0.5': a visco-elastic rope's static "
+                              "damping BA_s (moorsim's creep dashpot) must be > 0 and its BA_D "
+                              ">= 0, both in N s");
   fs::remove_all(dir);
 }
 
