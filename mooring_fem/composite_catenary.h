@@ -26,6 +26,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -57,6 +58,17 @@ struct CompositeLine {
   bool Uniform() const {
     return lower_on_seabed && sections.size() == 1 && CurveOf(0) == nullptr &&
            (joint_weights.empty() || joint_weights.front() == 0.0) && seabed_rise == 0.0;
+  }
+  /// No weight in water worth a force (every section's |w| l below 1e-9 of its EA, no
+  /// joint weight): a neutral rope, which hangs straight.
+  bool Weightless() const {
+    for (const CatenaryLineProperties& s : sections) {
+      if (!(std::abs(s.weight_per_length) * s.length < 1e-9 * s.axial_stiffness)) return false;
+    }
+    for (double joint : joint_weights) {
+      if (joint != 0.0) return false;
+    }
+    return true;
   }
   /// The curve of section `i`, or null.
   const AxialCurve* CurveOf(std::size_t i) const {

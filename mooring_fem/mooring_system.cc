@@ -484,14 +484,8 @@ Eigen::Matrix3Xd SagPoints(const LineProperties& lp, const Vec3& lower, const Ve
   const std::vector<double> arc = NodeArcLengths(lp);
   const Vec3 chord = upper - lower;
   const double D = chord.norm();
-  // A line whose weight in water is below the static solve's force tolerance (1e-9 EA: a
-  // neutral rope) has no sag to take: it folds along its chord, slack.
-  double weight = 0.0, stiffness = 0.0;
-  for (const SectionProperties& sp : lp.sections) {
-    weight += std::abs(sp.weight_per_length) * sp.length;
-    stiffness = std::max(stiffness, sp.axial_stiffness);
-  }
-  const bool neutral = weight < 1e-9 * stiffness;
+  // A neutral rope has no sag to take: it folds along its chord, slack.
+  const bool neutral = CatenaryLineOf(lp).Weightless();
   const double sag = lp.length > D && !neutral ? std::sqrt(3.0 * D * (lp.length - D) / 8.0) : 0.0;
   Vec3 across = kDown - kDown.dot(chord) / (D * D) * chord;
   if (!(across.norm() > 0.1)) {

@@ -28,22 +28,16 @@ struct EndTensions {
 /// value.
 constexpr double kTableStrain = 1.0;
 
-// A line with no weight in water (every section's |w| l below 1e-9 of its EA, a neutral
-// rope) and no joint weights hangs straight: slack, with no tension, while its ends are
-// closer than its length, and stretched elastically beyond, T = (c - L) / sum(l / EA).
+// A weightless line (CompositeLine::Weightless, linear sections) hangs straight: slack,
+// with no tension, while its ends are closer than its length, and stretched elastically
+// beyond, T = (c - L) / sum(l / EA).
 std::optional<EndTensions> Weightless(const CompositeLine& line, double span, double height) {
+  if (!line.Weightless()) return std::nullopt;
   double length = 0.0, compliance = 0.0;
   for (std::size_t i = 0; i < line.sections.size(); ++i) {
-    const CatenaryLineProperties& s = line.sections[i];
-    if (line.CurveOf(i) != nullptr ||
-        !(std::abs(s.weight_per_length) * s.length < 1e-9 * s.axial_stiffness)) {
-      return std::nullopt;
-    }
-    length += s.length;
-    compliance += s.length / s.axial_stiffness;
-  }
-  for (double joint : line.joint_weights) {
-    if (joint != 0.0) return std::nullopt;
+    if (line.CurveOf(i) != nullptr) return std::nullopt;
+    length += line.sections[i].length;
+    compliance += line.sections[i].length / line.sections[i].axial_stiffness;
   }
   const double chord = std::hypot(span, height);
   if (!(chord > length)) return EndTensions{};
