@@ -1623,7 +1623,17 @@ void MooringSystem::CatenaryPointStart(std::span<const PointKinematics> fairlead
   if (!rest.converged) return;
   for (int q = 0; q < np; ++q) {
     const Vec3 p = rest.points.col(q);
-    if (!(p.z() > 0.0 && p.z() < seabed_.surface.DepthAt(p.x(), p.y()))) return;
+    if (!(p.z() > 0.0)) return;  // afloat: SettleLinesAndPoints says so
+    const double depth = seabed_.surface.DepthAt(p.x(), p.y());
+    if (!(p.z() < depth)) {
+      // A point has no contact with the seabed (as in MoorDyn): it would sink through it.
+      std::ostringstream msg;
+      msg << "mooring.points[" << q + 1 << "]: rests below the seabed (" << p.z()
+          << " m deep where the seabed is " << depth
+          << " m): a point has no contact with the seabed; shorten its lines, lighten it "
+             "or give it buoyancy";
+      throw InputError(msg.str());
+    }
   }
   for (int q = 0; q < np; ++q) {
     for (int m = 0; m < 3; ++m) x[6 * q + m] = rest.points(m, q);

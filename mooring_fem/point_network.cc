@@ -30,8 +30,13 @@ constexpr double kTableStrain = 1.0;
 
 // A weightless line (CompositeLine::Weightless, linear sections) hangs straight: slack,
 // with no tension, while its ends are closer than its length, and stretched elastically
-// beyond, T = (c - L) / sum(l / EA).
-std::optional<EndTensions> Weightless(const CompositeLine& line, double span, double height) {
+// beyond, T = k (c - L) with k = 1 / sum(l / EA). Its end forces and their derivatives
+// are closed forms: H = T s / c, V = T h / c, and with dT/ds = k s / c, dT/dh = k h / c,
+//   dH/ds = k s^2 / c^2 + T h^2 / c^3,   dH/dh = dV/ds = (k - T / c) s h / c^2,
+//   dV/dh = k h^2 / c^2 + T s^2 / c^3
+// (finite differences across the kink where the line draws taut would be wrong by the
+// axial stiffness times the step, and a taut stiff line's swing, T / c, is far smaller).
+std::optional<LineEnds> Weightless(const CompositeLine& line, double span, double height) {
   if (!line.Weightless()) return std::nullopt;
   double length = 0.0, compliance = 0.0;
   for (std::size_t i = 0; i < line.sections.size(); ++i) {
@@ -39,16 +44,23 @@ std::optional<EndTensions> Weightless(const CompositeLine& line, double span, do
     length += line.sections[i].length;
     compliance += line.sections[i].length / line.sections[i].axial_stiffness;
   }
+  LineEnds out;
   const double chord = std::hypot(span, height);
-  if (!(chord > length)) return EndTensions{};
-  const double tension = (chord - length) / compliance;
-  const double vertical = tension * height / chord;
-  return EndTensions{tension * span / chord, vertical, vertical};
+  if (!(chord > length)) return out;
+  const double k = 1.0 / compliance, tension = k * (chord - length);
+  const double c2 = chord * chord, c3 = c2 * chord;
+  out.horizontal = tension * span / chord;
+  out.vertical = out.lower_vertical = tension * height / chord;
+  const double mixed = (k - tension / chord) * span * height / c2;
+  out.d_horizontal = {k * span * span / c2 + tension * height * height / c3, mixed};
+  out.d_vertical = {mixed, k * height * height / c2 + tension * span * span / c3};
+  out.d_lower_vertical = out.d_vertical;
+  return out;
 }
 
 EndTensions Tensions(const CompositeLine& line, double span, double height, double max_strain) {
-  if (const std::optional<EndTensions> straight = Weightless(line, span, height)) {
-    return *straight;
+  if (const std::optional<LineEnds> straight = Weightless(line, span, height)) {
+    return {straight->horizontal, straight->vertical, straight->lower_vertical};
   }
   if (line.Uniform() && max_strain == kMaxCatenaryStrain) {
     const auto s = SolveCatenary(line.sections.front(), span, height);
@@ -61,6 +73,15 @@ EndTensions Tensions(const CompositeLine& line, double span, double height, doub
 // The values alone, or with their central differences.
 LineEnds Ends(const CompositeLine& line, double span, double height, bool derivatives,
               double max_strain = kMaxCatenaryStrain) {
+  if (const std::optional<LineEnds> straight = Weightless(line, span, height)) {
+    if (line.lower_on_seabed) {
+      LineEnds out = *straight;
+      out.lower_vertical = 0.0;
+      out.d_lower_vertical = Eigen::Vector2d::Zero();
+      return out;
+    }
+    return *straight;
+  }
   const EndTensions c = Tensions(line, span, height, max_strain);
   LineEnds out;
   out.horizontal = c.horizontal;
@@ -489,6 +510,30 @@ PointNetwork::Equilibrium PointNetwork::Solve(const Eigen::Matrix3Xd& fairleads,
           return value != -1.0 && trial.residual.norm() < e.residual.norm();
         };
         bool found = full > 0.0 || falls(full);
+        if (!found) {
+          // A step across a taut, stiff line (a pendulum swinging) leaves the circle its
+          // length allows and meets the line's axial stiffness. Newton steps from the step's
+          // end, each with the Jacobian where it starts, pull it back onto the circle.
+          // (The step's end may lie beyond the strain a line can take; then from the first
+          // of its halvings that a line can reach.)
+          double reach = 1.0;
+          for (double value = full; value == -1.0 && reach > 1e-2;) {
+            reach *= 0.5;
+            value = phi(reach);
+          }
+          Eigen::Matrix3Xd corrected = q;
+          corrected.reshaped() += reach * step;
+          for (int k = 0; k < 4 && !found; ++k) {
+            if (!Evaluate(fairleads, corrected, true, &trial)) break;
+            corrected.reshaped() += trial.d_points.fullPivLu().solve(-trial.residual);
+            if (!Evaluate(fairleads, corrected, false, &trial)) break;
+            found = trial.residual.norm() < e.residual.norm();
+          }
+          if (found) {
+            q = corrected;
+            accepted = true;
+          }
+        }
         // Backtracking first, as far as the residual falls; then the sign change of phi.
         for (int k = 0; k < 8 && !found; ++k) {
           lambda *= 0.5;
@@ -512,7 +557,7 @@ PointNetwork::Equilibrium PointNetwork::Solve(const Eigen::Matrix3Xd& fairleads,
           }
           lambda = high_evaluates ? high : low;
         }
-        if (lambda > 0.0) {
+        if (!accepted && lambda > 0.0) {
           q.reshaped() += lambda * step;
           accepted = true;
         }

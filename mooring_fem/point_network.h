@@ -44,7 +44,8 @@ struct LineEnds {
 };
 
 /// The composite catenary's end tensions with the upper end `span` [m] away from and
-/// `height` [m] above the lower end, with derivatives by central differences of 1 cm. The
+/// `height` [m] above the lower end, with derivatives by central differences of 1 cm (closed
+/// forms for a weightless line, which hangs straight). The
 /// lower end's V is given for a line whose lower end hangs free (!line.lower_on_seabed):
 /// an anchor holds whatever it is asked to. Throws moorsim::Error where the catenary has
 /// no solution.
@@ -137,11 +138,13 @@ class PointNetwork {
   /// The points' rest with the fairleads at `fairleads` (3 x num_fairleads, Earth frame),
   /// from `start` (or the rest positions), to a residual of 1e-9 of the stiffest line's EA.
   /// Newton's method with a line search (the full step where the residual falls or the
-  /// energy still falls at its end, else a halving where the residual falls, else the
-  /// energy's least along the step) and a Levenberg-Marquardt shift (dR/dq - mu s I) where
-  /// no step descends, which moves a point on slack lines along its force. Does not throw
-  /// for want of convergence: `converged` says, and the last iterate is returned; throws
-  /// moorsim::Error only where a line's end tensions cannot be evaluated at the start.
+  /// energy still falls at its end, else Newton corrections from its end where they bring
+  /// the residual below the start's (a point swinging on a taut, stiff line), else a
+  /// halving where the residual falls, else the energy's least along the step) and a
+  /// Levenberg-Marquardt shift (dR/dq - mu s I) where no step descends, which moves a point on
+  /// slack lines along its force. Does not throw for want of convergence: `converged` says, and the
+  /// last iterate is returned; throws moorsim::Error only where a line's end tensions cannot be
+  /// evaluated at the start.
   Equilibrium Solve(const Eigen::Matrix3Xd& fairleads, bool jacobian,
                     const Eigen::Matrix3Xd* start = nullptr) const;
 

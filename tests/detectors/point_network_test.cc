@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <numbers>
 #include <random>
 #include <sstream>
 #include <string>
@@ -128,6 +129,52 @@ TEST(PointNetworkLines, ANeutralLineIsSlackThenElastic) {
   EXPECT_NEAR(taut.vertical, -0.8 * tension, 1e-9 * tension);  // pulls the upper end up
   EXPECT_NEAR(taut.d_horizontal.x(), 0.6 * 0.6 * 1e9 / 32.0 + 0.8 * 0.8 * tension / chord,
               1e-5 * 1e9 / 32.0);
+}
+
+// The neutral line's derivatives are closed forms: central differences of a millimetre
+// (which stay on the taut side of the kink) agree within 1e-6 of the axial stiffness per
+// metre of line.
+TEST(PointNetworkLines, ANeutralLinesDerivativesAreExact) {
+  mooring_fem::CompositeLine line;
+  line.sections = {{32.0, 0.0, 1e9}};
+  line.lower_on_seabed = false;
+  const double span = 6.0, height = -31.9;  // chord 32.459 m: taut
+  const mooring_fem::LineEnds e = mooring_fem::SolveLineEnds(line, span, height);
+  const double h = 1e-3, scale = 1e9 / 32.0;
+  const auto at = [&](double s, double z) { return mooring_fem::SolveLineEnds(line, s, z); };
+  const mooring_fem::LineEnds s1 = at(span - h, height), s2 = at(span + h, height);
+  const mooring_fem::LineEnds z1 = at(span, height - h), z2 = at(span, height + h);
+  EXPECT_NEAR(e.d_horizontal.x(), (s2.horizontal - s1.horizontal) / (2 * h), 1e-6 * scale);
+  EXPECT_NEAR(e.d_horizontal.y(), (z2.horizontal - z1.horizontal) / (2 * h), 1e-6 * scale);
+  EXPECT_NEAR(e.d_vertical.x(), (s2.vertical - s1.vertical) / (2 * h), 1e-6 * scale);
+  EXPECT_NEAR(e.d_vertical.y(), (z2.vertical - z1.vertical) / (2 * h), 1e-6 * scale);
+  EXPECT_EQ(e.d_lower_vertical, e.d_vertical);
+}
+
+// A mass on a stiff neutral line, hung from a point above it and started 18 degrees to
+// the side with the line taut, swings to rest straight below, the line stretched by its
+// weight: W L / EA. Each Newton step across the taut line leaves the circle its length
+// allows by metres (tens of MN of axial force); the solve must still reach rest.
+TEST(PointNetworkLines, APendulumSwingsToRestBelowItsHangingPoint) {
+  mooring_fem::NetworkLine pendant;
+  pendant.id = 1;
+  pendant.lower = {mooring_fem::NetworkEnd::Kind::kAnchor, 0};
+  pendant.upper = {mooring_fem::NetworkEnd::Kind::kPoint, 0};
+  pendant.line.sections = {{32.0, 0.0, 1e9}};
+  pendant.line.lower_on_seabed = false;
+  const double weight = 98.1, angle = 18.0 * std::numbers::pi / 180.0;
+  Eigen::Matrix3Xd start(3, 1);
+  start.col(0) = Vec3(32.0 * std::sin(angle), 1.0, 32.0 * std::cos(angle));
+  const mooring_fem::PointNetwork network({pendant}, {weight}, {Vec3(0.0, 1.0, 0.0)}, 0, start);
+  const auto rest = network.Solve(Eigen::Matrix3Xd(3, 0), false);
+  ASSERT_TRUE(rest.converged) << "residual " << rest.residual << " N";
+  // The solve stops within 1e-9 EA (1 N) of balance: what is left is the sideways pull
+  // W x / L and the axial force's error.
+  EXPECT_LE(rest.residual, 1.0);
+  EXPECT_LE(std::abs(rest.points(0, 0)) * weight / 32.0, rest.residual * (1.0 + 1e-9));
+  EXPECT_NEAR(rest.points(1, 0), 1.0, 1e-12);
+  EXPECT_NEAR(rest.points(2, 0), 32.0 + weight * 32.0 / 1e9, 1e-6);
+  EXPECT_NEAR(rest.upper_tension[0], weight, rest.residual + 1e-6);
 }
 
 // The load and its Jacobian at poses about the origin: the analytic Jacobian (the apex

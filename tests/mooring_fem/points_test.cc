@@ -89,33 +89,67 @@ TEST(FreePoints, ABuoyOnAVerticalTetherFloatsAtItsClosedFormHeight) {
   for (double v : xdot) EXPECT_NEAR(v, 0.0, 1e-5);
 }
 
+// A mass on a neutral line (its weight is its displaced water) of EA 1e9 N hung from a
+// fixed point at the surface above the origin, the mass starting at `start`.
+MooringParameters NeutralPendulum(double depth, double length, double mass, const Vec3& start) {
+  MooringParameters spec;
+  spec.water = {1000.0, kG, depth};
+  LineType neutral = testing::ChainType();
+  neutral.name = "neutral";
+  neutral.diameter = 0.1;
+  neutral.mass_per_length = 1000.0 * std::numbers::pi / 4.0 * 0.01;
+  neutral.axial_stiffness = 1e9;
+  spec.line_types = {neutral};
+  FreePoint point;
+  point.position = start;
+  point.body = {mass, 0.0, 0.0, 0.0};
+  spec.points = {point};
+  LineParameters line =
+      LineParameters::Uniform(1, "neutral", length, 20, Vec3(0.0, 0.0, 0.0), Vec3::Zero());
+  line.upper_point = 0;
+  spec.lines = {line};
+  return spec;
+}
+
 // A mass hanging from a fixed point above it on a line of neutral weight, slack at the
 // start (MoorDyn's lifting test): the line folds along its vertical chord at the start and
 // the mass settles L (1 + m g / EA) below the point.
 TEST(FreePoints, AMassHangsBelowItsPointOnANeutralLine) {
-  MooringParameters spec;
-  spec.water = {1000.0, kG, 500.0};
-  LineType neutral = testing::ChainType();
-  neutral.name = "neutral";
-  neutral.diameter = 0.1;
-  neutral.mass_per_length = 1000.0 * std::numbers::pi / 4.0 * 0.01;  // its displaced water
-  neutral.axial_stiffness = 1e9;
-  spec.line_types = {neutral};
-  FreePoint mass;
-  mass.position = Vec3(0.0, 0.0, 100.0);
-  mass.body = {1000.0, 0.0, 0.0, 0.0};
-  spec.points = {mass};
-  LineParameters line =
-      LineParameters::Uniform(1, "neutral", 100.5, 20, Vec3(0.0, 0.0, 0.0), Vec3::Zero());
-  line.upper_point = 0;
-  spec.lines = {line};
-  MooringSystem mooring(spec);
+  MooringSystem mooring(NeutralPendulum(500.0, 100.5, 1000.0, Vec3(0.0, 0.0, 100.0)));
   std::vector<PointKinematics> fairleads;
   const std::vector<double> x = AtRest(mooring, &fairleads);
   const Vec3 p = mooring.PointPosition(x.data(), 0);
   EXPECT_NEAR(p.x(), 0.0, 1e-9);
   EXPECT_NEAR(p.y(), 0.0, 1e-9);
   EXPECT_NEAR(p.z(), 100.5 * (1.0 + 1000.0 * kG / 1e9), 1e-9 * 100.5);
+}
+
+// A 10 kg mass on 32 m of line, started 10 m to the side and 28 m down (MoorDyn's
+// pendulum over a seabed): the static solve swings it to rest below its point, L (1 +
+// m g / EA) down.
+TEST(FreePoints, AMassStartedToTheSideSettlesBelowItsPoint) {
+  MooringSystem mooring(NeutralPendulum(500.0, 32.0, 10.0, Vec3(10.0, 0.0, 28.0)));
+  std::vector<PointKinematics> fairleads;
+  const std::vector<double> x = AtRest(mooring, &fairleads);
+  const Vec3 p = mooring.PointPosition(x.data(), 0);
+  // Sideways, the mass is held by W x / L: the points' force tolerance (1e-9 EA = 1 N)
+  // bounds how far off the vertical it may stop.
+  EXPECT_LT(std::hypot(p.x(), p.y()) * 10.0 * kG / 32.0, 1.0);
+  EXPECT_NEAR(p.z(), 32.0 * (1.0 + 10.0 * kG / 1e9), 1e-9 * 32.0);
+}
+
+// In 30 m of water it would rest 2 m below the seabed, which a point does not touch.
+TEST(FreePoints, AMassThatWouldRestBelowTheSeabedIsRefused) {
+  MooringSystem mooring(NeutralPendulum(30.0, 32.0, 10.0, Vec3(10.0, 0.0, 28.0)));
+  std::vector<PointKinematics> fairleads;
+  try {
+    AtRest(mooring, &fairleads);
+    ADD_FAILURE() << "a mass resting 2 m below the seabed was accepted";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.find("mooring.points[1]: rests below the seabed (32"), 0u) << what;
+    EXPECT_NE(what.find("a point has no contact with the seabed"), std::string::npos) << what;
+  }
 }
 
 TEST(FreePoints, ABuoyOnATetherLongerThanTheWaterIsDeepIsRefused) {
