@@ -157,6 +157,46 @@ void AddBodyFluidJacobian(const PointBodyProperties& body, const Vec3& u, const 
   if (water != nullptr) *dF_dr += (body.displaced_mass + body.added_mass) * water->d_acceleration;
 }
 
+// A visco-elastic segment's springs at creep strain e: the dynamic stiffness EA_d and the
+// creep spring's tension T_m = K e (the mean load), with their slopes d/de.
+struct CreepSprings {
+  double dynamic = 0.0, d_dynamic = 0.0, tension = 0.0, d_tension = 0.0;
+};
+
+CreepSprings CreepSpringsAt(const SectionProperties& sp, double e) {
+  if (sp.dynamic_stiffness_slope == 0.0 || !(e > 0.0)) {
+    return {sp.dynamic_stiffness, 0.0, sp.creep_stiffness * e, sp.creep_stiffness};
+  }
+  // EA_d = a + b K e with K = S EA_d / (EA_d - S) is the quadratic
+  //   EA_d^2 - B EA_d + a S = 0,  B = a + S + b S e,
+  // whose larger root is the one above S (at e = 0 it is a). And K e = (EA_d - a) / b.
+  const double S = sp.axial_stiffness, a = sp.dynamic_stiffness, b = sp.dynamic_stiffness_slope;
+  const double B = a + S + b * S * e;
+  const double root = std::sqrt(B * B - 4.0 * a * S);
+  CreepSprings out;
+  out.dynamic = 0.5 * (B + root);
+  out.d_dynamic = 0.5 * b * S * (1.0 + B / root);
+  out.tension = S * out.dynamic / (out.dynamic - S) * e;
+  out.d_tension = 0.5 * S * (1.0 + B / root);
+  return out;
+}
+
+// The creep spring's energy per unit length, the integral of T_m from 0 to e (5-point
+// Gauss-Legendre where T_m is not linear: it is smooth on [0, e], and the rule's error is
+// far below the tension's own tolerances).
+double CreepSpringEnergy(const SectionProperties& sp, double e) {
+  if (sp.dynamic_stiffness_slope == 0.0 || !(e > 0.0)) return 0.5 * sp.creep_stiffness * e * e;
+  static constexpr double kNodes[5] = {-0.9061798459386640, -0.5384693101056831, 0.0,
+                                       0.5384693101056831, 0.9061798459386640};
+  static constexpr double kWeights[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
+                                         0.4786286704993665, 0.2369268850561891};
+  double sum = 0.0;
+  for (int k = 0; k < 5; ++k) {
+    sum += kWeights[k] * CreepSpringsAt(sp, 0.5 * e * (1.0 + kNodes[k])).tension;
+  }
+  return 0.5 * e * sum;
+}
+
 }  // namespace
 
 LineParameters LineParameters::Uniform(int id, const std::string& type, double length, int segments,
@@ -230,8 +270,13 @@ LineProperties MakeLineProperties(const MooringParameters& spec, const LineParam
                          "': a visco-elastic rope needs a dynamic stiffness above its "
                          "quasi-static one, a positive creep time and no tension-strain table");
       }
+      if (!(v.dynamic_stiffness_slope >= 0.0)) {
+        throw InputError("mooring.line_types '" + type->name +
+                         "': a visco-elastic rope's dynamic stiffness slope must be >= 0");
+      }
       sp.visco = true;
       sp.dynamic_stiffness = v.dynamic_stiffness;
+      sp.dynamic_stiffness_slope = v.dynamic_stiffness_slope;
       sp.creep_stiffness =
           sp.axial_stiffness * v.dynamic_stiffness / (v.dynamic_stiffness - sp.axial_stiffness);
       sp.creep_damping = sp.creep_stiffness * v.creep_time;
@@ -912,7 +957,7 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, Node
     bool taut = g.L / l0 - 1.0 > 0.0;
     double slope = EA;  // dT/de
     if (sp.visco && !settling_) {
-      slope = sp.dynamic_stiffness;
+      slope = CreepSpringsAt(sp, g.creep_strain).dynamic;
       taut = taut && CreepTension(sp, g.L / l0 - 1.0, g.creep_strain) > 0.0;
     }
     if (taut) {
@@ -1054,8 +1099,8 @@ void MooringSystem::Derivatives(const double* x, std::span<const PointKinematics
         const double strain = g.L / sp.segment_length - 1.0;
         const double carried =
             strain > 0.0 ? std::max(0.0, CreepTension(sp, strain, g.creep_strain)) : 0.0;
-        xdot[g.creep] =
-            sp.segment_length * (carried - sp.creep_stiffness * g.creep_strain) / sp.creep_damping;
+        xdot[g.creep] = sp.segment_length * (carried - CreepSpringsAt(sp, g.creep_strain).tension) /
+                        sp.creep_damping;
       }
     }
   }
@@ -1107,13 +1152,20 @@ void MooringSystem::PointLoads(const double* x, std::span<const PointKinematics>
 double MooringSystem::CreepSlope(const SegmentState& g, const SectionProperties& sp) const {
   if (settling_ || !sp.visco) return 0.0;
   const double strain = g.L / sp.segment_length - 1.0;
-  const bool taut = strain > 0.0 && CreepTension(sp, strain, g.creep_strain) > 0.0;
-  return taut ? -sp.dynamic_stiffness / sp.segment_length : 0.0;
+  const CreepSprings k = CreepSpringsAt(sp, g.creep_strain);
+  const bool taut = strain > 0.0 && k.dynamic * (strain - g.creep_strain) > 0.0;
+  return taut ? (k.d_dynamic * (strain - g.creep_strain) - k.dynamic) / sp.segment_length : 0.0;
+}
+
+bool MooringSystem::CreepTaut(const SegmentState& g, const SectionProperties& sp) const {
+  if (settling_ || !sp.visco) return false;
+  const double strain = g.L / sp.segment_length - 1.0;
+  return strain > 0.0 && CreepTension(sp, strain, g.creep_strain) > 0.0;
 }
 
 double MooringSystem::CreepTension(const SectionProperties& sp, double strain,
                                    double creep_strain) const {
-  return sp.dynamic_stiffness * (strain - creep_strain);
+  return CreepSpringsAt(sp, creep_strain).dynamic * (strain - creep_strain);
 }
 
 void MooringSystem::CreepAtRest(double* x, std::span<const PointKinematics> fairleads) const {
@@ -1123,9 +1175,16 @@ void MooringSystem::CreepAtRest(double* x, std::span<const PointKinematics> fair
     const double L = (NodePosition(x, cs.line, cs.segment + 1, fairleads) -
                       NodePosition(x, cs.line, cs.segment, fairleads))
                          .norm();
-    // At rest both springs carry T = EA_s e: the creep strain is T / K.
+    // At rest both springs carry T = EA_s e: the creep strain is T / K, with K at the mean
+    // load T (EA_d = a + b T).
     const double strain = std::max(0.0, L / sp.segment_length - 1.0);
-    x[creep_offset_ + i] = sp.segment_length * sp.axial_stiffness * strain / sp.creep_stiffness;
+    double creep_stiffness = sp.creep_stiffness;
+    if (sp.dynamic_stiffness_slope != 0.0) {
+      const double dynamic =
+          sp.dynamic_stiffness + sp.dynamic_stiffness_slope * sp.axial_stiffness * strain;
+      creep_stiffness = sp.axial_stiffness * dynamic / (dynamic - sp.axial_stiffness);
+    }
+    x[creep_offset_ + i] = sp.segment_length * sp.axial_stiffness * strain / creep_stiffness;
   }
 }
 
@@ -1244,14 +1303,17 @@ void MooringSystem::Jacobian(const double* x, std::span<const PointKinematics> f
         }
       }
     }
-    // The creep rows: d(stretch)/dt = l0 (T_e - K e) / c, T_e = EA_d (e - stretch / l0).
+    // The creep rows: d(stretch)/dt = l0 (T_e - T_m) / c, T_e = EA_d (strain - e), T_m the
+    // creep spring's tension K e (EA_d and K functions of e where the stiffness rises with
+    // the mean load), e = stretch / l0.
     for (int s = 0; s < c.segments && !creep_.empty(); ++s) {
       const SegmentState& g = seg_[s];
       if (g.creep < 0) continue;
       const SectionProperties& sp = lines_[c.line].SectionOf(c.first_node + s);
       const CreepRow& plan = creep_rows_[g.creep - creep_offset_];
-      const bool taut = CreepSlope(g, sp) != 0.0;
-      const double k = taut ? sp.dynamic_stiffness / sp.creep_damping : 0.0;
+      const bool taut = CreepTaut(g, sp);
+      const CreepSprings springs = CreepSpringsAt(sp, g.creep_strain);
+      const double k = taut ? springs.dynamic / sp.creep_damping : 0.0;
       double* v = values + pattern_.row_start[g.creep];
       const bool lower_first = plan.lower < plan.upper;
       for (const bool lower : {lower_first, !lower_first}) {
@@ -1259,7 +1321,11 @@ void MooringSystem::Jacobian(const double* x, std::span<const PointKinematics> f
         const Vec3 d = (lower ? -k : k) * g.t;
         for (int m = 0; m < 3; ++m) *v++ = d(m);
       }
-      *v = -((taut ? sp.dynamic_stiffness : 0.0) + sp.creep_stiffness) / sp.creep_damping;
+      // dT_e/de = EA_d'(e) (strain - e) - EA_d while taut.
+      const double strain = g.L / sp.segment_length - 1.0;
+      const double pull =
+          taut ? springs.d_dynamic * (strain - g.creep_strain) - springs.dynamic : 0.0;
+      *v = (pull - springs.d_tension) / sp.creep_damping;
     }
   }
   for (int q = 0; q < np; ++q) {
@@ -1366,7 +1432,8 @@ FairleadCoupling MooringSystem::FairleadJacobian(const double* x,
     out.creep_state = top.creep;
     out.J_force_creep = -slope * top.t;
     if (slope != 0.0) {
-      out.J_creep_fairlead_pos = (sp.dynamic_stiffness / sp.creep_damping) * top.t.transpose();
+      out.J_creep_fairlead_pos =
+          (CreepSpringsAt(sp, top.creep_strain).dynamic / sp.creep_damping) * top.t.transpose();
     }
   }
   return out;
@@ -1440,8 +1507,8 @@ double MooringSystem::MechanicalEnergy(const double* x,
       if (sp.visco) {  // both springs of the segment; the dashpot only dissipates
         const double e = seg_[s].creep_strain;
         const double elastic = strain > 0.0 ? std::max(0.0, strain - e) : 0.0;
-        energy += 0.5 * sp.segment_length *
-                  (sp.dynamic_stiffness * elastic * elastic + sp.creep_stiffness * e * e);
+        energy += sp.segment_length * (0.5 * CreepSpringsAt(sp, e).dynamic * elastic * elastic +
+                                       CreepSpringEnergy(sp, e));
       } else if (strain > 0.0) {
         energy +=
             (sp.curve ? sp.curve->Energy(strain) : 0.5 * sp.axial_stiffness * strain * strain) *

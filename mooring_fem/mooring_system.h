@@ -57,13 +57,15 @@ struct SectionProperties {
   /// and each segment a spring EA_d in series with a creep spring K and dashpot c in
   /// parallel (1 / EA_s = 1 / EA_d + 1 / K, c = K x the creep time).
   bool visco = false;
-  double dynamic_stiffness = 0.0;  ///< EA_d [N]
-  double creep_stiffness = 0.0;    ///< K [N]
+  double dynamic_stiffness = 0.0;  ///< EA_d [N] (at no mean load)
+  double creep_stiffness = 0.0;    ///< K [N] (at no mean load)
   double creep_damping = 0.0;      ///< c [N s]
-  double drag_normal = 0.0;        ///< 0.5 rho C_DN d [kg/m^2]
-  double drag_tangential = 0.0;    ///< 0.5 rho C_DT d [kg/m^2]
-  double friction_axial = 0.0;     ///< [-]
-  double friction_lateral = 0.0;   ///< [-]
+  /// EA_d's rise per newton of the creep spring's tension (ViscoElastic) [-]; 0: constant.
+  double dynamic_stiffness_slope = 0.0;
+  double drag_normal = 0.0;       ///< 0.5 rho C_DN d [kg/m^2]
+  double drag_tangential = 0.0;   ///< 0.5 rho C_DT d [kg/m^2]
+  double friction_axial = 0.0;    ///< [-]
+  double friction_lateral = 0.0;  ///< [-]
 };
 
 /// Constants of a body at a joint (PointBody with the water).
@@ -376,9 +378,11 @@ class MooringSystem {
   std::array<int, 2> NodeCreepStates(const Chain& c, int k) const;
   /// The first state of chain node k's 6-block (a node or a point), or -1 where it is held.
   int NodeStateOf(const Chain& c, int k) const;
-  /// dT / d(creep stretch) of a gathered segment: -EA_d / l0 while its dynamic spring is
-  /// stretched, else (and while settling) 0.
+  /// dT / d(creep stretch) of a gathered segment: (EA_d'(e) (strain - e) - EA_d) / l0
+  /// while its dynamic spring is stretched, else (and while settling) 0.
   double CreepSlope(const SegmentState& g, const SectionProperties& sp) const;
+  /// Whether a visco-elastic segment pulls (stretched, its dynamic spring too).
+  bool CreepTaut(const SegmentState& g, const SectionProperties& sp) const;
   /// Per creep state, its segment's lower and upper node's 6-blocks (NodeStateOf).
   struct CreepRow {
     int lower = -1, upper = -1;

@@ -69,9 +69,17 @@ struct CurrentProfile {
 /// creep strain, a state of every segment) follows the tension with the creep time: slow
 /// loading sees both springs in series, the quasi-static stiffness; fast loading finds the
 /// dashpot rigid and sees the dynamic stiffness alone.
+///
+/// The dynamic stiffness may rise with the mean load, as fibre ropes' measured stiffness
+/// does (Del Vecchio 1992): EA_d = dynamic_stiffness + dynamic_stiffness_slope x T_m, the
+/// mean load T_m taken as the creep element's spring tension (it follows the tension with
+/// the creep time), as MoorDyn v2's EA_s|EA_Dc|EA_D_Lm does. The creep spring then
+/// follows from 1 / EA_s = 1 / EA_d + 1 / K, so that slow loading still sees EA_s; the
+/// dashpot keeps the damping of the unloaded rope (K at T_m = 0 times the creep time).
 struct ViscoElastic {
-  double dynamic_stiffness = 0.0;  ///< EA_d [N], > the quasi-static EA
+  double dynamic_stiffness = 0.0;  ///< EA_d [N] (at no mean load), > the quasi-static EA
   double creep_time = 0.0;  ///< [s]: under a constant tension, the creep strain's time constant
+  double dynamic_stiffness_slope = 0.0;  ///< [-]: EA_d's rise per newton of mean load, >= 0
 };
 
 /// Material and hydrodynamic properties of one line type (Ren & Skjetne 2016, Table 2 style).

@@ -131,6 +131,13 @@ LineType ParseLineType(const Reader& r) {
                 WithUnit(type.axial_stiffness, "N"));
     }
     type.visco_elastic = mooring_fem::ViscoElastic{*dynamic, *creep};
+    type.visco_elastic->dynamic_stiffness_slope =
+        r.Maybe<double>("dynamic_axial_stiffness_slope").value_or(0.0);
+  } else if (r.Find("dynamic_axial_stiffness_slope")) {
+    r.Child("dynamic_axial_stiffness_slope")
+        .Fail(
+            "a dynamic stiffness slope needs a visco-elastic rope (dynamic_axial_stiffness "
+            "and creep_time)");
   }
   type.axial_damping = r.Maybe<double>("axial_damping");
   type.axial_damping_ratio = r.Maybe<double>("axial_damping_ratio");

@@ -188,16 +188,22 @@ struct MdLineType {
   // the series EA_s, damped by BA_s: moorsim's dynamic spring, and its creep spring and
   // dashpot. 0: none.
   double dynamic_ea = 0, static_damping = 0;
+  // EA_s|EA_Dc|EA_D_Lm: EA_D = EA_Dc + EA_D_Lm x the mean load (EA_Dc in dynamic_ea).
+  double dynamic_ea_slope = 0;
 };
 
-// "a|b" as two numbers, or nothing.
-std::optional<std::pair<double, double>> Pair(const std::string& text) {
-  const std::size_t bar = text.find('|');
-  if (bar == std::string::npos || text.find('|', bar + 1) != std::string::npos) return {};
-  const std::optional<double> a = ToNumber(text.substr(0, bar));
-  const std::optional<double> b = ToNumber(text.substr(bar + 1));
-  if (!a || !b) return {};
-  return std::pair(*a, *b);
+// "a|b|..." as its numbers (one or more), or nothing where one is not a number.
+std::optional<std::vector<double>> BarSeparated(const std::string& text) {
+  std::vector<double> out;
+  std::size_t from = 0;
+  for (;;) {
+    const std::size_t bar = text.find('|', from);
+    const std::optional<double> v = ToNumber(text.substr(from, bar - from));
+    if (!v) return {};
+    out.push_back(*v);
+    if (bar == std::string::npos) return out;
+    from = bar + 1;
+  }
 }
 
 enum class PointKind { kFixed, kVessel, kFree };
@@ -429,25 +435,33 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
           const std::string ba = c.Has("BA") ? c.Field(row, "BA") : "0";
           const std::string where =
               path + ":" + std::to_string(row.line) + ": line type " + t.name + ": ";
-          if (const auto visco = Pair(ea)) {
+          const std::optional<std::vector<double>> eas = BarSeparated(ea);
+          if (eas && (eas->size() == 2 || eas->size() == 3)) {
+            // EA_s|EA_D, or EA_s|EA_Dc|EA_D_Lm: EA_D = EA_Dc + EA_D_Lm x the mean load.
             // BA_s|BA_D, or BA_s alone (no damping on the dynamic spring).
-            const auto pair = Pair(ba);
-            const std::optional<double> single = ToNumber(ba);
-            if (!pair && !single) {
+            const std::optional<std::vector<double>> bas = BarSeparated(ba);
+            if (!bas || bas->size() > 2) {
               throw InputError(where + "BA '" + ba + "' must be BA_s or BA_s|BA_D [N s]");
             }
-            const double ba_s = pair ? pair->first : *single, ba_d = pair ? pair->second : 0.0;
-            if (!(visco->second > visco->first && visco->first > 0.0)) {
+            const double ba_s = bas->front(), ba_d = bas->size() == 2 ? (*bas)[1] : 0.0;
+            const std::vector<double>& v = *eas;
+            if (!(v[1] > v[0] && v[0] > 0.0)) {
+              throw InputError(where + "EA '" + ea + "': the dynamic stiffness " +
+                               (v.size() == 3 ? "EA_Dc" : "EA_D") + " must exceed the static EA_s");
+            }
+            if (v.size() == 3 && !(v[2] >= 0.0)) {
               throw InputError(where + "EA '" + ea +
-                               "': the dynamic stiffness EA_D must exceed the static EA_s");
+                               "': the dynamic stiffness's slope with the mean load EA_D_Lm "
+                               "must be >= 0");
             }
             if (!(ba_s > 0.0) || ba_d < 0.0) {
               throw InputError(where + "BA '" + ba +
                                "': a visco-elastic rope's static damping BA_s (moorsim's creep "
                                "dashpot) must be > 0 and its BA_D >= 0, both in N s");
             }
-            t.ea = visco->first;
-            t.dynamic_ea = visco->second;
+            t.ea = v[0];
+            t.dynamic_ea = v[1];
+            if (v.size() == 3) t.dynamic_ea_slope = v[2];
             t.static_damping = ba_s;
             t.ba = ba_d;
             if (ba_d > 0.0) {
@@ -457,8 +471,8 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
             }
           } else if (!ToNumber(ea)) {
             throw InputError(path + ":" + std::to_string(row.line) + ": EA '" + ea +
-                             "': a load-dependent or tabulated stiffness is not supported yet "
-                             "(give a constant EA, or EA_s|EA_d with BA_s|BA_d)");
+                             "': a tension table or SYROPE stiffness is not supported yet (give "
+                             "a constant EA, EA_s|EA_D or EA_s|EA_Dc|EA_D_Lm with BA_s|BA_D)");
           } else {
             t.ea = *ToNumber(ea);
             t.ba = c.Has("BA") ? c.Value(row, "BA") : 0.0;
@@ -807,8 +821,16 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
     if (t.dynamic_ea > 0.0) {
       // MoorDyn's static spring, in series with EA_D: EA_D EA_s / (EA_D - EA_s).
       const double creep_spring = t.dynamic_ea * t.ea / (t.dynamic_ea - t.ea);
-      y << "      dynamic_axial_stiffness: " << Number(t.dynamic_ea) << "  # EA_s|EA_D "
-        << Number(t.ea) << "|" << Number(t.dynamic_ea) << "\n";
+      if (t.dynamic_ea_slope > 0.0) {
+        y << "      dynamic_axial_stiffness: " << Number(t.dynamic_ea) << "  # EA_s|EA_Dc|EA_D_Lm "
+          << Number(t.ea) << "|" << Number(t.dynamic_ea) << "|" << Number(t.dynamic_ea_slope)
+          << "\n";
+        y << "      dynamic_axial_stiffness_slope: " << Number(t.dynamic_ea_slope)
+          << "  # EA_D_Lm: EA_D = EA_Dc + EA_D_Lm x the mean load\n";
+      } else {
+        y << "      dynamic_axial_stiffness: " << Number(t.dynamic_ea) << "  # EA_s|EA_D "
+          << Number(t.ea) << "|" << Number(t.dynamic_ea) << "\n";
+      }
       y << "      creep_time: " << Number(t.static_damping / creep_spring)
         << "  # BA_s / (EA_D EA_s / (EA_D - EA_s)): the static damping " << Number(t.static_damping)
         << " N s over the static spring " << Number(creep_spring) << " N\n";

@@ -25,7 +25,10 @@
 //     EA_D EA_s / (EA_D - EA_s) (damped by BA_s), is moorsim's dynamic spring in series
 //     with its creep spring and dashpot: dynamic_axial_stiffness EA_D, creep_time BA_s
 //     over the static spring; BA_D becomes the segment's axial damping (with a warning:
-//     moorsim's damps the whole segment).
+//     moorsim's damps the whole segment). The load-dependent form EA_s|EA_Dc|EA_D_Lm
+//     (EA_D = EA_Dc + EA_D_Lm x the mean load, the static spring's tension) is moorsim's
+//     dynamic_axial_stiffness EA_Dc with dynamic_axial_stiffness_slope EA_D_Lm, the creep
+//     time BA_s over the static spring at no mean load.
 //   * OPTIONS: WtrDpth, WtrDnsty, g (gravity), kBot and cBot (the same per-area seabed
 //     stiffness and damping as moorsim's), FrictionCoefficient (both of moorsim's
 //     friction coefficients of every line type), SeafloorFile (the bathymetry, looked for
@@ -36,7 +39,7 @@
 //
 // What does not map is one located line each ("<file>:<line>: <what>"): rods, bodies,
 // lines between two fixed or two vessel points, a line ending nowhere, tension tables and
-// SYROPE files, a load-dependent dynamic stiffness (EA_s|EA_Dc|EA_D_Lm), and MoorDyn's
+// SYROPE files, and MoorDyn's
 // own wave or current kinematics options. These are errors (InputError, every line at
 // once). Properties moorsim does not model are imported without them and reported as
 // warnings: bending stiffness EI, vortex-induced vibration. Integration options (time

@@ -249,6 +249,12 @@ constexpr Key kLineTypeKeys[] = {
              "A visco-elastic rope's dynamic stiffness, above axial_stiffness: what it shows to "
              "loads faster than the creep time (the waves' cycles). With creep_time.",
              "a solid steel bar 0.8 m thick"),
+    NonNegative("dynamic_axial_stiffness_slope", "", 1000.0,
+                "A visco-elastic rope's rise of dynamic stiffness with its mean load: "
+                "EA_d = dynamic_axial_stiffness + slope x mean tension (newtons per newton; "
+                "Del Vecchio's beta per % of the breaking load, times 100). With "
+                "dynamic_axial_stiffness; none = a constant dynamic stiffness.",
+                "polyester's is about 30"),
     WithDefault({.name = "friction_axial",
                  .description = "Seabed Coulomb friction coefficient along the line.",
                  .minimum = AtLeast(0.0),

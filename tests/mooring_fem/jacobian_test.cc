@@ -326,6 +326,19 @@ TEST(MooringJacobian, ViscoElasticRopesMatchFiniteDifferences) {
   ExpectJacobianMatchesFiniteDifferences(f.mooring, x, f.fairleads);
 }
 
+// The dynamic stiffness rising with the mean load (the creep spring's tension): the creep
+// rows' and the node rows' derivatives with respect to the creep stretch carry its slope.
+TEST(MooringJacobian, RopesStiffeningWithLoadMatchFiniteDifferences) {
+  MooringParameters spec = BridleTestSpec();
+  spec.line_types[0].visco_elastic =
+      ViscoElastic{3.0 * spec.line_types[0].axial_stiffness, 30.0, 200.0};
+  Fixture f(spec);
+  ExpectJacobianMatchesFiniteDifferences(f.mooring, f.x, f.fairleads);
+  std::vector<double> x =
+      f.mooring.ApplyFailure({1, FailureMode::kNode, 5}, f.x.data(), f.fairleads);
+  ExpectJacobianMatchesFiniteDifferences(f.mooring, x, f.fairleads);
+}
+
 TEST(MooringJacobian, PatternHasDiagonalAndBlockTridiagonalShape) {
   Fixture f(20);
   const SparsityPattern& p = f.mooring.JacobianPattern();

@@ -500,6 +500,14 @@ inline const BadInput kValidationErrors[] = {
     {"CreepTimeZero", "name: wire", "axial_stiffness: 8.0e8",
      "axial_stiffness: 8.0e8\n      dynamic_axial_stiffness: 1.2e9\n      creep_time: 0",
      "creep_time: ^0", "mooring.line_types[2].creep_time: 0 s must be > 0"},
+    {"DynamicStiffnessSlopeWithoutARope", "name: wire", "axial_stiffness: 8.0e8",
+     "axial_stiffness: 8.0e8\n      dynamic_axial_stiffness_slope: 30", "30",
+     "mooring.line_types[2].dynamic_axial_stiffness_slope: a dynamic stiffness slope needs a "
+     "visco-elastic rope (dynamic_axial_stiffness and creep_time)"},
+    {"DynamicStiffnessSlopeNegative", "name: wire", "axial_stiffness: 8.0e8",
+     "axial_stiffness: 8.0e8\n      dynamic_axial_stiffness: 1.2e9\n      creep_time: 20\n"
+     "      dynamic_axial_stiffness_slope: -1",
+     "-1", "mooring.line_types[2].dynamic_axial_stiffness_slope: -1 must be >= 0"},
     {"UnknownLineType", "- id: 2", "type: wire", "type: wier", "wier",
      "mooring.lines[2].type: unknown line type 'wier' (known: chain, wire)"},
     {"UnknownSectionType", "- id: 2",

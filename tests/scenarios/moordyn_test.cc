@@ -234,6 +234,19 @@ TEST(MoorDynImport, AViscoElasticRopeArrivesWithItsDynamicStiffnessAndCreepTime)
   undamped.replace(undamped.find("5.0e8      2.0e5"), 16, "2.0e8|5.0e8 2.0e9");
   EXPECT_TRUE(
       ImportMoorDyn(Write(dir, "undamped.txt", undamped).string(), "test").warnings.empty());
+  // EA_s|EA_Dc|EA_D_Lm: the dynamic stiffness rises with the mean load; the creep time is
+  // the unloaded rope's.
+  std::string stiffening = kSpread;
+  stiffening.replace(stiffening.find("5.0e8      2.0e5"), 16, "2.0e8|5.0e8|30 2.0e9");
+  const std::string ys =
+      ImportMoorDyn(Write(dir, "stiffening.txt", stiffening).string(), "test").yaml;
+  EXPECT_NE(ys.find("      dynamic_axial_stiffness: 5e+08  # EA_s|EA_Dc|EA_D_Lm 2e+08|5e+08|30\n"
+                    "      dynamic_axial_stiffness_slope: 30  # EA_D_Lm"),
+            std::string::npos)
+      << ys;
+  const Scenario st = ParseScenario(ys, "stiffening.yaml");
+  EXPECT_EQ(st.mooring.line_types[1].visco_elastic->dynamic_stiffness_slope, 30.0);
+  EXPECT_NEAR(st.mooring.line_types[1].visco_elastic->creep_time, 6.0, 1e-12);
   std::string ratio = kSpread;
   ratio.replace(ratio.find("5.0e8      2.0e5"), 16, "2.0e8|5.0e8 -0.5");
   const fs::path bad = Write(dir, "ratio.txt", ratio);
@@ -315,7 +328,7 @@ TEST(MoorDynImport, WhatDoesNotMapIsOneLocatedLineEach) {
   const fs::path file = Write(dir, "refused.txt", text);
   const std::string error = ErrorOf(file);
   const std::string f = file.string();
-  EXPECT_NE(error.find(f + ":6: EA 'chain_ea.txt': a load-dependent or tabulated stiffness"),
+  EXPECT_NE(error.find(f + ":6: EA 'chain_ea.txt': a tension table or SYROPE stiffness"),
             std::string::npos)
       << error;
   EXPECT_NE(error.find(f + ":11: rods are not supported"), std::string::npos) << error;
