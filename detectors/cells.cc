@@ -21,6 +21,22 @@ void Cells::Reset(int hypotheses) {
   verdict_ = Verdict{std::vector<double>(static_cast<std::size_t>(hypotheses), 0.0), 0, false};
 }
 
+Cells::OtherCells Cells::ReadOtherCells(const TensionEvidence& cells, int k) const {
+  OtherCells out;
+  if (cells.expected_if_parted.cols() <= k) return out;
+  for (Eigen::Index j = 0; j < cells.measured.size(); ++j) {
+    const double parted = cells.expected_if_parted(j, k), intact = cells.expected(j);
+    if (j == k || !std::isfinite(parted) || !(intact > 0.0)) continue;
+    if (std::abs(cells.measured(j) - parted) > options_.drop * intact) {
+      out.explained = false;
+      out.corroborated = false;
+      return out;
+    }
+    if (std::abs(parted - intact) > options_.drop * intact) out.corroborated = true;
+  }
+  return out;
+}
+
 Verdict Cells::Update(const Evidence& evidence) {
   internal::CheckEvidence("cells", evidence, hypotheses_);
   if (!evidence.tensions || !evidence.load) return verdict_;
@@ -75,8 +91,21 @@ Verdict Cells::Update(const Evidence& evidence) {
     line.low = low;
     if (!low) line.confirmed = false;
     if (!low || t - line.low_since < options_.hold || h >= hypotheses_) continue;
+    const OtherCells others = ReadOtherCells(cells, k);
+    if (!others.explained) {
+      // Another line of its network parted, or (no other cell reading low) this cell is
+      // wrong: the others read as they would with its line intact.
+      bool others_low = false;
+      for (int j = 0; j < n; ++j) others_low |= j != k && lines_[static_cast<std::size_t>(j)].low;
+      if (!others_low && t - line.low_since >= options_.confirm_time) {
+        line.faulty = true;
+        line.low = false;
+        ++cell_faults_;
+      }
+      continue;
+    }
     bool agrees = true;
-    if (options_.confirm && !line.confirmed) {
+    if (options_.confirm && !line.confirmed && !others.corroborated) {
       const Eigen::Vector2d lost = load.line_load[static_cast<std::size_t>(h)].head<2>();
       const double size = lost.norm();
       const double shift =

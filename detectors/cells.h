@@ -30,6 +30,15 @@
 //    `confirm_time` seconds without the pose agreeing is declared faulty and ignored until
 //    it reads within drop / 2 of its expectation again; cell_faults() counts them.
 //
+// Where lines meet at free points (TensionEvidence::expected_if_parted) a parted line
+// changes its network's other cells too: a bridle's anchor line parting slackens both
+// legs, a leg parting leaves its twin the whole load. A low cell names its line only where
+// that line's parting explains every other cell within drop of its (intact) expectation;
+// the legs' cells then wait for the anchor line's. Where the other cells also read what
+// they would not with the line intact (the twin leg's rise), they corroborate the parting
+// and the pose need not: a leg's loss barely moves the vessel, and one faulty cell cannot
+// move another.
+//
 // Pairs: scored 0, never named. Without tension or load evidence a sample leaves the state
 // as it was. A stuck cell on the line that then parts keeps reading its old load: this test
 // cannot see that break (run a pose-only detector beside it; the campaign in
@@ -86,6 +95,15 @@ class Cells final : public Detector {
     bool confirmed = false;           // the pose agreed during this low spell
     bool faulty = false;
   };
+
+  // What the other cells say of line k's parting (where lines meet at free points;
+  // elsewhere they neither deny nor corroborate it): explained, each reads within drop (of
+  // its intact expectation) of what it should with k parted; corroborated, besides, one of
+  // them reads what it would not with k intact.
+  struct OtherCells {
+    bool explained = true, corroborated = false;
+  };
+  OtherCells ReadOtherCells(const TensionEvidence& cells, int k) const;
 
   CellsOptions options_;
   int hypotheses_ = 0;

@@ -62,9 +62,17 @@ struct LoadEvidence {
 /// line's cell falls far below its expectation (to zero after a fairlead break, to the
 /// hanging chain's weight after an anchor release); a faulty cell does too, which is what
 /// the pose evidence is there to tell apart.
+///
+/// Where lines meet at free points, one line's parting changes what the other cells of its
+/// network read (a bridle's legs go slack when its anchor line parts; a leg that parts
+/// leaves its twin the whole load): column k of expected_if_parted holds what each cell
+/// should read with line k parted, at the same pose, for the lines k of networks; NaN where
+/// that model has no expectation (a line whose points then reach no anchor, a line outside
+/// the networks). Empty without networks.
 struct TensionEvidence {
   VecX measured;  ///< [N] per line, in line order
-  VecX expected;  ///< [N] per line
+  VecX expected;  ///< [N] per line; NaN where the intact model holds no expectation
+  Eigen::MatrixXd expected_if_parted;  ///< [N] lines x lines, or empty
 };
 
 /// The evidence of every hypothesis at one sample; hypotheses[0] is "all intact".

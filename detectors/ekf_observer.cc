@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <sstream>
 #include <string_view>
 #include <utility>
@@ -367,6 +368,11 @@ ObserverBank::ObserverBank(const HypothesisBank& bank, const LowFrequencyModel& 
       line_index_.push_back(intact_mooring_.IndexOf(i + 1));
     if (bank.has_networks()) {
       for (int h = 0; h < bank.size(); ++h) hypothesis_moorings_.push_back(bank.mooring(h));
+      network_line_hypothesis_.assign(line_index_.size(), -1);
+      for (std::size_t i = 0; i < line_index_.size(); ++i) {
+        const int id = static_cast<int>(i) + 1;
+        if (line_index_[i] < 0) network_line_hypothesis_[i] = bank.Find(std::span(&id, 1));
+      }
     }
   }
   evidence_.hypotheses.resize(n);
@@ -472,18 +478,29 @@ const Evidence& ObserverBank::Update(const Observation& observation) {
 
 void ObserverBank::UpdateTensionEvidence(const HypothesisEkf& intact,
                                          const Observation& observation) {
-  if (!observation.tensions || !intact.initialised() ||
-      observation.tensions->size() != intact_mooring_.num_lines()) {
+  const auto lines = static_cast<Eigen::Index>(line_index_.size());
+  if (!observation.tensions || !intact.initialised() || observation.tensions->size() != lines) {
     evidence_.tensions.reset();
     return;
   }
   if (!evidence_.tensions) evidence_.tensions.emplace();
   TensionEvidence& cells = *evidence_.tensions;
   cells.measured = *observation.tensions;
-  cells.expected.resize(intact_mooring_.num_lines());
+  // A line the intact model does not hold (its points reach no anchor or no fairlead) has
+  // no expectation: NaN, which the detectors skip.
+  constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  cells.expected.setConstant(lines, kNone);
   const Vec3 pose = intact.pose();
-  for (int i = 0; i < intact_mooring_.num_lines(); ++i) {
-    cells.expected(i) = intact_mooring_.LineTension(i, pose);
+  intact_mooring_.UpperTensions(pose, cells.expected);
+  if (network_line_hypothesis_.empty()) return;
+  cells.expected_if_parted.setConstant(lines, lines, kNone);
+  for (Eigen::Index k = 0; k < lines; ++k) {
+    const int h = network_line_hypothesis_[static_cast<std::size_t>(k)];
+    if (h > 0) {
+      hypothesis_moorings_[static_cast<std::size_t>(h)].UpperTensions(
+          pose, cells.expected_if_parted.col(k));
+      cells.expected_if_parted(k, k) = 0.0;  // the parted line's own cell
+    }
   }
 }
 

@@ -282,6 +282,9 @@ class ObserverBank {
   std::vector<Vec3> line_load_;
   std::vector<int> line_index_;
   std::vector<QuasiStaticMooring> hypothesis_moorings_;
+  // Per line (0-based), the hypothesis "that line alone parted" where the line is in a
+  // network (-1 otherwise): the cells' expectations with it parted.
+  std::vector<int> network_line_hypothesis_;
 };
 
 }  // namespace moorsim::detectors

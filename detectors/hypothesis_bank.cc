@@ -324,6 +324,19 @@ double QuasiStaticMooring::LineTension(int index, const Vec3& eta) const {
   return std::hypot(table.HorizontalTension(span), table.VerticalTension(span));
 }
 
+void QuasiStaticMooring::UpperTensions(const Vec3& eta, Eigen::Ref<VecX> by_line) const {
+  const auto set = [&](int id, double tension) {
+    if (id >= 1 && id <= by_line.size()) by_line(id - 1) = tension;
+  };
+  for (int i = 0; i < num_lines(); ++i) set(lines_[i]->line_id(), LineTension(i, eta));
+  for (const AttachedNetwork& attached : networks_) {
+    const mooring_fem::PointNetwork::Equilibrium eq =
+        attached.network->Solve(internal::NetworkFairleads(turret_, attached, eta), false);
+    const std::vector<mooring_fem::NetworkLine>& lines = attached.network->lines();
+    for (std::size_t l = 0; l < lines.size(); ++l) set(lines[l].id, eq.upper_tension[l]);
+  }
+}
+
 Vec3 QuasiStaticMooring::LineLoad(int index, const Vec3& eta, Mat3* J_load_eta) const {
   const LineForceTable& table = *lines_[index];
   Eigen::Vector2d r, lever;

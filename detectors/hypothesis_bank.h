@@ -181,6 +181,11 @@ class QuasiStaticMooring {
   /// The quasi-static fairlead tension sqrt(H^2 + V^2) [N] of the line with list index
   /// `index` at eta: what a load cell on it would read with the vessel held there.
   double LineTension(int index, const Vec3& eta) const;
+  /// Each line's quasi-static tension at its upper end [N] at eta, in `by_line` at its
+  /// 1-based id less one: what a load cell there would read (at the fairlead, or in line
+  /// just below the free point it ends at). Lines this mooring does not hold are left as
+  /// they are.
+  void UpperTensions(const Vec3& eta, Eigen::Ref<VecX> by_line) const;
 
   const std::optional<TurretModel>& turret() const { return turret_; }
 

@@ -979,14 +979,6 @@ void CheckPoints(const Checker& check, const MooringSpec& mooring) {
   }
 }
 
-// The load cells' expected tensions take every line from its anchor to the vessel.
-void CheckDetectionOnPoints(const Checker& check, const Scenario& scenario) {
-  if (scenario.mooring.points.empty() || !scenario.sensors.tension_cells) return;
-  check.Fail("sensors.tension_cells",
-             "load cells take every line from its anchor to the vessel; a mooring with free "
-             "points (mooring.points) is not supported by them yet");
-}
-
 // The turret: on the hull, the fairleads on it, a physical bearing.
 void CheckTurret(const Checker& check, const Scenario& scenario) {
   if (!scenario.vessel) return;
@@ -1220,7 +1212,6 @@ void Validate(const Scenario& scenario) {
   group([&] { CheckSimulation(check, scenario.simulation); });
   group([&] { CheckFailure(check, scenario); });
   group([&] { CheckDetectors(check, scenario); });
-  group([&] { CheckDetectionOnPoints(check, scenario); });
   group([&] {
     const bool vessel_needed = scenario.marks.contains("controller") ||
                                scenario.marks.contains("sensors") ||

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -140,6 +141,116 @@ TEST(Cells, ADriftingCellOnALineThatHoldsIsAFaultNotAFailure) {
   ASSERT_TRUE(alarm.has_value());
   EXPECT_EQ(*alarm, 710.0);
   EXPECT_EQ(last.hypothesis, 3);
+}
+
+// A bridle: line 1 runs from its anchor to an apex, lines 3 and 4 from the apex to the
+// vessel (legs), line 2 is a plain line. Intact cells read 4, 6, 3 and 3 MN. With line 1
+// parted the model has no expectation for the legs (the apex then reaches no anchor);
+// with a leg parted its twin takes the bridle's load. Line 1's loss moves the vessel by
+// 3.9 MN; a leg's barely does (0.3 MN, nearly along line 1's).
+constexpr int kBridleCells = 4;
+const VecX kBridleIntact = (VecX(4) << 4e6, 6e6, 3e6, 3e6).finished();
+
+Evidence BridleEvidence(double t, const std::vector<double>& measured, const Vec3& bias) {
+  Evidence e;
+  e.t = t;
+  e.hypotheses.resize(kBridleCells + 1);
+  LoadEvidence load;
+  load.bias = bias;
+  load.line_load = {Vec3::Zero(), Vec3(3.9e6, 0.0, 0.0), Vec3(0.0, 4.5e6, 0.0),
+                    Vec3(0.3e6, 0.1e6, 0.0), Vec3(0.3e6, -0.1e6, 0.0)};
+  e.load = load;
+  TensionEvidence cells;
+  cells.measured = Eigen::Map<const VecX>(measured.data(), kBridleCells);
+  cells.expected = kBridleIntact;
+  const double none = std::nan("");
+  cells.expected_if_parted.setConstant(kBridleCells, kBridleCells, none);
+  cells.expected_if_parted.col(0) << 0.0, 6e6, none, none;
+  cells.expected_if_parted.col(2) << 4e6, 6e6, 0.0, 6e6;
+  cells.expected_if_parted.col(3) << 4e6, 6e6, 6e6, 0.0;
+  e.tensions = cells;
+  return e;
+}
+
+// The intact readings until 100 s, `after` from then on.
+auto ReadingFrom100(std::vector<double> after) {
+  return [after](double t) {
+    return t >= 100
+               ? after
+               : std::vector<double>(kBridleIntact.data(), kBridleIntact.data() + kBridleCells);
+  };
+}
+
+struct BridleRun {
+  std::optional<double> first_alarm;
+  int first_line = 0;
+  Verdict last;
+  int cell_faults = 0;
+};
+
+template <typename Reading, typename Bias>
+BridleRun RunBridle(bool confirm, Reading reading, Bias bias) {
+  CellsOptions options;
+  options.confirm = confirm;
+  Cells detector(options);
+  detector.Reset(kBridleCells + 1);
+  BridleRun run;
+  for (double t = 0; t < 400; t += 1.0) {
+    run.last = detector.Update(BridleEvidence(t, reading(t), bias(t)));
+    if (run.last.alarm && !run.first_alarm) {
+      run.first_alarm = t;
+      run.first_line = run.last.hypothesis;
+    }
+  }
+  run.cell_faults = detector.cell_faults();
+  return run;
+}
+
+// The anchor line parts at 100 s: its cell and both legs' read low at once. The legs'
+// partings would leave their twins the load, which the cells deny: the alarm names line
+// 1 once the pose agrees (its 1.95 MN at 110 s), though a leg's 1.5 MN floor is reached
+// first (108 s).
+TEST(Cells, WhereLinesMeetTheOtherCellsTellWhichLineParted) {
+  const auto reading = ReadingFrom100({0.0, 6e6, 0.3e6, 0.3e6});
+  const auto bias = [](double t) -> Vec3 {
+    return -std::clamp((t - 100) / 20.0, 0.0, 1.0) * Vec3(3.9e6, 0.0, 0.0);
+  };
+  const BridleRun run = RunBridle(true, reading, bias);
+  ASSERT_TRUE(run.first_alarm.has_value());
+  EXPECT_EQ(*run.first_alarm, 110.0);
+  EXPECT_EQ(run.first_line, 1);
+  EXPECT_EQ(run.last.hypothesis, 1);
+  EXPECT_EQ(run.cell_faults, 0);
+}
+
+// A leg parts at 100 s: its cell reads zero and its twin's doubles, which no faulty cell
+// does: the cells corroborate each other and name it without the pose (which hardly
+// moves), at the hold's end.
+TEST(Cells, ALegsTwinCorroboratesItsParting) {
+  const auto reading = ReadingFrom100({4e6, 6e6, 0.0, 6e6});
+  const auto still = [](double) { return Vec3::Zero(); };
+  for (const bool confirm : {false, true}) {
+    SCOPED_TRACE(confirm ? "confirmed" : "cells alone");
+    const BridleRun run = RunBridle(confirm, reading, still);
+    ASSERT_TRUE(run.first_alarm.has_value());
+    EXPECT_EQ(*run.first_alarm, 105.0);
+    EXPECT_EQ(run.first_line, 3);
+    EXPECT_EQ(run.cell_faults, 0);
+  }
+}
+
+// A leg's cell goes dead at 100 s on an intact bridle: its twin reads as it would with the
+// leg intact, so nothing is named, with or without the pose; after confirm_time (180 s)
+// with no other cell low it is a faulty cell.
+TEST(Cells, ALegsDeadCellIsDeniedByItsTwin) {
+  const auto reading = ReadingFrom100({4e6, 6e6, 0.0, 3e6});
+  const auto still = [](double) { return Vec3::Zero(); };
+  for (const bool confirm : {false, true}) {
+    SCOPED_TRACE(confirm ? "confirmed" : "cells alone");
+    const BridleRun run = RunBridle(confirm, reading, still);
+    EXPECT_FALSE(run.first_alarm.has_value());
+    EXPECT_EQ(run.cell_faults, 1);
+  }
 }
 
 TEST(Cells, WithoutCellReadingsNothingChangesAndBadOptionsAreRefused) {

@@ -114,17 +114,12 @@ TEST(PointsAndLines, PointsJoinedToNoAnchorOrFairleadThatFloatAreRefused) {
                                "in water: they would float away");
 }
 
-// The detectors take free points (their quasi-static model solves the points' balance);
-// load cells do not yet.
-TEST(PointsAndLines, LoadCellsAreNotOffered) {
+// The detectors take free points (their quasi-static model solves the points' balance),
+// load cells too: one at each line's upper end.
+TEST(PointsAndLines, LoadCellsAreOffered) {
   const std::string base = "base: " MOORSIM_SOURCE_DIR "/scenarios/library/seed_bridled.yaml\n";
   EXPECT_EQ(ErrorOf(base + "detectors: [{type: dht}]\n"), "(no error)");
-  const std::string text = base + "sensors:\n  tension_cells: {rate_hz: 1}\n";
-  EXPECT_EQ(ErrorOf(text),
-            "test.yaml:" + PositionOf(text, "", "{rate_hz") +
-                ": sensors.tension_cells: load cells take every line from its anchor to the "
-                "vessel; a mooring with free points (mooring.points) is not supported by them "
-                "yet");
+  EXPECT_EQ(ErrorOf(base + "sensors:\n  tension_cells: {rate_hz: 1}\n"), "(no error)");
 }
 
 }  // namespace

@@ -365,5 +365,24 @@ TEST(BridledMooring, TheDeficitTestNamesThePartedLine) {
   ExpectTheDeficitTestNames(request, 1);
 }
 
+// Load cells on the bridle, one at each line's upper end: a leg that parts barely moves the
+// vessel (no pose-only detector sees it), but its twin's cell takes the load, which
+// corroborates the leg's own cell reading zero: the cells test names the leg within
+// seconds, with no false alarm.
+TEST(BridledMooring, TheCellsTestNamesAPartedLeg) {
+  RunRequest request;
+  request.scenario_path = MOORSIM_SOURCE_DIR "/scenarios/library/seed_bridled.yaml";
+  request.overrides = {"failure={line: 9, time: 400, mode: fairlead}",
+                       "sensors.tension_cells={rate_hz: 1, noise: {std_dev: 1.0e4}}",
+                       "detectors=[{type: cells}]", "simulation.duration=800"};
+  request.write_files = false;
+  const RunResult r = RunScenario(request);
+  ASSERT_EQ(r.status, RunStatus::kOk) << r.message;
+  const nlohmann::json& cells = r.summary.at("detectors").at("cells");
+  EXPECT_EQ(cells.at("isolated_line"), 9) << cells.dump();
+  EXPECT_EQ(cells.at("false_alarms"), 0) << cells.dump();
+  EXPECT_LT(cells.at("delay").get<double>(), 20.0) << cells.dump();
+}
+
 }  // namespace
 }  // namespace moorsim::simulation
