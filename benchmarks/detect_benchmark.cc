@@ -6,7 +6,7 @@
 #include <benchmark/benchmark.h>
 
 #include "scenarios/load.h"
-#include "tools/simulation/simulation.h"
+#include "simulation/simulation.h"
 
 namespace {
 

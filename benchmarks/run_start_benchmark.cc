@@ -4,7 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include "scenarios/load.h"
-#include "tools/simulation/simulation.h"
+#include "simulation/simulation.h"
 #include "vessel/hydro_data.h"
 
 namespace {

@@ -83,7 +83,7 @@
 // simulation) are documented in scenarios/README.md; each is a row of the top-level
 // section table in load.cc. The mooring and solver blocks are the FEM's parameter types
 // (mooring_fem/parameters.h; scenarios/convert.h converts), the vessel's hull and windage
-// the driver's (tools/simulation/simulation.h: ToHullGeometry, ToWindParameters).
+// the driver's (simulation/simulation.h: ToHullGeometry, ToWindParameters).
 #pragma once
 
 #include <string>

@@ -18,9 +18,9 @@
 #include "detectors/hypothesis_bank.h"
 #include "scenarios/convert.h"
 #include "scenarios/load.h"
+#include "simulation/detection_models.h"
+#include "simulation/simulation.h"
 #include "tools/commands.h"
-#include "tools/simulation/detection_models.h"
-#include "tools/simulation/simulation.h"
 
 namespace moorsim::cli {
 namespace {

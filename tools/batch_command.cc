@@ -1,13 +1,13 @@
 // `moorsim batch`: a Monte-Carlo campaign (scenarios/campaign.h) run by the library's
-// RunBatch (tools/simulation/batch.h) on OpenMP threads; `--merge` joins shard directories.
+// RunBatch (campaign/batch.h) on OpenMP threads; `--merge` joins shard directories.
 #include <cstdio>
 #include <iostream>
 #include <memory>
 
+#include "campaign/batch.h"
 #include "core/error.h"
 #include "detectors/registry.h"
 #include "tools/commands.h"
-#include "tools/simulation/batch.h"
 
 namespace moorsim::cli {
 namespace {

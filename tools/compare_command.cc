@@ -1,12 +1,12 @@
-// `moorsim compare A B`: two outputs compared channel by channel (tools/output/compare.h),
+// `moorsim compare A B`: two outputs compared channel by channel (io/compare.h),
 // for regression suites: exit 0 if every channel is within its tolerance, 1 if any differs.
 #include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "io/compare.h"
 #include "tools/commands.h"
-#include "tools/output/compare.h"
 
 namespace moorsim::cli {
 namespace {

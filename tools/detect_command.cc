@@ -1,5 +1,5 @@
 // `moorsim detect`: the observer bank and a scenario's detectors on a recorded or live pose
-// stream, without the plant (tools/simulation/pose_stream.h has the input formats). Every
+// stream, without the plant (simulation/pose_stream.h has the input formats). Every
 // alarm event is printed as one JSON line on standard output the moment the sample that
 // raised it has been processed; --out DIR also keeps alarms.csv, detect.h5 (the figures of
 // tools/plot_run.py) and summary.json (DetectOutputs says how they survive a kill).
@@ -24,17 +24,17 @@
 #include "core/error.h"
 #include "core/version.h"
 #include "detectors/registry.h"
+#include "io/directory_lock.h"
+#include "io/hdf5_file.h"
+#include "io/hdf5_reader.h"
+#include "io/text_file.h"
 #include "scenarios/load.h"
+#include "simulation/detection_tables.h"
+#include "simulation/followed_file.h"
+#include "simulation/pose_stream.h"
+#include "simulation/run.h"
+#include "simulation/simulation.h"
 #include "tools/commands.h"
-#include "tools/output/directory_lock.h"
-#include "tools/output/hdf5_file.h"
-#include "tools/output/hdf5_reader.h"
-#include "tools/output/text_file.h"
-#include "tools/simulation/detection_tables.h"
-#include "tools/simulation/followed_file.h"
-#include "tools/simulation/pose_stream.h"
-#include "tools/simulation/run.h"
-#include "tools/simulation/simulation.h"
 
 namespace moorsim::cli {
 namespace {

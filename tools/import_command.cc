@@ -9,8 +9,8 @@
 
 #include "core/error.h"
 #include "scenarios/moordyn.h"
+#include "simulation/run.h"
 #include "tools/commands.h"
-#include "tools/simulation/run.h"
 
 namespace moorsim::cli {
 namespace {

@@ -1,13 +1,13 @@
 // `moorsim run`: one coupled simulation of a scenario, written to DIR/run.h5 and
-// DIR/summary.json by the library's RunScenario (tools/simulation/run.h), which batch runs
+// DIR/summary.json by the library's RunScenario (simulation/run.h), which batch runs
 // and the tests call too.
 #include <cstdio>
 #include <iostream>
 #include <memory>
 
 #include "detectors/registry.h"
+#include "simulation/run.h"
 #include "tools/commands.h"
-#include "tools/simulation/run.h"
 
 namespace moorsim::cli {
 namespace {

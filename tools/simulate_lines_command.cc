@@ -16,12 +16,12 @@
 
 #include "core/error.h"
 #include "core/version.h"
+#include "io/text_file.h"
 #include "mooring_fem/line_simulation.h"
 #include "scenarios/convert.h"
 #include "scenarios/load.h"
+#include "simulation/simulation.h"
 #include "tools/commands.h"
-#include "tools/output/text_file.h"
-#include "tools/simulation/simulation.h"
 
 namespace moorsim::cli {
 namespace {

@@ -16,8 +16,8 @@
 #include "mooring_fem/mooring_system.h"
 #include "scenarios/convert.h"
 #include "scenarios/load.h"
+#include "simulation/simulation.h"
 #include "tools/commands.h"
-#include "tools/simulation/simulation.h"
 
 namespace moorsim::cli {
 

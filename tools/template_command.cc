@@ -11,8 +11,8 @@
 #include "core/error.h"
 #include "scenarios/load.h"
 #include "scenarios/template.h"
+#include "simulation/run.h"
 #include "tools/commands.h"
-#include "tools/simulation/run.h"
 
 namespace moorsim::cli {
 namespace {

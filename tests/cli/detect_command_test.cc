@@ -16,10 +16,10 @@
 #include <thread>
 #include <vector>
 
+#include "io/hdf5_file.h"
+#include "io/hdf5_reader.h"
 #include "scenarios/load.h"
 #include "tests/cli/run_cli.h"
-#include "tools/output/hdf5_file.h"
-#include "tools/output/hdf5_reader.h"
 
 namespace moorsim::testing {
 namespace {

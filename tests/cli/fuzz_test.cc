@@ -30,12 +30,12 @@
 #include <vector>
 
 #include "core/error.h"
+#include "io/hdf5_file.h"
 #include "scenarios/campaign.h"
 #include "scenarios/load.h"
+#include "simulation/pose_stream.h"
 #include "tests/cli/run_cli.h"
 #include "tests/support/scratch_directory.h"
-#include "tools/output/hdf5_file.h"
-#include "tools/simulation/pose_stream.h"
 
 namespace moorsim::simulation {
 namespace {

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include "simulation/simulation.h"
 #include "tests/simulation/test_scenarios.h"
-#include "tools/simulation/simulation.h"
 #include "vessel/controller.h"
 
 namespace moorsim::simulation {

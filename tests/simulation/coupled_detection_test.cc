@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "scenarios/load.h"
-#include "tools/simulation/simulation.h"
+#include "simulation/simulation.h"
 
 namespace moorsim::simulation {
 namespace {

@@ -11,8 +11,8 @@
 
 #include "core/block_solver.h"
 #include "scenarios/load.h"
+#include "simulation/simulation.h"
 #include "tests/simulation/test_scenarios.h"
-#include "tools/simulation/simulation.h"
 
 namespace moorsim::simulation {
 namespace {

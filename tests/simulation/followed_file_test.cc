@@ -1,7 +1,7 @@
 // A followed log through the rotations `tail -F` follows: copy-and-truncate, a rewrite in
 // place (shorter or longer than what was read), rename-and-create, a file moved away and
 // one put back. Each step is taken between two reads, so the tests are deterministic.
-#include "tools/simulation/followed_file.h"
+#include "simulation/followed_file.h"
 
 #include <gtest/gtest.h>
 

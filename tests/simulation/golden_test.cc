@@ -23,7 +23,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scenarios/load.h"
-#include "tools/simulation/simulation.h"
+#include "simulation/simulation.h"
 
 namespace moorsim::simulation {
 namespace {

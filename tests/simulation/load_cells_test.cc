@@ -15,8 +15,8 @@
 #include "detectors/hypothesis_bank.h"
 #include "scenarios/convert.h"
 #include "scenarios/load.h"
-#include "tools/simulation/detection_models.h"
-#include "tools/simulation/simulation.h"
+#include "simulation/detection_models.h"
+#include "simulation/simulation.h"
 
 namespace moorsim::simulation {
 namespace {

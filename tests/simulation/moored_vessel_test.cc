@@ -11,8 +11,8 @@
 #include "mooring_fem/catenary.h"
 #include "mooring_fem/mooring_system.h"
 #include "scenarios/convert.h"
+#include "simulation/simulation.h"
 #include "tests/simulation/test_scenarios.h"
-#include "tools/simulation/simulation.h"
 
 namespace moorsim::simulation {
 namespace {

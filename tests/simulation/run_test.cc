@@ -1,8 +1,8 @@
-// One run as a library call (tools/simulation/run.h): every clock reached at any rate, the
+// One run as a library call (simulation/run.h): every clock reached at any rate, the
 // status and exit code of each outcome, and outputs that never lie after an interruption,
 // a crash or a full disk (fault injection: a stop request at a chosen row, a child process
 // that dies without closing its files, a file-size limit that makes writes fail).
-#include "tools/simulation/run.h"
+#include "simulation/run.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

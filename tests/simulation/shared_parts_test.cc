@@ -1,7 +1,7 @@
-// The process-wide cache of read-only run parts (tools/simulation/shared_parts.h): one build
+// The process-wide cache of read-only run parts (simulation/shared_parts.h): one build
 // per key, the same object for every caller, also when threads ask at once; the detectors'
 // parts of a set-up are built once for all its run seeds.
-#include "tools/simulation/shared_parts.h"
+#include "simulation/shared_parts.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "scenarios/load.h"
-#include "tools/simulation/simulation.h"
+#include "simulation/simulation.h"
 
 namespace moorsim::simulation {
 namespace {

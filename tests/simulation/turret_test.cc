@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "core/angles.h"
+#include "simulation/simulation.h"
 #include "tests/simulation/test_scenarios.h"
-#include "tools/simulation/simulation.h"
 #include "vessel/turret.h"
 
 namespace moorsim::simulation {

@@ -8,8 +8,8 @@
 #include <string>
 #include <string_view>
 
+#include "simulation/simulation.h"
 #include "tests/simulation/test_scenarios.h"
-#include "tools/simulation/simulation.h"
 #include "vessel/hull_loads.h"
 
 namespace moorsim::simulation {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "tools/output/hdf5_file.h"
+#include "io/hdf5_file.h"
 
 namespace moorsim::testing {
 

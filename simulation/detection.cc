@@ -1,4 +1,4 @@
-#include "tools/simulation/detection.h"
+#include "simulation/detection.h"
 
 #include <algorithm>
 #include <chrono>
@@ -16,8 +16,8 @@
 #include "detectors/registry.h"
 #include "scenarios/convert.h"
 #include "scenarios/load.h"
-#include "tools/simulation/detection_models.h"
-#include "tools/simulation/shared_parts.h"
+#include "simulation/detection_models.h"
+#include "simulation/shared_parts.h"
 
 namespace moorsim::simulation {
 

@@ -1,4 +1,4 @@
-#include "tools/simulation/pose_stream.h"
+#include "simulation/pose_stream.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,9 +6,9 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "io/csv_table.h"
+#include "io/hdf5_reader.h"
 #include "scenarios/load.h"
-#include "tools/output/csv_table.h"
-#include "tools/output/hdf5_reader.h"
 
 namespace moorsim::simulation {
 

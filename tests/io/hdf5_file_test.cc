@@ -1,7 +1,7 @@
-// Tests of the run.h5 writer (tools/output/hdf5_file.h). Every file is read back through
+// Tests of the run.h5 writer (io/hdf5_file.h). Every file is read back through
 // the HDF5 C API, not through the writer, and values are compared bit for bit: the writer
 // only moves bytes, so any difference is a bug, not rounding.
-#include "tools/output/hdf5_file.h"
+#include "io/hdf5_file.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

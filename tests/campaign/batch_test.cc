@@ -1,10 +1,10 @@
-// Campaigns as a library call (tools/simulation/batch.h): threads give the rows of one
+// Campaigns as a library call (campaign/batch.h): threads give the rows of one
 // thread, a run repeated alone gives its row, a diverging run is a failed row while the
 // rest finish, an interrupted campaign resumes to the table of an uninterrupted one,
 // shards merge to the whole, a locked or foreign directory is refused, a run past its
 // wall-clock limit is a timeout row, each listed value is checked before the first run and
 // a drawn one in its own run.
-#include "tools/simulation/batch.h"
+#include "campaign/batch.h"
 
 #include <gtest/gtest.h>
 

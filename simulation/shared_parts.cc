@@ -1,4 +1,4 @@
-#include "tools/simulation/shared_parts.h"
+#include "simulation/shared_parts.h"
 
 #include <map>
 #include <mutex>

@@ -1,4 +1,4 @@
-#include "tools/simulation/detection_models.h"
+#include "simulation/detection_models.h"
 
 #include "core/error.h"
 

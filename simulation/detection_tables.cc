@@ -1,4 +1,4 @@
-#include "tools/simulation/detection_tables.h"
+#include "simulation/detection_tables.h"
 
 #include <limits>
 #include <span>

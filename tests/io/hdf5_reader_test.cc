@@ -1,7 +1,7 @@
-// Tests of the HDF5 reader (tools/output/hdf5_reader.h) on what the writer gives and on what
+// Tests of the HDF5 reader (io/hdf5_reader.h) on what the writer gives and on what
 // damage makes of it: string attributes of the current (fixed-length) and earlier
 // (variable-length) files, flipped bits in the file's metadata, a damaged dimension.
-#include "tools/output/hdf5_reader.h"
+#include "io/hdf5_reader.h"
 
 #include <gtest/gtest.h>
 #include <hdf5.h>
@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "core/error.h"
+#include "io/hdf5_file.h"
 #include "tests/support/scratch_directory.h"
-#include "tools/output/hdf5_file.h"
 
 namespace moorsim::output {
 namespace {

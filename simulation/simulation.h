@@ -27,7 +27,7 @@
 #include "mooring_fem/mooring_attachment.h"
 #include "mooring_fem/mooring_system.h"
 #include "scenarios/scenario.h"
-#include "tools/simulation/detection.h"
+#include "simulation/detection.h"
 #include "vessel/controller.h"
 #include "vessel/hull_loads.h"
 #include "vessel/hydro_data.h"

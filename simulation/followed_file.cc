@@ -1,4 +1,4 @@
-#include "tools/simulation/followed_file.h"
+#include "simulation/followed_file.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>

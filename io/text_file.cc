@@ -1,4 +1,4 @@
-#include "tools/output/text_file.h"
+#include "io/text_file.h"
 
 #include <fcntl.h>
 #include <unistd.h>

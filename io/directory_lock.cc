@@ -1,4 +1,4 @@
-#include "tools/output/directory_lock.h"
+#include "io/directory_lock.h"
 
 #include <cerrno>
 #include <cstring>

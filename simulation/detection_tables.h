@@ -10,8 +10,8 @@
 
 #include "core/types.h"
 #include "detectors/detector.h"
-#include "tools/output/hdf5_file.h"
-#include "tools/simulation/detection.h"
+#include "io/hdf5_file.h"
+#include "simulation/detection.h"
 
 namespace moorsim::simulation {
 

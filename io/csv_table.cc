@@ -1,4 +1,4 @@
-#include "tools/output/csv_table.h"
+#include "io/csv_table.h"
 
 #include <algorithm>
 #include <fstream>

@@ -1,4 +1,4 @@
-#include "tools/output/compare.h"
+#include "io/compare.h"
 
 #include <fnmatch.h>
 
@@ -18,8 +18,8 @@
 #include <utility>
 
 #include "core/error.h"
-#include "tools/output/csv_table.h"
-#include "tools/output/hdf5_reader.h"
+#include "io/csv_table.h"
+#include "io/hdf5_reader.h"
 
 namespace moorsim::output {
 namespace {

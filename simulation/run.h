@@ -30,7 +30,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "tools/simulation/simulation.h"
+#include "simulation/simulation.h"
 
 namespace moorsim::simulation {
 

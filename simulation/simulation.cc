@@ -1,6 +1,6 @@
-#include "tools/simulation/simulation.h"
+#include "simulation/simulation.h"
 
-#include "tools/simulation/detection_models.h"
+#include "simulation/detection_models.h"
 
 #include <chrono>
 #include <cmath>
@@ -25,7 +25,7 @@
 #include "mooring_fem/line_simulation.h"
 #include "scenarios/convert.h"
 #include "scenarios/load.h"
-#include "tools/simulation/shared_parts.h"
+#include "simulation/shared_parts.h"
 #include "vessel/controller.h"
 #include "vessel/fpso_model.h"
 #include "vessel/hull_loads.h"

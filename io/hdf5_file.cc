@@ -1,4 +1,4 @@
-#include "tools/output/hdf5_file.h"
+#include "io/hdf5_file.h"
 
 #include <hdf5.h>
 
@@ -13,7 +13,7 @@
 #include <utility>
 
 #include "core/error.h"
-#include "tools/output/hdf5_library.h"
+#include "io/hdf5_library.h"
 
 namespace moorsim::output {
 namespace internal {

@@ -1,6 +1,6 @@
-// Tests of the CSV reader (tools/output/csv_table.h): RFC 4180 quoting, the line each row
+// Tests of the CSV reader (io/csv_table.h): RFC 4180 quoting, the line each row
 // starts on, and the errors of tables that are not tables.
-#include "tools/output/csv_table.h"
+#include "io/csv_table.h"
 
 #include <gtest/gtest.h>
 

@@ -35,9 +35,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "campaign/batch_mpi.h"
 #include "scenarios/campaign.h"
-#include "tools/simulation/batch_mpi.h"
-#include "tools/simulation/run.h"
+#include "simulation/run.h"
 
 namespace moorsim::simulation {
 

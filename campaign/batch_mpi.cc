@@ -1,4 +1,4 @@
-#include "tools/simulation/batch_mpi.h"
+#include "campaign/batch_mpi.h"
 
 #include <chrono>
 #include <cstdlib>

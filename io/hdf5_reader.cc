@@ -1,4 +1,4 @@
-#include "tools/output/hdf5_reader.h"
+#include "io/hdf5_reader.h"
 
 #include <hdf5.h>
 
@@ -21,7 +21,7 @@
 #include <utility>
 
 #include "core/error.h"
-#include "tools/output/hdf5_library.h"
+#include "io/hdf5_library.h"
 
 namespace moorsim::output {
 

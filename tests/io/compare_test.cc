@@ -1,8 +1,8 @@
-// Tests of the channel-by-channel comparison (tools/output/compare.h) on synthetic HDF5
+// Tests of the channel-by-channel comparison (io/compare.h) on synthetic HDF5
 // files and campaign tables: equal, within and outside tolerance, which pattern wins,
 // shapes, missing channels and rows, NaN, integers and text. The one-line errors of bad
 // input are checked through the program (tests/cli/compare_command_test.cc).
-#include "tools/output/compare.h"
+#include "io/compare.h"
 
 #include <gtest/gtest.h>
 

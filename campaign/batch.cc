@@ -1,4 +1,4 @@
-#include "tools/simulation/batch.h"
+#include "campaign/batch.h"
 
 #include <omp.h>
 
@@ -21,9 +21,9 @@
 #include "core/sha256.h"
 #include "core/version.h"
 #include "detectors/plugin_detector.h"
+#include "io/directory_lock.h"
+#include "io/hdf5_file.h"
 #include "scenarios/load.h"
-#include "tools/output/directory_lock.h"
-#include "tools/output/hdf5_file.h"
 #include "vessel/hydro_data.h"
 
 namespace moorsim::simulation {

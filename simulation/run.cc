@@ -1,4 +1,4 @@
-#include "tools/simulation/run.h"
+#include "simulation/run.h"
 
 #include <chrono>
 #include <csignal>
@@ -16,11 +16,11 @@
 #include "core/error.h"
 #include "core/sample_clock.h"
 #include "core/version.h"
+#include "io/directory_lock.h"
+#include "io/hdf5_file.h"
+#include "io/text_file.h"
 #include "scenarios/load.h"
-#include "tools/output/directory_lock.h"
-#include "tools/output/hdf5_file.h"
-#include "tools/output/text_file.h"
-#include "tools/simulation/detection_tables.h"
+#include "simulation/detection_tables.h"
 
 namespace moorsim::simulation {
 namespace {
