@@ -316,7 +316,9 @@ void WriteHdf5(const std::filesystem::path& path, const std::vector<Column>& col
         if (e.contains("thresholds")) thresholds = e.at("thresholds").get<std::vector<double>>();
         break;
       }
-      description = StatisticOf(type).description;
+      if (const detectors::DetectorStatistic* statistic = detectors::StatisticOf(type)) {
+        description = statistic->description;
+      }
       const std::size_t g = thresholds.size();
       std::vector<std::int64_t> crossings(n * g, 0);
       std::vector<double> first(n * g, kNaN);
@@ -566,48 +568,18 @@ std::vector<nlohmann::json> ReadRowsOf(const std::filesystem::path& directory,
 // ---------------------------------------------------------------------------------------
 // Detector statistics.
 
-DetectorStatistic StatisticOf(const std::string& type) {
-  if (type == "dht") {
-    return {"largest posterior probability of a failure hypothesis, max_k>=1 h_k",
-            {0.5, 0.6, 0.7, 0.8, 0.9, 0.95, 0.98, 0.99, 0.995, 0.998, 0.999, 0.9995, 0.9999,
-             0.99999, 0.999999}};
-  }
-  if (type == "mle") {
-    return {"lead of the best failure hypothesis over intact, max_k>=1 (J_0 - J_k) [nats]",
-            {0, 1, 2, 3, 4, 5, 6, 8, 10, 12, 15, 20, 25, 30, 40, 50, 75, 100, 150}};
-  }
-  if (type == "glr") {
-    return {"GLR mean-change statistic g (chi-square scaled)",
-            {10, 12,  15,  18,  22,  27,  33,  39,  47,  56,  68,
-             82, 100, 120, 150, 180, 220, 270, 330, 390, 470, 560}};
-  }
-  return {"", {}};
-}
-
-double StatisticValue(const std::string& type, const std::vector<double>& score) {
-  if (score.size() < 2) return kNaN;
-  double best = -std::numeric_limits<double>::infinity();
-  if (type == "dht") {
-    for (std::size_t k = 1; k < score.size(); ++k) best = std::max(best, score[k]);
-    return best;
-  }
-  if (type == "mle") {
-    for (std::size_t k = 1; k < score.size(); ++k) best = std::max(best, score[0] - score[k]);
-    return best;
-  }
-  if (type == "glr") return score[0];
-  return kNaN;
-}
-
 StatisticTrace::StatisticTrace(std::string type, double failure_time)
-    : type_(std::move(type)),
-      failure_time_(failure_time),
-      thresholds_(StatisticOf(type_).thresholds),
-      false_crossings_(thresholds_.size(), 0),
-      first_crossing_(thresholds_.size(), kNaN) {}
+    : statistic_(detectors::StatisticOf(type)), failure_time_(failure_time) {
+  if (statistic_ != nullptr) {
+    thresholds_.assign(statistic_->thresholds.begin(), statistic_->thresholds.end());
+  }
+  false_crossings_.assign(thresholds_.size(), 0);
+  first_crossing_.assign(thresholds_.size(), kNaN);
+}
 
 void StatisticTrace::Add(double t, const std::vector<double>& score) {
-  const double x = StatisticValue(type_, score);
+  if (statistic_ == nullptr) return;
+  const double x = statistic_->value(score);
   if (!std::isfinite(x)) return;
   const bool before = !(t >= failure_time_);  // NaN failure time: the whole run
   for (std::size_t k = 0; k < thresholds_.size(); ++k) {

@@ -36,27 +36,17 @@
 #include <nlohmann/json.hpp>
 
 #include "campaign/batch_mpi.h"
+#include "detectors/registry.h"
 #include "scenarios/campaign.h"
 #include "simulation/run.h"
 
 namespace moorsim::simulation {
 
-/// The scalar statistic each detector type compares with its alarm threshold, and a grid of
-/// thresholds for ROC curves (false alarms per hour vs detection within T).
-struct DetectorStatistic {
-  std::string description;         ///< what the number is
-  std::vector<double> thresholds;  ///< increasing
-};
-/// For "dht", "mle", "glr"; an empty grid for other types (no ROC recorded).
-DetectorStatistic StatisticOf(const std::string& detector_type);
-/// The statistic of one verdict: DHT max_k>=1 posterior; MLE max_k>=1 (J_0 - J_k); GLR g.
-/// NaN when the verdict has no score yet.
-double StatisticValue(const std::string& detector_type, const std::vector<double>& score);
-
-/// The ROC record of one detector over one run: upcrossings of each threshold before the
-/// failure (in the whole run without one) and the first time at or after the failure
-/// that the statistic reaches each threshold. Holds are not applied (a crossing counts
-/// at once), so the grid shows the statistic's separation, not the configured rule.
+/// The ROC record of one detector over one run: upcrossings of each threshold of its
+/// type's statistic (detectors::StatisticOf; none: an empty record) before the failure
+/// (in the whole run without one) and the first time at or after the failure that the
+/// statistic reaches each threshold. Holds are not applied (a crossing counts at once), so
+/// the grid shows the statistic's separation, not the configured rule.
 class StatisticTrace {
  public:
   StatisticTrace(std::string type, double failure_time);  // failure_time NaN = intact
@@ -64,7 +54,7 @@ class StatisticTrace {
   nlohmann::json ToJson() const;
 
  private:
-  std::string type_;
+  const detectors::DetectorStatistic* statistic_;  // null: none
   double failure_time_;
   std::vector<double> thresholds_;
   std::vector<std::int64_t> false_crossings_;

@@ -221,23 +221,67 @@ std::unique_ptr<Detector> MakeMle(const DetectorParameters& p) {
   return std::make_unique<Mle>(options);
 }
 
+// The ROC statistics: each detector's score read the way its alarm rule reads it.
+constexpr double kDhtThresholds[] = {0.5,   0.6,   0.7,   0.8,    0.9,    0.95,    0.98,    0.99,
+                                     0.995, 0.998, 0.999, 0.9995, 0.9999, 0.99999, 0.999999};
+constexpr double kMleThresholds[] = {0,  1,  2,  3,  4,  5,  6,  8,   10, 12,
+                                     15, 20, 25, 30, 40, 50, 75, 100, 150};
+constexpr double kGlrThresholds[] = {10, 12,  15,  18,  22,  27,  33,  39,  47,  56,  68,
+                                     82, 100, 120, 150, 180, 220, 270, 330, 390, 470, 560};
+
+// DHT: the largest posterior of a failure hypothesis, max_k>=1 h_k.
+double DhtStatistic(std::span<const double> score) {
+  if (score.size() < 2) return std::numeric_limits<double>::quiet_NaN();
+  return *std::max_element(score.begin() + 1, score.end());
+}
+// MLE: the best failure hypothesis's lead over intact, max_k>=1 (J_0 - J_k).
+double MleStatistic(std::span<const double> score) {
+  if (score.size() < 2) return std::numeric_limits<double>::quiet_NaN();
+  return score[0] - *std::min_element(score.begin() + 1, score.end());
+}
+// GLR: the mean-change statistic g, score[0].
+double GlrStatistic(std::span<const double> score) {
+  if (score.size() < 2) return std::numeric_limits<double>::quiet_NaN();
+  return score[0];
+}
+
 // The registry, sorted by name.
 constexpr std::array<DetectorType, 5> kDetectors = {{
-    {"cells", MakeCells, kCellsParameters,
+    {"cells",
+     MakeCells,
+     kCellsParameters,
      "fairlead load cells against the intact model at the filter's pose; a low cell names "
-     "its line once the vessel's bias shows the lost load, else it is a faulty cell"},
-    {"deficit", MakeDeficit, kDeficitParameters,
+     "its line once the vessel's bias shows the lost load, else it is a faulty cell",
+     {}},
+    {"deficit",
+     MakeDeficit,
+     kDeficitParameters,
      "force deficit: CUSUM of the intact filter's bias shift against each line's missing "
-     "load, over a learned disturbance; latched until the evidence reverses"},
-    {"dht", MakeDht, kDhtParameters,
+     "load, over a learned disturbance; latched until the evidence reverses",
+     {}},
+    {"dht",
+     MakeDht,
+     kDhtParameters,
      "dynamic hypothesis testing: floored Bayesian posterior of every hypothesis (Hassani et al. "
-     "2018, eq. 47/51)"},
-    {"glr", MakeGlr, kGlrParameters,
+     "2018, eq. 47/51)",
+     {"largest posterior probability of a failure hypothesis, max_k>=1 h_k", kDhtThresholds,
+      DhtStatistic},
+     "probability"},
+    {"glr",
+     MakeGlr,
+     kGlrParameters,
      "windowed GLR on the intact model's whitened innovations: mean change detects, known "
-     "signatures isolate (Lajic et al. 2009, eq. 21/22)"},
-    {"mle", MakeMle, kMleParameters,
+     "signatures isolate (Lajic et al. 2009, eq. 21/22)",
+     {"GLR mean-change statistic g (chi-square scaled)", kGlrThresholds, GlrStatistic},
+     "chi-square statistic"},
+    {"mle",
+     MakeMle,
+     kMleParameters,
      "maximum likelihood: negative log-likelihood with forgetting, argmin (TAPM thesis eq. "
-     "4.10)"},
+     "4.10)",
+     {"lead of the best failure hypothesis over intact, max_k>=1 (J_0 - J_k) [nats]",
+      kMleThresholds, MleStatistic},
+     "nats (negative log-likelihood)"},
 }};
 
 constexpr bool SortedByName(std::span<const DetectorParameter> parameters) {
@@ -301,6 +345,20 @@ std::vector<std::string_view> DetectorTypes() {
   std::vector<std::string_view> names;
   for (const DetectorType& type : kDetectors) names.push_back(type.name);
   return names;
+}
+
+const DetectorStatistic* StatisticOf(std::string_view type) {
+  for (const DetectorType& row : kDetectors) {
+    if (row.name == type) return row.statistic.value != nullptr ? &row.statistic : nullptr;
+  }
+  return nullptr;
+}
+
+std::string_view ScoreUnitsOf(std::string_view type) {
+  for (const DetectorType& row : kDetectors) {
+    if (row.name == type) return row.score_units;
+  }
+  return "score";
 }
 
 std::unique_ptr<Detector> MakeDetector(const DetectorSpec& spec, std::string_view key_path) {

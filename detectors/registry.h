@@ -5,7 +5,8 @@
 // --help text (STYLE.md: registries as tables).
 //
 // Adding a detector: its own file(s) with a Detector subclass, plus one row in the table in
-// registry.cc (name, factory, parameter list, description).
+// registry.cc (name, factory, parameter list, description, and the statistic campaigns
+// draw its ROC curves from, if it has one); nothing elsewhere names detector types.
 #pragma once
 
 #include <map>
@@ -67,12 +68,24 @@ class DetectorParameters {
 
 using DetectorFactory = std::unique_ptr<Detector> (*)(const DetectorParameters&);
 
+/// The scalar statistic a detector type compares with its alarm threshold, for campaigns'
+/// ROC curves (false alarms per hour against detection within T): what it is, a grid of
+/// thresholds (increasing) and how a verdict's score gives it (NaN while the score has
+/// fewer than two entries). A type without one (value null) records no ROC.
+struct DetectorStatistic {
+  std::string_view description;
+  std::span<const double> thresholds;
+  double (*value)(std::span<const double> score) = nullptr;
+};
+
 /// One row of the registry.
 struct DetectorType {
   std::string_view name;  ///< the `type:` the scenario gives
   DetectorFactory make;
   std::span<const DetectorParameter> parameters;  ///< sorted by name
   std::string_view description;                   ///< one line
+  DetectorStatistic statistic;                    ///< for ROC curves; value null: none
+  std::string_view score_units = "score";         ///< what the verdict's scores measure
 };
 
 /// The registry, sorted by name.
@@ -80,6 +93,12 @@ std::span<const DetectorType> DetectorTable();
 
 /// The registered type names, sorted: cells, deficit, dht, glr, mle.
 std::vector<std::string_view> DetectorTypes();
+/// The ROC statistic of a built-in type, or null (a type without one, a plugin's type, an
+/// unknown name).
+const DetectorStatistic* StatisticOf(std::string_view type);
+/// What a type's verdict scores measure, for the outputs' unit attributes: "probability"
+/// (dht), ...; "score" for a type that does not say (plugins, unknown names).
+std::string_view ScoreUnitsOf(std::string_view type);
 
 /// Builds the detector a scenario entry names: a built-in one, or with `spec.plugin` one
 /// from that plugin library (MakePluginDetector()). `key_path` locates the entry in the

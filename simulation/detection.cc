@@ -229,13 +229,6 @@ nlohmann::json PluginsSummary(
   return plugins;
 }
 
-const char* ScoreUnits(std::string_view type) {
-  if (type == "dht") return "probability";
-  if (type == "mle") return "nats (negative log-likelihood)";
-  if (type == "glr") return "chi-square statistic";
-  return "score";
-}
-
 nlohmann::json FailureSummary(const scenarios::Scenario& scenario) {
   if (scenario.failure.line == 0) return nullptr;
   return {{"line", scenario.failure.line},

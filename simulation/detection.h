@@ -112,11 +112,6 @@ class Detection {
   std::vector<detectors::Observation> input_;
 };
 
-/// What a detector's scores are, for the "units" of its score table: "probability" (DHT),
-/// "nats (negative log-likelihood)" (MLE), "chi-square statistic" (GLR), "score" otherwise
-/// (the deficit test's and a plugin's are documented with them).
-const char* ScoreUnits(std::string_view type);
-
 /// The plugin libraries `used` (detectors/plugin_detector.h), and every library registered
 /// with --plugin: [{path, sha256}] in that order without repeats, so that a result names
 /// exactly the code that produced it. Empty without plugins.

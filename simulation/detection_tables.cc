@@ -2,6 +2,9 @@
 
 #include <limits>
 #include <span>
+#include <string>
+
+#include "detectors/registry.h"
 
 namespace moorsim::simulation {
 
@@ -28,7 +31,7 @@ DetectionTables::DetectionTables(output::Hdf5File& file, const Detection* detect
     const std::string group = "/detectors/" + d.label;
     Tables t;
     t.score = file.CreateTable(group + "/score", static_cast<int>(hypotheses.size()),
-                               ScoreUnits(d.type), hypotheses);
+                               std::string(detectors::ScoreUnitsOf(d.type)), hypotheses);
     t.decision = file.CreateTable(group + "/decision", 0, "hypothesis (0 = intact, k = line k)", {},
                                   output::TableType::kInt32);
     t.alarm = file.CreateTable(group + "/alarm", 0, "0/1", {}, output::TableType::kInt8);

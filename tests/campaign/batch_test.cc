@@ -624,12 +624,7 @@ TEST(CampaignMerge, ShardsOfTheSameTextOnAnotherScenarioDoNotMerge) {
   fs::remove_all(dir);
 }
 
-TEST(DetectorStatistic, ReadsEachDetectorsScoreTheWayItsAlarmRuleDoes) {
-  EXPECT_EQ(StatisticValue("dht", {0.1, 0.7, 0.2}), 0.7);
-  EXPECT_EQ(StatisticValue("mle", {10.0, 4.0, 12.0}), 6.0);
-  EXPECT_EQ(StatisticValue("glr", {42.0, 1.0, 2.0}), 42.0);
-  EXPECT_TRUE(std::isnan(StatisticValue("glr", {})));
-  // Upcrossings before the failure; first crossings after it.
+TEST(DetectorStatistic, ATraceCountsUpcrossingsBeforeTheFailureAndFirstCrossingsAfter) {
   StatisticTrace trace("glr", 10.0);
   for (int t = 0; t < 20; ++t) {
     const double g = t < 10 ? (t % 4 == 1 ? 40.0 : 5.0) : 100.0 + t;

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -117,6 +119,34 @@ TEST(RegistryTest, OutOfRangeValuesGiveTheRule) {
   EXPECT_EQ(MessageOf(Spec("glr", {{"threshold", 0}})), "detectors[2].threshold: 0 must be > 0");
   EXPECT_EQ(MessageOf(Spec("glr", {{"false_alarm_probability", 1}})),
             "detectors[2].false_alarm_probability: 1 must be in (0, 1)");
+}
+
+// Each type's ROC statistic reads its score the way its alarm rule does: DHT the largest
+// failure posterior, MLE the best failure hypothesis's lead over intact, GLR its g; cells,
+// deficit, plugins and unknown names have none. Grids increase. And the scores' units.
+TEST(RegistryTest, StatisticsReadEachDetectorsScoreTheWayItsAlarmRuleDoes) {
+  const auto value = [](std::string_view type, std::vector<double> score) {
+    return StatisticOf(type)->value(score);
+  };
+  EXPECT_EQ(value("dht", {0.1, 0.7, 0.2}), 0.7);
+  EXPECT_EQ(value("mle", {10.0, 4.0, 12.0}), 6.0);
+  EXPECT_EQ(value("glr", {42.0, 1.0, 2.0}), 42.0);
+  EXPECT_TRUE(std::isnan(value("glr", {})));
+  EXPECT_TRUE(std::isnan(value("dht", {1.0})));
+  for (std::string_view type : {"cells", "deficit", "nope"}) {
+    EXPECT_EQ(StatisticOf(type), nullptr) << type;
+    EXPECT_EQ(ScoreUnitsOf(type), "score") << type;
+  }
+  EXPECT_EQ(ScoreUnitsOf("dht"), "probability");
+  EXPECT_EQ(ScoreUnitsOf("mle"), "nats (negative log-likelihood)");
+  EXPECT_EQ(ScoreUnitsOf("glr"), "chi-square statistic");
+  for (std::string_view type : {"dht", "glr", "mle"}) {
+    const DetectorStatistic* statistic = StatisticOf(type);
+    ASSERT_NE(statistic, nullptr) << type;
+    EXPECT_FALSE(statistic->description.empty()) << type;
+    EXPECT_TRUE(std::is_sorted(statistic->thresholds.begin(), statistic->thresholds.end()));
+    EXPECT_GT(statistic->thresholds.size(), 10u) << type;
+  }
 }
 
 TEST(RegistryTest, HelpListsEveryTypeAndParameter) {
