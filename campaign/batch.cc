@@ -1096,6 +1096,7 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
   const bool coordinator = mpi.rank == 0;
   // Until rank 0 has said go, the other ranks wait for its decision: every early return of
   // rank 0 must broadcast one.
+  // The decision travels as one integer: 0 go, else the status and signal of the stop.
   bool decided = false;
   const auto decide = [&](int code) {
     if (!decided) {
@@ -1103,6 +1104,13 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
       return BroadcastDecision(mpi, code);
     }
     return code;
+  };
+  const auto stop_code = [](const BatchResult& r) {
+    return r.status == BatchStatus::kOk ? 0 : static_cast<int>(r.status) | (r.signal << 8);
+  };
+  const auto stopped_by = [&result](int code) {
+    result.status = static_cast<BatchStatus>(code & 0xff);
+    result.signal = code >> 8;
   };
   try {
     if (o.shard_count < 1 || o.shard_index < 0 || o.shard_index >= o.shard_count) {
@@ -1131,7 +1139,7 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
     if (!coordinator) {
       // A worker rank: runs from rank 0, rows to rank 0; nothing of the campaign on disk.
       if (const int go = decide(0); go != 0) {
-        result.exit_code = go;
+        stopped_by(go);
         return result;
       }
       std::unique_ptr<RunSource> remote = RemoteRunSource(mpi);
@@ -1139,7 +1147,10 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
           RunWorkers(p, o, result.directory, *remote, threads, stop_signal, stop);
       NotifyFinished(mpi);
       if (!error.empty()) throw Error(error);
-      if (stop_signal.load() > 0) result.exit_code = 128 + stop_signal.load();
+      if (stop_signal.load() > 0) {
+        result.status = BatchStatus::kInterrupted;
+        result.signal = stop_signal.load();
+      }
       return result;
     }
 
@@ -1201,29 +1212,31 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
     if (!first_error.empty()) throw Error(first_error);
     const int signal = stop_signal.load();
     if (signal > 0) {
-      result.exit_code = 128 + signal;
+      result.status = BatchStatus::kInterrupted;
+      result.signal = signal;
       result.message = "stopped by signal " + std::to_string(signal) + " after " +
                        std::to_string(result.done) + " runs; the same command resumes";
     } else if (result.failed > 0) {
-      result.exit_code = 1;
+      result.status = BatchStatus::kRunsFailed;
       result.message = std::to_string(result.failed) + " of " + std::to_string(result.done) +
                        " runs did not finish ok (status and error in runs.csv)";
     }
   } catch (const PreparationStopped& e) {
-    result.exit_code = 128 + e.signal();
+    result.status = BatchStatus::kInterrupted;
+    result.signal = e.signal();
     result.message = "stopped by signal " + std::to_string(e.signal()) +
                      " while preparing the runs; nothing was run";
   } catch (const InputError& e) {
-    result.exit_code = 2;
+    result.status = BatchStatus::kRejected;
     result.message = e.what();
   } catch (const std::exception& e) {
-    result.exit_code = 1;
+    result.status = BatchStatus::kFailed;
     result.message = e.what();
   }
   try {
-    // A rank 0 that failed before "go" releases the others with its exit code; ranks that
+    // A rank 0 that failed before "go" releases the others with its status; ranks that
     // failed the same way (they read the same files) take part in the same broadcast.
-    decide(result.exit_code);
+    decide(stop_code(result));
   } catch (const std::exception&) {
   }
   return result;

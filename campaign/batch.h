@@ -176,8 +176,14 @@ nlohmann::json MakeRow(const PreparedCampaign& prepared, const scenarios::Campai
                        const RunTruth* truth, const RunResult& result,
                        const std::vector<StatisticTrace>& traces, const std::string& out_dir);
 
+/// How a batch ended: every run ok; some run failed or timed out (their rows say why); the
+/// campaign or the options refused before any run; stopped by a signal (the same batch
+/// resumes); or the batch itself failed (a file it could not write, a lost MPI rank).
+enum class BatchStatus { kOk, kRunsFailed, kRejected, kInterrupted, kFailed };
+
 struct BatchResult {
-  int exit_code = 0;  ///< 0 all ok, 1 some run failed or timed out, 2 rejected, 128+signal
+  BatchStatus status = BatchStatus::kOk;
+  int signal = 0;  ///< the signal that stopped it (kInterrupted)
   std::string message;
   std::int64_t runs = 0;     ///< in this shard
   std::int64_t skipped = 0;  ///< had a row already (resumed)

@@ -43,7 +43,7 @@ MpiSession StartMpi(int* argc, char*** argv);
 /// MPI_Finalize if StartMpi initialised it.
 void FinishMpi(const MpiSession& session);
 
-/// Rank 0 tells the other ranks whether the batch goes ahead (0) or stops (an exit code);
+/// Rank 0 tells the other ranks whether the batch goes ahead (0) or stops (a nonzero code);
 /// every rank calls it and gets rank 0's value.
 int BroadcastDecision(const MpiSession& session, int decision);
 

@@ -244,21 +244,6 @@ const char* StatusName(RunStatus status) {
   return "failed";
 }
 
-int RunResult::ExitCode() const {
-  switch (status) {
-    case RunStatus::kOk:
-      return 0;
-    case RunStatus::kFailed:
-    case RunStatus::kTimedOut:
-      return 1;
-    case RunStatus::kRejected:
-      return 2;
-    case RunStatus::kInterrupted:
-      return 128 + (signal > 0 ? signal : SIGINT);
-  }
-  return 1;
-}
-
 void WriteFileAtomically(const std::filesystem::path& path, const std::string& text) {
   const std::filesystem::path partial = output::PartialPath(path);
   // Messages name `path`; the partial file is removed only once this call has created it.

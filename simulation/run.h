@@ -82,10 +82,6 @@ struct RunResult {
   nlohmann::json summary;
   /// False if summary.json could not be written (the reason is in message).
   bool summary_written = false;
-
-  /// Exit code of the CLI: 0 ok, 1 failed or timed out, 2 rejected, 128 + signal when
-  /// interrupted.
-  int ExitCode() const;
 };
 
 /// Runs the scenario as described above. Never throws (std::bad_alloc aside).

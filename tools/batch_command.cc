@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "detectors/registry.h"
 #include "tools/commands.h"
+#include "tools/exit_codes.h"
 
 namespace moorsim::cli {
 namespace {
@@ -79,7 +80,7 @@ int Batch(const BatchCommandOptions& o) {
   simulation::InstallStopSignalHandlers();
   options.stop_requested = simulation::StopSignal;
   const simulation::BatchResult result = simulation::RunBatch(options);
-  if (!speaks) return result.exit_code;
+  if (!speaks) return ExitCodeOf(result);
   if (!result.message.empty()) std::cerr << "moorsim: " << result.message << "\n";
   if (result.heading_lost > 0) {
     // Not an error (a campaign may mean to test it), but never silent: such runs met the
@@ -90,7 +91,7 @@ int Batch(const BatchCommandOptions& o) {
                  "thrust_saturated_share in runs.csv)\n",
                  static_cast<long long>(result.heading_lost), simulation::kHeadingLostDeg);
   }
-  if (result.exit_code != 2 && !o.quiet) {
+  if (result.status != simulation::BatchStatus::kRejected && !o.quiet) {
     std::fprintf(stderr,
                  "moorsim batch: %lld runs in this shard: %lld done now, %lld already done, "
                  "%lld not ok%s -> %s\n",
@@ -101,7 +102,7 @@ int Batch(const BatchCommandOptions& o) {
                      : "",
                  result.directory.string().c_str());
   }
-  return result.exit_code;
+  return ExitCodeOf(result);
 }
 
 }  // namespace

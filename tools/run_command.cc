@@ -8,6 +8,7 @@
 #include "detectors/registry.h"
 #include "simulation/run.h"
 #include "tools/commands.h"
+#include "tools/exit_codes.h"
 
 namespace moorsim::cli {
 namespace {
@@ -58,7 +59,7 @@ int Run(const RunOptions& o) {
   const simulation::RunResult result = simulation::RunScenario(request);
   if (result.status == simulation::RunStatus::kRejected) {
     std::cerr << "moorsim: " << result.message << "\n";
-    return result.ExitCode();
+    return ExitCodeOf(result);
   }
   if (result.status != simulation::RunStatus::kOk) {
     std::cerr << "moorsim: " << simulation::StatusName(result.status) << ": " << result.message
@@ -71,7 +72,7 @@ int Run(const RunOptions& o) {
                  result.directory.string().c_str());
     if (result.summary.contains("detectors")) PrintDetectors(result.summary);
   }
-  return result.ExitCode();
+  return ExitCodeOf(result);
 }
 
 }  // namespace

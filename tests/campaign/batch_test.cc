@@ -28,6 +28,11 @@
 namespace moorsim::simulation {
 namespace {
 
+// The signal that stopped a batch (0: it was not interrupted).
+int Interruption(const BatchResult& r) {
+  return r.status == BatchStatus::kInterrupted ? r.signal : 0;
+}
+
 namespace fs = std::filesystem;
 
 using moorsim::testing::FreshDirectory;
@@ -120,7 +125,7 @@ BatchResult* BatchTest::reference_ = nullptr;
 
 TEST_F(BatchTest, ADivergingRunIsAFailedRowAndTheRestFinish) {
   const BatchResult& reference = Reference();
-  EXPECT_EQ(reference.exit_code, 1) << reference.message;
+  EXPECT_EQ(reference.status, BatchStatus::kRunsFailed) << reference.message;
   EXPECT_EQ(reference.runs, 7);
   EXPECT_EQ(reference.done, 7);
   EXPECT_EQ(reference.failed, 1);
@@ -151,7 +156,7 @@ TEST_F(BatchTest, ADivergingRunIsAFailedRowAndTheRestFinish) {
 
 TEST_F(BatchTest, FourThreadsGiveTheRowsOfOne) {
   const BatchResult threaded = RunBatch(Options(*campaign_, *root_ / "threads", 4));
-  EXPECT_EQ(threaded.exit_code, 1) << threaded.message;
+  EXPECT_EQ(threaded.status, BatchStatus::kRunsFailed) << threaded.message;
   Reference();
   EXPECT_EQ(RowsOf(*root_ / "threads"), RowsOf(*root_ / "sequential"));
 }
@@ -190,14 +195,14 @@ TEST_F(BatchTest, AnInterruptedCampaignResumesToTheSameTable) {
   // next two are under way.
   o.stop_requested = [&calls] { return ++calls > 100 ? SIGINT : 0; };
   const BatchResult first = RunBatch(o);
-  EXPECT_EQ(first.exit_code, 128 + SIGINT) << first.message;
+  EXPECT_EQ(Interruption(first), SIGINT) << first.message;
   const std::size_t kept = RowsOf(out).size();
   EXPECT_GT(kept, 0u);
   EXPECT_LT(kept, 7u);
   EXPECT_TRUE(fs::exists(out / "runs.csv"));  // the table of what finished
 
   const BatchResult resumed = RunBatch(Options(*campaign_, out, 2));
-  EXPECT_EQ(resumed.exit_code, 1) << resumed.message;  // the diverging run
+  EXPECT_EQ(resumed.status, BatchStatus::kRunsFailed) << resumed.message;  // the diverging run
   EXPECT_EQ(resumed.skipped, static_cast<std::int64_t>(kept));
   EXPECT_EQ(resumed.done, 7 - static_cast<std::int64_t>(kept));
   Reference();
@@ -238,7 +243,7 @@ TEST_F(BatchTest, ALockedOrForeignDirectoryIsRefused) {
   ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
   const BatchResult locked = RunBatch(Options(*campaign_, out, 1));
   ::close(fd);
-  EXPECT_EQ(locked.exit_code, 2);
+  EXPECT_EQ(locked.status, BatchStatus::kRejected);
   EXPECT_NE(locked.message.find("in use by another moorsim"), std::string::npos) << locked.message;
 
   const fs::path foreign = FreshDirectory("batch_foreign");
@@ -247,7 +252,7 @@ TEST_F(BatchTest, ALockedOrForeignDirectoryIsRefused) {
   fs::create_directories(recorded);
   fs::copy_file(*campaign_, recorded / "campaign.yaml");
   const BatchResult refused = RunBatch(Options(campaign, recorded, 1));
-  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_EQ(refused.status, BatchStatus::kRejected);
   EXPECT_NE(refused.message.find("holds the results of another campaign"), std::string::npos)
       << refused.message;
   fs::remove_all(foreign);
@@ -259,7 +264,7 @@ TEST_F(BatchTest, ARunPastItsWallClockLimitIsATimeoutRow) {
   o.shard_count = 100;
   o.run_timeout = 1e-3;  // passed before the first output row
   const BatchResult r = RunBatch(o);
-  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.status, BatchStatus::kRunsFailed);
   const auto rows = RowsOf(o.out);
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_EQ(rows.at(4).at("status"), "timeout");
@@ -278,7 +283,7 @@ TEST_F(BatchTest, BadInputNamesTheRun) {
                          "    set: {failure.time: 100}\n"
                          "    seeds: 1\n");
   const BatchResult r = RunBatch(Options(campaign, dir / "out", 1));
-  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.status, BatchStatus::kRejected);
   EXPECT_EQ(r.message.rfind(campaign.string() + ":4:5: blocks.lines: run 1 (failure.line=9): ", 0),
             0u)
       << r.message;
@@ -339,7 +344,7 @@ TEST(CampaignPreparation, ADrawnValueTheScenarioRefusesIsThatRunsRejectedRow) {
                          "    factors: [{key: failure.time, uniform: [2, 10]}]\n"
                          "    seeds: 8\n");
   const BatchResult r = RunBatch(Options(campaign, dir / "out", 2));
-  EXPECT_EQ(r.exit_code, 1) << r.message;
+  EXPECT_EQ(r.status, BatchStatus::kRunsFailed) << r.message;
   const std::map<std::int64_t, nlohmann::json> rows = RowsOf(dir / "out");
   ASSERT_EQ(rows.size(), 8u);
   int rejected = 0;
@@ -437,13 +442,13 @@ RecordedCampaign Recorded(const std::string& name) {
   r.dir = FreshDirectory(name);
   r.copy = CopyThesisCampaign(r.dir);
   r.out = r.dir / "out";
-  EXPECT_EQ(RecordOnly(r.copy.campaign, r.out).exit_code, 128 + SIGINT);
+  EXPECT_EQ(Interruption(RecordOnly(r.copy.campaign, r.out)), SIGINT);
   return r;
 }
 
 // The one-line refusal of a results directory that holds another campaign.
 void ExpectRefused(const BatchResult& r, const fs::path& out, const std::string& what) {
-  EXPECT_EQ(r.exit_code, 2) << r.message;
+  EXPECT_EQ(r.status, BatchStatus::kRejected) << r.message;
   EXPECT_EQ(
       r.message.rfind("--out " + out.string() + ": holds the results of another campaign: ", 0), 0u)
       << r.message;
@@ -454,7 +459,7 @@ void ExpectRefused(const BatchResult& r, const fs::path& out, const std::string&
 TEST(CampaignIdentity, AChangedBaseScenarioIsRefusedOnResume) {
   const auto [dir, c, out] = Recorded("identity_base");
   // Unchanged (a comment added to the campaign would change it): the same command resumes.
-  EXPECT_EQ(RecordOnly(c.campaign, out).exit_code, 128 + SIGINT);
+  EXPECT_EQ(Interruption(RecordOnly(c.campaign, out)), SIGINT);
   // A heavier hull in the base scenario: the campaign's text is the same, its runs are not.
   WriteText(c.base, Replaced(ReadText(c.base), "mass: 1.0041e8", "mass: 1.1e8"));
   ExpectRefused(
@@ -478,7 +483,7 @@ TEST(CampaignIdentity, AnotherReleasesDirectoryIsRefused) {
   record.erase("identity");
   WriteText(out / "campaign.json", record.dump());
   const BatchResult r = RecordOnly(c.campaign, out);
-  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.status, BatchStatus::kRejected);
   EXPECT_EQ(r.message, "--out " + out.string() +
                            ": was started by an earlier moorsim, which did not record its "
                            "campaign's identity; finish it with that moorsim or choose another "
@@ -490,9 +495,9 @@ TEST(CampaignIdentity, TheSameCampaignTextBesideAnotherScenarioIsRefused) {
   const fs::path dir = FreshDirectory("identity_tree");
   const auto [a, b] = TwoCopies(dir);
   const fs::path out = dir / "out";
-  ASSERT_EQ(RecordOnly(a.campaign, out).exit_code, 128 + SIGINT);
+  ASSERT_EQ(Interruption(RecordOnly(a.campaign, out)), SIGINT);
   // The same files elsewhere are the same campaign.
-  EXPECT_EQ(RecordOnly(b.campaign, out).exit_code, 128 + SIGINT);
+  EXPECT_EQ(Interruption(RecordOnly(b.campaign, out)), SIGINT);
   WriteText(b.scenario, Replaced(ReadText(b.scenario), "speed: 0.1}", "speed: 0.3}"));
   ExpectRefused(RecordOnly(b.campaign, out), out, "the scenario " + b.scenario.string());
   fs::remove_all(dir);
@@ -508,7 +513,7 @@ TEST(CampaignIdentity, AChangedHydrodynamicsFileIsRefusedOnResume) {
   }
   const CopiedCampaign c = CopyThesisCampaign(dir, "3", wamit);
   const fs::path out = dir / "out";
-  ASSERT_EQ(RecordOnly(c.campaign, out).exit_code, 128 + SIGINT);
+  ASSERT_EQ(Interruption(RecordOnly(c.campaign, out)), SIGINT);
   const fs::path hst = wamit / "fpso.hst";
   WriteText(hst, ReadText(hst) + "     6     6   1.000000E+00\n");
   ExpectRefused(
@@ -550,7 +555,7 @@ TEST(CampaignIdentity, ARowThatIsNotOneOfTheCampaignsRunsIsAnError) {
     const fs::path file = out / "rows" / k.name;
     WriteText(file, k.text);
     const BatchResult r = RecordOnly(c.campaign, out);
-    EXPECT_EQ(r.exit_code, 2) << r.message;
+    EXPECT_EQ(r.status, BatchStatus::kRejected) << r.message;
     EXPECT_EQ(r.message.rfind(file.string() + ": ", 0), 0u) << r.message;
     EXPECT_NE(r.message.find(k.message), std::string::npos) << r.message;
     const std::string table = ReadText(out / "runs.csv");
@@ -559,7 +564,7 @@ TEST(CampaignIdentity, ARowThatIsNotOneOfTheCampaignsRunsIsAnError) {
   }
   // A row that a killed batch left half written (under its temporary name) is no row.
   WriteText(out / "rows" / "00000001.json.partial", "{\"run\": 1, \"sta");
-  EXPECT_EQ(RecordOnly(c.campaign, out).exit_code, 128 + SIGINT);
+  EXPECT_EQ(Interruption(RecordOnly(c.campaign, out)), SIGINT);
   // Nor does it reach a merge's table.
   WriteText(out / "rows" / "00000099.json", row(99, identity));
   EXPECT_THROW(MergeCampaigns({out}, dir / "merged", "test"), InputError);
@@ -572,7 +577,7 @@ TEST(CampaignMerge, AnOutOfAnotherCampaignIsRefused) {
   fs::create_directories(dir / "other");
   const CopiedCampaign other = CopyThesisCampaign(dir / "other", "4");
   const fs::path foreign = dir / "foreign";
-  ASSERT_EQ(RecordOnly(other.campaign, foreign).exit_code, 128 + SIGINT);
+  ASSERT_EQ(Interruption(RecordOnly(other.campaign, foreign)), SIGINT);
   const std::string recorded = ReadText(foreign / "campaign.json");
   try {
     MergeCampaigns({mine}, foreign, "test");
@@ -605,8 +610,8 @@ TEST(CampaignMerge, ShardsOfTheSameTextOnAnotherScenarioDoNotMerge) {
   const fs::path dir = FreshDirectory("merge_shards");
   const auto [a, b] = TwoCopies(dir);
   WriteText(b.base, Replaced(ReadText(b.base), "mass: 1.0041e8", "mass: 1.1e8"));
-  ASSERT_EQ(RecordOnly(a.campaign, dir / "shard_a").exit_code, 128 + SIGINT);
-  ASSERT_EQ(RecordOnly(b.campaign, dir / "shard_b").exit_code, 128 + SIGINT);
+  ASSERT_EQ(Interruption(RecordOnly(a.campaign, dir / "shard_a")), SIGINT);
+  ASSERT_EQ(Interruption(RecordOnly(b.campaign, dir / "shard_b")), SIGINT);
   try {
     MergeCampaigns({dir / "shard_a", dir / "shard_b"}, dir / "merged", "test");
     ADD_FAILURE() << "merged shards of two campaigns";

@@ -1,0 +1,37 @@
+#include "tools/exit_codes.h"
+
+#include <csignal>
+
+namespace moorsim::cli {
+
+int ExitCodeOf(const simulation::RunResult& result) {
+  switch (result.status) {
+    case simulation::RunStatus::kOk:
+      return 0;
+    case simulation::RunStatus::kFailed:
+    case simulation::RunStatus::kTimedOut:
+      return 1;
+    case simulation::RunStatus::kRejected:
+      return 2;
+    case simulation::RunStatus::kInterrupted:
+      return 128 + (result.signal > 0 ? result.signal : SIGINT);
+  }
+  return 1;
+}
+
+int ExitCodeOf(const simulation::BatchResult& result) {
+  switch (result.status) {
+    case simulation::BatchStatus::kOk:
+      return 0;
+    case simulation::BatchStatus::kRunsFailed:
+    case simulation::BatchStatus::kFailed:
+      return 1;
+    case simulation::BatchStatus::kRejected:
+      return 2;
+    case simulation::BatchStatus::kInterrupted:
+      return 128 + (result.signal > 0 ? result.signal : SIGINT);
+  }
+  return 1;
+}
+
+}  // namespace moorsim::cli
