@@ -190,6 +190,9 @@ struct MdLineType {
   double dynamic_ea = 0, static_damping = 0;
   // EA_s|EA_Dc|EA_D_Lm: EA_D = EA_Dc + EA_D_Lm x the mean load (EA_Dc in dynamic_ea).
   double dynamic_ea_slope = 0;
+  // EA from a file (MoorDyn's nonlinear stiffness): its name and (strain, tension) points.
+  std::string ea_table;
+  std::vector<std::pair<double, double>> ea_curve;
 };
 
 // "a|b|..." as its numbers (one or more), or nothing where one is not a number.
@@ -267,21 +270,22 @@ std::string Vector(double x, double y, double z) {
 // looked for beside the input file and then in each folder above it (MoorDyn reads it from
 // its working directory). Returns moorsim's grid file (scenarios/README.md): x north, y
 // east (MoorDyn's -y, so the y axis is reversed), depths down, moved by the shift.
+// A file an input names (`name`), looked for beside the input file `path` and then in each
+// folder above it; throws InputError "<where>: not found ..." if it is in none.
+std::filesystem::path FindBesideInput(const std::string& path, const std::string& name,
+                                      const std::string& where) {
+  for (std::filesystem::path dir = std::filesystem::absolute(path).parent_path();;
+       dir = dir.parent_path()) {
+    if (std::filesystem::is_regular_file(dir / name)) return dir / name;
+    if (dir == dir.parent_path()) break;
+  }
+  throw InputError(where + ": not found beside the input file or in a folder above it");
+}
+
 std::string SeafloorGrid(const std::string& path, int line, const std::string& name, double shift_x,
                          double shift_y) {
   const std::string where = path + ":" + std::to_string(line) + ": SeafloorFile " + name;
-  std::filesystem::path found;
-  for (std::filesystem::path dir = std::filesystem::absolute(path).parent_path();;
-       dir = dir.parent_path()) {
-    if (std::filesystem::is_regular_file(dir / name)) {
-      found = dir / name;
-      break;
-    }
-    if (dir == dir.parent_path()) break;
-  }
-  if (found.empty()) {
-    throw InputError(where + ": not found beside the input file or in a folder above it");
-  }
+  const std::filesystem::path found = FindBesideInput(path, name, where);
   const std::string text =
       strict_yaml::ReadInputFile(found.string(), kMaxFileBytes, "MoorDyn seafloor");
   std::istringstream in(text);
@@ -327,6 +331,43 @@ std::string SeafloorGrid(const std::string& path, int line, const std::string& n
     grid << "\n";
   }
   return grid.str();
+}
+
+// A line type's EA given as a file: MoorDyn's nonlinear stiffness, three header lines and
+// then rows "strain tension" (tension in N), which MoorDyn interpolates linearly. Returns
+// the points past (0, 0) (a first row at the origin is left out: moorsim's curve starts
+// there); each must exceed the one before in both, or the row is one located line.
+std::vector<std::pair<double, double>> StiffnessTable(const std::string& path, int line,
+                                                      const std::string& name) {
+  const std::string where = path + ":" + std::to_string(line) + ": EA table " + name;
+  const std::filesystem::path found = FindBesideInput(path, name, where);
+  const std::string text =
+      strict_yaml::ReadInputFile(found.string(), kMaxFileBytes, "MoorDyn EA table");
+  std::istringstream in(text);
+  std::vector<std::pair<double, double>> points;
+  int number = 0;
+  for (std::string row; std::getline(in, row);) {
+    if (++number <= 3) continue;  // the headers
+    std::istringstream fields(row);
+    std::string a, b;
+    if (!(fields >> a)) continue;  // a blank row
+    const std::string at = found.string() + ":" + std::to_string(number) + ": ";
+    const std::optional<double> strain = ToNumber(a);
+    const std::optional<double> tension = (fields >> b) ? ToNumber(b) : std::nullopt;
+    if (!strain || !tension) {
+      throw InputError(at + "'" + row + "' must be a strain and a tension [N]");
+    }
+    if (points.empty() && *strain == 0.0 && *tension == 0.0) continue;
+    const std::pair<double, double> before = points.empty() ? std::pair(0.0, 0.0) : points.back();
+    if (!(*strain > before.first && *tension > before.second)) {
+      throw InputError(at + "strain " + Number(*strain) + " and tension " + Number(*tension) +
+                       " N must both exceed the row before's (" + Number(before.first) + " and " +
+                       Number(before.second) + " N)");
+    }
+    points.emplace_back(*strain, *tension);
+  }
+  if (points.empty()) throw InputError(where + ": holds no strain-tension rows");
+  return points;
 }
 
 }  // namespace
@@ -469,10 +510,16 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
                                  " damps the whole segment's stretch (moorsim's axial "
                                  "damping), not MoorDyn's dynamic spring alone");
             }
-          } else if (!ToNumber(ea)) {
+          } else if (!ToNumber(ea) &&
+                     (ea.find('|') != std::string::npos || ea.rfind("SYROPE:", 0) == 0)) {
             throw InputError(path + ":" + std::to_string(row.line) + ": EA '" + ea +
-                             "': a tension table or SYROPE stiffness is not supported yet (give "
-                             "a constant EA, EA_s|EA_D or EA_s|EA_Dc|EA_D_Lm with BA_s|BA_D)");
+                             "': a SYROPE rope or a visco-elastic rope on a tension table is not "
+                             "supported yet (give a constant EA or a table, EA_s|EA_D or "
+                             "EA_s|EA_Dc|EA_D_Lm with BA_s|BA_D)");
+          } else if (!ToNumber(ea)) {
+            t.ea_table = ea;
+            t.ea_curve = StiffnessTable(path, row.line, ea);
+            t.ba = c.Has("BA") ? c.Value(row, "BA") : 0.0;
           } else {
             t.ea = *ToNumber(ea);
             t.ba = c.Has("BA") ? c.Value(row, "BA") : 0.0;
@@ -817,7 +864,15 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
     y << "    - name: " << Text(t.name) << "  # LINE TYPES, line " << t.line << "\n";
     y << "      diameter: " << Number(t.diameter) << "\n";
     y << "      mass_per_length: " << Number(t.mass) << "\n";
-    y << "      axial_stiffness: " << Number(t.ea) << "\n";
+    if (t.ea_curve.empty()) {
+      y << "      axial_stiffness: " << Number(t.ea) << "\n";
+    } else {
+      y << "      tension_strain:  # EA table " << t.ea_table
+        << " (MoorDyn joins its points by straight lines, moorsim by a monotone cubic)\n";
+      for (const auto& [strain, tension] : t.ea_curve) {
+        y << "        - {strain: " << Number(strain) << ", tension: " << Number(tension) << "}\n";
+      }
+    }
     if (t.dynamic_ea > 0.0) {
       // MoorDyn's static spring, in series with EA_D: EA_D EA_s / (EA_D - EA_s).
       const double creep_spring = t.dynamic_ea * t.ea / (t.dynamic_ea - t.ea);

@@ -29,6 +29,9 @@
 //     (EA_D = EA_Dc + EA_D_Lm x the mean load, the static spring's tension) is moorsim's
 //     dynamic_axial_stiffness EA_Dc with dynamic_axial_stiffness_slope EA_D_Lm, the creep
 //     time BA_s over the static spring at no mean load.
+//   * EA given as a file (MoorDyn's nonlinear stiffness: three header lines, then rows
+//     "strain tension", looked for as the SeafloorFile is): the line type's tension_strain
+//     (MoorDyn joins the points by straight lines, moorsim by a monotone cubic).
 //   * OPTIONS: WtrDpth, WtrDnsty, g (gravity), kBot and cBot (the same per-area seabed
 //     stiffness and damping as moorsim's), FrictionCoefficient (both of moorsim's
 //     friction coefficients of every line type), SeafloorFile (the bathymetry, looked for
@@ -38,8 +41,8 @@
 // frames point z down and y to starboard: (x, y, z) -> (x, -y, -z).
 //
 // What does not map is one located line each ("<file>:<line>: <what>"): rods, bodies,
-// lines between two fixed or two vessel points, a line ending nowhere, tension tables and
-// SYROPE files, and MoorDyn's
+// lines between two fixed or two vessel points, a line ending nowhere, SYROPE ropes and
+// visco-elastic ropes on a table, and MoorDyn's
 // own wave or current kinematics options. These are errors (InputError, every line at
 // once). Properties moorsim does not model are imported without them and reported as
 // warnings: bending stiffness EI, vortex-induced vibration. Integration options (time

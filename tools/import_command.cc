@@ -66,14 +66,15 @@ Command AddImportCommand(CLI::App& app) {
   sub->footer(
       "\nFormats:\n"
       "  moordyn: a MoorDyn (v1 or v2) input file: its line types (with the static and\n"
-      "    dynamic stiffness of a visco-elastic rope), points (fixed: anchors; vessel or\n"
+      "    dynamic stiffness of a visco-elastic rope, or a stiffness table as a\n"
+      "    tension-strain curve), points (fixed: anchors; vessel or\n"
       "    coupled: fairleads; free points joining two lines: the joints of a composite\n"
       "    line; other free points: moorsim's free points, with their mass, volume, CdA and\n"
       "    Ca) and lines, water depth and density, gravity, seabed stiffness, damping and\n"
       "    friction, and a SeafloorFile as a depth grid written beside the scenario. Frames\n"
       "    are converted (MoorDyn's z up and y to port to moorsim's z down and y to\n"
       "    starboard) and the tangential drag coefficient multiplied by pi (MoorDyn applies\n"
-      "    it to the circumference). Rods, bodies, tension tables and MoorDyn's own wave\n"
+      "    it to the circumference). Rods, bodies, SYROPE ropes and MoorDyn's own wave\n"
       "    and current kinematics are refused, one line each; bending stiffness is left out\n"
       "    with a warning. The scenario holds the mooring only: `moorsim static` and\n"
       "    `moorsim simulate-lines` run it; add a vessel for `moorsim run`.\n" +

@@ -257,6 +257,33 @@ TEST(MoorDynImport, AViscoElasticRopeArrivesWithItsDynamicStiffnessAndCreepTime)
   fs::remove_all(dir);
 }
 
+// EA as a file (MoorDyn's nonlinear stiffness: three header lines, then rows "strain
+// tension"): the line type's tension_strain, its first row at the origin left out (moorsim's
+// curve starts there). A row that does not increase is one located line.
+TEST(MoorDynImport, AStiffnessTableArrivesAsATensionStrainCurve) {
+  const fs::path dir = moorsim::testing::FreshDirectory("moordyn_ea_table");
+  std::string text = kSpread;
+  text.replace(text.find("8.0e8"), 5, "chain_ea.txt");
+  Write(dir, "chain_ea.txt",
+        "Chain stiffness\nStrain Tension\n(-) (N)\n0 0\n0.005 4e6\n0.01 1e7\n");
+  const MoorDynImport imported = ImportMoorDyn(Write(dir, "table.txt", text).string(), "test");
+  EXPECT_NE(imported.yaml.find("      tension_strain:  # EA table chain_ea.txt"), std::string::npos)
+      << imported.yaml;
+  const Scenario s = ParseScenario(imported.yaml, "table.yaml");
+  const std::vector<mooring_fem::StrainTension>& curve = s.mooring.line_types[0].tension_strain;
+  ASSERT_EQ(curve.size(), 2u);
+  EXPECT_EQ(curve[0].strain, 0.005);
+  EXPECT_EQ(curve[0].tension, 4e6);
+  EXPECT_EQ(curve[1].strain, 0.01);
+  EXPECT_EQ(curve[1].tension, 1e7);
+  const fs::path table = Write(dir, "chain_ea.txt", "a\nb\nc\n0.005 4e6\n0.004 5e6\n");
+  const fs::path bad = Write(dir, "bad.txt", text);
+  EXPECT_EQ(ErrorOf(bad), fs::absolute(table).string() +
+                              ":5: strain 0.004 and tension 5e+06 N must both exceed the row "
+                              "before's (0.005 and 4e+06 N)");
+  fs::remove_all(dir);
+}
+
 // A line driven at its end from far away (a Coupled point given where it starts, 1360 m
 // from MoorDyn's origin): the model moves so that the vessel point is the vessel's
 // reference point, and says so.
@@ -318,18 +345,17 @@ TEST(MoorDynImport, ASeafloorFileArrivesAsADepthGrid) {
 TEST(MoorDynImport, WhatDoesNotMapIsOneLocatedLineEach) {
   const fs::path dir = moorsim::testing::FreshDirectory("moordyn_refused");
   std::string text = kSpread;
-  // A bridle: a third line at the free point; a stiffness table; a rod.
+  // A bridle: a third line at the free point; a SYROPE rope; a rod.
   text.replace(text.find("4     chain      7        3"), 0,
                "5     chain      7        1         300       10      p\n");
-  text.replace(text.find("8.0e8"), 5, "chain_ea.txt");
+  text.replace(text.find("8.0e8"), 5, "SYROPE:rope.dat|1.5e8|23");
   text.replace(text.find("---------------------- POINTS"), 0,
                "---------------------- RODS ----\nID RodType Attachment\n(#) (-) (-)\n"
                "1 pipe Fixed\n");
   const fs::path file = Write(dir, "refused.txt", text);
   const std::string error = ErrorOf(file);
   const std::string f = file.string();
-  EXPECT_NE(error.find(f + ":6: EA 'chain_ea.txt': a tension table or SYROPE stiffness"),
-            std::string::npos)
+  EXPECT_NE(error.find(f + ":6: EA 'SYROPE:rope.dat|1.5e8|23': a SYROPE rope"), std::string::npos)
       << error;
   EXPECT_NE(error.find(f + ":11: rods are not supported"), std::string::npos) << error;
   EXPECT_EQ(std::count(error.begin(), error.end(), '\n'), 1) << error;  // two lines so far
