@@ -197,6 +197,22 @@ double CreepSpringEnergy(const SectionProperties& sp, double e) {
   return 0.5 * e * sum;
 }
 
+// A visco-elastic segment at strain `strain` and creep strain e: its springs, whether it
+// pulls (its dynamic spring stretched) and then dT/de = EA_d'(e) (strain - e) - EA_d.
+struct CreepPull {
+  CreepSprings springs;
+  bool taut = false;
+  double d_tension_d_creep = 0.0;
+};
+
+CreepPull CreepPullAt(const SectionProperties& sp, double strain, double e) {
+  CreepPull out;
+  out.springs = CreepSpringsAt(sp, e);
+  out.taut = strain > 0.0 && out.springs.dynamic * (strain - e) > 0.0;
+  if (out.taut) out.d_tension_d_creep = out.springs.d_dynamic * (strain - e) - out.springs.dynamic;
+  return out;
+}
+
 }  // namespace
 
 LineParameters LineParameters::Uniform(int id, const std::string& type, double length, int segments,
@@ -1151,16 +1167,8 @@ void MooringSystem::PointLoads(const double* x, std::span<const PointKinematics>
 
 double MooringSystem::CreepSlope(const SegmentState& g, const SectionProperties& sp) const {
   if (settling_ || !sp.visco) return 0.0;
-  const double strain = g.L / sp.segment_length - 1.0;
-  const CreepSprings k = CreepSpringsAt(sp, g.creep_strain);
-  const bool taut = strain > 0.0 && k.dynamic * (strain - g.creep_strain) > 0.0;
-  return taut ? (k.d_dynamic * (strain - g.creep_strain) - k.dynamic) / sp.segment_length : 0.0;
-}
-
-bool MooringSystem::CreepTaut(const SegmentState& g, const SectionProperties& sp) const {
-  if (settling_ || !sp.visco) return false;
-  const double strain = g.L / sp.segment_length - 1.0;
-  return strain > 0.0 && CreepTension(sp, strain, g.creep_strain) > 0.0;
+  const CreepPull pull = CreepPullAt(sp, g.L / sp.segment_length - 1.0, g.creep_strain);
+  return pull.taut ? pull.d_tension_d_creep / sp.segment_length : 0.0;
 }
 
 double MooringSystem::CreepTension(const SectionProperties& sp, double strain,
@@ -1311,9 +1319,9 @@ void MooringSystem::Jacobian(const double* x, std::span<const PointKinematics> f
       if (g.creep < 0) continue;
       const SectionProperties& sp = lines_[c.line].SectionOf(c.first_node + s);
       const CreepRow& plan = creep_rows_[g.creep - creep_offset_];
-      const bool taut = CreepTaut(g, sp);
-      const CreepSprings springs = CreepSpringsAt(sp, g.creep_strain);
-      const double k = taut ? springs.dynamic / sp.creep_damping : 0.0;
+      const CreepPull pull = CreepPullAt(sp, g.L / sp.segment_length - 1.0, g.creep_strain);
+      const bool taut = !settling_ && pull.taut;
+      const double k = taut ? pull.springs.dynamic / sp.creep_damping : 0.0;
       double* v = values + pattern_.row_start[g.creep];
       const bool lower_first = plan.lower < plan.upper;
       for (const bool lower : {lower_first, !lower_first}) {
@@ -1321,11 +1329,7 @@ void MooringSystem::Jacobian(const double* x, std::span<const PointKinematics> f
         const Vec3 d = (lower ? -k : k) * g.t;
         for (int m = 0; m < 3; ++m) *v++ = d(m);
       }
-      // dT_e/de = EA_d'(e) (strain - e) - EA_d while taut.
-      const double strain = g.L / sp.segment_length - 1.0;
-      const double pull =
-          taut ? springs.d_dynamic * (strain - g.creep_strain) - springs.dynamic : 0.0;
-      *v = (pull - springs.d_tension) / sp.creep_damping;
+      *v = ((taut ? pull.d_tension_d_creep : 0.0) - pull.springs.d_tension) / sp.creep_damping;
     }
   }
   for (int q = 0; q < np; ++q) {

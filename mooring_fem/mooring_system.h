@@ -381,8 +381,6 @@ class MooringSystem {
   /// dT / d(creep stretch) of a gathered segment: (EA_d'(e) (strain - e) - EA_d) / l0
   /// while its dynamic spring is stretched, else (and while settling) 0.
   double CreepSlope(const SegmentState& g, const SectionProperties& sp) const;
-  /// Whether a visco-elastic segment pulls (stretched, its dynamic spring too).
-  bool CreepTaut(const SegmentState& g, const SectionProperties& sp) const;
   /// Per creep state, its segment's lower and upper node's 6-blocks (NodeStateOf).
   struct CreepRow {
     int lower = -1, upper = -1;
