@@ -114,8 +114,8 @@ PrescribedMotion::State PrescribedMotion::At(double t) const {
   double q[6], dq[6], ddq[6];
   for (int d = 0; d < 6; ++d) {
     q[d] = dq[d] = ddq[d] = 0.0;
-    if (series) {
-      series->Evaluate(d, t, &q[d], &dq[d], &ddq[d]);
+    if (path) {
+      path->Evaluate(d, t, &q[d], &dq[d], &ddq[d]);
       continue;
     }
     for (const Component& c : components[d]) {
@@ -219,12 +219,7 @@ LineSimulation::LineSimulation(const MooringParameters& mooring, const SolverSet
 
 void LineSimulation::StartIntegrator() {
   if (integrator_) finished_ += integrator_->stats();
-  IntegratorOptions options = MakeIntegratorOptions(solver_, mooring_);
-  // Tolerances relative to each node's displacement from where this integrator starts.
-  const std::vector<char> kinds = mooring_.StateKinds();
-  options.reference.resize(x_.size());
-  for (std::size_t i = 0; i < x_.size(); ++i) options.reference[i] = kinds[i] == 'p' ? x_[i] : 0.0;
-  integrator_ = std::make_unique<Integrator>(system_, t_, x_.data(), options);
+  integrator_ = StartLineIntegrator(system_, solver_, mooring_, t_, x_);
   if (!events_.empty()) integrator_->SetStopTime(events_.front().time);
 }
 
@@ -272,6 +267,17 @@ IntegratorStats LineSimulation::stats() const {
   IntegratorStats s = finished_;
   if (integrator_) s += integrator_->stats();
   return s;
+}
+
+std::unique_ptr<Integrator> StartLineIntegrator(OdeSystem& system, const SolverSettings& solver,
+                                                const MooringSystem& mooring, double t,
+                                                const std::vector<double>& x) {
+  IntegratorOptions options = MakeIntegratorOptions(solver, mooring);
+  // Tolerances relative to each node's displacement from where this integrator starts.
+  const std::vector<char> kinds = mooring.StateKinds();
+  options.reference.resize(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) options.reference[i] = kinds[i] == 'p' ? x[i] : 0.0;
+  return std::make_unique<Integrator>(system, t, x.data(), options);
 }
 
 }  // namespace moorsim::mooring_fem

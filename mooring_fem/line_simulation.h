@@ -26,7 +26,7 @@ struct PlanarPose {
 /// Earth-frame fairlead position for a body-frame fairlead at a planar pose.
 Vec3 FairleadPosition(const PlanarPose& pose, const Vec3& fairlead_body);
 
-/// Samples of a rigid-body motion (PrescribedMotion::series): times [s], strictly
+/// Samples of a rigid-body motion (for a MotionSpline): times [s], strictly
 /// increasing, at least two, and per degree of freedom one value per time (surge, sway,
 /// heave [m], roll, pitch, yaw [rad]).
 struct MotionSeries {
@@ -34,13 +34,24 @@ struct MotionSeries {
   std::array<std::vector<double>, 6> values;
 };
 
+/// A rigid-body path given by its six degrees of freedom (PrescribedMotion::Dof) as functions
+/// of time: a spline through samples (MotionSpline), or the piece between two coupling
+/// instants of a body integrated by someone else (CoupledLines).
+class MotionPath {
+ public:
+  virtual ~MotionPath() = default;
+  /// Value, first and second time derivative of degree of freedom `dof` at time t.
+  virtual void Evaluate(int dof, double t, double* value, double* rate,
+                        double* acceleration) const = 0;
+};
+
 /// The vessel's prescribed rigid-body motion about a mean planar pose: its reference point
 /// offset by (surge, sway, heave) in the Earth frame [m], and the hull turned by roll,
 /// pitch and yaw [rad] (the body-frame fairleads carried by Rz(psi + yaw) Ry(pitch)
 /// Rx(roll), Euler angles as the vessel's). Each degree of freedom is a sum of harmonics
-/// A_i sin(2 pi t / T_i), or all six come from a series of samples, interpolated by a
-/// natural cubic spline (continuous velocity and acceleration) and held at the end values
-/// outside it.
+/// A_i sin(2 pi t / T_i), or all six come from a path (a series of samples, interpolated
+/// by a natural cubic spline with continuous velocity and acceleration and held at the end
+/// values outside it; or a coupling's path).
 struct PrescribedMotion {
   enum Dof { kSurge, kSway, kHeave, kRoll, kPitch, kYaw };
   struct Component {
@@ -49,8 +60,8 @@ struct PrescribedMotion {
   };
   PlanarPose mean;
   std::array<std::vector<Component>, 6> components;
-  /// When set, replaces the components (MakeSeries checks and prepares it).
-  std::shared_ptr<const class MotionSpline> series;
+  /// When set, replaces the components.
+  std::shared_ptr<const MotionPath> path;
 
   /// The rigid-body motion at one time: the reference point's offset from the mean pose
   /// and, if the hull turns, its rotation and the rotation's first two time derivatives.
@@ -70,11 +81,11 @@ struct PrescribedMotion {
 /// The natural cubic spline of each degree of freedom of a MotionSeries. Throws
 /// moorsim::InputError for fewer than two samples, times that do not increase, values
 /// that are not finite or channels of another length.
-class MotionSpline {
+class MotionSpline final : public MotionPath {
  public:
   explicit MotionSpline(MotionSeries series);
-  /// Value, first and second time derivative of degree of freedom `dof` at time t.
-  void Evaluate(int dof, double t, double* value, double* rate, double* acceleration) const;
+  void Evaluate(int dof, double t, double* value, double* rate,
+                double* acceleration) const override;
   double start() const { return series_.time.front(); }
   double end() const { return series_.time.back(); }
 
@@ -110,6 +121,12 @@ void ScaleTolerances(SolverSettings& solver, double factor);
 
 /// Builds the integrator options (per-component absolute tolerances) from the settings.
 IntegratorOptions MakeIntegratorOptions(const SolverSettings& solver, const MooringSystem& mooring);
+
+/// CVODE on `system` (the lines of `mooring`) from (t, x), with rtol relative to each node's
+/// displacement from x.
+std::unique_ptr<Integrator> StartLineIntegrator(OdeSystem& system, const SolverSettings& solver,
+                                                const MooringSystem& mooring, double t,
+                                                const std::vector<double>& x);
 
 /// Drives a PrescribedMotionSystem with CVODE from the FEM's static equilibrium at the
 /// motion's mean pose (analytic catenary, then Newton on the FEM), with scheduled failures.

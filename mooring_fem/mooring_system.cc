@@ -1571,6 +1571,18 @@ Vec3 MooringSystem::NodePosition(const double* x, int line, int node,
   throw Error("no node " + std::to_string(node) + " on line " + std::to_string(line + 1));
 }
 
+std::vector<double> MooringSystem::SegmentTensions(const double* x, int line,
+                                                   std::span<const PointKinematics> fairleads) {
+  std::vector<double> tensions(lines_.at(line).segments, 0.0);
+  for (const Chain& c : chains_) {
+    if (c.line != line) continue;
+    GatherChain(c, x, fairleads);
+    ComputeSegments(c);
+    for (int s = 0; s < c.segments; ++s) tensions[c.first_node + s] = seg_[s].T;
+  }
+  return tensions;
+}
+
 void MooringSystem::CatenaryState(std::span<const Vec3> fairleads, double* x) const {
   for (int q = 0; q < num_points(); ++q) {
     for (int m = 0; m < 3; ++m) {

@@ -299,6 +299,12 @@ class MooringSystem {
   Vec3 NodePosition(const double* x, int line, int node,
                     std::span<const PointKinematics> fairleads) const;
 
+  /// The tension [N] of each of line `line`'s (0-based) segments, from the anchor up (a
+  /// parted line's pieces included): what a load cell in line there would read, without
+  /// the node's weight and inertia that a fairlead or anchor force adds.
+  std::vector<double> SegmentTensions(const double* x, int line,
+                                      std::span<const PointKinematics> fairleads);
+
   /// Changes the topology and returns the new state, carrying every node's position and
   /// velocity over (nodes that were held take the holder's position and velocity).
   std::vector<double> ApplyFailure(const LineFailure& failure, const double* x,

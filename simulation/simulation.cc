@@ -592,7 +592,7 @@ void Simulation::DiscreteEvents() {
     input.time = t_;
     input.pose = last_measurement_;
     input.valid = fresh;
-    tau_command_ = parts_->controller->Update(input);
+    tau_command_ = thrust_override_ ? *thrust_override_ : parts_->controller->Update(input);
     const vessel::Allocation a = parts_->allocator->Allocate(tau_command_);
     parts_->thrust_issued = a.achieved;
     const double heading_error = std::abs(WrapAngle(x_[5] - parts_->controller->setpoint()(2)));

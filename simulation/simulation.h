@@ -149,6 +149,12 @@ class Simulation {
   /// for verification runs (static offset, decay tests). Replaces the previous one.
   void SetExternalLoad(const Vec3& force_ned_xy_moment_z);
 
+  /// The thrust command X, Y, N [N, N, N m] (body frame) issued at every controller instant
+  /// from now on in place of the controller's: the allocation, the thrusters' rate limits
+  /// and dynamics, the detectors and the record take it as they take the controller's.
+  /// std::nullopt gives the command back to the controller.
+  void SetThrustCommand(const std::optional<Vec3>& command) { thrust_override_ = command; }
+
   double time() const { return t_; }
   const std::vector<double>& state() const { return x_; }
   Sample Record();
@@ -221,6 +227,7 @@ class Simulation {
   bool failure_pending_ = false;
   Vec3 last_measurement_ = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
   Vec3 tau_command_ = Vec3::Zero();
+  std::optional<Vec3> thrust_override_;
 };
 
 }  // namespace moorsim::simulation

@@ -7,13 +7,20 @@
 # (report.html with figures). Then one run of the thesis case "line 6 parts at 400 s, with
 # current" with its figures, the same run's detection replayed by `moorsim detect` from its
 # recorded samples (the alarms as JSON lines, identical to the run's), and the static
-# solution of the seed mooring.
+# solution of the seed mooring. Installs the program, the library (C API) and the Python
+# package under ~/.local (MOORSIM_PREFIX to change it), so that `moorsim` and
+# `python3 -c "import moorsim"` work afterwards.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 ./tools/setup.sh
 cmake --preset release >/dev/null
 cmake --build --preset release
+prefix=${MOORSIM_PREFIX:-$HOME/.local}
+cmake --install build/release --prefix "$prefix" >/dev/null
+site=$(/usr/bin/python3 -c 'import sys; print("lib/python%d.%d/site-packages" % sys.version_info[:2])')
+PYTHONPATH="$prefix/$site${PYTHONPATH:+:$PYTHONPATH}" /usr/bin/python3 -c \
+  "import moorsim; print('installed under $prefix: moorsim', moorsim.__version__, '(import moorsim)')"
 
 mkdir -p out
 ./build/release/tools/moorsim batch scenarios/campaigns/thesis_detection_small.yaml \

@@ -19,6 +19,8 @@ packages=(
   libopenmpi-dev openmpi-bin   # moorsim batch under mpirun
   python3-numpy python3-h5py python3-matplotlib   # tools/plot_run.py
   python3-jsonschema python3-yaml   # tests: library scenarios against moorsim.schema.json
+  pybind11-dev python3-dev python3-pytest   # the Python module (import moorsim) and its tests
+  python3-pandas python3-xarray     # campaign tables as DataFrames, runs as xarray Datasets
   clang-format
 )
 

@@ -142,7 +142,7 @@ mooring_fem::PrescribedMotion ParseMotion(const SimulateLinesOptions& o) {
   }
   for (const std::string& text : o.motions) AddMotion(text, motion);
   if (o.motion_file) {
-    motion.series = std::make_shared<const mooring_fem::MotionSpline>(
+    motion.path = std::make_shared<const mooring_fem::MotionSpline>(
         ReadMotionFile(RequireText("--motion-file", *o.motion_file)));
   }
   return motion;

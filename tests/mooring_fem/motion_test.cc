@@ -68,7 +68,7 @@ TEST(PrescribedMotion, ASampledSeriesFollowsTheMotionItSamples) {
     for (int d = 0; d < 6; ++d) series.values[d].push_back(values[d]);
   }
   PrescribedMotion sampled;
-  sampled.series = std::make_shared<const MotionSpline>(series);
+  sampled.path = std::make_shared<const MotionSpline>(series);
   const Vec3 fairlead(20.0, 0.0, 12.0);
   for (const double t : {30.25, 47.1, 90.7}) {
     const PointKinematics a = sampled.FairleadAt(t, fairlead);

@@ -9,14 +9,9 @@
 set -euo pipefail
 build=$1
 source=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-
-cmake --install "$build" --prefix "$work/prefix" >"$work/install.log"
-cmake -S "$source/examples/detector_plugin" -B "$work/plugin" \
-  -DCMAKE_PREFIX_PATH="$work/prefix" >"$work/configure.log"
-cmake --build "$work/plugin" >"$work/build.log"
-plugin="$work/plugin/libcusum_detector.so"
+source "$(dirname "$0")/example_build.sh"
+build_example detector_plugin
+plugin="$work/detector_plugin/libcusum_detector.so"
 test -f "$plugin" || { echo "FAILED: no $plugin"; exit 1; }
 
 cat >"$work/campaign.yaml" <<YAML

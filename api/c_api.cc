@@ -1,0 +1,326 @@
+// The C API (include/moorsim/moorsim.h) over the C++ library: each call checks its
+// arguments, runs inside one exception barrier that turns moorsim's errors into return
+// codes and the calling thread's message, and never lets an exception cross into C.
+#include "moorsim/moorsim.h"
+
+#include <cmath>
+#include <cstring>
+#include <exception>
+#include <functional>
+#include <memory>
+#include <new>
+#include <string>
+
+#include "core/error.h"
+#include "core/version.h"
+#include "mooring_fem/coupled_lines.h"
+#include "scenarios/load.h"
+#include "simulation/lines_coupling.h"
+
+struct moorsim_lines {
+  moorsim::scenarios::Scenario scenario;
+  std::unique_ptr<moorsim::mooring_fem::CoupledLines> lines;
+};
+
+namespace {
+
+using moorsim::mooring_fem::BodyDofs;
+using moorsim::mooring_fem::CoupledLines;
+
+thread_local std::string last_error;
+
+// Misuse of the API by the caller: MOORSIM_ERROR_USAGE with its message.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Runs `body`, mapping what it throws to a return code and the thread's message.
+template <typename Body>
+int Guard(const char* function, Body&& body) {
+  try {
+    body();
+    last_error.clear();
+    return MOORSIM_OK;
+  } catch (const UsageError& e) {
+    last_error = std::string(function) + ": " + e.what();
+    return MOORSIM_ERROR_USAGE;
+  } catch (const moorsim::InputError& e) {
+    last_error = std::string(function) + ": " + e.what();
+    return MOORSIM_ERROR_INPUT;
+  } catch (const moorsim::SolverError& e) {
+    last_error = std::string(function) + ": " + e.what();
+    return MOORSIM_ERROR_SOLVER;
+  } catch (const moorsim::ContractError& e) {
+    last_error = std::string(function) + ": " + e.what();
+    return MOORSIM_ERROR_INTERNAL;
+  } catch (const moorsim::Error& e) {  // a static solve that does not converge
+    last_error = std::string(function) + ": " + e.what();
+    return MOORSIM_ERROR_SOLVER;
+  } catch (const std::bad_alloc&) {
+    last_error = std::string(function) + ": out of memory";
+    return MOORSIM_ERROR_INTERNAL;
+  } catch (const std::exception& e) {
+    last_error = std::string(function) + ": " + e.what();
+    return MOORSIM_ERROR_INTERNAL;
+  } catch (...) {
+    last_error = std::string(function) + ": unknown exception";
+    return MOORSIM_ERROR_INTERNAL;
+  }
+}
+
+void Require(bool condition, const std::string& what) {
+  if (!condition) throw UsageError(what);
+}
+
+CoupledLines& Lines(moorsim_lines* handle) {
+  Require(handle != nullptr, "the lines handle is NULL");
+  return *handle->lines;
+}
+
+const CoupledLines& Lines(const moorsim_lines* handle) {
+  Require(handle != nullptr, "the lines handle is NULL");
+  return *handle->lines;
+}
+
+CoupledLines& Initialised(moorsim_lines* handle) {
+  CoupledLines& lines = Lines(handle);
+  Require(lines.initialized(), "the lines are not initialised (call moorsim_lines_init first)");
+  return lines;
+}
+
+BodyDofs Dofs(const double* values, const char* name) {
+  Require(values != nullptr, std::string(name) + " is NULL");
+  BodyDofs dofs;
+  for (int d = 0; d < 6; ++d) dofs[d] = values[d];
+  return dofs;
+}
+
+void WriteLoad(const moorsim::Vec6& load, double* f) {
+  for (int d = 0; d < 6; ++d) f[d] = load(d);
+}
+
+// Line `line` (1-based) as a 0-based index.
+int LineIndex(const CoupledLines& lines, int line) {
+  Require(line >= 1 && line <= lines.num_lines(), "line " + std::to_string(line) +
+                                                      " is not one of the lines 1.." +
+                                                      std::to_string(lines.num_lines()));
+  return line - 1;
+}
+
+void RequireLength(int n, int expected, const char* what) {
+  Require(n == expected, std::string(what) + " has length " + std::to_string(n) + ", expected " +
+                             std::to_string(expected));
+}
+
+moorsim_lines* Create(const char* function,
+                      const std::function<moorsim::scenarios::Scenario()>& load) {
+  moorsim_lines* made = nullptr;
+  Guard(function, [&] {
+    auto handle = std::make_unique<moorsim_lines>();
+    handle->scenario = load();
+    handle->lines = moorsim::simulation::MakeCoupledLines(handle->scenario);
+    made = handle.release();
+  });
+  return made;
+}
+
+}  // namespace
+
+extern "C" {
+
+int moorsim_api_version(void) { return MOORSIM_API_VERSION; }
+
+const char* moorsim_version(void) { return moorsim::kVersion; }
+
+const char* moorsim_last_error(void) { return last_error.c_str(); }
+
+moorsim_lines* moorsim_lines_create(const char* scenario_path) {
+  return Create("moorsim_lines_create", [&] {
+    Require(scenario_path != nullptr, "the scenario path is NULL");
+    return moorsim::scenarios::LoadScenario(scenario_path);
+  });
+}
+
+moorsim_lines* moorsim_lines_create_from_yaml(const char* yaml_text) {
+  return Create("moorsim_lines_create_from_yaml", [&] {
+    Require(yaml_text != nullptr, "the YAML text is NULL");
+    return moorsim::scenarios::ParseScenario(yaml_text, "<yaml text>");
+  });
+}
+
+void moorsim_lines_destroy(moorsim_lines* lines) { delete lines; }
+
+int moorsim_lines_coupled_dofs(const moorsim_lines* lines, int* count) {
+  return Guard("moorsim_lines_coupled_dofs", [&] {
+    Lines(lines);
+    Require(count != nullptr, "count is NULL");
+    *count = 6;
+  });
+}
+
+int moorsim_lines_count(const moorsim_lines* lines, int* count) {
+  return Guard("moorsim_lines_count", [&] {
+    const CoupledLines& l = Lines(lines);
+    Require(count != nullptr, "count is NULL");
+    *count = l.num_lines();
+  });
+}
+
+int moorsim_lines_node_count(const moorsim_lines* lines, int line, int* count) {
+  return Guard("moorsim_lines_node_count", [&] {
+    const CoupledLines& l = Lines(lines);
+    Require(count != nullptr, "count is NULL");
+    *count = l.num_nodes(LineIndex(l, line));
+  });
+}
+
+int moorsim_lines_time(const moorsim_lines* lines, double* t) {
+  return Guard("moorsim_lines_time", [&] {
+    const CoupledLines& l = Lines(lines);
+    Require(t != nullptr, "t is NULL");
+    *t = l.time();
+  });
+}
+
+int moorsim_lines_init(moorsim_lines* lines, const double* x, const double* xd) {
+  return Guard("moorsim_lines_init", [&] {
+    CoupledLines& l = Lines(lines);
+    const BodyDofs pose = Dofs(x, "x"), velocity = Dofs(xd, "xd");
+    moorsim::simulation::InitCoupledLines(l, lines->scenario, pose, velocity);
+  });
+}
+
+int moorsim_lines_step(moorsim_lines* lines, const double* x, const double* xd, double* f,
+                       double* t, double* dt) {
+  return Guard("moorsim_lines_step", [&] {
+    CoupledLines& l = Initialised(lines);
+    const BodyDofs pose = Dofs(x, "x"), velocity = Dofs(xd, "xd");
+    Require(f != nullptr, "f is NULL");
+    Require(t != nullptr, "t is NULL");
+    Require(dt != nullptr, "dt is NULL");
+    // The caller's clock may have summed its steps in another order: a relative 1e-9.
+    Require(
+        std::abs(*t - l.time()) <= 1e-9 * std::max(1.0, std::abs(l.time())),
+        "t = " + std::to_string(*t) + " s but the lines are at " + std::to_string(l.time()) + " s");
+    WriteLoad(l.Step(pose, velocity, *dt), f);
+    *t = l.time();
+  });
+}
+
+int moorsim_lines_body_load(moorsim_lines* lines, double* f) {
+  return Guard("moorsim_lines_body_load", [&] {
+    CoupledLines& l = Initialised(lines);
+    Require(f != nullptr, "f is NULL");
+    WriteLoad(l.LoadOnBody(), f);
+  });
+}
+
+int moorsim_lines_fairlead_tensions(moorsim_lines* lines, double* tensions, int n) {
+  return Guard("moorsim_lines_fairlead_tensions", [&] {
+    CoupledLines& l = Initialised(lines);
+    Require(tensions != nullptr, "tensions is NULL");
+    RequireLength(n, l.num_lines(), "tensions");
+    const std::vector<moorsim::Vec3> forces = l.FairleadForces();
+    for (int i = 0; i < n; ++i) tensions[i] = forces[i].norm();
+  });
+}
+
+int moorsim_lines_fairlead_forces(moorsim_lines* lines, double* forces, int n) {
+  return Guard("moorsim_lines_fairlead_forces", [&] {
+    CoupledLines& l = Initialised(lines);
+    Require(forces != nullptr, "forces is NULL");
+    RequireLength(n, 3 * l.num_lines(), "forces");
+    const std::vector<moorsim::Vec3> f = l.FairleadForces();
+    for (int i = 0; i < l.num_lines(); ++i) {
+      for (int m = 0; m < 3; ++m) forces[3 * i + m] = f[i](m);
+    }
+  });
+}
+
+int moorsim_lines_anchor_tensions(moorsim_lines* lines, double* tensions, int n) {
+  return Guard("moorsim_lines_anchor_tensions", [&] {
+    CoupledLines& l = Initialised(lines);
+    Require(tensions != nullptr, "tensions is NULL");
+    RequireLength(n, l.num_lines(), "tensions");
+    const std::vector<double> anchor = l.AnchorTensions();
+    std::copy(anchor.begin(), anchor.end(), tensions);
+  });
+}
+
+int moorsim_lines_segment_tensions(moorsim_lines* lines, int line, double* tensions, int n) {
+  return Guard("moorsim_lines_segment_tensions", [&] {
+    CoupledLines& l = Initialised(lines);
+    const int index = LineIndex(l, line);
+    Require(tensions != nullptr, "tensions is NULL");
+    RequireLength(n, l.num_nodes(index) - 1, "tensions");
+    const std::vector<double> segments = l.SegmentTensions(index);
+    std::copy(segments.begin(), segments.end(), tensions);
+  });
+}
+
+int moorsim_lines_node_positions(moorsim_lines* lines, int line, double* xyz, int n) {
+  return Guard("moorsim_lines_node_positions", [&] {
+    CoupledLines& l = Initialised(lines);
+    const int index = LineIndex(l, line);
+    Require(xyz != nullptr, "xyz is NULL");
+    RequireLength(n, 3 * l.num_nodes(index), "xyz");
+    const std::vector<moorsim::Vec3> nodes = l.NodePositions(index);
+    for (std::size_t k = 0; k < nodes.size(); ++k) {
+      for (int m = 0; m < 3; ++m) xyz[3 * k + m] = nodes[k](m);
+    }
+  });
+}
+
+int moorsim_lines_part(moorsim_lines* lines, int line, int where, int node) {
+  return Guard("moorsim_lines_part", [&] {
+    CoupledLines& l = Initialised(lines);
+    moorsim::mooring_fem::LineFailure failure;
+    failure.line = LineIndex(l, line);
+    switch (where) {
+      case MOORSIM_PART_FAIRLEAD:
+        failure.mode = moorsim::mooring_fem::FailureMode::kFairlead;
+        break;
+      case MOORSIM_PART_ANCHOR:
+        failure.mode = moorsim::mooring_fem::FailureMode::kAnchor;
+        break;
+      case MOORSIM_PART_NODE: {
+        const int last = l.num_nodes(failure.line) - 2;
+        Require(node >= 1 && node <= last,
+                "node " + std::to_string(node) + " is not an internal node of line " +
+                    std::to_string(line) + " (1.." + std::to_string(last) + ")");
+        failure.mode = moorsim::mooring_fem::FailureMode::kNode;
+        failure.node = node;
+        break;
+      }
+      default:
+        throw UsageError("where = " + std::to_string(where) +
+                         " is not MOORSIM_PART_FAIRLEAD, MOORSIM_PART_NODE or MOORSIM_PART_ANCHOR");
+    }
+    l.Part(failure);
+  });
+}
+
+int moorsim_lines_save(moorsim_lines* lines, void* buffer, size_t capacity, size_t* size) {
+  return Guard("moorsim_lines_save", [&] {
+    CoupledLines& l = Initialised(lines);
+    Require(size != nullptr, "size is NULL");
+    *size = l.SavedSize();
+    if (buffer == nullptr) return;
+    Require(capacity >= *size, "the buffer holds " + std::to_string(capacity) +
+                                   " bytes, the state needs " + std::to_string(*size));
+    const std::vector<std::uint8_t> bytes = l.Save();
+    std::memcpy(buffer, bytes.data(), bytes.size());
+    *size = bytes.size();
+  });
+}
+
+int moorsim_lines_restore(moorsim_lines* lines, const void* buffer, size_t size) {
+  return Guard("moorsim_lines_restore", [&] {
+    CoupledLines& l = Lines(lines);
+    Require(buffer != nullptr, "the buffer is NULL");
+    l.Restore({static_cast<const std::uint8_t*>(buffer), size});
+  });
+}
+
+}  // extern "C"

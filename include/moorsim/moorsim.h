@@ -1,0 +1,129 @@
+/* moorsim's C API: the mooring lines of a moorsim scenario as a library that another
+ * program's body model steps, with the lifecycle of MoorDyn's C API so that a coupling
+ * written for MoorDyn maps one call to one call:
+ *
+ *   MoorDyn_Create(file)             moorsim_lines_create(file) or _create_from_yaml(text)
+ *   MoorDyn_NCoupledDOF(sys, &n)     moorsim_lines_coupled_dofs(lines, &n)        (n = 6)
+ *   MoorDyn_Init(sys, x, xd)         moorsim_lines_init(lines, x, xd)
+ *   MoorDyn_Step(sys, x, xd, f, &t, &dt)
+ *                                    moorsim_lines_step(lines, x, xd, f, &t, &dt)
+ *   MoorDyn_GetFairTens, GetLineNodePos, ...
+ *                                    moorsim_lines_fairlead_tensions, _node_positions, ...
+ *   MoorDyn_Serialize/Deserialize    moorsim_lines_save / moorsim_lines_restore
+ *   MoorDyn_Close(sys)               moorsim_lines_destroy(lines)
+ *
+ * Conventions are moorsim's: SI units, the NED Earth frame (x north, y east, z down), line
+ * numbers from 1 as in the scenario. The coupled body is the vessel whose fairleads the
+ * scenario gives (mooring.lines[].fairlead, body frame): its six degrees of freedom are its
+ * reference point's position north, east, down [m] and its roll, pitch, yaw [rad] (the
+ * fairleads carried by Rz(yaw) Ry(pitch) Rx(roll)); their rates are the time derivatives of
+ * the same six numbers [m/s, rad/s]. x = 0 puts the reference point where the scenario's
+ * anchors are laid out from.
+ *
+ * Between two calls to step the body follows the cubic Hermite path through the two poses
+ * and velocities given, so its velocity is continuous and the lines see no jolt.
+ *
+ * Errors: every function that can fail returns MOORSIM_OK (0) or an error code, and the
+ * calling thread's moorsim_last_error() says what and where; the create functions return
+ * NULL. Bad use (a null handle or pointer, an array of the wrong length, a step before
+ * init, a saved state of another model or version, NaN) is an error code, never a crash.
+ * Instances are independent: several may live side by side, each used from one thread at a
+ * time (different instances on different threads at once are fine).
+ *
+ * MOORSIM_API_VERSION changes whenever a function's signature or meaning changes; a program
+ * can compare it with moorsim_api_version() of the library it loaded. */
+#ifndef MOORSIM_MOORSIM_H
+#define MOORSIM_MOORSIM_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define MOORSIM_API_VERSION 1
+
+/* Return codes. */
+#define MOORSIM_OK 0
+#define MOORSIM_ERROR_USAGE 1    /* null handle or pointer, wrong length, call out of order */
+#define MOORSIM_ERROR_INPUT 2    /* a scenario, value or saved state that cannot be used */
+#define MOORSIM_ERROR_SOLVER 3   /* the integrator or the static solve failed */
+#define MOORSIM_ERROR_INTERNAL 4 /* a defect in moorsim: please report it with the message */
+
+/* Where a line parts (moorsim_lines_part). */
+#define MOORSIM_PART_FAIRLEAD 0
+#define MOORSIM_PART_NODE 1
+#define MOORSIM_PART_ANCHOR 2
+
+/* MOORSIM_API_VERSION as the library was built. */
+int moorsim_api_version(void);
+/* The library's version ("0.1.0-..."), static storage. */
+const char* moorsim_version(void);
+/* The calling thread's last error message ("" if none yet), valid until its next call
+ * into moorsim. */
+const char* moorsim_last_error(void);
+
+/* ---- The mooring lines alone ------------------------------------------------------ */
+
+typedef struct moorsim_lines moorsim_lines;
+
+/* The lines of a scenario file (its mooring, environment.current, the waves the lines see
+ * and the solver settings), or of a scenario given as YAML text. NULL on error. */
+moorsim_lines* moorsim_lines_create(const char* scenario_path);
+moorsim_lines* moorsim_lines_create_from_yaml(const char* yaml_text);
+/* Frees the instance (NULL is allowed and does nothing). */
+void moorsim_lines_destroy(moorsim_lines* lines);
+
+/* The number of coupled degrees of freedom: 6, the body's. */
+int moorsim_lines_coupled_dofs(const moorsim_lines* lines, int* count);
+/* The number of lines. */
+int moorsim_lines_count(const moorsim_lines* lines, int* count);
+/* The number of nodes of line `line` (1-based): its segments + 1. */
+int moorsim_lines_node_count(const moorsim_lines* lines, int line, int* count);
+/* The lines' time [s]. */
+int moorsim_lines_time(const moorsim_lines* lines, double* t);
+
+/* Puts the body at x[6] moving at xd[6] at time 0 and the lines at their static
+ * equilibrium there. May be called again to start over with every line intact. */
+int moorsim_lines_init(moorsim_lines* lines, const double* x, const double* xd);
+/* Integrates the lines from *t to *t + *dt with the body arriving at x[6] moving at xd[6],
+ * writes their load on the body to f[6] (force [N] and moment about the reference point
+ * [N m], Earth axes) and advances *t. *t must be the lines' time (moorsim_lines_time). On
+ * a solver error the lines stay at the time and state before the call. */
+int moorsim_lines_step(moorsim_lines* lines, const double* x, const double* xd, double* f,
+                       double* t, double* dt);
+/* The lines' load on the body now, as step writes it. */
+int moorsim_lines_body_load(moorsim_lines* lines, double* f);
+
+/* Each line's tension at its upper end (the magnitude of its force on the fairlead or the
+ * free point it hangs from) [N]: n must be the number of lines. */
+int moorsim_lines_fairlead_tensions(moorsim_lines* lines, double* tensions, int n);
+/* Each line's force on what holds its upper end, Earth frame, 3 per line [N]: n must be 3
+ * times the number of lines. */
+int moorsim_lines_fairlead_forces(moorsim_lines* lines, double* forces, int n);
+/* Each line's tension at its anchor (its lowest segment's) [N]: n = number of lines. */
+int moorsim_lines_anchor_tensions(moorsim_lines* lines, double* tensions, int n);
+/* Line `line`'s segment tensions from the anchor up [N]: n = its node count - 1. */
+int moorsim_lines_segment_tensions(moorsim_lines* lines, int line, double* tensions, int n);
+/* Line `line`'s node positions, anchor first, x y z per node [m]: n = 3 x its node count. */
+int moorsim_lines_node_positions(moorsim_lines* lines, int line, double* xyz, int n);
+
+/* Parts line `line` now: at its fairlead (MOORSIM_PART_FAIRLEAD), at internal node `node`
+ * (MOORSIM_PART_NODE, 1 .. node count - 2, counted from the anchor), or its anchor lets go
+ * (MOORSIM_PART_ANCHOR); `node` is ignored but for MOORSIM_PART_NODE. */
+int moorsim_lines_part(moorsim_lines* lines, int line, int where, int node);
+
+/* Saves the whole state (time, the body's pose and velocity, parted lines, every node) to
+ * buffer[capacity] and its size to *size. With buffer NULL, only *size is set. Saving
+ * restarts the integrator from the saved state, so stepping on after a save and stepping
+ * after a restore of it give the same trajectory bit for bit. */
+int moorsim_lines_save(moorsim_lines* lines, void* buffer, size_t capacity, size_t* size);
+/* Returns to a saved state. A buffer from another model, another moorsim version, or cut
+ * short is MOORSIM_ERROR_INPUT and leaves the instance as it was. */
+int moorsim_lines_restore(moorsim_lines* lines, const void* buffer, size_t size);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* MOORSIM_MOORSIM_H */

@@ -1,0 +1,416 @@
+#include "mooring_fem/coupled_lines.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include "core/error.h"
+#include "core/version.h"
+
+namespace moorsim::mooring_fem {
+
+/// The body between two coupling instants t0 < t1: per degree of freedom the cubic with the
+/// given values and rates at both ends (held at the start before t0, for the static start).
+class CoupledLines::HermitePath final : public MotionPath {
+ public:
+  void Hold(double t, const BodyDofs& q, const BodyDofs& dq) {
+    t0_ = t1_ = t;
+    q0_ = q1_ = q;
+    dq0_ = dq1_ = dq;
+  }
+  void Extend(double t1, const BodyDofs& q1, const BodyDofs& dq1) {
+    t0_ = t1_;
+    q0_ = q1_;
+    dq0_ = dq1_;
+    t1_ = t1;
+    q1_ = q1;
+    dq1_ = dq1;
+  }
+  const BodyDofs& pose() const { return q1_; }
+  const BodyDofs& velocity() const { return dq1_; }
+
+  void Evaluate(int dof, double t, double* value, double* rate,
+                double* acceleration) const override {
+    const double h = t1_ - t0_;
+    if (!(h > 0.0)) {  // one instant: the body there, moving at its rate
+      *value = q1_[dof];
+      *rate = dq1_[dof];
+      *acceleration = 0.0;
+      return;
+    }
+    // In s = (t - t0) / h: p(s) = q0 H00 + h dq0 H10 + q1 H01 + h dq1 H11.
+    const double s = (t - t0_) / h;
+    const double q0 = q0_[dof], q1 = q1_[dof], m0 = h * dq0_[dof], m1 = h * dq1_[dof];
+    const double s2 = s * s, s3 = s2 * s;
+    *value = (2 * s3 - 3 * s2 + 1) * q0 + (s3 - 2 * s2 + s) * m0 + (-2 * s3 + 3 * s2) * q1 +
+             (s3 - s2) * m1;
+    *rate = ((6 * s2 - 6 * s) * q0 + (3 * s2 - 4 * s + 1) * m0 + (-6 * s2 + 6 * s) * q1 +
+             (3 * s2 - 2 * s) * m1) /
+            h;
+    *acceleration =
+        ((12 * s - 6) * q0 + (6 * s - 4) * m0 + (-12 * s + 6) * q1 + (6 * s - 2) * m1) / (h * h);
+  }
+
+ private:
+  double t0_ = 0.0, t1_ = 0.0;
+  BodyDofs q0_{}, dq0_{}, q1_{}, dq1_{};
+};
+
+namespace {
+
+// FNV-1a over the bytes of the numbers that define a model's state and its meaning.
+class Fingerprint {
+ public:
+  void Add(double v) { Bytes(&v, sizeof v); }
+  void Add(std::int64_t v) { Bytes(&v, sizeof v); }
+  void Add(const Vec3& v) {
+    for (int i = 0; i < 3; ++i) Add(v(i));
+  }
+  std::uint64_t value() const { return h_; }
+
+ private:
+  void Bytes(const void* data, std::size_t size) {
+    const auto* b = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < size; ++i) h_ = (h_ ^ b[i]) * 0x100000001b3ULL;
+  }
+  std::uint64_t h_ = 0xcbf29ce484222325ULL;
+};
+
+std::uint64_t ModelFingerprint(const MooringSystem& m, const SolverSettings& solver) {
+  Fingerprint f;
+  f.Add(std::int64_t{m.num_lines()});
+  f.Add(std::int64_t{m.num_points()});
+  f.Add(std::int64_t{m.StateSize()});
+  for (int i = 0; i < m.num_lines(); ++i) {
+    const LineProperties& l = m.line(i);
+    f.Add(std::int64_t{l.segments});
+    f.Add(std::int64_t{l.lower_point});
+    f.Add(std::int64_t{l.upper_point});
+    f.Add(l.length);
+    f.Add(l.anchor);
+    f.Add(l.fairlead_body);
+    for (const SectionProperties& s : l.sections) {
+      for (double v : {s.segment_length, s.diameter, s.mass_per_length, s.weight_per_length,
+                       s.axial_stiffness, s.axial_damping, s.added_mass_per_length,
+                       s.dynamic_stiffness, s.creep_stiffness, s.creep_damping, s.drag_normal,
+                       s.drag_tangential, s.friction_axial, s.friction_lateral}) {
+        f.Add(v);
+      }
+    }
+    for (const PointBodyProperties& b : l.bodies) {
+      for (double v : {b.mass, b.weight, b.added_mass, b.drag}) f.Add(v);
+    }
+  }
+  for (double v : {solver.rtol, solver.atol_position, solver.atol_velocity, solver.max_step}) {
+    f.Add(v);
+  }
+  f.Add(std::int64_t{solver.max_order});
+  return f.value();
+}
+
+void CheckFinite(const BodyDofs& values, const char* what) {
+  static const char* const kNames[] = {"north", "east", "down", "roll", "pitch", "yaw"};
+  for (int d = 0; d < 6; ++d) {
+    if (!std::isfinite(values[d])) {
+      throw InputError(std::string(what) + " " + kNames[d] + " is not a finite number");
+    }
+  }
+}
+
+// The bytes of a saved state: a tag, the format, the version string, the fingerprint, then
+// the numbers in the machine's own byte order (a state is for this program on this
+// machine, as a MoorDyn state file is).
+constexpr char kTag[8] = {'m', 'o', 'o', 'r', 's', 'i', 'm', 'L'};
+constexpr std::int64_t kFormat = 1;
+
+class Writer {
+ public:
+  template <typename T>
+  void Put(const T& v) {
+    const auto* b = reinterpret_cast<const std::uint8_t*>(&v);
+    bytes.insert(bytes.end(), b, b + sizeof(T));
+  }
+  void Put(std::span<const double> v) {
+    Put(static_cast<std::int64_t>(v.size()));
+    for (double d : v) Put(d);
+  }
+  std::vector<std::uint8_t> bytes;
+};
+
+class Reader {
+ public:
+  explicit Reader(std::span<const std::uint8_t> bytes) : bytes_(bytes) {}
+  template <typename T>
+  T Get(const char* what) {
+    if (bytes_.size() - at_ < sizeof(T)) {
+      throw InputError("lines state: cut short at byte " + std::to_string(at_) + " (" + what + ")");
+    }
+    T v;
+    std::memcpy(&v, bytes_.data() + at_, sizeof(T));
+    at_ += sizeof(T);
+    return v;
+  }
+  std::string GetString(std::size_t size, const char* what) {
+    if (bytes_.size() - at_ < size) {
+      throw InputError("lines state: cut short at byte " + std::to_string(at_) + " (" + what + ")");
+    }
+    std::string s(reinterpret_cast<const char*>(bytes_.data() + at_), size);
+    at_ += size;
+    return s;
+  }
+  std::size_t remaining() const { return bytes_.size() - at_; }
+
+ private:
+  std::span<const std::uint8_t> bytes_;
+  std::size_t at_ = 0;
+};
+
+}  // namespace
+
+CoupledLines::CoupledLines(const MooringParameters& mooring, const SolverSettings& solver,
+                           std::shared_ptr<const WaveKinematics> waves)
+    : spec_(mooring),
+      solver_(solver),
+      waves_(std::move(waves)),
+      mooring_(spec_),
+      path_(std::make_shared<HermitePath>()),
+      system_(mooring_, PrescribedMotion{.mean = {}, .components = {}, .path = path_}),
+      x_(mooring_.StateSize(), 0.0),
+      fingerprint_(ModelFingerprint(mooring_, solver_)) {
+  mooring_.SetWaves(waves_);
+}
+
+void CoupledLines::CheckLine(int line) const {
+  if (line < 0 || line >= num_lines()) {
+    throw InputError("no line " + std::to_string(line + 1) + " (the mooring has " +
+                     std::to_string(num_lines()) + ")");
+  }
+}
+
+void CoupledLines::CheckInitialized(const char* call) const {
+  if (!initialized_) throw ContractError(std::string(call) + " before the lines are initialised");
+}
+
+std::span<const PointKinematics> CoupledLines::FairleadsNow() { return system_.Fairleads(t_); }
+
+Vec6 CoupledLines::Init(const BodyDofs& pose, const BodyDofs& velocity, double t0) {
+  CheckFinite(pose, "pose");
+  CheckFinite(velocity, "velocity");
+  if (!std::isfinite(t0)) throw InputError("start time is not a finite number");
+  if (!failures_.empty()) {  // start over intact
+    mooring_ = MooringSystem(spec_);
+    mooring_.SetWaves(waves_);
+    failures_.clear();
+  }
+  initialized_ = false;
+  path_->Hold(t0, pose, velocity);
+  t_ = t0;
+  x_.assign(mooring_.StateSize(), 0.0);
+  std::vector<Vec3> fairleads;
+  for (const PointKinematics& f : FairleadsNow()) fairleads.push_back(f.position);
+  mooring_.CatenaryState(fairleads, x_.data());
+  mooring_.SettleStatic(fairleads, x_.data());
+  StartIntegrator();
+  initialized_ = true;
+  return LoadOnBody();
+}
+
+void CoupledLines::StartIntegrator() {
+  if (integrator_) finished_ += integrator_->stats();
+  integrator_ = StartLineIntegrator(system_, solver_, mooring_, t_, x_);
+}
+
+Vec6 CoupledLines::Step(const BodyDofs& pose, const BodyDofs& velocity, double dt) {
+  CheckInitialized("a step");
+  CheckFinite(pose, "pose");
+  CheckFinite(velocity, "velocity");
+  if (!(dt > 0.0) || !std::isfinite(dt)) {
+    throw InputError("time step " + std::to_string(dt) + " s must be a finite number > 0");
+  }
+  const double t1 = t_ + dt;
+  if (!(t1 > t_)) {
+    throw InputError("time step " + std::to_string(dt) + " s is lost in the time " +
+                     std::to_string(t_) + " s");
+  }
+  const BodyDofs q0 = path_->pose(), dq0 = path_->velocity();
+  path_->Extend(t1, pose, velocity);
+  try {
+    integrator_->SetStopTime(t1);
+    integrator_->AdvanceTo(t1);
+  } catch (const Error&) {
+    // Back to the state before the step, with an integrator that can go on from it.
+    path_->Hold(t_, q0, dq0);
+    StartIntegrator();
+    throw;
+  }
+  t_ = t1;
+  std::copy(integrator_->state(), integrator_->state() + x_.size(), x_.begin());
+  return LoadOnBody();
+}
+
+Vec6 CoupledLines::LoadOnBody() {
+  CheckInitialized("the load on the body");
+  const auto fairleads = FairleadsNow();
+  std::vector<Vec3> forces(mooring_.num_lines());
+  mooring_.FairleadForces(x_.data(), fairleads, forces);
+  const BodyDofs& q = path_->pose();
+  const Vec3 reference(q[0], q[1], q[2]);
+  Vec6 load = Vec6::Zero();
+  for (int i = 0; i < mooring_.num_lines(); ++i) {
+    if (!mooring_.at_vessel(i)) continue;
+    load.head<3>() += forces[i];
+    load.tail<3>() += (fairleads[i].position - reference).cross(forces[i]);
+  }
+  return load;
+}
+
+std::vector<Vec3> CoupledLines::FairleadForces() {
+  CheckInitialized("the fairlead forces");
+  std::vector<Vec3> forces(mooring_.num_lines());
+  const auto fairleads = FairleadsNow();
+  mooring_.FairleadForces(x_.data(), fairleads, forces);
+  mooring_.PointEndForces(x_.data(), fairleads, forces);
+  return forces;
+}
+
+std::vector<double> CoupledLines::SegmentTensions(int line) {
+  CheckInitialized("the segment tensions");
+  CheckLine(line);
+  return mooring_.SegmentTensions(x_.data(), line, FairleadsNow());
+}
+
+std::vector<double> CoupledLines::AnchorTensions() {
+  std::vector<double> tensions(num_lines());
+  for (int i = 0; i < num_lines(); ++i) tensions[i] = SegmentTensions(i).front();
+  return tensions;
+}
+
+std::vector<Vec3> CoupledLines::NodePositions(int line) {
+  CheckInitialized("the node positions");
+  CheckLine(line);
+  const auto fairleads = FairleadsNow();
+  std::vector<Vec3> nodes(num_nodes(line));
+  for (int k = 0; k < num_nodes(line); ++k) {
+    nodes[k] = mooring_.NodePosition(x_.data(), line, k, fairleads);
+  }
+  return nodes;
+}
+
+void CoupledLines::Part(const LineFailure& failure) {
+  CheckInitialized("parting a line");
+  x_ = mooring_.ApplyFailure(failure, x_.data(), FairleadsNow());
+  failures_.push_back(failure);
+  StartIntegrator();
+}
+
+std::vector<std::uint8_t> CoupledLines::Save() {
+  CheckInitialized("saving the state");
+  Writer w;
+  for (char c : kTag) w.Put(c);
+  w.Put(kFormat);
+  const std::string version = kVersion;
+  w.Put(static_cast<std::int64_t>(version.size()));
+  w.bytes.insert(w.bytes.end(), version.begin(), version.end());
+  w.Put(fingerprint_);
+  w.Put(t_);
+  for (double v : path_->pose()) w.Put(v);
+  for (double v : path_->velocity()) w.Put(v);
+  w.Put(static_cast<std::int64_t>(failures_.size()));
+  for (const LineFailure& f : failures_) {
+    w.Put(static_cast<std::int64_t>(f.line));
+    w.Put(static_cast<std::int64_t>(f.mode));
+    w.Put(static_cast<std::int64_t>(f.node));
+  }
+  w.Put(std::span<const double>(x_));
+  // The continuation from here is the one a Restore() of these bytes starts.
+  path_->Hold(t_, path_->pose(), path_->velocity());
+  StartIntegrator();
+  return std::move(w.bytes);
+}
+
+std::size_t CoupledLines::SavedSize() const {
+  const std::size_t numbers = 1 + 1 + 1 + 1 + 12 + 1 + 3 * failures_.size() + 1 + x_.size();
+  return sizeof kTag + std::strlen(kVersion) + 8 * numbers;
+}
+
+void CoupledLines::Restore(std::span<const std::uint8_t> bytes) {
+  Reader r(bytes);
+  for (char c : kTag) {
+    if (r.Get<char>("tag") != c) throw InputError("lines state: not a moorsim lines state");
+  }
+  const auto format = r.Get<std::int64_t>("format");
+  if (format != kFormat) {
+    throw InputError("lines state: format " + std::to_string(format) + ", this program reads " +
+                     std::to_string(kFormat));
+  }
+  const auto version_size = r.Get<std::int64_t>("version");
+  if (version_size < 0 || version_size > 256) throw InputError("lines state: damaged (version)");
+  const std::string version = r.GetString(static_cast<std::size_t>(version_size), "version");
+  if (version != kVersion) {
+    throw InputError("lines state: saved by moorsim " + version + ", this is moorsim " + kVersion);
+  }
+  if (r.Get<std::uint64_t>("fingerprint") != fingerprint_) {
+    throw InputError("lines state: saved from another model (its lines or solver settings differ)");
+  }
+  const double t = r.Get<double>("time");
+  BodyDofs q{}, dq{};
+  for (double& v : q) v = r.Get<double>("pose");
+  for (double& v : dq) v = r.Get<double>("velocity");
+  const auto num_failures = r.Get<std::int64_t>("failures");
+  if (num_failures < 0 || num_failures > 4 * num_lines() + 4) {
+    throw InputError("lines state: damaged (failures)");
+  }
+  std::vector<LineFailure> failures;
+  for (std::int64_t i = 0; i < num_failures; ++i) {
+    LineFailure f;
+    f.line = static_cast<int>(r.Get<std::int64_t>("failure"));
+    const auto mode = r.Get<std::int64_t>("failure");
+    f.node = static_cast<int>(r.Get<std::int64_t>("failure"));
+    if (mode < 0 || mode > static_cast<std::int64_t>(FailureMode::kAnchor)) {
+      throw InputError("lines state: damaged (failure mode)");
+    }
+    f.mode = static_cast<FailureMode>(mode);
+    failures.push_back(f);
+  }
+  const auto size = r.Get<std::int64_t>("state size");
+  if (size < 0 || static_cast<std::uint64_t>(size) * sizeof(double) != r.remaining()) {
+    throw InputError("lines state: damaged (state size)");
+  }
+  std::vector<double> x(static_cast<std::size_t>(size));
+  for (double& v : x) v = r.Get<double>("state");
+
+  const auto same = [](const LineFailure& a, const LineFailure& b) {
+    return a.line == b.line && a.mode == b.mode &&
+           (a.mode != FailureMode::kNode || a.node == b.node);
+  };
+  if (!std::equal(failures.begin(), failures.end(), failures_.begin(), failures_.end(), same)) {
+    // The topology of the saved failures, on a copy: a state that does not fit leaves this
+    // instance as it was.
+    MooringSystem mooring(spec_);
+    mooring.SetWaves(waves_);
+    for (const LineFailure& f : failures) {
+      std::vector<double> zero(mooring.StateSize(), 0.0);
+      std::vector<PointKinematics> fairleads(mooring.num_lines());
+      mooring.ApplyFailure(f, zero.data(), fairleads);
+    }
+    if (mooring.StateSize() != size) throw InputError("lines state: damaged (state size)");
+    mooring_ = std::move(mooring);
+    failures_ = std::move(failures);
+  } else if (mooring_.StateSize() != size) {
+    throw InputError("lines state: damaged (state size)");
+  }
+  x_ = std::move(x);
+  t_ = t;
+  path_->Hold(t, q, dq);
+  initialized_ = true;
+  StartIntegrator();
+}
+
+IntegratorStats CoupledLines::stats() const {
+  IntegratorStats s = finished_;
+  if (integrator_) s += integrator_->stats();
+  return s;
+}
+
+}  // namespace moorsim::mooring_fem
