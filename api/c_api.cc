@@ -16,10 +16,15 @@
 #include "mooring_fem/coupled_lines.h"
 #include "scenarios/load.h"
 #include "simulation/lines_coupling.h"
+#include "simulation/stepped_plant.h"
 
 struct moorsim_lines {
   moorsim::scenarios::Scenario scenario;
   std::unique_ptr<moorsim::mooring_fem::CoupledLines> lines;
+};
+
+struct moorsim_plant {
+  std::unique_ptr<moorsim::simulation::SteppedPlant> plant;
 };
 
 namespace {
@@ -124,6 +129,29 @@ moorsim_lines* Create(const char* function,
   });
   return made;
 }
+
+moorsim::simulation::SteppedPlant& Plant(moorsim_plant* handle) {
+  Require(handle != nullptr, "the plant handle is NULL");
+  return *handle->plant;
+}
+
+const moorsim::simulation::SteppedPlant& Plant(const moorsim_plant* handle) {
+  Require(handle != nullptr, "the plant handle is NULL");
+  return *handle->plant;
+}
+
+moorsim_plant* CreatePlant(const char* function, unsigned long long seed,
+                           const std::function<moorsim::scenarios::Scenario()>& load) {
+  moorsim_plant* made = nullptr;
+  Guard(function, [&] {
+    auto handle = std::make_unique<moorsim_plant>();
+    handle->plant = std::make_unique<moorsim::simulation::SteppedPlant>(load(), seed);
+    made = handle.release();
+  });
+  return made;
+}
+
+void Copy(const double* from, int n, double* to) { std::copy(from, from + n, to); }
 
 }  // namespace
 
@@ -320,6 +348,143 @@ int moorsim_lines_restore(moorsim_lines* lines, const void* buffer, size_t size)
     CoupledLines& l = Lines(lines);
     Require(buffer != nullptr, "the buffer is NULL");
     l.Restore({static_cast<const std::uint8_t*>(buffer), size});
+  });
+}
+
+moorsim_plant* moorsim_plant_create(const char* scenario_path, unsigned long long seed) {
+  return CreatePlant("moorsim_plant_create", seed, [&] {
+    Require(scenario_path != nullptr, "the scenario path is NULL");
+    return moorsim::scenarios::LoadScenario(scenario_path);
+  });
+}
+
+moorsim_plant* moorsim_plant_create_from_yaml(const char* yaml_text, unsigned long long seed) {
+  return CreatePlant("moorsim_plant_create_from_yaml", seed, [&] {
+    Require(yaml_text != nullptr, "the YAML text is NULL");
+    return moorsim::scenarios::ParseScenario(yaml_text, "<yaml text>");
+  });
+}
+
+void moorsim_plant_destroy(moorsim_plant* plant) { delete plant; }
+
+int moorsim_plant_line_count(const moorsim_plant* plant, int* count) {
+  return Guard("moorsim_plant_line_count", [&] {
+    const auto& p = Plant(plant);
+    Require(count != nullptr, "count is NULL");
+    *count = p.num_lines();
+  });
+}
+
+int moorsim_plant_time(const moorsim_plant* plant, double* t) {
+  return Guard("moorsim_plant_time", [&] {
+    const auto& p = Plant(plant);
+    Require(t != nullptr, "t is NULL");
+    *t = p.time();
+  });
+}
+
+int moorsim_plant_advance_to(moorsim_plant* plant, double t) {
+  return Guard("moorsim_plant_advance_to", [&] { Plant(plant).AdvanceTo(t); });
+}
+
+int moorsim_plant_set_thrust(moorsim_plant* plant, const double* command) {
+  return Guard("moorsim_plant_set_thrust", [&] {
+    auto& p = Plant(plant);
+    if (command == nullptr) {
+      p.SetThrustCommand(std::nullopt);
+    } else {
+      p.SetThrustCommand(moorsim::Vec3(command[0], command[1], command[2]));
+    }
+  });
+}
+
+int moorsim_plant_set_external_load(moorsim_plant* plant, const double* load) {
+  return Guard("moorsim_plant_set_external_load", [&] {
+    auto& p = Plant(plant);
+    Require(load != nullptr, "load is NULL");
+    p.SetExternalLoad(moorsim::Vec3(load[0], load[1], load[2]));
+  });
+}
+
+int moorsim_plant_pose(moorsim_plant* plant, double* pose) {
+  return Guard("moorsim_plant_pose", [&] {
+    auto& p = Plant(plant);
+    Require(pose != nullptr, "pose is NULL");
+    Copy(p.Now().pose_true.data(), 6, pose);
+  });
+}
+
+int moorsim_plant_measured_pose(moorsim_plant* plant, double* pose) {
+  return Guard("moorsim_plant_measured_pose", [&] {
+    auto& p = Plant(plant);
+    Require(pose != nullptr, "pose is NULL");
+    Copy(p.Now().pose_measured.data(), 3, pose);
+  });
+}
+
+int moorsim_plant_fairlead_tensions(moorsim_plant* plant, double* tensions, int n) {
+  return Guard("moorsim_plant_fairlead_tensions", [&] {
+    auto& p = Plant(plant);
+    Require(tensions != nullptr, "tensions is NULL");
+    RequireLength(n, p.num_lines(), "tensions");
+    Copy(p.Now().fairlead_tension.data(), n, tensions);
+  });
+}
+
+int moorsim_plant_measured_tensions(moorsim_plant* plant, double* tensions, int n) {
+  return Guard("moorsim_plant_measured_tensions", [&] {
+    auto& p = Plant(plant);
+    Require(tensions != nullptr, "tensions is NULL");
+    RequireLength(n, p.num_lines(), "tensions");
+    const std::vector<double>& cells = p.Now().tension_measured;
+    if (cells.empty()) {
+      throw moorsim::InputError("the scenario has no load cells (sensors.tension_cells)");
+    }
+    Copy(cells.data(), n, tensions);
+  });
+}
+
+int moorsim_plant_thrust(moorsim_plant* plant, double* commanded, double* delivered) {
+  return Guard("moorsim_plant_thrust", [&] {
+    auto& p = Plant(plant);
+    if (commanded != nullptr) Copy(p.Now().thrust_commanded.data(), 3, commanded);
+    if (delivered != nullptr) Copy(p.Now().thrust_delivered.data(), 3, delivered);
+  });
+}
+
+int moorsim_plant_loads(moorsim_plant* plant, double* loads, int n) {
+  return Guard("moorsim_plant_loads", [&] {
+    auto& p = Plant(plant);
+    Require(loads != nullptr, "loads is NULL");
+    RequireLength(n, 30, "loads");
+    const moorsim::simulation::Sample& s = p.Now();
+    Copy(s.load_mooring.data(), 6, loads);
+    Copy(s.load_wave_drift.data(), 6, loads + 6);
+    Copy(s.load_current.data(), 6, loads + 12);
+    Copy(s.load_wind.data(), 6, loads + 18);
+    Copy(s.load_thrust.data(), 6, loads + 24);
+  });
+}
+
+int moorsim_plant_save(const moorsim_plant* plant, void* buffer, size_t capacity, size_t* size) {
+  return Guard("moorsim_plant_save", [&] {
+    const auto& p = Plant(plant);
+    Require(size != nullptr, "size is NULL");
+    const std::vector<std::uint8_t> bytes = p.Save();
+    *size = bytes.size();
+    if (buffer == nullptr) return;
+    Require(capacity >= bytes.size(), "the buffer holds " + std::to_string(capacity) +
+                                          " bytes, the state needs " +
+                                          std::to_string(bytes.size()));
+    std::memcpy(buffer, bytes.data(), bytes.size());
+  });
+}
+
+int moorsim_plant_restore(moorsim_plant* plant, const void* buffer, size_t size) {
+  return Guard("moorsim_plant_restore", [&] {
+    auto& p = Plant(plant);
+    Require(buffer != nullptr, "the buffer is NULL");
+    p.Restore({static_cast<const std::uint8_t*>(buffer), size});
   });
 }
 

@@ -2,11 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <string>
 
 #include "core/error.h"
-#include "core/version.h"
+#include "core/state_bytes.h"
 
 namespace moorsim::mooring_fem {
 
@@ -118,53 +117,10 @@ void CheckFinite(const BodyDofs& values, const char* what) {
   }
 }
 
-// The bytes of a saved state: a tag, the format, the version string, the fingerprint, then
-// the numbers in the machine's own byte order (a state is for this program on this
-// machine, as a MoorDyn state file is).
-constexpr char kTag[8] = {'m', 'o', 'o', 'r', 's', 'i', 'm', 'L'};
+// A saved state's tag and format (core/state_bytes.h): a state is for this program on
+// this machine, as a MoorDyn state file is.
+constexpr char kTag[9] = "moorsimL";
 constexpr std::int64_t kFormat = 1;
-
-class Writer {
- public:
-  template <typename T>
-  void Put(const T& v) {
-    const auto* b = reinterpret_cast<const std::uint8_t*>(&v);
-    bytes.insert(bytes.end(), b, b + sizeof(T));
-  }
-  void Put(std::span<const double> v) {
-    Put(static_cast<std::int64_t>(v.size()));
-    for (double d : v) Put(d);
-  }
-  std::vector<std::uint8_t> bytes;
-};
-
-class Reader {
- public:
-  explicit Reader(std::span<const std::uint8_t> bytes) : bytes_(bytes) {}
-  template <typename T>
-  T Get(const char* what) {
-    if (bytes_.size() - at_ < sizeof(T)) {
-      throw InputError("lines state: cut short at byte " + std::to_string(at_) + " (" + what + ")");
-    }
-    T v;
-    std::memcpy(&v, bytes_.data() + at_, sizeof(T));
-    at_ += sizeof(T);
-    return v;
-  }
-  std::string GetString(std::size_t size, const char* what) {
-    if (bytes_.size() - at_ < size) {
-      throw InputError("lines state: cut short at byte " + std::to_string(at_) + " (" + what + ")");
-    }
-    std::string s(reinterpret_cast<const char*>(bytes_.data() + at_), size);
-    at_ += size;
-    return s;
-  }
-  std::size_t remaining() const { return bytes_.size() - at_; }
-
- private:
-  std::span<const std::uint8_t> bytes_;
-  std::size_t at_ = 0;
-};
 
 }  // namespace
 
@@ -306,13 +262,8 @@ void CoupledLines::Part(const LineFailure& failure) {
 
 std::vector<std::uint8_t> CoupledLines::Save() {
   CheckInitialized("saving the state");
-  Writer w;
-  for (char c : kTag) w.Put(c);
-  w.Put(kFormat);
-  const std::string version = kVersion;
-  w.Put(static_cast<std::int64_t>(version.size()));
-  w.bytes.insert(w.bytes.end(), version.begin(), version.end());
-  w.Put(fingerprint_);
+  StateWriter w;
+  w.PutHeader(kTag, kFormat, fingerprint_);
   w.Put(t_);
   for (double v : path_->pose()) w.Put(v);
   for (double v : path_->velocity()) w.Put(v);
@@ -322,62 +273,38 @@ std::vector<std::uint8_t> CoupledLines::Save() {
     w.Put(static_cast<std::int64_t>(f.mode));
     w.Put(static_cast<std::int64_t>(f.node));
   }
-  w.Put(std::span<const double>(x_));
+  w.PutNumbers(x_);
   // The continuation from here is the one a Restore() of these bytes starts.
   path_->Hold(t_, path_->pose(), path_->velocity());
   StartIntegrator();
-  return std::move(w.bytes);
+  return w.Take();
 }
 
 std::size_t CoupledLines::SavedSize() const {
-  const std::size_t numbers = 1 + 1 + 1 + 1 + 12 + 1 + 3 * failures_.size() + 1 + x_.size();
-  return sizeof kTag + std::strlen(kVersion) + 8 * numbers;
+  const std::size_t numbers = 1 + 12 + 1 + 3 * failures_.size() + 1 + x_.size();
+  return StateWriter::HeaderSize() + 8 * numbers;
 }
 
 void CoupledLines::Restore(std::span<const std::uint8_t> bytes) {
-  Reader r(bytes);
-  for (char c : kTag) {
-    if (r.Get<char>("tag") != c) throw InputError("lines state: not a moorsim lines state");
-  }
-  const auto format = r.Get<std::int64_t>("format");
-  if (format != kFormat) {
-    throw InputError("lines state: format " + std::to_string(format) + ", this program reads " +
-                     std::to_string(kFormat));
-  }
-  const auto version_size = r.Get<std::int64_t>("version");
-  if (version_size < 0 || version_size > 256) throw InputError("lines state: damaged (version)");
-  const std::string version = r.GetString(static_cast<std::size_t>(version_size), "version");
-  if (version != kVersion) {
-    throw InputError("lines state: saved by moorsim " + version + ", this is moorsim " + kVersion);
-  }
-  if (r.Get<std::uint64_t>("fingerprint") != fingerprint_) {
-    throw InputError("lines state: saved from another model (its lines or solver settings differ)");
-  }
+  StateReader r(bytes, "lines state");
+  r.SetFingerprintMeaning("its lines or solver settings differ");
+  r.CheckHeader(kTag, kFormat, fingerprint_);
   const double t = r.Get<double>("time");
   BodyDofs q{}, dq{};
   for (double& v : q) v = r.Get<double>("pose");
   for (double& v : dq) v = r.Get<double>("velocity");
-  const auto num_failures = r.Get<std::int64_t>("failures");
-  if (num_failures < 0 || num_failures > 4 * num_lines() + 4) {
-    throw InputError("lines state: damaged (failures)");
-  }
-  std::vector<LineFailure> failures;
-  for (std::int64_t i = 0; i < num_failures; ++i) {
-    LineFailure f;
+  std::vector<LineFailure> failures(r.GetCount(24, "failures"));
+  for (LineFailure& f : failures) {
     f.line = static_cast<int>(r.Get<std::int64_t>("failure"));
     const auto mode = r.Get<std::int64_t>("failure");
     f.node = static_cast<int>(r.Get<std::int64_t>("failure"));
     if (mode < 0 || mode > static_cast<std::int64_t>(FailureMode::kAnchor)) {
-      throw InputError("lines state: damaged (failure mode)");
+      r.Damaged("failure mode");
     }
     f.mode = static_cast<FailureMode>(mode);
-    failures.push_back(f);
   }
-  const auto size = r.Get<std::int64_t>("state size");
-  if (size < 0 || static_cast<std::uint64_t>(size) * sizeof(double) != r.remaining()) {
-    throw InputError("lines state: damaged (state size)");
-  }
-  std::vector<double> x(static_cast<std::size_t>(size));
+  std::vector<double> x(r.GetCount(8, "state size"));
+  if (r.remaining() != 8 * x.size()) r.Damaged("state size");
   for (double& v : x) v = r.Get<double>("state");
 
   const auto same = [](const LineFailure& a, const LineFailure& b) {
@@ -394,11 +321,11 @@ void CoupledLines::Restore(std::span<const std::uint8_t> bytes) {
       std::vector<PointKinematics> fairleads(mooring.num_lines());
       mooring.ApplyFailure(f, zero.data(), fairleads);
     }
-    if (mooring.StateSize() != size) throw InputError("lines state: damaged (state size)");
+    if (mooring.StateSize() != static_cast<int>(x.size())) r.Damaged("state size");
     mooring_ = std::move(mooring);
     failures_ = std::move(failures);
-  } else if (mooring_.StateSize() != size) {
-    throw InputError("lines state: damaged (state size)");
+  } else if (mooring_.StateSize() != static_cast<int>(x.size())) {
+    r.Damaged("state size");
   }
   x_ = std::move(x);
   t_ = t;

@@ -24,6 +24,7 @@
 #include "simulation/lines_coupling.h"
 #include "simulation/run.h"
 #include "simulation/simulation.h"
+#include "simulation/stepped_plant.h"
 
 namespace py = pybind11;
 using namespace pybind11::literals;
@@ -222,19 +223,19 @@ py::dict RowDict(const simulation::Sample& s) {
   return d;
 }
 
-// The coupled plant of a scenario, stepped by the caller (simulation/simulation.h).
+// The coupled plant of a scenario, stepped by the caller (simulation/stepped_plant.h).
 class Plant {
  public:
   Plant(const std::string& scenario, std::uint64_t seed, const std::vector<std::string>& overrides)
-      : simulation_(scenarios::LoadScenario(scenario, overrides), seed) {}
-  double time() const { return simulation_.time(); }
-  int num_lines() const { return simulation_.num_lines(); }
+      : plant_(scenarios::LoadScenario(scenario, overrides), seed) {}
+  double time() const { return plant_.time(); }
+  int num_lines() const { return plant_.num_lines(); }
   void AdvanceTo(double t) {
     py::gil_scoped_release release;
-    simulation_.AdvanceTo(t);
+    plant_.AdvanceTo(t);
   }
   py::dict Record() {
-    const simulation::Sample s = simulation_.Record();
+    const simulation::Sample& s = plant_.Now();
     py::dict d = RowDict(s);
     py::list verdicts;
     for (const detectors::Verdict& v : s.detectors) {
@@ -246,21 +247,32 @@ class Plant {
   }
   void SetThrust(const std::optional<Array>& command) {
     if (!command) {
-      simulation_.SetThrustCommand(std::nullopt);
+      plant_.SetThrustCommand(std::nullopt);
       return;
     }
     const std::vector<double> v = Numbers(*command, 3, "thrust");
-    simulation_.SetThrustCommand(Vec3(v[0], v[1], v[2]));
+    plant_.SetThrustCommand(Vec3(v[0], v[1], v[2]));
   }
   void SetExternalLoad(const Array& load) {
     const std::vector<double> v = Numbers(load, 3, "load");
-    simulation_.SetExternalLoad(Vec3(v[0], v[1], v[2]));
+    plant_.SetExternalLoad(Vec3(v[0], v[1], v[2]));
   }
-  Array FairleadTensions() { return Vector(simulation_.FairleadTensions()); }
-  std::vector<std::string> HypothesisLabels() const { return simulation_.HypothesisLabels(); }
+  Array FairleadTensions() { return Vector(plant_.Now().fairlead_tension); }
+  std::vector<std::string> HypothesisLabels() const {
+    return plant_.simulation().HypothesisLabels();
+  }
+  py::bytes Save() const {
+    const std::vector<std::uint8_t> bytes = plant_.Save();
+    return py::bytes(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  }
+  void Restore(const py::bytes& state) {
+    const std::string_view view = state;
+    py::gil_scoped_release release;
+    plant_.Restore({reinterpret_cast<const std::uint8_t*>(view.data()), view.size()});
+  }
 
  private:
-  simulation::Simulation simulation_;
+  simulation::SteppedPlant plant_;
 };
 
 py::dict Run(const std::string& scenario, const std::vector<std::string>& overrides,
@@ -416,7 +428,9 @@ PYBIND11_MODULE(_moorsim, m) {
       .def("record", &Plant::Record)
       .def("set_thrust", &Plant::SetThrust, "command"_a)
       .def("set_external_load", &Plant::SetExternalLoad, "load"_a)
-      .def("fairlead_tensions", &Plant::FairleadTensions);
+      .def("fairlead_tensions", &Plant::FairleadTensions)
+      .def("save", &Plant::Save)
+      .def("restore", &Plant::Restore, "state"_a);
 
   m.def("_run", &Run, "scenario"_a, "overrides"_a, "out"_a);
   m.def("_run_campaign", &RunCampaign, "campaign"_a, "out"_a, "threads"_a, "keep_runs"_a,

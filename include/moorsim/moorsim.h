@@ -122,6 +122,56 @@ int moorsim_lines_save(moorsim_lines* lines, void* buffer, size_t capacity, size
  * short is MOORSIM_ERROR_INPUT and leaves the instance as it was. */
 int moorsim_lines_restore(moorsim_lines* lines, const void* buffer, size_t size);
 
+/* ---- The coupled plant ------------------------------------------------------------ */
+
+/* The whole coupled simulation of a scenario (the vessel on its lines in the scenario's
+ * sea, current and wind, its thrusters, sensors and detectors), moved forward by the
+ * caller, with the scenario's controller or the caller's thrust command. Advanced through
+ * the output instants of a scenario with its controller, it gives `moorsim run`'s rows
+ * bit for bit. Readings are at the plant's current time; poses are the reference point's
+ * x, y, z [m] (NED) and roll, pitch, yaw [rad]. */
+typedef struct moorsim_plant moorsim_plant;
+
+/* The plant of a scenario file or YAML text for run seed `seed` (`moorsim run` uses the
+ * scenario's simulation.seed), at its moored static start. NULL on error. */
+moorsim_plant* moorsim_plant_create(const char* scenario_path, unsigned long long seed);
+moorsim_plant* moorsim_plant_create_from_yaml(const char* yaml_text, unsigned long long seed);
+void moorsim_plant_destroy(moorsim_plant* plant);
+
+int moorsim_plant_line_count(const moorsim_plant* plant, int* count);
+int moorsim_plant_time(const moorsim_plant* plant, double* t);
+/* Integrates to time t [s] (not behind the plant's; its own time does nothing), acting on
+ * every sensor sample, controller instant and scheduled failure on the way. */
+int moorsim_plant_advance_to(moorsim_plant* plant, double t);
+/* From now on, the thrust command X, Y [N], N [N m] (body frame, command[3]) at every
+ * controller instant instead of the controller's; NULL gives it back to the controller.
+ * The allocation and the thrusters' dynamics act on it as on the controller's. */
+int moorsim_plant_set_thrust(moorsim_plant* plant, const double* command);
+/* A steady load on the hull from now on: X north, Y east [N], moment about z [N m]. */
+int moorsim_plant_set_external_load(moorsim_plant* plant, const double* load);
+/* The true pose (low- plus wave-frequency), pose[6]. */
+int moorsim_plant_pose(moorsim_plant* plant, double* pose);
+/* The latest measurement x, y, heading, pose[3] (NaN until a channel has delivered). */
+int moorsim_plant_measured_pose(moorsim_plant* plant, double* pose);
+/* Each line's fairlead tension [N]: n = number of lines. */
+int moorsim_plant_fairlead_tensions(moorsim_plant* plant, double* tensions, int n);
+/* The load cells' latest readings [N]: n = number of lines (an error without cells). */
+int moorsim_plant_measured_tensions(moorsim_plant* plant, double* tensions, int n);
+/* The thrust the controller (or the caller) commanded and the thrusters deliver, X, Y, N
+ * (body frame), commanded[3] and delivered[3]; either may be NULL. */
+int moorsim_plant_thrust(moorsim_plant* plant, double* commanded, double* delivered);
+/* The loads on the hull about its origin, body frame, 6 each in this order: mooring, wave
+ * drift, current, wind, thrust (X, Y, Z [N], K, M, N [N m]); n must be 30. */
+int moorsim_plant_loads(moorsim_plant* plant, double* loads, int n);
+
+/* Saves the plant's state (its inputs since it was created: every advance, thrust command
+ * and load, in order) to buffer[capacity], its size to *size; buffer NULL gives the size.
+ * Restoring rebuilds the plant and repeats them: the plant is the saved one bit for bit,
+ * at the cost of its simulated time run again (less when the saved state continues the
+ * current one). A state of another scenario, seed or version is MOORSIM_ERROR_INPUT. */
+int moorsim_plant_save(const moorsim_plant* plant, void* buffer, size_t capacity, size_t* size);
+int moorsim_plant_restore(moorsim_plant* plant, const void* buffer, size_t size);
+
 #ifdef __cplusplus
 }
 #endif

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -17,6 +19,7 @@
 #include "mooring_fem/line_simulation.h"
 #include "scenarios/convert.h"
 #include "scenarios/load.h"
+#include "simulation/run.h"
 
 namespace {
 
@@ -357,6 +360,143 @@ TEST(CApi, MisuseIsAnErrorCodeWithAMessageNeverACrash) {
 TEST(CApi, TheVersionsAreTheHeaders) {
   EXPECT_EQ(moorsim_api_version(), MOORSIM_API_VERSION);
   EXPECT_EQ(std::string(moorsim_version()).rfind("0.", 0), 0u) << moorsim_version();
+}
+
+// The seed case's plant (no detectors), 12 segments a line, for 30 s.
+std::string SeedPlant() {
+  return "base: " MOORSIM_SOURCE_DIR
+         "/scenarios/library/seed_tapm.yaml\n"
+         "mooring: {defaults: {segments: 12}}\n"
+         "simulation: {duration: 30, output_rate_hz: 2}\n";
+}
+
+struct Plant {
+  explicit Plant(const std::string& yaml, unsigned long long seed = 7)
+      : handle(moorsim_plant_create_from_yaml(yaml.c_str(), seed)) {
+    EXPECT_NE(handle, nullptr) << moorsim_last_error();
+  }
+  ~Plant() { moorsim_plant_destroy(handle); }
+  Plant(const Plant&) = delete;
+  Plant& operator=(const Plant&) = delete;
+  moorsim_plant* handle;
+};
+
+// The plant's pose and fairlead tensions, all in a row.
+std::vector<double> PlantReadings(moorsim_plant* plant) {
+  std::vector<double> r(6 + 8);
+  EXPECT_EQ(moorsim_plant_pose(plant, r.data()), MOORSIM_OK) << moorsim_last_error();
+  EXPECT_EQ(moorsim_plant_fairlead_tensions(plant, r.data() + 6, 8), MOORSIM_OK);
+  return r;
+}
+
+TEST(CApiPlant, AdvancedThroughTheOutputInstantsWithItsControllerItGivesTheRunsRows) {
+  const std::string yaml = SeedPlant();
+  moorsim::simulation::RunRequest request;
+  auto scenario = std::make_shared<moorsim::scenarios::Scenario>(
+      moorsim::scenarios::ParseScenario(yaml, "<yaml text>"));
+  scenario->simulation.seed = 7;
+  request.scenario = scenario;
+  request.write_files = false;
+  std::vector<moorsim::simulation::Sample> rows;
+  request.on_row = [&rows](const moorsim::simulation::Sample& s) { rows.push_back(s); };
+  const moorsim::simulation::RunResult result = moorsim::simulation::RunScenario(request);
+  ASSERT_EQ(result.status, moorsim::simulation::RunStatus::kOk) << result.message;
+  ASSERT_EQ(rows.size(), 61u);
+
+  Plant plant(yaml, 7);
+  for (const auto& row : rows) {
+    ASSERT_EQ(moorsim_plant_advance_to(plant.handle, row.time), MOORSIM_OK);
+    const std::vector<double> r = PlantReadings(plant.handle);
+    for (int d = 0; d < 6; ++d) ASSERT_EQ(r[d], row.pose_true(d)) << "t " << row.time;
+    for (int i = 0; i < 8; ++i) ASSERT_EQ(r[6 + i], row.fairlead_tension[i]) << "t " << row.time;
+    double measured[3];
+    ASSERT_EQ(moorsim_plant_measured_pose(plant.handle, measured), MOORSIM_OK);
+    for (int c = 0; c < 3; ++c) {
+      if (std::isnan(row.pose_measured(c))) {
+        EXPECT_TRUE(std::isnan(measured[c]));
+      } else {
+        EXPECT_EQ(measured[c], row.pose_measured(c));
+      }
+    }
+  }
+}
+
+TEST(CApiPlant, TheCallersThrustPushesTheVesselAndARestoredPlantRepeatsBitForBit) {
+  Plant plant(SeedPlant());
+  ASSERT_EQ(moorsim_plant_advance_to(plant.handle, 5.0), MOORSIM_OK) << moorsim_last_error();
+  const double push[3] = {1.5e6, 0.0, 0.0};  // body frame, forward
+  ASSERT_EQ(moorsim_plant_set_thrust(plant.handle, push), MOORSIM_OK);
+  ASSERT_EQ(moorsim_plant_advance_to(plant.handle, 10.0), MOORSIM_OK);
+  double commanded[3], delivered[3], loads[30];
+  ASSERT_EQ(moorsim_plant_thrust(plant.handle, commanded, delivered), MOORSIM_OK);
+  EXPECT_EQ(commanded[0], 1.5e6);
+  EXPECT_GT(delivered[0], 0.0);
+  ASSERT_EQ(moorsim_plant_loads(plant.handle, loads, 30), MOORSIM_OK);
+  EXPECT_EQ(loads[24], delivered[0]);  // the thrust's load, X
+  std::size_t size = 0;
+  ASSERT_EQ(moorsim_plant_save(plant.handle, nullptr, 0, &size), MOORSIM_OK);
+  std::vector<unsigned char> saved(size);
+  ASSERT_EQ(moorsim_plant_save(plant.handle, saved.data(), size, &size), MOORSIM_OK);
+  ASSERT_EQ(moorsim_plant_advance_to(plant.handle, 20.0), MOORSIM_OK);
+  const std::vector<double> on = PlantReadings(plant.handle);
+
+  // A new plant repeats the saved inputs; this one, which went past them, is rebuilt.
+  Plant fresh(SeedPlant());
+  ASSERT_EQ(moorsim_plant_restore(fresh.handle, saved.data(), size), MOORSIM_OK);
+  ASSERT_EQ(moorsim_plant_restore(plant.handle, saved.data(), size), MOORSIM_OK);
+  for (moorsim_plant* p : {fresh.handle, plant.handle}) {
+    double t = 0.0;
+    ASSERT_EQ(moorsim_plant_time(p, &t), MOORSIM_OK);
+    EXPECT_EQ(t, 10.0);
+    ASSERT_EQ(moorsim_plant_advance_to(p, 20.0), MOORSIM_OK);
+    EXPECT_EQ(PlantReadings(p), on);
+  }
+  // Without the push (the controller throughout), the vessel is elsewhere.
+  Plant held(SeedPlant());
+  ASSERT_EQ(moorsim_plant_advance_to(held.handle, 20.0), MOORSIM_OK);
+  const std::vector<double> still = PlantReadings(held.handle);
+  const double heading = on[5];
+  EXPECT_GT((on[0] - still[0]) * std::cos(heading) + (on[1] - still[1]) * std::sin(heading), 0.05);
+}
+
+TEST(CApiPlant, MisuseIsAnErrorCodeWithAMessage) {
+  double values[30];
+  std::size_t size = 0;
+  EXPECT_REFUSED(moorsim_plant_advance_to(nullptr, 1.0), MOORSIM_ERROR_USAGE, "handle is NULL");
+  EXPECT_REFUSED(moorsim_plant_save(nullptr, nullptr, 0, &size), MOORSIM_ERROR_USAGE,
+                 "handle is NULL");
+  EXPECT_EQ(moorsim_plant_create("/nonexistent/plant.yaml", 1), nullptr);
+  EXPECT_NE(std::string(moorsim_last_error()).find("/nonexistent/plant.yaml"), std::string::npos);
+  EXPECT_EQ(moorsim_plant_create_from_yaml(Mooring().c_str(), 1), nullptr);  // no vessel
+  EXPECT_NE(std::string(moorsim_last_error()).find("vessel"), std::string::npos)
+      << moorsim_last_error();
+  Plant plant(SeedPlant());
+  EXPECT_REFUSED(moorsim_plant_advance_to(plant.handle, -1.0), MOORSIM_ERROR_INPUT, "behind");
+  EXPECT_REFUSED(moorsim_plant_advance_to(plant.handle, NAN), MOORSIM_ERROR_INPUT, "not a number");
+  const double bad[3] = {NAN, 0, 0};
+  EXPECT_REFUSED(moorsim_plant_set_thrust(plant.handle, bad), MOORSIM_ERROR_INPUT, "not finite");
+  EXPECT_REFUSED(moorsim_plant_set_external_load(plant.handle, bad), MOORSIM_ERROR_INPUT,
+                 "not finite");
+  EXPECT_REFUSED(moorsim_plant_fairlead_tensions(plant.handle, values, 7), MOORSIM_ERROR_USAGE,
+                 "expected 8");
+  EXPECT_REFUSED(moorsim_plant_loads(plant.handle, values, 6), MOORSIM_ERROR_USAGE, "expected 30");
+  EXPECT_REFUSED(moorsim_plant_measured_tensions(plant.handle, values, 8), MOORSIM_ERROR_INPUT,
+                 "no load cells");
+  ASSERT_EQ(moorsim_plant_save(plant.handle, nullptr, 0, &size), MOORSIM_OK);
+  std::vector<unsigned char> saved(size);
+  ASSERT_EQ(moorsim_plant_save(plant.handle, saved.data(), size, &size), MOORSIM_OK);
+  Plant other_seed(SeedPlant(), 8);
+  EXPECT_REFUSED(moorsim_plant_restore(other_seed.handle, saved.data(), size), MOORSIM_ERROR_INPUT,
+                 "another model");
+  EXPECT_REFUSED(moorsim_plant_restore(plant.handle, saved.data(), size - 1), MOORSIM_ERROR_INPUT,
+                 "cut short");
+  Lines lines(Mooring());
+  InitAtRest(lines.handle);
+  std::vector<unsigned char> lines_state(4096);
+  ASSERT_EQ(moorsim_lines_save(lines.handle, lines_state.data(), lines_state.size(), &size),
+            MOORSIM_OK);
+  EXPECT_REFUSED(moorsim_plant_restore(plant.handle, lines_state.data(), size), MOORSIM_ERROR_INPUT,
+                 "not a moorsim plant state");
 }
 
 }  // namespace

@@ -166,3 +166,22 @@ def test_a_run_as_an_xarray_dataset(cli_run):
     np.testing.assert_array_equal(tension.sel({"mooring.fairlead_tension.column": "line 6"}),
                                   cli_run["mooring/fairlead_tension"][:, 5])
     assert isinstance(ds, xr.Dataset)
+
+
+def test_the_plant_restored_repeats_bit_for_bit():
+    overrides = ["simulation.duration=60", "mooring.defaults.segments=12"]
+    plant = moorsim.Plant(SEED, seed=2, overrides=overrides)
+    plant.advance_to(5.0)
+    plant.set_thrust([5.0e5, 0.0, 0.0])
+    plant.advance_to(8.0)
+    state = plant.save()
+    plant.advance_to(15.0)
+    on = plant.record()
+    again = moorsim.Plant(SEED, seed=2, overrides=overrides)
+    again.restore(state)
+    assert again.time == 8.0
+    again.advance_to(15.0)
+    np.testing.assert_array_equal(again.record()["pose"], on["pose"])
+    np.testing.assert_array_equal(again.record()["thrust_delivered"], on["thrust_delivered"])
+    with pytest.raises(moorsim.InputError, match="another model"):
+        moorsim.Plant(SEED, seed=3, overrides=overrides).restore(state)

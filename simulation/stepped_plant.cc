@@ -1,0 +1,142 @@
+#include "simulation/stepped_plant.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/error.h"
+#include "core/sha256.h"
+#include "core/state_bytes.h"
+
+namespace moorsim::simulation {
+namespace {
+
+constexpr char kTag[9] = "moorsimP";
+constexpr std::int64_t kFormat = 1;
+
+// The scenario's whole text (bases merged and overrides applied, as outputs record it)
+// and the seed, folded to 64 bits.
+std::uint64_t PlantFingerprint(const scenarios::Scenario& scenario, std::uint64_t seed) {
+  std::string identity = scenario.text;
+  for (const std::string& o : scenario.overrides) identity += "\n" + o;
+  identity += "\nseed " + std::to_string(seed);
+  const std::string hex = Sha256Hex(identity);
+  return std::stoull(hex.substr(0, 16), nullptr, 16);
+}
+
+// The plant at its moored static start, with what happens at t = 0 done (the first sensor
+// sample and controller instant), as a run starts.
+std::unique_ptr<Simulation> Start(const scenarios::Scenario& scenario, std::uint64_t seed) {
+  auto simulation = std::make_unique<Simulation>(scenario, seed);
+  simulation->AdvanceTo(0.0);
+  return simulation;
+}
+
+}  // namespace
+
+SteppedPlant::SteppedPlant(const scenarios::Scenario& scenario, std::uint64_t seed)
+    : scenario_(scenario),
+      seed_(seed),
+      fingerprint_(PlantFingerprint(scenario, seed)),
+      simulation_(Start(scenario_, seed_)) {}
+
+void SteppedPlant::Apply(const Input& input) {
+  switch (input.kind) {
+    case Input::kAdvance:
+      simulation_->AdvanceTo(input.values[0]);
+      break;
+    case Input::kThrust:
+      simulation_->SetThrustCommand(Vec3(input.values[0], input.values[1], input.values[2]));
+      break;
+    case Input::kController:
+      simulation_->SetThrustCommand(std::nullopt);
+      break;
+    case Input::kLoad:
+      simulation_->SetExternalLoad(Vec3(input.values[0], input.values[1], input.values[2]));
+      break;
+  }
+  now_.reset();
+}
+
+void SteppedPlant::AdvanceTo(double t) {
+  if (!std::isfinite(t) || t < time()) {
+    throw InputError("time " + std::to_string(t) + " s is behind the plant's " +
+                     std::to_string(time()) + " s (or not a number)");
+  }
+  if (t == time()) return;
+  const Input input{Input::kAdvance, {t, 0.0, 0.0}};
+  Apply(input);
+  inputs_.push_back(input);
+}
+
+void SteppedPlant::SetThrustCommand(const std::optional<Vec3>& command) {
+  Input input{Input::kController, {0.0, 0.0, 0.0}};
+  if (command) {
+    if (!command->allFinite()) throw InputError("the thrust command is not finite");
+    input = {Input::kThrust, {(*command)(0), (*command)(1), (*command)(2)}};
+  }
+  Apply(input);
+  inputs_.push_back(input);
+}
+
+void SteppedPlant::SetExternalLoad(const Vec3& load) {
+  if (!load.allFinite()) throw InputError("the external load is not finite");
+  const Input input{Input::kLoad, {load(0), load(1), load(2)}};
+  Apply(input);
+  inputs_.push_back(input);
+}
+
+const Sample& SteppedPlant::Now() {
+  if (!now_) now_ = simulation_->Record();
+  return *now_;
+}
+
+std::vector<std::uint8_t> SteppedPlant::Save() const {
+  StateWriter w;
+  w.PutHeader(kTag, kFormat, fingerprint_);
+  w.Put(static_cast<std::int64_t>(inputs_.size()));
+  for (const Input& input : inputs_) {
+    w.Put(static_cast<std::int64_t>(input.kind));
+    for (double v : input.values) w.Put(v);
+  }
+  return w.Take();
+}
+
+void SteppedPlant::Restore(std::span<const std::uint8_t> bytes) {
+  StateReader r(bytes, "plant state");
+  r.SetFingerprintMeaning("its scenario, overrides or seed differ");
+  r.CheckHeader(kTag, kFormat, fingerprint_);
+  std::vector<Input> inputs(r.GetCount(32, "inputs"));
+  for (Input& input : inputs) {
+    const auto kind = r.Get<std::int64_t>("input");
+    if (kind < Input::kAdvance || kind > Input::kLoad) r.Damaged("input kind");
+    input.kind = static_cast<Input::Kind>(kind);
+    for (double& v : input.values) v = r.Get<double>("input");
+  }
+  if (r.remaining() != 0) r.Damaged("length");
+  const auto same = [](const Input& a, const Input& b) {
+    return a.kind == b.kind && std::equal(a.values, a.values + 3, b.values);
+  };
+  // What this plant has done is where the saved one began: only the rest to repeat.
+  const bool continues = inputs.size() >= inputs_.size() &&
+                         std::equal(inputs_.begin(), inputs_.end(), inputs.begin(), same);
+  if (continues) {  // each input logged as it is applied: a failure leaves the plant there
+    for (std::size_t i = inputs_.size(); i < inputs.size(); ++i) {
+      Apply(inputs[i]);
+      inputs_.push_back(inputs[i]);
+    }
+    return;
+  }
+  auto rebuilt = Start(scenario_, seed_);
+  std::swap(rebuilt, simulation_);  // the old plant kept until the replay succeeds
+  try {
+    for (const Input& input : inputs) Apply(input);
+  } catch (...) {
+    std::swap(rebuilt, simulation_);
+    now_.reset();
+    throw;
+  }
+  inputs_ = std::move(inputs);
+}
+
+}  // namespace moorsim::simulation

@@ -1,0 +1,65 @@
+// The coupled plant of a scenario stepped by a caller (the C API, the Python module): its
+// own controller or the caller's thrust, a steady external load, the state at any time;
+// and its whole state saved and restored.
+//
+// Saving records the plant's inputs (the scenario, the seed, and every call that moved it
+// or changed its inputs, in order); restoring rebuilds the plant and repeats those calls.
+// The plant is deterministic (a scenario and a seed give the run bit for bit), so the
+// restored plant is the saved one bit for bit, and stepping on repeats its trajectory. The
+// cost is the simulated time up to the saved instant, run again (a restore to a state
+// that continues the current one runs only the difference); the lines alone
+// (mooring_fem::CoupledLines) save their numbers and restore in microseconds.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "scenarios/scenario.h"
+#include "simulation/simulation.h"
+
+namespace moorsim::simulation {
+
+class SteppedPlant {
+ public:
+  /// The plant of `scenario` (loaded with `overrides`, which are part of its identity) for
+  /// run seed `seed`, at its moored static start. Throws as Simulation does.
+  SteppedPlant(const scenarios::Scenario& scenario, std::uint64_t seed);
+
+  double time() const { return simulation_->time(); }
+  int num_lines() const { return simulation_->num_lines(); }
+  /// Integrates to t (nothing for t = time()). Throws InputError for a t that is not
+  /// finite or behind, SolverError as Simulation::AdvanceTo.
+  void AdvanceTo(double t);
+  /// The caller's thrust command X, Y, N (body frame) from now on; nullopt: the controller.
+  void SetThrustCommand(const std::optional<Vec3>& command);
+  /// A steady load on the hull, Earth axes (X north, Y east [N], moment about z [N m]).
+  void SetExternalLoad(const Vec3& load);
+  /// Everything recorded at the current time (Simulation::Record), computed once per time.
+  const Sample& Now();
+  const Simulation& simulation() const { return *simulation_; }
+
+  std::vector<std::uint8_t> Save() const;
+  /// Returns to a saved state. Throws InputError for bytes that are not a moorsim plant
+  /// state or are from another scenario, seed or version; the plant is then as it was.
+  void Restore(std::span<const std::uint8_t> bytes);
+
+ private:
+  struct Input {
+    enum Kind : std::int64_t { kAdvance, kThrust, kController, kLoad } kind;
+    double values[3];
+  };
+  void Apply(const Input& input);
+
+  scenarios::Scenario scenario_;
+  std::uint64_t seed_;
+  std::uint64_t fingerprint_;
+  std::unique_ptr<Simulation> simulation_;
+  std::vector<Input> inputs_;
+  std::optional<Sample> now_;
+};
+
+}  // namespace moorsim::simulation
