@@ -2,7 +2,8 @@
 // (scenarios/library/seed_tapm.yaml, 8 lines x 50 segments) stepped every 0.1 s along a
 // surge-heave harmonic, through CoupledLines::Step (the C++ call) and through
 // moorsim_lines_step (the C API, with its checks and its exception barrier); and the
-// whole state saved to bytes and restored. One iteration is one coupling step of 0.1 s.
+// whole state saved to bytes and restored. One iteration is one coupling step of 0.1 s;
+// for the coupled plant (BM_CApiPlantSecond), one second of a 1 Hz control loop.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -112,8 +113,31 @@ void BM_CApiRestore(benchmark::State& state) {
   moorsim_lines_destroy(lines);
 }
 
+// The seed case's coupled plant with its controller, one second per iteration (a 1 Hz
+// control loop's step) with the pose and the tensions read, as a caller's loop would.
+void BM_CApiPlantSecond(benchmark::State& state) {
+  moorsim_plant* plant = moorsim_plant_create(kSeed, 1);
+  if (!plant) {
+    state.SkipWithError(moorsim_last_error());
+    return;
+  }
+  double t = 0.0, pose[6], tensions[8];
+  for (auto _ : state) {
+    t += 1.0;
+    if (moorsim_plant_advance_to(plant, t) != MOORSIM_OK ||
+        moorsim_plant_pose(plant, pose) != MOORSIM_OK ||
+        moorsim_plant_fairlead_tensions(plant, tensions, 8) != MOORSIM_OK) {
+      state.SkipWithError(moorsim_last_error());
+      break;
+    }
+    benchmark::DoNotOptimize(pose);
+  }
+  moorsim_plant_destroy(plant);
+}
+
 }  // namespace
 
+BENCHMARK(BM_CApiPlantSecond)->Unit(benchmark::kMicrosecond)->Iterations(600);
 BENCHMARK(BM_CoupledLinesStep)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CApiStep)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CApiSave)->Unit(benchmark::kMicrosecond);

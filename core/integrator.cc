@@ -375,6 +375,24 @@ void Integrator::SetStopTime(double t_stop) {
   Check(CVodeSetStopTime(impl_->cvode, t_stop), "CVodeSetStopTime");
 }
 
+void Integrator::Restart(double t0, const double* x0, const std::vector<double>& reference) {
+  Impl& m = *impl_;
+  if (reference.size() != m.reference.size()) {
+    throw ContractError("integrator restart: the tolerance reference has the wrong size");
+  }
+  m.reference = reference;
+  std::copy(x0, x0 + n_, N_VGetArrayPointer(m.y));
+  Check(CVodeReInit(m.cvode, t0, m.y), "CVodeReInit");
+  // KLU refactors with the pivots of its first factorisation; a new integrator's first
+  // factorisation chooses them afresh, and so must this one's.
+  if (m.block == nullptr) {
+    Check(SUNLinSol_KLUReInit(m.LS, m.A, SUNSparseMatrix_NNZ(m.A), SUNKLU_REINIT_PARTIAL),
+          "SUNLinSol_KLUReInit");
+  }
+  m.rhs_seconds = m.jacobian_seconds = m.setup_seconds = m.solve_seconds = 0.0;
+  t_ = t0;
+}
+
 void Integrator::AdvanceTo(double t_out) {
   if (t_out <= t_) return;
   Impl& m = *impl_;

@@ -66,6 +66,12 @@ class Integrator {
   void AdvanceTo(double t_out);
   /// CVODE will not step beyond this time (used for events such as a line failure).
   void SetStopTime(double t_stop);
+  /// Starts over at (t0, x0), as a new Integrator of the same system and options would
+  /// (the same steps, bit for bit), keeping this one's memory and the linear solver's
+  /// symbolic work: microseconds instead of the new solver's set-up. The system's state
+  /// layout and pattern must not have changed. `reference` replaces the tolerance
+  /// reference (IntegratorOptions::reference; empty without one). Counters start at zero.
+  void Restart(double t0, const double* x0, const std::vector<double>& reference);
 
   double time() const { return t_; }
   const double* state() const;

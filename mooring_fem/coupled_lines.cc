@@ -158,6 +158,7 @@ Vec6 CoupledLines::Init(const BodyDofs& pose, const BodyDofs& velocity, double t
     mooring_ = MooringSystem(spec_);
     mooring_.SetWaves(waves_);
     failures_.clear();
+    topology_changed_ = true;
   }
   initialized_ = false;
   path_->Hold(t0, pose, velocity);
@@ -174,7 +175,12 @@ Vec6 CoupledLines::Init(const BodyDofs& pose, const BodyDofs& velocity, double t
 
 void CoupledLines::StartIntegrator() {
   if (integrator_) finished_ += integrator_->stats();
+  if (integrator_ && !topology_changed_) {
+    integrator_->Restart(t_, x_.data(), ToleranceReference(mooring_, x_));
+    return;
+  }
   integrator_ = StartLineIntegrator(system_, solver_, mooring_, t_, x_);
+  topology_changed_ = false;
 }
 
 Vec6 CoupledLines::Step(const BodyDofs& pose, const BodyDofs& velocity, double dt) {
@@ -257,6 +263,7 @@ void CoupledLines::Part(const LineFailure& failure) {
   CheckInitialized("parting a line");
   x_ = mooring_.ApplyFailure(failure, x_.data(), FairleadsNow());
   failures_.push_back(failure);
+  topology_changed_ = true;
   StartIntegrator();
 }
 
@@ -324,6 +331,7 @@ void CoupledLines::Restore(std::span<const std::uint8_t> bytes) {
     if (mooring.StateSize() != static_cast<int>(x.size())) r.Damaged("state size");
     mooring_ = std::move(mooring);
     failures_ = std::move(failures);
+    topology_changed_ = true;
   } else if (mooring_.StateSize() != static_cast<int>(x.size())) {
     r.Damaged("state size");
   }

@@ -110,6 +110,7 @@ class CoupledLines {
   IntegratorStats finished_;
   std::vector<double> x_;
   std::vector<LineFailure> failures_;  // applied, in order
+  bool topology_changed_ = false;      // since the integrator was made: make a new one
   double t_ = 0.0;
   bool initialized_ = false;
   std::uint64_t fingerprint_ = 0;

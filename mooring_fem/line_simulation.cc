@@ -273,11 +273,16 @@ std::unique_ptr<Integrator> StartLineIntegrator(OdeSystem& system, const SolverS
                                                 const MooringSystem& mooring, double t,
                                                 const std::vector<double>& x) {
   IntegratorOptions options = MakeIntegratorOptions(solver, mooring);
-  // Tolerances relative to each node's displacement from where this integrator starts.
-  const std::vector<char> kinds = mooring.StateKinds();
-  options.reference.resize(x.size());
-  for (std::size_t i = 0; i < x.size(); ++i) options.reference[i] = kinds[i] == 'p' ? x[i] : 0.0;
+  options.reference = ToleranceReference(mooring, x);
   return std::make_unique<Integrator>(system, t, x.data(), options);
+}
+
+std::vector<double> ToleranceReference(const MooringSystem& mooring, const std::vector<double>& x) {
+  // Tolerances relative to each node's displacement from where the integrator starts.
+  const std::vector<char> kinds = mooring.StateKinds();
+  std::vector<double> reference(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) reference[i] = kinds[i] == 'p' ? x[i] : 0.0;
+  return reference;
 }
 
 }  // namespace moorsim::mooring_fem

@@ -128,6 +128,10 @@ std::unique_ptr<Integrator> StartLineIntegrator(OdeSystem& system, const SolverS
                                                 const MooringSystem& mooring, double t,
                                                 const std::vector<double>& x);
 
+/// The tolerance reference of an integrator of the lines starting at x: the node
+/// positions (rtol applies to their displacement from there), zero elsewhere.
+std::vector<double> ToleranceReference(const MooringSystem& mooring, const std::vector<double>& x);
+
 /// Drives a PrescribedMotionSystem with CVODE from the FEM's static equilibrium at the
 /// motion's mean pose (analytic catenary, then Newton on the FEM), with scheduled failures.
 class LineSimulation {
