@@ -75,8 +75,8 @@ void CreateDirectory(const std::filesystem::path& directory) {
   std::error_code error;
   std::filesystem::create_directories(directory, error);
   if (error) {
-    throw InputError("--out " + directory.string() +
-                     ": cannot create the directory: " + error.message());
+    throw OptionError(
+        "out", " " + directory.string() + ": cannot create the directory: " + error.message());
   }
 }
 
@@ -390,14 +390,16 @@ bool IsString(const nlohmann::json& j, const char* key) {
 }
 
 // DIR/campaign.json, checked for what a resume and a merge read. Throws InputError
-// "<flag> DIR: ..." for a directory without one, a damaged one, and one of a moorsim that
-// recorded no identity.
-nlohmann::json ReadCampaignRecord(const std::filesystem::path& directory, const std::string& flag) {
+// OptionError "<option> DIR: ..." for a directory without one, a damaged one, and one of a moorsim
+// that recorded no identity.
+nlohmann::json ReadCampaignRecord(const std::filesystem::path& directory,
+                                  const std::string& option) {
   const std::filesystem::path path = directory / "campaign.json";
-  const std::string where = flag + " " + directory.string() + ": ";
+  const std::string where = " " + directory.string() + ": ";
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) {
-    throw InputError(where + "no campaign.json (not a results directory of moorsim batch)");
+    throw OptionError(option,
+                      where + "no campaign.json (not a results directory of moorsim batch)");
   }
   nlohmann::json record;
   try {
@@ -412,9 +414,10 @@ nlohmann::json ReadCampaignRecord(const std::filesystem::path& directory, const 
     whole = whole && key.is_string();
   }
   if (whole && !record.contains("identity")) {
-    throw InputError(where +
-                     "was started by an earlier moorsim, which did not record its campaign's "
-                     "identity; finish it with that moorsim or choose another directory");
+    throw OptionError(option,
+                      where +
+                          "was started by an earlier moorsim, which did not record its campaign's "
+                          "identity; finish it with that moorsim or choose another directory");
   }
   if (whole) {
     const nlohmann::json& identity = record.at("identity");
@@ -426,7 +429,8 @@ nlohmann::json ReadCampaignRecord(const std::filesystem::path& directory, const 
     }
   }
   if (!whole)
-    throw InputError(where + "campaign.json is damaged (not the JSON moorsim batch writes)");
+    throw OptionError(option,
+                      where + "campaign.json is damaged (not the JSON moorsim batch writes)");
   return record;
 }
 
@@ -484,28 +488,28 @@ std::string IdentityDifference(const nlohmann::json& recorded, const nlohmann::j
 
 // Under DIR's lock: checks that DIR holds nothing of a campaign or the results of the one
 // `record` (as CampaignMeta) describes, and records that campaign there if DIR is new.
-// Throws InputError "--out DIR: ..." naming what differs. `resuming`: by a batch, not a merge.
+// Throws OptionError "out DIR: ..." naming what differs. `resuming`: by a batch, not a merge.
 void ClaimDirectory(const std::filesystem::path& directory, const nlohmann::json& record,
                     const std::string& campaign_text, bool resuming) {
-  const std::string where = "--out " + directory.string() + ": ";
+  const std::string where = " " + directory.string() + ": ";
   const std::string refused = where + "holds the results of another campaign: ";
-  const std::string advice = "; choose another --out or remove the directory";
+  const std::string advice = "; choose another directory or remove this one";
   const std::filesystem::path text = directory / "campaign.yaml";
   std::error_code error;
   if (std::filesystem::exists(directory / "campaign.json", error)) {
-    const nlohmann::json recorded = ReadCampaignRecord(directory, "--out");
+    const nlohmann::json recorded = ReadCampaignRecord(directory, "out");
     const std::string difference = IdentityDifference(
         recorded.at("identity"), record.at("identity"), directory.string(), resuming);
-    if (!difference.empty()) throw InputError(refused + difference + advice);
+    if (!difference.empty()) throw OptionError("out", refused + difference + advice);
   } else {
     // No record: a new directory, or one whose first batch stopped before it wrote one
     // (campaign.json comes first, then campaign.yaml, then rows).
     if (!std::filesystem::is_empty(directory / "rows", error) && !error) {
-      throw InputError(where + "holds rows of a campaign but no campaign.json that says which" +
-                       advice);
+      throw OptionError(
+          "out", where + "holds rows of a campaign but no campaign.json that says which" + advice);
     }
     if (std::filesystem::exists(text, error) && ReadSmallFile(text) != campaign_text) {
-      throw InputError(refused + "its campaign.yaml is another campaign's text" + advice);
+      throw OptionError("out", refused + "its campaign.yaml is another campaign's text" + advice);
     }
     WriteFileAtomically(directory / "campaign.json", record.dump(2) + "\n");
   }
@@ -947,7 +951,7 @@ nlohmann::json MakeRow(const PreparedCampaign& p, const scenarios::CampaignRun& 
 }
 
 std::vector<nlohmann::json> ReadRows(const std::filesystem::path& directory) {
-  const nlohmann::json record = ReadCampaignRecord(directory, "--out");
+  const nlohmann::json record = ReadCampaignRecord(directory, "out");
   return ReadRowsOf(directory, record.at("identity").at("sha256").get<std::string>(),
                     record.at("runs").get<std::int64_t>());
 }
@@ -1114,11 +1118,12 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
   };
   try {
     if (o.shard_count < 1 || o.shard_index < 0 || o.shard_index >= o.shard_count) {
-      throw InputError("--shard " + std::to_string(o.shard_index + 1) + "/" +
-                       std::to_string(o.shard_count) + ": expected K/N with 1 <= K <= N");
+      throw OptionError("shard", " " + std::to_string(o.shard_index + 1) + "/" +
+                                     std::to_string(o.shard_count) +
+                                     ": expected K/N with 1 <= K <= N");
     }
     if (!(o.run_timeout >= 0.0) || !std::isfinite(o.run_timeout)) {
-      throw InputError("--run-timeout " + Shortest(o.run_timeout) + ": must be >= 0 seconds");
+      throw OptionError("run_timeout", " " + Shortest(o.run_timeout) + ": must be >= 0 seconds");
     }
     std::atomic<int> stop_signal{0};
     const std::function<int()> stop = [&]() -> int {
@@ -1229,6 +1234,9 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
   } catch (const InputError& e) {
     result.status = BatchStatus::kRejected;
     result.message = e.what();
+    if (const auto* option = dynamic_cast<const OptionError*>(&e)) {
+      result.option_error = std::make_shared<const OptionError>(*option);
+    }
   } catch (const std::exception& e) {
     result.status = BatchStatus::kFailed;
     result.message = e.what();
@@ -1244,18 +1252,19 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
 
 void MergeCampaigns(const std::vector<std::filesystem::path>& directories,
                     const std::filesystem::path& out, const std::string& command_line) {
-  if (directories.empty()) throw InputError("--merge: give at least one directory");
+  if (directories.empty()) throw OptionError("merge", ": give at least one directory");
   // Every directory is read and checked before anything is written.
   nlohmann::json meta;
   std::string text;
   std::map<std::int64_t, nlohmann::json> rows;
   for (const std::filesystem::path& dir : directories) {
-    const nlohmann::json record = ReadCampaignRecord(dir, "--merge");
+    const nlohmann::json record = ReadCampaignRecord(dir, "merge");
     const std::filesystem::path recorded = dir / "campaign.yaml";
     std::error_code error;
     if (!std::filesystem::is_regular_file(recorded, error)) {
-      throw InputError("--merge " + dir.string() +
-                       ": no campaign.yaml (not a results directory of moorsim batch)");
+      throw OptionError(
+          "merge",
+          " " + dir.string() + ": no campaign.yaml (not a results directory of moorsim batch)");
     }
     if (meta.is_null()) {
       meta = record;
@@ -1264,8 +1273,8 @@ void MergeCampaigns(const std::vector<std::filesystem::path>& directories,
     const std::string difference = IdentityDifference(meta.at("identity"), record.at("identity"),
                                                       directories.front().string(), false);
     if (!difference.empty()) {
-      throw InputError("--merge " + dir.string() + ": holds another campaign than " +
-                       directories.front().string() + ": " + difference);
+      throw OptionError("merge", " " + dir.string() + ": holds another campaign than " +
+                                     directories.front().string() + ": " + difference);
     }
     const std::string identity = meta.at("identity").at("sha256").get<std::string>();
     for (nlohmann::json& row : ReadRowsOf(dir, identity, meta.at("runs").get<std::int64_t>())) {

@@ -29,11 +29,14 @@
 #include <functional>
 #include <iosfwd>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+
+#include "core/error.h"
 
 #include "campaign/batch_mpi.h"
 #include "detectors/registry.h"
@@ -185,6 +188,9 @@ struct BatchResult {
   BatchStatus status = BatchStatus::kOk;
   int signal = 0;  ///< the signal that stopped it (kInterrupted)
   std::string message;
+  /// A rejection about one of the options (BatchOptions): the error, whose options a
+  /// caller may name its own way (OptionError::Renamed).
+  std::shared_ptr<const OptionError> option_error;
   std::int64_t runs = 0;     ///< in this shard
   std::int64_t skipped = 0;  ///< had a row already (resumed)
   std::int64_t done = 0;     ///< finished in this batch

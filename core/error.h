@@ -4,6 +4,8 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace moorsim {
 
@@ -18,6 +20,35 @@ class Error : public std::runtime_error {
 class InputError : public Error {
  public:
   using Error::Error;
+};
+
+/// Bad input given through one or more of a call's named options (fields of its request,
+/// overrides), named as the library names them ("out", "run_timeout", "set"): the message
+/// is the options' names joined by ", " and then `rest`. A caller that offers the options
+/// under its own names (the command line's flags, "--run-timeout") shows Renamed().
+class OptionError : public InputError {
+ public:
+  OptionError(std::vector<std::string> options, const std::string& rest)
+      : InputError(Join(options) + rest), options_(std::move(options)), rest_(rest) {}
+  OptionError(const std::string& option, const std::string& rest)
+      : OptionError(std::vector<std::string>{option}, rest) {}
+  const std::vector<std::string>& options() const { return options_; }
+  /// The message with each option's name passed through `rename`.
+  template <typename Rename>
+  std::string Renamed(Rename rename) const {
+    std::vector<std::string> names;
+    for (const std::string& o : options_) names.push_back(rename(o));
+    return Join(names) + rest_;
+  }
+
+ private:
+  static std::string Join(const std::vector<std::string>& names) {
+    std::string joined;
+    for (const std::string& n : names) joined += (joined.empty() ? "" : ", ") + n;
+    return joined;
+  }
+  std::vector<std::string> options_;
+  std::string rest_;
 };
 
 /// A numerical failure during a run; the message names the time and the solver flag.

@@ -495,12 +495,12 @@ void CheckPatternsMatch(const Outputs& outputs, const CompareOptions& options,
   };
   for (const ToleranceRule& rule : options.rules) {
     if (!any(names_and_columns, rule.pattern)) {
-      throw InputError(rule.flag + ": matches no channel of " + files);
+      throw OptionError(rule.option, rule.given + ": matches no channel of " + files);
     }
   }
   for (const std::string& pattern : options.ignore) {
     if (!any(names, pattern)) {
-      throw InputError("--ignore " + Quoted(pattern) + ": matches no channel of " + files);
+      throw OptionError("ignore", " " + Quoted(pattern) + ": matches no channel of " + files);
     }
   }
 }
@@ -513,27 +513,27 @@ bool Ignored(const CompareOptions& options, const std::string& name) {
 }  // namespace
 
 void AddTolerance(CompareOptions& options, ToleranceRule::Kind kind, const std::string& text) {
-  const std::string flag = kind == ToleranceRule::Kind::kRelative ? "--rtol" : "--atol";
-  const std::string given = flag + " " + Quoted(text);
-  if (text.empty()) throw InputError(given + ": empty value");
+  const std::string option = kind == ToleranceRule::Kind::kRelative ? "rtol" : "atol";
+  const std::string given = " " + Quoted(text);
+  if (text.empty()) throw OptionError(option, given + ": empty value");
   const std::size_t equals = text.rfind('=');
   const std::string pattern = equals == std::string::npos ? "" : text.substr(0, equals);
   const std::string value_text = equals == std::string::npos ? text : text.substr(equals + 1);
   if (equals != std::string::npos && pattern.empty()) {
-    throw InputError(given + ": no pattern before '=' (PATTERN=VALUE or VALUE)");
+    throw OptionError(option, given + ": no pattern before '=' (PATTERN=VALUE or VALUE)");
   }
   const std::optional<double> value = ParseDouble(value_text);
-  if (!value) throw InputError(given + ": " + Quoted(value_text) + " is not a number");
+  if (!value) throw OptionError(option, given + ": " + Quoted(value_text) + " is not a number");
   if (!std::isfinite(*value)) {
-    throw InputError(given + ": " + Quoted(value_text) + " is not a finite number");
+    throw OptionError(option, given + ": " + Quoted(value_text) + " is not a finite number");
   }
   if (*value < 0.0)
-    throw InputError(given + ": " + value_text + " is negative (a tolerance is >= 0)");
+    throw OptionError(option, given + ": " + value_text + " is negative (a tolerance is >= 0)");
   if (equals == std::string::npos) {
     (kind == ToleranceRule::Kind::kRelative ? options.rtol : options.atol) = *value;
     return;
   }
-  options.rules.push_back({kind, pattern, *value, given});
+  options.rules.push_back({kind, pattern, *value, option, given});
 }
 
 Comparison CompareOutputs(const std::string& a, const std::string& b,
@@ -587,12 +587,13 @@ Comparison CompareOutputs(const std::string& a, const std::string& b,
   return comparison;
 }
 
-void PrintComparison(const Comparison& comparison, std::size_t show, std::ostream& out) {
+void PrintComparison(const Comparison& comparison, std::size_t show, std::ostream& out,
+                     const std::string& more_hint) {
   const std::size_t n = comparison.differences.size();
   for (std::size_t i = 0; i < n && i < show; ++i) {
     out << comparison.differences[i].channel << ": " << comparison.differences[i].detail << "\n";
   }
-  if (n > show) out << "(" << n - show << " more not shown: --show)\n";
+  if (n > show) out << "(" << n - show << " more not shown" << more_hint << ")\n";
   if (n == 0) {
     out << "all " << comparison.channels << " channels within tolerance";
   } else {

@@ -32,7 +32,8 @@ struct ToleranceRule {
   Kind kind = Kind::kAbsolute;
   std::string pattern;
   double value = 0.0;  ///< >= 0
-  std::string flag;    ///< as given, for messages: "--atol /mooring/*=2e3"
+  std::string option;  ///< "rtol" or "atol", for messages (OptionError)
+  std::string given;   ///< the value as given, after the option's name: " '/mooring/*=2e3'"
 };
 
 struct CompareOptions {
@@ -96,8 +97,10 @@ struct Comparison {
 Comparison CompareOutputs(const std::string& a, const std::string& b,
                           const CompareOptions& options);
 
-/// The report: one line per differing channel (at most `show`, worst first), then
-/// "N of M channels differ" or "all M channels within tolerance".
-void PrintComparison(const Comparison& comparison, std::size_t show, std::ostream& out);
+/// The report: one line per differing channel (at most `show`, worst first; the rest
+/// counted, with `more_hint` after the count: how to see them), then "N of M channels
+/// differ" or "all M channels within tolerance".
+void PrintComparison(const Comparison& comparison, std::size_t show, std::ostream& out,
+                     const std::string& more_hint = "");
 
 }  // namespace moorsim::output

@@ -24,25 +24,29 @@ std::string HolderPid(int fd) {
 
 }  // namespace
 
-DirectoryLock::DirectoryLock(const std::filesystem::path& directory, const std::string& flag) {
-  const std::string where = flag + " " + directory.string() + ": ";
+DirectoryLock::DirectoryLock(const std::filesystem::path& directory, const std::string& option) {
+  // Built in steps: GCC 12 warns (-Wrestrict, a false positive) on " " + string + ": ".
+  std::string where = " ";
+  where += directory.string();
+  where += ": ";
   std::error_code error;
   if (std::filesystem::exists(directory, error) &&
       !std::filesystem::is_directory(directory, error)) {
-    throw InputError(where + "is a file, not a directory");
+    throw OptionError(option, where + "is a file, not a directory");
   }
   std::filesystem::create_directories(directory, error);
-  if (error) throw InputError(where + "cannot create the directory: " + error.message());
+  if (error) throw OptionError(option, where + "cannot create the directory: " + error.message());
   const std::filesystem::path path = directory / kFileName;
   fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw InputError(where + "cannot write in the directory: " + std::strerror(errno));
+  if (fd_ < 0)
+    throw OptionError(option, where + "cannot write in the directory: " + std::strerror(errno));
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
     const std::string pid = HolderPid(fd_);
     ::close(fd_);
     fd_ = -1;
-    throw InputError(where + "in use by another moorsim" +
-                     (pid.empty() ? std::string() : " (pid " + pid + ")") +
-                     "; wait for it to finish or choose another " + flag);
+    throw OptionError(option, where + "in use by another moorsim" +
+                                  (pid.empty() ? std::string() : " (pid " + pid + ")") +
+                                  "; wait for it to finish or choose another directory");
   }
   const std::string pid = std::to_string(::getpid()) + "\n";
   if (::ftruncate(fd_, 0) != 0 || ::pwrite(fd_, pid.data(), pid.size(), 0) < 0) {

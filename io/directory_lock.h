@@ -13,12 +13,13 @@ namespace moorsim::output {
 /// when the process ends, however it ends. The lock file itself stays: removing it would let
 /// a process that has just opened it lock an orphan while a third locks a new one.
 ///
-/// Throws InputError, one line starting with `flag` and the directory: a file is in the way,
+/// Throws OptionError, about the option `option` that gave the directory (one line: the
+/// option, the directory, what is wrong): a file is in the way,
 /// the directory cannot be created or written (the system's reason, e.g. a read-only file
 /// system), or another moorsim holds it (its pid when known).
 class DirectoryLock {
  public:
-  explicit DirectoryLock(const std::filesystem::path& directory, const std::string& flag = "--out");
+  explicit DirectoryLock(const std::filesystem::path& directory, const std::string& option = "out");
   ~DirectoryLock();
   DirectoryLock(const DirectoryLock&) = delete;
   DirectoryLock& operator=(const DirectoryLock&) = delete;

@@ -1232,9 +1232,9 @@ namespace {
 // (1-based, existing entries only); the value is parsed as YAML. Returns the key path.
 std::string ApplyOverride(YAML::Node& root, const std::string& assignment) {
   const std::size_t equals = assignment.find('=');
-  const std::string flag = "--set " + assignment;
+  const std::string given = " " + assignment;  // after the option's name, "set"
   if (equals == std::string::npos || equals == 0) {
-    throw InputError(flag + ": expected key.path=value (e.g. controller.type=pi)");
+    throw OptionError("set", given + ": expected key.path=value (e.g. controller.type=pi)");
   }
   const std::string path = assignment.substr(0, equals);
   const std::string value = assignment.substr(equals + 1);
@@ -1242,22 +1242,27 @@ std::string ApplyOverride(YAML::Node& root, const std::string& assignment) {
   try {
     steps = SplitKeyPath(path);
   } catch (const InputError& error) {
-    throw InputError(flag + ": " + error.what());
+    throw OptionError("set", given + ": " + error.what());
   }
   if (steps.front().key == "base") {
-    throw InputError(flag +
-                     ": base is read before --set applies; write base: in the scenario file");
+    throw OptionError(
+        "set",
+        given + ": base is read before the overrides apply; write base: in the scenario file");
   }
   YAML::Node parsed;
   try {
     const std::vector<YAML::Node> documents = YAML::LoadAll(value);
     if (documents.size() > 1)
-      throw InputError(flag + ": the value holds more than one YAML document");
+      throw OptionError("set", given + ": the value holds more than one YAML document");
     parsed = documents.empty() ? YAML::Node() : documents[0];
   } catch (const YAML::Exception& error) {
-    throw InputError(flag + ": the value is not YAML: " + error.msg);
+    throw OptionError("set", given + ": the value is not YAML: " + error.msg);
   }
-  CheckOverrideUntagged(parsed, value, flag);
+  try {
+    CheckOverrideUntagged(parsed, value, "");
+  } catch (const InputError& e) {
+    throw OptionError("set", given + e.what());
+  }
   // Walk with node references (yaml-cpp nodes are handles).
   std::vector<YAML::Node> chain{root};
   for (std::size_t s = 0; s < steps.size(); ++s) {
@@ -1266,7 +1271,7 @@ std::string ApplyOverride(YAML::Node& root, const std::string& assignment) {
     const std::string& key = steps[s].key;
     if (!key.empty()) {
       if (!current.IsMap() && !current.IsNull()) {
-        throw InputError(flag + ": '" + key + "' is under something that is not a map");
+        throw OptionError("set", given + ": '" + key + "' is under something that is not a map");
       }
       if (last) {
         current[key] = parsed;
@@ -1281,7 +1286,8 @@ std::string ApplyOverride(YAML::Node& root, const std::string& assignment) {
     } else {
       const int index = steps[s].index;
       if (!current.IsSequence() || index > static_cast<int>(current.size())) {
-        throw InputError(flag + ": there is no list entry [" + std::to_string(index) + "]");
+        throw OptionError("set",
+                          given + ": there is no list entry [" + std::to_string(index) + "]");
       }
       if (last) {
         current[index - 1] = parsed;
@@ -1459,9 +1465,9 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source_n
   scenario.name = std::filesystem::path(source_name).stem().string();
   for (const std::string& assignment : overrides) {
     if (const std::optional<std::size_t> bad = FirstInvalidUtf8(assignment)) {
-      throw InputError("--set " + EscapeInvalidUtf8(assignment) + ": not valid UTF-8 (byte " +
-                       HexByte(static_cast<unsigned char>(assignment[*bad])) + " at character " +
-                       std::to_string(*bad + 1) + ")");
+      throw OptionError("set", " " + EscapeInvalidUtf8(assignment) + ": not valid UTF-8 (byte " +
+                                   HexByte(static_cast<unsigned char>(assignment[*bad])) +
+                                   " at character " + std::to_string(*bad + 1) + ")");
     }
   }
   std::vector<std::string> errors;

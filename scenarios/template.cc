@@ -136,18 +136,19 @@ std::vector<TemplateSection> ParseTemplateSections(const std::string& text) {
   std::stringstream items(text);
   for (std::string item; std::getline(items, item, ',');) {
     const std::string where =
-        "--sections: '" + item + "' (section " + std::to_string(sections.size() + 1) + ")";
+        ": '" + item + "' (section " + std::to_string(sections.size() + 1) + ")";
     std::vector<std::string> parts;
     std::stringstream fields(item);
     for (std::string part; std::getline(fields, part, ':');) parts.push_back(part);
     if (parts.size() < 2 || parts.size() > 3) {
-      throw InputError(where + " must be TYPE:LENGTH or TYPE:LENGTH:SEGMENTS");
+      throw OptionError("sections", where + " must be TYPE:LENGTH or TYPE:LENGTH:SEGMENTS");
     }
     TemplateSection section;
     section.type = parts[0];
     if (std::none_of(kTemplateLineTypes.begin(), kTemplateLineTypes.end(),
                      [&](const TemplateLineType& t) { return t.name == section.type; })) {
-      throw InputError(where + ": unknown line type '" + section.type + "' (known: " + known + ")");
+      throw OptionError(
+          "sections", where + ": unknown line type '" + section.type + "' (known: " + known + ")");
     }
     const auto number = [&](const std::string& field, double* value) {
       const char* end = field.data() + field.size();
@@ -156,20 +157,20 @@ std::vector<TemplateSection> ParseTemplateSections(const std::string& text) {
     };
     if (!number(parts[1], &section.length) || !(section.length > 0.0) ||
         section.length > kMaxLength) {
-      throw InputError(where + ": the length must be a number in (0, " + Number(kMaxLength) +
-                       "] m");
+      throw OptionError(
+          "sections", where + ": the length must be a number in (0, " + Number(kMaxLength) + "] m");
     }
     if (parts.size() == 3) {
       double segments = 0.0;
       if (!number(parts[2], &segments) || segments != std::floor(segments) || segments < 1.0 ||
           segments > 10000.0) {
-        throw InputError(where + ": the segments must be a whole number in 1..10000");
+        throw OptionError("sections", where + ": the segments must be a whole number in 1..10000");
       }
       section.segments = static_cast<int>(segments);
     }
     sections.push_back(section);
   }
-  if (sections.empty()) throw InputError("--sections: '" + text + "' lists no section");
+  if (sections.empty()) throw OptionError("sections", ": '" + text + "' lists no section");
   return sections;
 }
 
@@ -199,8 +200,8 @@ void PlanChainSpan(const TemplateRequest& request, const TemplateKind& kind,
   try {
     range = mooring_fem::SolveTouchdownRange(line, height);
   } catch (const Error& e) {
-    throw InputError("--length: " + Number(length) + " m in " + Number(depth) +
-                     " m of water: " + e.what());
+    throw OptionError(
+        "length", ": " + Number(length) + " m in " + Number(depth) + " m of water: " + e.what());
   }
   const double radius_offset = kind.fairlead_radius;  // radial lines
   // The loader takes no line shorter than its straight anchor-fairlead distance, stretched
@@ -225,14 +226,15 @@ void PlanChainSpan(const TemplateRequest& request, const TemplateKind& kind,
   if (request.pretension) {
     const double t = *request.pretension;
     if (!(t > range.min_tension)) {
-      throw InputError("--pretension: " + Number(t) + " N is not above " +
-                       Kilonewtons(range.min_tension) +
-                       ", the weight in water of the line hanging straight down from the "
-                       "fairlead to the seabed (a line touching down pulls more)");
+      throw OptionError("pretension",
+                        ": " + Number(t) + " N is not above " + Kilonewtons(range.min_tension) +
+                            ", the weight in water of the line hanging straight down from the "
+                            "fairlead to the seabed (a line touching down pulls more)");
     }
     if (t > range.max_tension) {
-      throw InputError("--pretension: " + Number(t) + " N is above " +
-                       Kilonewtons(range.max_tension) + ", where " + upper_limit);
+      throw OptionError("pretension", ": " + Number(t) + " N is above " +
+                                          Kilonewtons(range.max_tension) + ", where " +
+                                          upper_limit);
     }
     layout.span = t == range.max_tension ? range.max_span
                                          : mooring_fem::SpanForFairleadTension(line, height, t);
@@ -240,16 +242,16 @@ void PlanChainSpan(const TemplateRequest& request, const TemplateKind& kind,
     const double r = *request.radius;
     const double span = r - radius_offset;
     if (!(span > range.min_span)) {
-      throw InputError("--radius: " + Number(r) +
-                       " m is too small: the anchors must be more than " +
-                       Metres(range.min_span + radius_offset) +
-                       " from the reference point, or the line lies slack on the seabed (no "
-                       "horizontal tension)");
+      throw OptionError("radius",
+                        ": " + Number(r) + " m is too small: the anchors must be more than " +
+                            Metres(range.min_span + radius_offset) +
+                            " from the reference point, or the line lies slack on the seabed (no "
+                            "horizontal tension)");
     }
     if (span > range.max_span) {
-      throw InputError("--radius: " + Number(r) + " m is too large: beyond " +
-                       Metres(range.max_span + radius_offset) + " from the reference point " +
-                       upper_limit);
+      throw OptionError("radius", ": " + Number(r) + " m is too large: beyond " +
+                                      Metres(range.max_span + radius_offset) +
+                                      " from the reference point " + upper_limit);
     }
     layout.span = span;
   }
@@ -267,8 +269,8 @@ void PlanSectionsSpan(const TemplateRequest& request, const TemplateKind& kind,
   for (const auto& section : line.sections) length += section.length;
   const double height = request.depth - kTemplateFairleadDepth;
   if (!(length > height)) {
-    throw InputError("--sections: the line, " + Metres(length) + " long, does not reach the " +
-                     "seabed " + Metres(height) + " below the fairlead");
+    throw OptionError("sections", ": the line, " + Metres(length) + " long, does not reach the " +
+                                      "seabed " + Metres(height) + " below the fairlead");
   }
   // Slack below: the top `height` of the line hanging straight down (its weight in water).
   double hanging = 0.0;
@@ -307,8 +309,8 @@ void PlanSectionsSpan(const TemplateRequest& request, const TemplateKind& kind,
   }
   const auto at_max = solve(max_span);
   if (!at_max) {
-    throw InputError("--sections: no catenary for the line in " + Number(request.depth) +
-                     " m of water");
+    throw OptionError("sections",
+                      ": no catenary for the line in " + Number(request.depth) + " m of water");
   }
   layout.min_pretension = hanging;
   layout.max_pretension = at_max->fairlead_tension;
@@ -316,14 +318,15 @@ void PlanSectionsSpan(const TemplateRequest& request, const TemplateKind& kind,
   if (request.pretension) {
     const double t = *request.pretension;
     if (!(t > layout.min_pretension)) {
-      throw InputError("--pretension: " + Number(t) + " N is not above " +
-                       Kilonewtons(layout.min_pretension) +
-                       ", the weight in water of the line hanging straight down from the "
-                       "fairlead to the seabed (a line touching down pulls more)");
+      throw OptionError("pretension",
+                        ": " + Number(t) + " N is not above " + Kilonewtons(layout.min_pretension) +
+                            ", the weight in water of the line hanging straight down from the "
+                            "fairlead to the seabed (a line touching down pulls more)");
     }
     if (t > layout.max_pretension) {
-      throw InputError("--pretension: " + Number(t) + " N is above " +
-                       Kilonewtons(layout.max_pretension) + ", where " + upper_limit);
+      throw OptionError("pretension", ": " + Number(t) + " N is above " +
+                                          Kilonewtons(layout.max_pretension) + ", where " +
+                                          upper_limit);
     }
     // The tension grows with the span; near the slack end the solver may find nothing
     // (the tension is then below any asked for).
@@ -338,23 +341,23 @@ void PlanSectionsSpan(const TemplateRequest& request, const TemplateKind& kind,
     const double r = *request.radius;
     const double span = r - radius_offset;
     if (!(span > slack_span)) {
-      throw InputError("--radius: " + Number(r) +
-                       " m is too small: the anchors must be more than " +
-                       Metres(slack_span + radius_offset) +
-                       " from the reference point, or the line lies slack on the seabed (no "
-                       "horizontal tension)");
+      throw OptionError("radius",
+                        ": " + Number(r) + " m is too small: the anchors must be more than " +
+                            Metres(slack_span + radius_offset) +
+                            " from the reference point, or the line lies slack on the seabed (no "
+                            "horizontal tension)");
     }
     if (span > max_span) {
-      throw InputError("--radius: " + Number(r) + " m is too large: beyond " +
-                       Metres(max_span + radius_offset) + " from the reference point " +
-                       upper_limit);
+      throw OptionError("radius", ": " + Number(r) + " m is too large: beyond " +
+                                      Metres(max_span + radius_offset) +
+                                      " from the reference point " + upper_limit);
     }
     layout.span = span;
   }
   const auto at_span = solve(layout.span);
   if (!at_span) {
-    throw InputError("--sections: no catenary for the line with its anchor " + Metres(layout.span) +
-                     " from its fairlead");
+    throw OptionError("sections", ": no catenary for the line with its anchor " +
+                                      Metres(layout.span) + " from its fairlead");
   }
   layout.anchor_radius = layout.span + radius_offset;
   layout.pretension = at_span->fairlead_tension;
@@ -366,51 +369,57 @@ TemplateLayout PlanTemplate(const TemplateRequest& request) {
   const TemplateKind& kind = FindTemplateKind(request.kind);
   const int n = request.lines;
   if (n < 3) {
-    throw InputError("--lines: " + std::to_string(n) +
-                     " must be >= 3 (fewer lines cannot hold the vessel in every direction)");
+    throw OptionError("lines",
+                      ": " + std::to_string(n) +
+                          " must be >= 3 (fewer lines cannot hold the vessel in every direction)");
   }
   if (n > kMaxTemplateLines) {
-    throw InputError("--lines: " + std::to_string(n) +
-                     " must be <= " + std::to_string(kMaxTemplateLines) +
-                     " (moorings in service have at most a few dozen lines)");
+    throw OptionError("lines", ": " + std::to_string(n) +
+                                   " must be <= " + std::to_string(kMaxTemplateLines) +
+                                   " (moorings in service have at most a few dozen lines)");
   }
   const double depth = request.depth;
-  if (!(depth > 0.0)) throw InputError("--depth: " + Number(depth) + " m must be > 0");
+  if (!(depth > 0.0)) throw OptionError("depth", ": " + Number(depth) + " m must be > 0");
   if (!(depth > kTemplateFairleadDepth)) {
-    throw InputError("--depth: " + Number(depth) + " m must be deeper than the fairleads, " +
-                     Number(kTemplateFairleadDepth) + " m down at the FPSO's draught");
+    throw OptionError("depth", ": " + Number(depth) + " m must be deeper than the fairleads, " +
+                                   Number(kTemplateFairleadDepth) +
+                                   " m down at the FPSO's draught");
   }
   if (depth > kMaxDepth) {
-    throw InputError("--depth: " + Number(depth) + " m must be <= " + Number(kMaxDepth) +
-                     " (the deepest ocean is 11 km)");
+    throw OptionError("depth", ": " + Number(depth) + " m must be <= " + Number(kMaxDepth) +
+                                   " (the deepest ocean is 11 km)");
   }
   if (!request.sections.empty() && request.length != 0.0) {
-    throw InputError("--length, --sections: give exactly one of them (both given)");
+    throw OptionError(std::vector<std::string>{"length", "sections"},
+                      ": give exactly one of them (both given)");
   }
   if (request.sections.empty() && (!(request.length > 0.0) || request.length > kMaxLength)) {
-    throw InputError("--length: " + Number(request.length) + " m must be in (0, " +
-                     Number(kMaxLength) + "] m");
+    throw OptionError("length", ": " + Number(request.length) + " m must be in (0, " +
+                                    Number(kMaxLength) + "] m");
   }
   if (request.groups != 0) {
     const int g = request.groups;
     if (g < 3) {
-      throw InputError("--groups: " + std::to_string(g) +
-                       " must be >= 3 (fewer groups cannot hold the vessel in every direction)");
+      throw OptionError(
+          "groups", ": " + std::to_string(g) +
+                        " must be >= 3 (fewer groups cannot hold the vessel in every direction)");
     }
     if (n % g != 0) {
-      throw InputError("--groups: " + std::to_string(g) + " does not divide the " +
-                       std::to_string(n) + " lines into equal groups");
+      throw OptionError("groups", ": " + std::to_string(g) + " does not divide the " +
+                                      std::to_string(n) + " lines into equal groups");
     }
     const double spread = request.group_spread_deg;
     if (!(spread > 0.0) || !((n / g - 1) * spread < 360.0 / g)) {
-      throw InputError("--group-spread: " + Number(spread) +
-                       " deg must be > 0 and keep each group of " + std::to_string(n / g) +
-                       " lines within its " + Number(360.0 / g) + " deg (groups apart)");
+      throw OptionError("group_spread", ": " + Number(spread) +
+                                            " deg must be > 0 and keep each group of " +
+                                            std::to_string(n / g) + " lines within its " +
+                                            Number(360.0 / g) + " deg (groups apart)");
     }
   }
   if (request.pretension.has_value() == request.radius.has_value()) {
-    throw InputError(std::string("--pretension, --radius: give exactly one of them (") +
-                     (request.pretension ? "both" : "neither") + " given)");
+    throw OptionError(std::vector<std::string>{"pretension", "radius"},
+                      std::string(": give exactly one of them (") +
+                          (request.pretension ? "both" : "neither") + " given)");
   }
 
   TemplateLayout layout;

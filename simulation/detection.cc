@@ -58,7 +58,7 @@ std::string DetectionKey(const scenarios::Scenario& s) {
         o.rfind("failure=", 0) == 0) {
       continue;
     }
-    key += "\n--set " + o;
+    key += "\nset " + o;
   }
   return key;
 }

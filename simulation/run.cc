@@ -285,6 +285,9 @@ RunResult RunScenario(const RunRequest& request) noexcept {
   } catch (const InputError& e) {
     result.status = RunStatus::kRejected;
     result.message = e.what();
+    if (const auto* option = dynamic_cast<const OptionError*>(&e)) {
+      result.option_error = std::make_shared<const OptionError>(*option);
+    }
     return result;
   } catch (const std::exception& e) {
     result.status = RunStatus::kFailed;

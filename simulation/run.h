@@ -30,6 +30,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/error.h"
 #include "simulation/simulation.h"
 
 namespace moorsim::simulation {
@@ -74,6 +75,9 @@ struct RunResult {
   RunStatus status = RunStatus::kRejected;
   /// Why the run did not complete (empty when ok): one line.
   std::string message;
+  /// A rejection about one of the request's options (an override): the error, whose
+  /// options a caller may name its own way (OptionError::Renamed).
+  std::shared_ptr<const OptionError> option_error;
   /// The signal that interrupted the run (0 if none).
   int signal = 0;
   std::filesystem::path directory;

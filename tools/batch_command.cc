@@ -81,7 +81,9 @@ int Batch(const BatchCommandOptions& o) {
   options.stop_requested = simulation::StopSignal;
   const simulation::BatchResult result = simulation::RunBatch(options);
   if (!speaks) return ExitCodeOf(result);
-  if (!result.message.empty()) std::cerr << "moorsim: " << result.message << "\n";
+  if (!result.message.empty()) {
+    std::cerr << "moorsim: " << FlagMessage(result.message, result.option_error) << "\n";
+  }
   if (result.heading_lost > 0) {
     // Not an error (a campaign may mean to test it), but never silent: such runs met the
     // waves from another side than their factors say.

@@ -33,7 +33,7 @@ int Compare(const CompareFlags& flags) {
   }
   const int show = ParseInteger("--show", flags.show, 0, 1000000);
   const output::Comparison comparison = output::CompareOutputs(flags.a, flags.b, options);
-  output::PrintComparison(comparison, static_cast<std::size_t>(show), std::cout);
+  output::PrintComparison(comparison, static_cast<std::size_t>(show), std::cout, ": --show");
   return comparison.differences.empty() ? 0 : 1;
 }
 

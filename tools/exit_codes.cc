@@ -1,5 +1,7 @@
 #include "tools/exit_codes.h"
 
+#include <algorithm>
+
 #include <csignal>
 
 namespace moorsim::cli {
@@ -32,6 +34,18 @@ int ExitCodeOf(const simulation::BatchResult& result) {
       return 128 + (result.signal > 0 ? result.signal : SIGINT);
   }
   return 1;
+}
+
+std::string FlagMessage(const OptionError& error) {
+  return error.Renamed([](std::string option) {
+    std::replace(option.begin(), option.end(), '_', '-');
+    return "--" + option;
+  });
+}
+
+std::string FlagMessage(const std::string& message,
+                        const std::shared_ptr<const OptionError>& error) {
+  return error ? FlagMessage(*error) : message;
 }
 
 }  // namespace moorsim::cli

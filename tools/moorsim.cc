@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/version.h"
 #include "tools/commands.h"
+#include "tools/exit_codes.h"
 
 int main(int argc, char** argv) {
   // Plugin libraries first: the commands' help lists their detector types.
@@ -74,6 +75,9 @@ int main(int argc, char** argv) {
     for (const auto& [sub, command] : commands) {
       if (sub->parsed()) return command();
     }
+    return 2;
+  } catch (const moorsim::OptionError& e) {  // a library option, named as its flag
+    std::cerr << "moorsim: " << moorsim::cli::FlagMessage(e) << "\n";
     return 2;
   } catch (const moorsim::InputError& e) {
     // One located line per problem (a scenario reports all of its errors at once).

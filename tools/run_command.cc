@@ -58,7 +58,7 @@ int Run(const RunOptions& o) {
   request.stop_requested = simulation::StopSignal;
   const simulation::RunResult result = simulation::RunScenario(request);
   if (result.status == simulation::RunStatus::kRejected) {
-    std::cerr << "moorsim: " << result.message << "\n";
+    std::cerr << "moorsim: " << FlagMessage(result.message, result.option_error) << "\n";
     return ExitCodeOf(result);
   }
   if (result.status != simulation::RunStatus::kOk) {

@@ -449,8 +449,8 @@ RecordedCampaign Recorded(const std::string& name) {
 // The one-line refusal of a results directory that holds another campaign.
 void ExpectRefused(const BatchResult& r, const fs::path& out, const std::string& what) {
   EXPECT_EQ(r.status, BatchStatus::kRejected) << r.message;
-  EXPECT_EQ(
-      r.message.rfind("--out " + out.string() + ": holds the results of another campaign: ", 0), 0u)
+  EXPECT_EQ(r.message.rfind("out " + out.string() + ": holds the results of another campaign: ", 0),
+            0u)
       << r.message;
   EXPECT_NE(r.message.find(what), std::string::npos) << r.message;
   EXPECT_EQ(r.message.find('\n'), std::string::npos) << r.message;
@@ -484,7 +484,7 @@ TEST(CampaignIdentity, AnotherReleasesDirectoryIsRefused) {
   WriteText(out / "campaign.json", record.dump());
   const BatchResult r = RecordOnly(c.campaign, out);
   EXPECT_EQ(r.status, BatchStatus::kRejected);
-  EXPECT_EQ(r.message, "--out " + out.string() +
+  EXPECT_EQ(r.message, "out " + out.string() +
                            ": was started by an earlier moorsim, which did not record its "
                            "campaign's identity; finish it with that moorsim or choose another "
                            "directory");
@@ -584,7 +584,7 @@ TEST(CampaignMerge, AnOutOfAnotherCampaignIsRefused) {
     ADD_FAILURE() << "merged into another campaign's directory";
   } catch (const InputError& e) {
     const std::string message = e.what();
-    EXPECT_EQ(message.rfind("--out " + foreign.string() +
+    EXPECT_EQ(message.rfind("out " + foreign.string() +
                                 ": holds the results of another campaign: the campaign file " +
                                 c.campaign.string() + " differs from " + other.campaign.string() +
                                 ", which " + foreign.string() + " was started with",
@@ -617,7 +617,7 @@ TEST(CampaignMerge, ShardsOfTheSameTextOnAnotherScenarioDoNotMerge) {
     ADD_FAILURE() << "merged shards of two campaigns";
   } catch (const InputError& e) {
     const std::string message = e.what();
-    EXPECT_EQ(message.rfind("--merge " + (dir / "shard_b").string() +
+    EXPECT_EQ(message.rfind("merge " + (dir / "shard_b").string() +
                                 ": holds another campaign "
                                 "than " +
                                 (dir / "shard_a").string() + ": the base scenario ",

@@ -212,7 +212,7 @@ TEST(PluginCommand, ACampaignResumesOnlyWithTheSamePluginLibraries) {
   EXPECT_EQ(r.err, "moorsim: --out " + out +
                        ": holds the results of another campaign: this campaign reads the plugin " +
                        plugin.string() + ", which " + out +
-                       " was not started with; choose another --out or remove the directory\n");
+                       " was not started with; choose another directory or remove this one\n");
   std::filesystem::remove_all(out);
   r = RunCli(with_plugin, dir.path());
   ASSERT_EQ(r.exit_code, 0) << r.Describe();

@@ -445,7 +445,7 @@ TEST(RunCommand, ASecondRunIntoABusyDirectoryIsRefusedAndTheFirstIsIntact) {
   EXPECT_EQ(second.exit_code, 2) << second.Describe();
   EXPECT_EQ(second.err, "moorsim: --out " + out.string() + ": in use by another moorsim (pid " +
                             std::to_string(pid) +
-                            "); wait for it to finish or choose another --out\n");
+                            "); wait for it to finish or choose another directory\n");
   EXPECT_TRUE(std::filesystem::exists(out / "run.h5.partial"));
   ExpectSigtermStopsItWithItsFiles(pid, out);
 }
@@ -462,7 +462,7 @@ TEST(RunCommand, ADirectoryLockedByAnotherMoorsimIsRefusedForRunAndDetect) {
   ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
   const std::string message = "moorsim: --out " + out.string() +
                               ": in use by another moorsim; wait for it to finish or choose "
-                              "another --out\n";
+                              "another directory\n";
   const CliResult run =
       RunCli({"run", kSeed, "--out", out.string(), "--duration", "1", "--quiet"}, dir.path());
   EXPECT_EQ(run.exit_code, 2) << run.Describe();

@@ -178,7 +178,7 @@ TEST_F(CompareTest, ShapesAndChannelsOfOneFileOnlyDifferBeforeAnyValue) {
   EXPECT_EQ(c.differences[3].channel, "/time");
   EXPECT_EQ(Printed(c, 2),
             "/detectors/cusum/decision: only in A\n/detectors/glr/decision: only in B\n"
-            "(2 more not shown: --show)\n4 of 4 channels differ\n");
+            "(2 more not shown)\n4 of 4 channels differ\n");
 }
 
 TEST_F(CompareTest, TheWorstChannelIsListedFirst) {

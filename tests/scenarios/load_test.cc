@@ -421,15 +421,15 @@ TEST(ScenarioText, BadByteAfterMultiByteCharactersIsPlacedByByteColumn) {
 
 TEST(ScenarioText, OverridesMustBeUtf8AndUntagged) {
   EXPECT_EQ(OverrideError({"name=caf\xE9"}),
-            "--set name=caf\\xE9: not valid UTF-8 (byte 0xE9 at character 9)");
+            "set name=caf\\xE9: not valid UTF-8 (byte 0xE9 at character 9)");
   EXPECT_EQ(OverrideError({"vessel.mass=!!str 1.0041e8"}),
-            "--set vessel.mass=!!str 1.0041e8: tagged value '!!str' (tags are not accepted; "
+            "set vessel.mass=!!str 1.0041e8: tagged value '!!str' (tags are not accepted; "
             "write the plain value)");
   EXPECT_EQ(OverrideError({"vessel.mass=! 1.0041e8"}),
-            "--set vessel.mass=! 1.0041e8: tagged value '!' (tags are not accepted; write the "
+            "set vessel.mass=! 1.0041e8: tagged value '!' (tags are not accepted; write the "
             "plain value)");
   EXPECT_EQ(OverrideError({"environment.wind={speed: !!float 12, direction_from_deg: 0}"}),
-            "--set environment.wind={speed: !!float 12, direction_from_deg: 0}: tagged value "
+            "set environment.wind={speed: !!float 12, direction_from_deg: 0}: tagged value "
             "'!!float' (tags are not accepted; write the plain value)");
   EXPECT_EQ(OverrideError({"name=\"caf\xC3\xA9\"", "vessel.mass=2.0e8"}), "(no error)");
   // Range checks see overridden values too, by key path only.
@@ -442,22 +442,22 @@ TEST(ScenarioText, OverridesMustBeUtf8AndUntagged) {
 // before --set applies.
 TEST(ScenarioText, OverrideKeyPathsHaveOneSpellingAndBaseIsNotOne) {
   EXPECT_EQ(OverrideError({"simulation..duration=5"}),
-            "--set simulation..duration=5: empty key in 'simulation..duration' (one '.' between "
+            "set simulation..duration=5: empty key in 'simulation..duration' (one '.' between "
             "keys, none before '[')");
   EXPECT_EQ(OverrideError({"mooring.lines[01].length=2000"}),
-            "--set mooring.lines[01].length=2000: bad list index in 'mooring.lines[01].length' "
+            "set mooring.lines[01].length=2000: bad list index in 'mooring.lines[01].length' "
             "(write [1])");
   EXPECT_EQ(OverrideError({"mooring.lines.[1].length=2000"}),
-            "--set mooring.lines.[1].length=2000: empty key in 'mooring.lines.[1].length' (one "
+            "set mooring.lines.[1].length=2000: empty key in 'mooring.lines.[1].length' (one "
             "'.' between keys, none before '[')");
   EXPECT_EQ(OverrideError({"mooring.lines[1]length=2000"}),
-            "--set mooring.lines[1]length=2000: 'mooring.lines[1]length': '.' or '[' must follow "
+            "set mooring.lines[1]length=2000: 'mooring.lines[1]length': '.' or '[' must follow "
             "']'");
   EXPECT_EQ(OverrideError({"base=other.yaml"}),
-            "--set base=other.yaml: base is read before --set applies; write base: in the "
+            "set base=other.yaml: base is read before the overrides apply; write base: in the "
             "scenario file");
   EXPECT_EQ(OverrideError({"simulation.duration=5\n---\n6"}),
-            "--set simulation.duration=5\n---\n6: the value holds more than one YAML document");
+            "set simulation.duration=5\n---\n6: the value holds more than one YAML document");
   EXPECT_EQ(OverrideError({"simulation.duration=500", "mooring.lines[1].segments=20"}),
             "(no error)");
 }

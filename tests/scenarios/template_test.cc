@@ -156,32 +156,32 @@ TEST(PlanTemplate, BadSectionsAndGroupsAreOneMessageNamingTheFlag) {
     return std::string("(accepted)");
   };
   EXPECT_EQ(error([] { ParseTemplateSections("chain:400,wire:100"); }),
-            "--sections: 'wire:100' (section 2): unknown line type 'wire' (known: chain, "
+            "sections: 'wire:100' (section 2): unknown line type 'wire' (known: chain, "
             "polyester)");
   EXPECT_EQ(error([] { ParseTemplateSections("chain"); }),
-            "--sections: 'chain' (section 1) must be TYPE:LENGTH or TYPE:LENGTH:SEGMENTS");
+            "sections: 'chain' (section 1) must be TYPE:LENGTH or TYPE:LENGTH:SEGMENTS");
   EXPECT_EQ(error([] { ParseTemplateSections("chain:-4"); }),
-            "--sections: 'chain:-4' (section 1): the length must be a number in (0, 20000] m");
+            "sections: 'chain:-4' (section 1): the length must be a number in (0, 20000] m");
   EXPECT_EQ(error([] { ParseTemplateSections("chain:400:2.5"); }),
-            "--sections: 'chain:400:2.5' (section 1): the segments must be a whole number in "
+            "sections: 'chain:400:2.5' (section 1): the segments must be a whole number in "
             "1..10000");
   TemplateRequest request = Request("turret", 12, 1500.0, 2000.0);
   request.pretension = 1.5e6;
   request.groups = 5;
   EXPECT_EQ(error([&] { PlanTemplate(request); }),
-            "--groups: 5 does not divide the 12 lines into equal groups");
+            "groups: 5 does not divide the 12 lines into equal groups");
   request.groups = 2;
   EXPECT_EQ(error([&] { PlanTemplate(request); }),
-            "--groups: 2 must be >= 3 (fewer groups cannot hold the vessel in every direction)");
+            "groups: 2 must be >= 3 (fewer groups cannot hold the vessel in every direction)");
   request.groups = 4;
   request.group_spread_deg = 50.0;
   EXPECT_EQ(error([&] { PlanTemplate(request); }),
-            "--group-spread: 50 deg must be > 0 and keep each group of 3 lines within its 90 deg "
+            "group_spread: 50 deg must be > 0 and keep each group of 3 lines within its 90 deg "
             "(groups apart)");
   request.group_spread_deg = 5.0;
   request.sections = ParseTemplateSections("chain:2000");
   EXPECT_EQ(error([&] { PlanTemplate(request); }),
-            "--length, --sections: give exactly one of them (both given)");
+            "length, sections: give exactly one of them (both given)");
 }
 
 }  // namespace
