@@ -27,7 +27,7 @@
 // overrides and the program version are attributes, which compare leaves out, and the
 // timings are in summary.json, not in run.h5.
 //
-// After an intended change of the numbers, rewrite the file with tools/update_golden.sh and
+// After an intended change of the numbers, rewrite the file with tools/dev/update_golden.sh and
 // say why in the commit; this test (and the script) refuse to rewrite under CI=true.
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 // from an earlier verified build. It guards against unintended changes to the numbers;
 // the physics is verified by the other tests. A missing golden file is a failure.
 //
-// After an intended change, regenerate with tools/update_golden.sh and say why in the
+// After an intended change, regenerate with tools/dev/update_golden.sh and say why in the
 // commit.
 #include <gtest/gtest.h>
 

@@ -9,7 +9,7 @@
 // optimisation and both must pass) and far below what a change of model or settings moves:
 // a 10 % change of a drag coefficient moves tensions by tens of kN.
 //
-// After an intended change, rewrite them with tools/update_golden.sh and say why in the
+// After an intended change, rewrite them with tools/dev/update_golden.sh and say why in the
 // commit; the script (and this test) refuse to rewrite under CI=true.
 #include <gtest/gtest.h>
 

@@ -10,10 +10,10 @@
 # The asan preset compiles in unity batches of 8 files (no precompiled headers there): 5 min
 # 10 s instead of 6 min 32 s on 2 cores. The release build, with its precompiled headers,
 # gains nothing from unity batches (392 s against 390 s) and keeps one file per object.
-#   tools/test.sh           everything
-#   tools/test.sh --fast    release build and tests only
+#   tools/dev/test.sh           everything
+#   tools/dev/test.sh --fast    release build and tests only
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 
 ./tools/setup.sh
 

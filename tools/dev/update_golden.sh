@@ -5,7 +5,7 @@
 # Run it only after an intended change of the numbers, look at `git diff tests/data/golden`
 # and say why in the commit. Refuses to run under CI=true: CI compares, it never rewrites.
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 if [[ "${CI:-}" == "true" ]]; then
   echo "update_golden.sh: refusing to rewrite golden files under CI=true" >&2
   exit 1
