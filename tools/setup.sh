@@ -20,6 +20,7 @@ packages=(
   python3-numpy python3-h5py python3-matplotlib   # tools/plot_run.py
   python3-jsonschema python3-yaml   # tests: library scenarios against moorsim.schema.json
   pybind11-dev python3-dev python3-pytest   # the Python module (import moorsim) and its tests
+  gfortran                 # tests: the C API from Fortran (examples/fortran_coupling)
   python3-pandas python3-xarray     # campaign tables as DataFrames, runs as xarray Datasets
   clang-format
 )
