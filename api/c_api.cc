@@ -118,13 +118,13 @@ void RequireLength(int n, int expected, const char* what) {
                              std::to_string(expected));
 }
 
-moorsim_lines* Create(const char* function,
-                      const std::function<moorsim::scenarios::Scenario()>& load) {
-  moorsim_lines* made = nullptr;
+// A new handle from `make` (which fills it), or null with the thread's message.
+template <typename Handle>
+Handle* Create(const char* function, const std::function<void(Handle&)>& make) {
+  Handle* made = nullptr;
   Guard(function, [&] {
-    auto handle = std::make_unique<moorsim_lines>();
-    handle->scenario = load();
-    handle->lines = moorsim::simulation::MakeCoupledLines(handle->scenario);
+    auto handle = std::make_unique<Handle>();
+    make(*handle);
     made = handle.release();
   });
   return made;
@@ -140,17 +140,6 @@ const moorsim::simulation::SteppedPlant& Plant(const moorsim_plant* handle) {
   return *handle->plant;
 }
 
-moorsim_plant* CreatePlant(const char* function, unsigned long long seed,
-                           const std::function<moorsim::scenarios::Scenario()>& load) {
-  moorsim_plant* made = nullptr;
-  Guard(function, [&] {
-    auto handle = std::make_unique<moorsim_plant>();
-    handle->plant = std::make_unique<moorsim::simulation::SteppedPlant>(load(), seed);
-    made = handle.release();
-  });
-  return made;
-}
-
 void Copy(const double* from, int n, double* to) { std::copy(from, from + n, to); }
 
 }  // namespace
@@ -164,16 +153,18 @@ const char* moorsim_version(void) { return moorsim::kVersion; }
 const char* moorsim_last_error(void) { return last_error.c_str(); }
 
 moorsim_lines* moorsim_lines_create(const char* scenario_path) {
-  return Create("moorsim_lines_create", [&] {
+  return Create<moorsim_lines>("moorsim_lines_create", [&](moorsim_lines& h) {
     Require(scenario_path != nullptr, "the scenario path is NULL");
-    return moorsim::scenarios::LoadScenario(scenario_path);
+    h.scenario = moorsim::scenarios::LoadScenario(scenario_path);
+    h.lines = moorsim::simulation::MakeCoupledLines(h.scenario);
   });
 }
 
 moorsim_lines* moorsim_lines_create_from_yaml(const char* yaml_text) {
-  return Create("moorsim_lines_create_from_yaml", [&] {
+  return Create<moorsim_lines>("moorsim_lines_create_from_yaml", [&](moorsim_lines& h) {
     Require(yaml_text != nullptr, "the YAML text is NULL");
-    return moorsim::scenarios::ParseScenario(yaml_text, "<yaml text>");
+    h.scenario = moorsim::scenarios::ParseScenario(yaml_text, "<yaml text>");
+    h.lines = moorsim::simulation::MakeCoupledLines(h.scenario);
   });
 }
 
@@ -352,16 +343,18 @@ int moorsim_lines_restore(moorsim_lines* lines, const void* buffer, size_t size)
 }
 
 moorsim_plant* moorsim_plant_create(const char* scenario_path, unsigned long long seed) {
-  return CreatePlant("moorsim_plant_create", seed, [&] {
+  return Create<moorsim_plant>("moorsim_plant_create", [&](moorsim_plant& h) {
     Require(scenario_path != nullptr, "the scenario path is NULL");
-    return moorsim::scenarios::LoadScenario(scenario_path);
+    h.plant = std::make_unique<moorsim::simulation::SteppedPlant>(
+        moorsim::scenarios::LoadScenario(scenario_path), seed);
   });
 }
 
 moorsim_plant* moorsim_plant_create_from_yaml(const char* yaml_text, unsigned long long seed) {
-  return CreatePlant("moorsim_plant_create_from_yaml", seed, [&] {
+  return Create<moorsim_plant>("moorsim_plant_create_from_yaml", [&](moorsim_plant& h) {
     Require(yaml_text != nullptr, "the YAML text is NULL");
-    return moorsim::scenarios::ParseScenario(yaml_text, "<yaml text>");
+    h.plant = std::make_unique<moorsim::simulation::SteppedPlant>(
+        moorsim::scenarios::ParseScenario(yaml_text, "<yaml text>"), seed);
   });
 }
 

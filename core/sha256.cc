@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <fstream>
+#include <string>
 
 namespace moorsim {
 namespace {
@@ -21,6 +22,10 @@ std::string Hex(sha256_ctx& context) {
 }
 
 }  // namespace
+
+std::uint64_t Sha256Prefix64(std::string_view bytes) {
+  return std::stoull(Sha256Hex(bytes).substr(0, 16), nullptr, 16);
+}
 
 std::string Sha256Hex(std::string_view bytes) {
   sha256_ctx context;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/sha256.h"
 #include "core/state_bytes.h"
 
 namespace moorsim::mooring_fem {
@@ -58,54 +59,35 @@ class CoupledLines::HermitePath final : public MotionPath {
 
 namespace {
 
-// FNV-1a over the bytes of the numbers that define a model's state and its meaning.
-class Fingerprint {
- public:
-  void Add(double v) { Bytes(&v, sizeof v); }
-  void Add(std::int64_t v) { Bytes(&v, sizeof v); }
-  void Add(const Vec3& v) {
-    for (int i = 0; i < 3; ++i) Add(v(i));
-  }
-  std::uint64_t value() const { return h_; }
-
- private:
-  void Bytes(const void* data, std::size_t size) {
-    const auto* b = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < size; ++i) h_ = (h_ ^ b[i]) * 0x100000001b3ULL;
-  }
-  std::uint64_t h_ = 0xcbf29ce484222325ULL;
-};
-
+// SHA-256 of the numbers that define a model's state and its meaning.
 std::uint64_t ModelFingerprint(const MooringSystem& m, const SolverSettings& solver) {
-  Fingerprint f;
-  f.Add(std::int64_t{m.num_lines()});
-  f.Add(std::int64_t{m.num_points()});
-  f.Add(std::int64_t{m.StateSize()});
+  StateWriter f;
+  f.Put(std::int64_t{m.num_lines()});
+  f.Put(std::int64_t{m.num_points()});
+  f.Put(std::int64_t{m.StateSize()});
   for (int i = 0; i < m.num_lines(); ++i) {
     const LineProperties& l = m.line(i);
-    f.Add(std::int64_t{l.segments});
-    f.Add(std::int64_t{l.lower_point});
-    f.Add(std::int64_t{l.upper_point});
-    f.Add(l.length);
-    f.Add(l.anchor);
-    f.Add(l.fairlead_body);
+    for (std::int64_t v : {l.segments, l.lower_point, l.upper_point}) f.Put(v);
+    f.Put(l.length);
+    for (const Vec3& v : {l.anchor, l.fairlead_body}) f.PutNumbers({v.data(), 3});
     for (const SectionProperties& s : l.sections) {
       for (double v : {s.segment_length, s.diameter, s.mass_per_length, s.weight_per_length,
                        s.axial_stiffness, s.axial_damping, s.added_mass_per_length,
                        s.dynamic_stiffness, s.creep_stiffness, s.creep_damping, s.drag_normal,
                        s.drag_tangential, s.friction_axial, s.friction_lateral}) {
-        f.Add(v);
+        f.Put(v);
       }
     }
     for (const PointBodyProperties& b : l.bodies) {
-      for (double v : {b.mass, b.weight, b.added_mass, b.drag}) f.Add(v);
+      for (double v : {b.mass, b.weight, b.added_mass, b.drag}) f.Put(v);
     }
   }
   for (double v : {solver.rtol, solver.atol_position, solver.atol_velocity, solver.max_step}) {
-    f.Add(v);
+    f.Put(v);
   }
-  f.Add(std::int64_t{solver.max_order});
-  return f.value();
+  f.Put(std::int64_t{solver.max_order});
+  const std::vector<std::uint8_t> bytes = f.Take();
+  return Sha256Prefix64({reinterpret_cast<const char*>(bytes.data()), bytes.size()});
 }
 
 void CheckFinite(const BodyDofs& values, const char* what) {

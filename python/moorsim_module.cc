@@ -12,6 +12,7 @@
 #include <csignal>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -68,6 +69,15 @@ mooring_fem::BodyDofs Dofs(const Array& values, const char* name) {
   mooring_fem::BodyDofs d;
   std::copy(v.begin(), v.end(), d.begin());
   return d;
+}
+
+// A saved state as Python bytes, and back (the view lives as long as `state`).
+py::bytes ToBytes(const std::vector<std::uint8_t>& bytes) {
+  return py::bytes(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+}
+std::span<const std::uint8_t> StateOf(const py::bytes& state) {
+  const std::string_view view = state;
+  return {reinterpret_cast<const std::uint8_t*>(view.data()), view.size()};
 }
 
 // Asked between output rows of long calls (from any thread): Ctrl-C in Python stops them
@@ -179,12 +189,9 @@ class Lines {
   py::bytes Save() {
     Ready();
     const std::vector<std::uint8_t> bytes = lines_->Save();
-    return py::bytes(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    return ToBytes(bytes);
   }
-  void Restore(const py::bytes& state) {
-    const std::string_view view = state;
-    lines_->Restore({reinterpret_cast<const std::uint8_t*>(view.data()), view.size()});
-  }
+  void Restore(const py::bytes& state) { lines_->Restore(StateOf(state)); }
 
  private:
   void Ready() const {
@@ -263,12 +270,12 @@ class Plant {
   }
   py::bytes Save() const {
     const std::vector<std::uint8_t> bytes = plant_.Save();
-    return py::bytes(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    return ToBytes(bytes);
   }
   void Restore(const py::bytes& state) {
-    const std::string_view view = state;
+    const std::span<const std::uint8_t> bytes = StateOf(state);
     py::gil_scoped_release release;
-    plant_.Restore({reinterpret_cast<const std::uint8_t*>(view.data()), view.size()});
+    plant_.Restore(bytes);
   }
 
  private:

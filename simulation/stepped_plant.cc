@@ -20,8 +20,7 @@ std::uint64_t PlantFingerprint(const scenarios::Scenario& scenario, std::uint64_
   std::string identity = scenario.text;
   for (const std::string& o : scenario.overrides) identity += "\n" + o;
   identity += "\nseed " + std::to_string(seed);
-  const std::string hex = Sha256Hex(identity);
-  return std::stoull(hex.substr(0, 16), nullptr, 16);
+  return Sha256Prefix64(identity);
 }
 
 // The plant at its moored static start, with what happens at t = 0 done (the first sensor
