@@ -82,8 +82,8 @@
 // The coupled-simulation sections (vessel, environment, controller, sensors, failure,
 // simulation) are documented in scenarios/README.md; each is a row of the top-level
 // section table in load.cc. The mooring and solver blocks are the FEM's parameter types
-// (mooring_fem/parameters.h; scenarios/convert.h converts), the vessel's hull and windage
-// the driver's (simulation/simulation.h: ToHullGeometry, ToWindParameters).
+// (mooring_fem/parameters.h; scenarios/convert.h converts); the coupled sections become the
+// typed plant model (simulation/plant_model.h) through scenarios/plant_model.h.
 #pragma once
 
 #include <string>

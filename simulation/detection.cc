@@ -14,8 +14,8 @@
 #include "detectors/passive_observer.h"
 #include "detectors/plugin_detector.h"
 #include "detectors/registry.h"
-#include "scenarios/convert.h"
 #include "scenarios/load.h"
+#include "scenarios/plant_model.h"
 #include "simulation/detection_models.h"
 #include "simulation/shared_parts.h"
 
@@ -23,50 +23,39 @@ namespace moorsim::simulation {
 
 namespace {
 
-detectors::DetectorSpec Spec(const scenarios::DetectorEntry& e) {
-  return {.type = e.type, .label = e.label, .parameters = e.parameters, .plugin = e.plugin};
-}
-
-/// Builds detector i; an InputError from the registry ("detectors[2].floor: ...") is placed
-/// at that key in the scenario file.
-std::unique_ptr<detectors::Detector> BuildDetector(const scenarios::Scenario& scenario,
-                                                   std::size_t i) {
+/// Builds detector i; an InputError from the registry says "detectors[<i+1>]...".
+std::unique_ptr<detectors::Detector> BuildDetector(const DetectionSetup& setup, std::size_t i) {
   const std::string path = "detectors[" + std::to_string(i + 1) + "]";
-  try {
-    std::unique_ptr<detectors::Detector> detector =
-        detectors::MakeDetector(Spec(scenario.detectors[i]), path);
-    if (detector->NeedsLoadEvidence() && scenario.detection.observer == "passive") {
-      scenarios::FailAt(scenario, path + ".type",
-                        scenario.detectors[i].type +
-                            " reads the EKF observers' load estimate, which "
-                            "detection.observer: passive does not give (use ekf)");
-    }
-    return detector;
-  } catch (const InputError& e) {
-    scenarios::PlaceAtKey(scenario, e, path);
+  const detectors::DetectorSpec& spec = setup.detectors[i];
+  std::unique_ptr<detectors::Detector> detector = detectors::MakeDetector(spec, path);
+  if (detector->NeedsLoadEvidence() && setup.observer == ObserverType::kPassive) {
+    throw InputError(path + ".type: " + spec.type +
+                     " reads the EKF observers' load estimate, which "
+                     "detection.observer: passive does not give (use ekf)");
   }
+  return detector;
 }
 
-/// What determines the detectors' hypothesis bank and GLR signatures: the scenario (its
-/// file, text and overrides) without the keys that cannot change them, the seed, the
-/// failure and the simulation's length and output rate. Conservative: any other override
-/// gives another key (a rebuild, never a wrong share).
-std::string DetectionKey(const scenarios::Scenario& s) {
-  std::string key = "detection " + s.source_path + "\n" + s.text;
-  for (const std::string& o : s.overrides) {
-    if (o.rfind("simulation.", 0) == 0 || o.rfind("failure.", 0) == 0 ||
-        o.rfind("failure=", 0) == 0) {
-      continue;
-    }
-    key += "\nset " + o;
-  }
-  return key;
+/// The part `build` makes, shared between plants of the same `key` within the process, or
+/// built for this one alone when the key is empty (a model without an identity).
+template <typename T, typename Build>
+std::shared_ptr<const T> SharedOrOwn(const std::string& key, Build build) {
+  if (key.empty()) return std::make_shared<const T>(build());
+  return SharedPart<T>(key, build);
 }
 
 }  // namespace
 
+void CheckDetectors(const DetectionSetup& setup) {
+  for (std::size_t i = 0; i < setup.detectors.size(); ++i) BuildDetector(setup, i);
+}
+
 void CheckDetectors(const scenarios::Scenario& scenario) {
-  for (std::size_t i = 0; i < scenario.detectors.size(); ++i) BuildDetector(scenario, i);
+  try {
+    CheckDetectors(scenarios::ToDetectionSetup(scenario));
+  } catch (const InputError& e) {
+    scenarios::PlaceAtKey(scenario, e, "detectors[");
+  }
 }
 
 struct Detection::Parts {
@@ -78,27 +67,30 @@ struct Detection::Parts {
   std::optional<Vec3> bias, wave_motion;  // the latest load picture
 };
 
-Detection::Detection(const scenarios::Scenario& scenario, const vessel::VesselModel& vessel,
+Detection::Detection(const PlantModel& plant, const vessel::VesselModel& vessel,
                      const Vec6& moored_pose)
     : parts_(std::make_unique<Parts>()) {
   const auto start = std::chrono::steady_clock::now();
   Parts& p = *parts_;
-  const DetectionModels models = MakeDetectionModels(scenario, vessel, moored_pose);
+  const DetectionSetup& setup = plant.detection.value();
+  const DetectionModels models = MakeDetectionModels(setup, vessel, moored_pose);
   const detectors::HypothesisBankOptions& options = models.bank;
-  // The bank, the GLR signatures and the passive observers' training depend on the scenario
+  // The bank, the GLR signatures and the passive observers' training depend on the set-up
   // (not on the seed, the failure or the run's length) and on the calm-water moored pose,
-  // which the scenario alone determines: every run of a set-up shares them (shared_parts.h).
+  // which the set-up alone determines: every run of a set-up shares them (shared_parts.h).
   // The heave stays in the key so that the key names everything the parts are built from.
-  char heave[40];
-  std::snprintf(heave, sizeof heave, "\nmoored heave %a", moored_pose(2));
-  const std::string key = DetectionKey(scenario) + heave;
-  p.bank = SharedPart<detectors::HypothesisBank>(key, [&] {
-    return detectors::HypothesisBank(scenarios::ToMooringParameters(scenario.mooring), options);
-  });
+  std::string key;
+  if (!setup.identity.empty()) {
+    char heave[40];
+    std::snprintf(heave, sizeof heave, "\nmoored heave %a", moored_pose(2));
+    key = setup.identity + heave;
+  }
+  p.bank = SharedOrOwn<detectors::HypothesisBank>(
+      key, [&] { return detectors::HypothesisBank(plant.mooring, options); });
   const detectors::LowFrequencyModel& model = models.model;
   const detectors::EkfOptions& ekf = models.ekf;
-  const scenarios::DetectionSpec& d = scenario.detection;
-  if (d.observer == "passive") {
+  const double sample_interval = 1.0 / plant.pose_sensors.gnss_rate;
+  if (setup.observer == ObserverType::kPassive) {
     // The TAPM thesis's passive observers, each with the innovation covariance of a 10000 s
     // training run of its own hypothesis's model (section 4.4), held at the setpoint, with
     // the noise levels of detection.model; streams "training.*" of detection.training_seed.
@@ -109,24 +101,25 @@ Detection::Detection(const scenarios::Scenario& scenario, const vessel::VesselMo
     // every run of it in the process, as a vessel's covariances are trained once.
     detectors::CovarianceTrainingOptions training;
     training.pose = options.reference_pose;
-    training.sample_interval = 1.0 / scenario.sensors.gnss_rate;
-    training.seed = d.training_seed;
+    training.sample_interval = sample_interval;
+    training.seed = setup.training_seed;
     p.passive.emplace(
-        *p.bank, model, passive, *SharedPart<std::vector<Mat3>>(key + "\npassive training", [&] {
+        *p.bank, model, passive,
+        *SharedOrOwn<std::vector<Mat3>>(key.empty() ? key : key + "\npassive training", [&] {
           return detectors::TrainPassiveCovariances(*p.bank, model, passive, ekf, training);
         }));
   } else {
     p.observers.emplace(*p.bank, model, ekf, models.observer_bank);
   }
   const std::vector<std::array<int, 2>> failed = FailedLines();
-  for (std::size_t i = 0; i < scenario.detectors.size(); ++i) {
-    p.detectors.push_back(BuildDetector(scenario, i));
+  for (std::size_t i = 0; i < setup.detectors.size(); ++i) {
+    p.detectors.push_back(BuildDetector(setup, i));
     detectors::SetPluginHypotheses(*p.detectors.back(), failed);
     p.detectors.back()->Reset(p.bank->size());
     DetectorRecord record;
-    record.label = scenario.detectors[i].label;
-    record.type = scenario.detectors[i].type;
-    if (scenario.failure.line > 0) record.failure_time = scenario.failure.time;
+    record.label = setup.detectors[i].label;
+    record.type = setup.detectors[i].type;
+    if (plant.failure) record.failure_time = plant.failure->time;
     if (const auto* glr = dynamic_cast<const detectors::Glr*>(p.detectors.back().get())) {
       record.threshold = glr->threshold();
     } else if (const auto* dht = dynamic_cast<const detectors::Dht*>(p.detectors.back().get())) {
@@ -138,10 +131,10 @@ Detection::Detection(const scenarios::Scenario& scenario, const vessel::VesselMo
   for (const std::unique_ptr<detectors::Detector>& detector : p.detectors) {
     if (auto* glr = dynamic_cast<detectors::Glr*>(detector.get())) {
       const int window = glr->options().window;
-      glr->SetSignatures(
-          *SharedPart<std::vector<Vec3>>(key + "\nGLR window " + std::to_string(window), [&] {
+      glr->SetSignatures(*SharedOrOwn<std::vector<Vec3>>(
+          key.empty() ? key : key + "\nGLR window " + std::to_string(window), [&] {
             return detectors::GlrSignatures(*p.bank, model, ekf, options.reference_pose,
-                                            1.0 / scenario.sensors.gnss_rate, window);
+                                            sample_interval, window);
           }));
     }
   }

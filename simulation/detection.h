@@ -23,6 +23,7 @@
 #include "detectors/detector.h"
 #include "detectors/plugin_detector.h"
 #include "scenarios/scenario.h"
+#include "simulation/plant_model.h"
 #include "vessel/vessel_model.h"
 
 namespace moorsim::simulation {
@@ -60,22 +61,25 @@ struct DetectionTiming {
   long samples = 0;             ///< observations processed
 };
 
-/// Builds every detector of the scenario once to check its type and parameters; a bad one
-/// is an InputError placed at its entry in the file. `moorsim validate` and `run` call it.
+/// Builds every detector of `setup` once to check its type and parameters and that its
+/// observers give what it reads. Throws InputError "detectors[<i>].<key>: ..." (1-based
+/// i) for a bad one.
+void CheckDetectors(const DetectionSetup& setup);
+/// The same for a scenario, the error placed at the detector's entry in the file.
+/// `moorsim validate` and `run` call it.
 void CheckDetectors(const scenarios::Scenario& scenario);
 
 class Detection {
  public:
-  /// The scenario's detection (it must have detectors and a vessel section) for the plant
-  /// model `vessel` at its moored static start `moored_pose` (Simulation::initial_pose()).
-  /// Throws moorsim::InputError for a detector or model the scenario cannot have.
-  Detection(const scenarios::Scenario& scenario, const vessel::VesselModel& vessel,
-            const Vec6& moored_pose);
+  /// The detection of `plant` (its `detection` must be set) for the plant's vessel model
+  /// `vessel` at its moored static start `moored_pose` (Simulation::initial_pose()). Throws
+  /// moorsim::InputError for a detector the model cannot have (as CheckDetectors()).
+  Detection(const PlantModel& plant, const vessel::VesselModel& vessel, const Vec6& moored_pose);
   ~Detection();
   Detection(const Detection&) = delete;
   Detection& operator=(const Detection&) = delete;
 
-  /// One sensor sample: the observers, then every detector in scenario order, whose alarm
+  /// One sensor sample: the observers, then every detector in the setup's order, whose alarm
   /// histories record what changed. Times must not decrease (ContractError otherwise).
   void Update(const detectors::Observation& observation);
 
@@ -92,10 +96,10 @@ class Detection {
   std::vector<std::array<int, 2>> FailedLines() const;
   /// Whether the observers are the EKF bank, whose load picture bias()/wave_motion() give.
   bool estimates_load() const;
-  /// Every detector's latest verdict (scenario order).
+  /// Every detector's latest verdict (the setup's order).
   const std::vector<detectors::Verdict>& verdicts() const;
   const std::vector<DetectorRecord>& records() const { return records_; }
-  /// The plugin libraries the detectors came from, in scenario order without repeats.
+  /// The plugin libraries the detectors came from, in the setup's order without repeats.
   std::vector<std::shared_ptr<const detectors::PluginLibrary>> PluginLibraries() const;
   const DetectionTiming& timing() const { return timing_; }
   /// The intact observer's latest bias b [N, N, N m] and wave-frequency motion [m, m, rad]

@@ -2,19 +2,24 @@
 
 #include "scenarios/convert.h"
 #include "scenarios/load.h"
+#include "scenarios/plant_model.h"
 #include "simulation/simulation.h"
 
 namespace moorsim::simulation {
 
+std::shared_ptr<const mooring_fem::WaveKinematics> ScenarioLineWaves(
+    const scenarios::Scenario& scenario) {
+  const scenarios::WavesSpec& spec = scenario.environment.waves;
+  if (!spec.enabled || !spec.on_lines) return nullptr;
+  const SeaModel sea = scenarios::ToSeaModel(spec, scenario.mooring.water.gravity);
+  return LineWaves(RealiseSea(sea, scenario.simulation.seed), scenario.mooring.water,
+                   *sea.on_lines);
+}
+
 std::unique_ptr<mooring_fem::CoupledLines> MakeCoupledLines(const scenarios::Scenario& scenario) {
-  std::shared_ptr<const mooring_fem::WaveKinematics> waves;
-  if (scenario.environment.waves.enabled && scenario.environment.waves.on_lines) {
-    waves =
-        LineWaves(scenario, RealiseSea(scenario.environment.waves, scenario.mooring.water.gravity,
-                                       scenario.simulation.seed));
-  }
   return std::make_unique<mooring_fem::CoupledLines>(
-      scenarios::ToMooringParameters(scenario.mooring), scenario.solver, waves);
+      scenarios::ToMooringParameters(scenario.mooring), scenario.solver,
+      ScenarioLineWaves(scenario));
 }
 
 Vec6 InitCoupledLines(mooring_fem::CoupledLines& lines, const scenarios::Scenario& scenario,

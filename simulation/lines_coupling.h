@@ -9,6 +9,11 @@
 
 namespace moorsim::simulation {
 
+/// The waves the scenario's lines see (environment.waves.on_lines, realised from
+/// simulation.seed as a run realises them); null where they see none.
+std::shared_ptr<const mooring_fem::WaveKinematics> ScenarioLineWaves(
+    const scenarios::Scenario& scenario);
+
 /// The scenario's lines (its mooring, current and solver settings) with the waves they see
 /// (environment.waves.on_lines, realised from simulation.seed as a run realises them).
 /// Throws moorsim::InputError for a mooring that cannot be built.

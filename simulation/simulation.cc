@@ -23,8 +23,8 @@
 #include "detectors/passive_observer.h"
 #include "detectors/registry.h"
 #include "mooring_fem/line_simulation.h"
-#include "scenarios/convert.h"
 #include "scenarios/load.h"
+#include "scenarios/plant_model.h"
 #include "simulation/shared_parts.h"
 #include "vessel/controller.h"
 #include "vessel/fpso_model.h"
@@ -86,19 +86,16 @@ class HullCurrentLoad final : public vessel::EnvironmentLoad {
 /// the hull's viscous damping; the Jacobian only steers Newton's iteration).
 class HullWindLoad final : public vessel::EnvironmentLoad {
  public:
-  HullWindLoad(const vessel::WindParameters& parameters, const scenarios::WindSpec& spec,
-               std::uint64_t seed)
-      : load_(parameters), spec_(spec) {
-    if (spec.gust && spec.speed > 0.0) {
+  HullWindLoad(const WindModel& wind, std::uint64_t seed) : load_(wind.hull), wind_(wind) {
+    if (wind.gust && wind.speed.mean_speed > 0.0) {
       RandomStream stream = RandomStream::Derive(seed, "wind.gust");
-      gust_.emplace(
-          vessel::WindGustOptions{.mean_speed = spec.speed, .components = spec.components}, stream);
+      gust_.emplace(wind.speed, stream);
     }
   }
   std::string_view name() const override { return "wind"; }
   Vec6 Load(double t, const Vec6& eta, const Vec6& nu) const override {
-    const double speed = gust_ ? gust_->Speed(t) : spec_.speed;
-    return load_.Load(eta, nu, speed, spec_.direction_from);
+    const double speed = gust_ ? gust_->Speed(t) : wind_.speed.mean_speed;
+    return load_.Load(eta, nu, speed, wind_.direction_from);
   }
   void Jacobian(double, const Vec6&, const Vec6&, Mat6* J_eta, Mat6* J_nu) const override {
     J_eta->setZero();
@@ -107,49 +104,38 @@ class HullWindLoad final : public vessel::EnvironmentLoad {
 
  private:
   vessel::WindLoad load_;
-  scenarios::WindSpec spec_;
+  WindModel wind_;
   std::optional<vessel::WindGust> gust_;
 };
 
 }  // namespace
 
-vessel::WaveRealisation RealiseSea(const scenarios::WavesSpec& spec, double gravity,
-                                   std::uint64_t seed) {
-  const vessel::JonswapSpectrum spectrum({.significant_height = spec.significant_height,
-                                          .peak_period = spec.peak_period,
-                                          .peak_enhancement = spec.gamma});
+vessel::WaveRealisation RealiseSea(const SeaModel& sea, std::uint64_t seed) {
+  const vessel::JonswapSpectrum spectrum(sea.spectrum);
   RandomStream stream = RandomStream::Derive(seed, "waves");
-  vessel::WaveRealisationOptions options;
-  options.mean_direction = spec.direction_toward;
-  options.spreading_exponent = spec.spreading;
-  options.components = spec.components;
-  options.gravity = gravity;
-  return vessel::WaveRealisation(spectrum, options, stream);
+  return vessel::WaveRealisation(spectrum, sea.realisation, stream);
 }
 
-std::shared_ptr<const mooring_fem::WaveKinematics> LineWaves(const scenarios::Scenario& scenario,
-                                                             const vessel::WaveRealisation& sea) {
+std::shared_ptr<const mooring_fem::WaveKinematics> LineWaves(
+    const vessel::WaveRealisation& sea, const mooring_fem::Water& water,
+    mooring_fem::WaveStretching stretching) {
   std::vector<mooring_fem::WaveTrain> trains;
   for (const vessel::WaveComponent& c : sea.components()) {
     trains.push_back({c.omega, c.amplitude, c.phase, c.direction});
   }
-  const scenarios::WavesSpec& waves = scenario.environment.waves;
-  return std::make_shared<const mooring_fem::WaveKinematics>(
-      trains, scenario.mooring.water.depth, scenario.mooring.water.gravity,
-      waves.stretching == "none" ? mooring_fem::WaveStretching::kNone
-                                 : mooring_fem::WaveStretching::kWheeler);
+  return std::make_shared<const mooring_fem::WaveKinematics>(trains, water.depth, water.gravity,
+                                                             stretching);
 }
 
 namespace {
 
-/// The realised sea of the scenario: JONSWAP, random phases and frequencies from the stream
+/// The realised sea of the model: JONSWAP, random phases and frequencies from the stream
 /// "waves" of the run seed, and the hull's response to it.
 class Sea final : public vessel::SeaResponse {
  public:
-  Sea(const scenarios::WavesSpec& spec, const vessel::HydroData& hydro, double gravity,
-      std::uint64_t seed)
-      : realisation_(RealiseSea(spec, gravity, seed)),
-        response_(hydro, realisation_, {.gravity = gravity}) {}
+  Sea(const SeaModel& sea, const vessel::HydroData& hydro, std::uint64_t seed)
+      : realisation_(RealiseSea(sea, seed)),
+        response_(hydro, realisation_, {.gravity = sea.realisation.gravity}) {}
   void Evaluate(double t, double x, double y, double psi, Vec6* xi, Vec6* xi_dot,
                 Vec6* drift) const override {
     response_.Evaluate(t, x, y, psi, xi, xi_dot, drift);
@@ -160,159 +146,6 @@ class Sea final : public vessel::SeaResponse {
   vessel::WaveRealisation realisation_;
   vessel::WaveResponse response_;
 };
-
-vessel::ChannelNoise Noise(const scenarios::ChannelNoiseSpec& n) {
-  return {.std_dev = n.std_dev,
-          .bias_walk = n.bias_walk,
-          .bias_time_constant = n.bias_time_constant,
-          .initial_bias = n.initial_bias,
-          .outlier_probability = n.outlier_probability,
-          .outlier_std_dev = n.outlier_std_dev};
-}
-
-vessel::PoseSensorSpec PoseSensorSpec(const scenarios::SensorsSpec& s) {
-  vessel::PoseSensorSpec spec;
-  spec.gnss_rate = s.gnss_rate;
-  spec.gyro_rate = s.gyro_rate;
-  spec.north = Noise(s.north);
-  spec.east = Noise(s.east);
-  spec.heading = Noise(s.heading);
-  spec.gnss_dropout_probability = s.gnss_dropout_probability;
-  spec.gyro_dropout_probability = s.gyro_dropout_probability;
-  spec.gnss_dropout_mean_duration = s.gnss_dropout_mean_duration;
-  return spec;
-}
-
-std::vector<vessel::ThrusterSpec> Thrusters(const scenarios::VesselSpec& v) {
-  if (v.thrusters.empty()) return vessel::SeedThrusters();
-  std::vector<vessel::ThrusterSpec> out;
-  for (const scenarios::ThrusterEntry& e : v.thrusters) {
-    out.push_back({.name = e.name,
-                   .x = e.x,
-                   .y = e.y,
-                   .angle = e.angle,
-                   .azimuth = e.azimuth,
-                   .max_thrust = e.max_thrust,
-                   .min_thrust = e.min_thrust,
-                   .weight = e.weight,
-                   .time_constant = e.time_constant,
-                   .rate_limit = e.rate_limit});
-  }
-  return out;
-}
-
-vessel::VesselParameters VesselParameters(const scenarios::VesselSpec& v,
-                                          const vessel::HydroData& hydro) {
-  vessel::MassProperties mass;
-  mass.mass = v.mass;
-  mass.r_g = v.centre_of_gravity;
-  mass.radii_of_gyration = v.radii_of_gyration;
-  vessel::LowFrequencyDamping damping;
-  damping.surge_time = v.damping.surge_time;
-  damping.sway_time = v.damping.sway_time;
-  damping.yaw_time = v.damping.yaw_time;
-  damping.heave_ratio = v.damping.heave_ratio;
-  damping.roll_ratio = v.damping.roll_ratio;
-  damping.pitch_ratio = v.damping.pitch_ratio;
-  return vessel::LowFrequencyVessel(hydro, mass, damping);
-}
-
-const scenarios::VesselSpec& RequireVessel(const scenarios::Scenario& scenario) {
-  if (!scenario.vessel) {
-    throw InputError(scenario.source_path +
-                     ": vessel: the section is missing; a coupled run "
-                     "needs the vessel (simulate-lines runs lines only)");
-  }
-  return *scenario.vessel;
-}
-
-}  // namespace
-
-vessel::ControllerSpec ToControllerSpec(const scenarios::ControllerSpec& c, const Vec3& initial,
-                                        const vessel::VesselModel& vessel) {
-  vessel::ControllerSpec spec;
-  spec.type = c.type;
-  spec.setpoint = c.setpoint.value_or(initial);
-  spec.pi.kp = c.kp;
-  spec.pi.ki = c.ki;
-  spec.pi.kd = c.kd;
-  if (c.heading) {
-    // The hull's yaw inertia with A66(0) and its linear yaw damping; no mooring stiffness
-    // (none about a turret on its bearing; a locked turret's only shortens the period).
-    const vessel::AxisGains yaw =
-        vessel::SizeAxisGains(vessel.mass()(5, 5), vessel.parameters().linear_damping(5, 5), 0.0,
-                              c.heading->natural_period, c.heading->damping_ratio);
-    spec.pi.kp(2) = yaw.kp;
-    spec.pi.kd(2) = yaw.kd;
-    spec.pi.ki(2) = yaw.ki;
-    spec.pi.filtered_error[2] = true;
-  }
-  if (c.natural_period > 0.0) spec.observer_pid.natural_frequency = 2 * M_PI / c.natural_period;
-  if (c.damping_ratio > 0.0) spec.observer_pid.relative_damping = c.damping_ratio;
-  return spec;
-}
-
-mooring_fem::LineFailure ToLineFailure(const scenarios::Scenario& scenario) {
-  const scenarios::FailureSpec& f = scenario.failure;
-  mooring_fem::LineFailure failure;
-  failure.line = f.line - 1;
-  if (f.mode == "fairlead") {
-    failure.mode = mooring_fem::FailureMode::kFairlead;
-  } else if (f.mode == "anchor") {
-    failure.mode = mooring_fem::FailureMode::kAnchor;
-  } else {
-    failure.mode = mooring_fem::FailureMode::kNode;
-    const scenarios::LineSpec& line = scenario.mooring.lines[failure.line];
-    failure.node = f.arc_length ? line.NodeNearest(*f.arc_length) : f.node;
-    failure.node = std::clamp(failure.node, 1, line.Segments() - 1);
-  }
-  return failure;
-}
-
-vessel::TurretParameters ToTurretParameters(const scenarios::Scenario& scenario) {
-  const scenarios::TurretSpec& t = scenario.vessel->turret;
-  vessel::TurretParameters p;
-  p.bearing = vessel::ParseTurretBearing(t.bearing);
-  p.x = t.x;
-  p.y = t.y;
-  p.inertia = t.inertia;
-  p.friction_coefficient = t.friction_coefficient;
-  p.bearing_radius = t.bearing_radius.value_or(scenarios::TurretRadius(scenario));
-  p.damping = t.damping;
-  p.slip_rate = t.slip_rate;
-  return p;
-}
-
-vessel::HullGeometry ToHullGeometry(const scenarios::VesselSpec& spec, double water_density) {
-  const scenarios::HullSpec& h = spec.hull;
-  vessel::HullGeometry hull;
-  hull.length = h.length;
-  hull.beam = h.beam;
-  hull.draught = h.draught;
-  hull.displaced_volume = h.displaced_volume;
-  hull.wetted_surface = h.wetted_surface;
-  hull.cross_flow_drag_coefficient = h.cross_flow_drag_coefficient;
-  hull.form_factor =
-      h.form_factor ? *h.form_factor
-                    : vessel::WatanabeFormFactor(h.length, h.beam, h.draught, h.displaced_volume);
-  hull.water_density = water_density;
-  hull.kinematic_viscosity = h.kinematic_viscosity;
-  return hull;
-}
-
-vessel::WindParameters ToWindParameters(const scenarios::VesselSpec& spec) {
-  const scenarios::WindageSpec& w = spec.windage;
-  vessel::WindParameters wind;
-  wind.air_density = w.air_density;
-  wind.frontal_area = w.frontal_area;
-  wind.lateral_area = w.lateral_area;
-  wind.length = w.length.value_or(spec.hull.length);
-  wind.coefficients = vessel::LoadedTankerWindCoefficients(wind.frontal_area, wind.lateral_area,
-                                                           w.lateral_centroid / wind.length);
-  return wind;
-}
-
-namespace {
 
 /// The WAMIT data of `stem` read with `options`, once per process (shared_parts.h).
 std::shared_ptr<const vessel::HydroData> SharedHydroData(const std::string& stem,
@@ -341,74 +174,70 @@ struct Simulation::Parts {
   Vec3 thrust_issued = Vec3::Zero();  // what the allocation sent to the thrusters
 };
 
-Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed)
-    : scenario_(scenario),
+Simulation::Simulation(const PlantModel& model, std::uint64_t seed)
+    : model_(model),
       seed_(seed),
-      hydro_(SharedHydroData(RequireVessel(scenario).hydrodynamics,
-                             {.water_density = scenario.mooring.water.density,
-                              .gravity = scenario.mooring.water.gravity,
-                              .length_scale = scenario.vessel->length_scale})),
-      mooring_(scenarios::ToMooringParameters(scenario.mooring)),
+      hydro_(SharedHydroData(model.hydrodynamics, model.wamit)),
+      mooring_(model.mooring),
       attachment_(mooring_),
       parts_(std::make_unique<Parts>()),
-      controller_clock_(scenario.controller.rate, "controller.rate_hz") {
-  const scenarios::VesselSpec& v = *scenario_.vessel;
-  plant_ = std::make_unique<vessel::VesselPlant>(VesselParameters(v, *hydro_), Thrusters(v));
-  plant_->SetTurret(ToTurretParameters(scenario_));
+      controller_clock_(model.controller.rate, "controller.rate_hz") {
+  plant_ = std::make_unique<vessel::VesselPlant>(
+      vessel::LowFrequencyVessel(*hydro_, model_.mass, model_.damping), model_.thrusters);
+  plant_->SetTurret(model_.turret);
   plant_->AddLoad(&parts_->external);
-  const scenarios::EnvironmentSpec& env = scenario_.environment;
-  if (env.hull_viscous_drag) {
-    const scenarios::CurrentProfile& c = scenario_.mooring.current;
+  if (model_.hull_drag) {
+    const mooring_fem::CurrentProfile& c = model_.mooring.current;
     const Vec3 current = c.SurfaceSpeed() * Vec3(std::cos(c.direction), std::sin(c.direction), 0);
-    parts_->current.emplace(ToHullGeometry(v, scenario_.mooring.water.density), current);
+    parts_->current.emplace(*model_.hull_drag, current);
     plant_->AddLoad(&*parts_->current);
   }
-  if (env.waves.enabled) {
-    parts_->sea.emplace(env.waves, *hydro_, scenario_.mooring.water.gravity, seed_);
+  if (model_.waves) {
+    parts_->sea.emplace(*model_.waves, *hydro_, seed_);
     plant_->SetSea(&*parts_->sea);
     // The same components, in the lines' finite depth.
-    if (env.waves.on_lines) mooring_.SetWaves(LineWaves(scenario_, parts_->sea->realisation()));
+    if (model_.waves->on_lines) {
+      mooring_.SetWaves(
+          LineWaves(parts_->sea->realisation(), model_.mooring.water, *model_.waves->on_lines));
+    }
   }
-  if (env.wind.enabled) {
-    parts_->wind.emplace(ToWindParameters(v), env.wind, seed_);
+  if (model_.wind) {
+    parts_->wind.emplace(*model_.wind, seed_);
     plant_->AddLoad(&*parts_->wind);
   }
-  parts_->sensors.emplace(PoseSensorSpec(scenario_.sensors), seed_);
-  parts_->controller = vessel::MakeController(
-      ToControllerSpec(scenario_.controller, v.initial_pose, plant_->model()),
-      1.0 / scenario_.controller.rate);
+  parts_->sensors.emplace(model_.pose_sensors, seed_);
+  parts_->controller = vessel::MakeController(model_.controller.SizedFor(plant_->model()),
+                                              1.0 / model_.controller.rate);
   parts_->allocator.emplace(plant_->thrusters());
   parts_->thruster_dynamics.emplace(plant_->thrusters());
   parts_->directions.resize(plant_->num_thrusters());
   for (int k = 0; k < plant_->num_thrusters(); ++k) {
     parts_->directions(k) = plant_->thrusters()[k].angle;
   }
-  if (scenario_.sensors.tension_cells) {
-    parts_->tension_cells.emplace(mooring_.num_lines(), Noise(scenario_.sensors.tension_noise),
-                                  scenario_.sensors.tension_rate, seed_);
-    for (const scenarios::SensorsSpec::CellFault& f : scenario_.sensors.tension_faults) {
-      if (f.mode == "stuck") {
-        parts_->tension_cells->SetStuck(f.line - 1, f.time);
-      } else if (f.mode == "dead") {
-        parts_->tension_cells->SetDead(f.line - 1, f.time);
-      } else {
-        parts_->tension_cells->SetDrift(f.line - 1, f.time, f.rate);
-      }
-    }
+  if (model_.tension_cells) {
+    const TensionCellsModel& cells = *model_.tension_cells;
+    parts_->tension_cells.emplace(mooring_.num_lines(), cells.noise, cells.rate, seed_);
+    for (const vessel::CellFault& fault : cells.faults) parts_->tension_cells->SetFault(fault);
   }
-  failure_pending_ = scenario_.failure.line > 0;
+  failure_pending_ = model_.failure.has_value();
 
   system_ = std::make_unique<CoupledSystem>(*plant_, attachment_);
   x_.assign(system_->StateSize(), 0.0);
-  try {
-    SettleMooredEquilibrium();
-  } catch (const InputError& e) {  // a free point that cannot be at rest where it is
-    scenarios::PlaceAtKey(scenario_, e, "mooring.points[");
-  }
-  if (!scenario_.detectors.empty()) {
-    detection_ = std::make_unique<Detection>(scenario_, plant_->model(), initial_pose_);
+  SettleMooredEquilibrium();
+  if (model_.detection && !model_.detection->detectors.empty()) {
+    detection_ = std::make_unique<Detection>(model_, plant_->model(), initial_pose_);
   }
   StartIntegrator();
+}
+
+Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed) try
+    : Simulation(scenarios::ToPlantModel(scenario), seed) {
+} catch (const InputError& e) {
+  // A free point that cannot be at rest where it is, a detector's bad parameter: placed at
+  // its key in the file.
+  const std::string_view message = e.what();
+  scenarios::PlaceAtKey(scenario, e,
+                        message.starts_with("mooring.points[") ? "mooring.points[" : "detectors[");
 }
 
 Simulation::~Simulation() = default;
@@ -420,7 +249,12 @@ std::unique_ptr<Detection> MakeDetection(const scenarios::Scenario& scenario) {
   scenarios::Scenario plant_only = scenario;
   plant_only.detectors.clear();
   const Simulation start(plant_only, scenario.simulation.seed);
-  return std::make_unique<Detection>(scenario, start.plant_model(), start.initial_pose());
+  try {
+    return std::make_unique<Detection>(scenarios::ToPlantModel(scenario), start.plant_model(),
+                                       start.initial_pose());
+  } catch (const InputError& e) {
+    scenarios::PlaceAtKey(scenario, e, "detectors[");
+  }
 }
 
 int Simulation::num_hypotheses() const { return detection_ ? detection_->num_hypotheses() : 0; }
@@ -456,17 +290,17 @@ void Simulation::SettleMooredEquilibrium() {
   // tau_mooring with the fairleads where the low-frequency pose puts them. The mooring's
   // vertical stiffness is small next to the hydrostatic one (8 lines x ~5 MN over C33 =
   // 8.4e7 N/m: 0.47 m), so the fixed-point iteration converges in a few steps. This
-  // equilibrium depends on the scenario alone, not on the run's seed, so the detectors'
+  // equilibrium depends on the model alone, not on the run's seed, so the detectors'
   // models built on it are shared by every seed (shared_parts.h); the first-order wave
   // motion rides on it with zero mean.
-  const Vec3 pose = scenario_.vessel->initial_pose;
+  const Vec3 pose = model_.initial_pose;
   x_.assign(system_->StateSize(), 0.0);
   x_[0] = pose.x();
   x_[1] = pose.y();
   x_[5] = pose.z();
   // A turret on its bearing starts at its own heading (default: the hull's), its angle to
   // the hull the difference; the fairleads turn with it about the turret centre.
-  const double turret_angle = scenario_.vessel->InitialTurretAngle();
+  const double turret_angle = model_.initial_turret_angle;
   if (plant_->turret_turns()) {
     x_[static_cast<std::size_t>(plant_->turret_state())] = turret_angle;
   }
@@ -526,7 +360,7 @@ void Simulation::SettleMooredEquilibrium() {
 void Simulation::StartIntegrator() {
   if (integrator_) finished_ += integrator_->stats();
   system_->Rebuild();
-  const scenarios::SolverSpec& solver = scenario_.solver;
+  const mooring_fem::SolverSettings& solver = model_.solver;
   IntegratorOptions options = mooring_fem::MakeIntegratorOptions(solver, mooring_);
   const int nb = plant_->StateSize();
   // Body tolerances: positions like the nodes; angles so that 20 m from the turret centre
@@ -558,7 +392,7 @@ double Simulation::NextEventTime() const {
   // instant at or before t_ has been handled by DiscreteEvents, so each candidate lies
   // strictly after t_.
   double next = std::numeric_limits<double>::infinity();
-  if (failure_pending_) next = std::min(next, scenario_.failure.time);
+  if (failure_pending_) next = std::min(next, model_.failure->time);
   next = std::min(next, parts_->sensors->NextSampleTime(t_));
   next = std::min(next, controller_clock_.Instant(next_control_index_));
   if (parts_->tension_cells) next = std::min(next, parts_->tension_cells->NextSampleTime(t_));
@@ -600,7 +434,7 @@ void Simulation::DiscreteEvents() {
     station_keeping_.saturated += a.saturated ? 1 : 0;
     // The largest error up to the failure: what a parted line does to the heading afterwards
     // is the failure's doing, not the station keeping's.
-    if (scenario_.failure.line == 0 || failure_pending_) {
+    if (!model_.failure || failure_pending_) {
       station_keeping_.heading_error_max =
           std::max(station_keeping_.heading_error_max, heading_error);
     }
@@ -623,12 +457,12 @@ void Simulation::DiscreteEvents() {
     }
     detection_->Update(observation);
   }
-  if (failure_pending_ && t_ >= scenario_.failure.time) {
+  if (failure_pending_ && t_ >= model_.failure->time) {
     failure_pending_ = false;
     const int nb = plant_->StateSize();
     const std::vector<PointKinematics> points = Points();
     std::vector<double> lines =
-        mooring_.ApplyFailure(ToLineFailure(scenario_), x_.data() + nb, points);
+        mooring_.ApplyFailure(model_.failure->failure, x_.data() + nb, points);
     x_.resize(nb);
     x_.insert(x_.end(), lines.begin(), lines.end());
     StartIntegrator();

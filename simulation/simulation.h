@@ -1,8 +1,8 @@
-// The coupled simulation of a scenario: the seed FPSO (or any vessel with WAMIT data) on its
-// FEM mooring lines in one CVODE system (core/coupled_system.h), with the realised sea,
-// current and wind, thrusters, a discrete position-mooring controller, sensors and a
-// scheduled line failure. Everything random comes from named streams of the run seed, so a
-// scenario and a seed determine the run bit for bit.
+// The coupled simulation of a plant model (plant_model.h; a scenario gives one): the seed
+// FPSO (or any vessel with WAMIT data) on its FEM mooring lines in one CVODE system
+// (core/coupled_system.h), with the realised sea, current and wind, thrusters, a discrete
+// position-mooring controller, sensors and a scheduled line failure. Everything random comes from
+// named streams of the run seed, so a model and a seed determine the run bit for bit.
 //
 // Timeline: the integrator stops at every controller sample, sensor sample and failure, the
 // discrete parts act there (sensors sample the true total pose, the controller computes a
@@ -28,6 +28,7 @@
 #include "mooring_fem/mooring_system.h"
 #include "scenarios/scenario.h"
 #include "simulation/detection.h"
+#include "simulation/plant_model.h"
 #include "vessel/controller.h"
 #include "vessel/hull_loads.h"
 #include "vessel/hydro_data.h"
@@ -68,7 +69,7 @@ struct Sample {
   Vec6 load_current = Vec6::Zero();
   Vec6 load_wind = Vec6::Zero();
   Vec6 load_thrust = Vec6::Zero();
-  /// Every detector's latest verdict (scenario order), empty without detectors.
+  /// Every detector's latest verdict (the model's order), empty without detectors.
   std::vector<detectors::Verdict> detectors;
   /// The samples the detection took since the previous row (Simulation::KeepDetectionInput).
   std::vector<detectors::Observation> detection_input;
@@ -96,35 +97,15 @@ struct StationKeeping {
   }
 };
 
-/// A line failure in the FEM's terms, from the scenario's failure section (1-based line,
-/// node or arc length from the anchor).
-mooring_fem::LineFailure ToLineFailure(const scenarios::Scenario& scenario);
+/// The realised sea of `sea` for the run seed `seed` (its own stream, "waves"): the hull's
+/// and, where the lines see them, the lines' wave components.
+vessel::WaveRealisation RealiseSea(const SeaModel& sea, std::uint64_t seed);
 
-/// The hull for the viscous current load, from `vessel.hull` (form factor by Watanabe's
-/// regression when not given) and the water's density. The defaults give
-/// vessel::SeedFpsoHull() with that density.
-vessel::HullGeometry ToHullGeometry(const scenarios::VesselSpec& spec, double water_density);
-
-/// The above-water hull for the wind load, from `vessel.windage` (length defaulting to
-/// vessel.hull.length) with Blendermann's loaded-tanker coefficients. The defaults give
-/// vessel::SeedFpsoWind().
-vessel::WindParameters ToWindParameters(const scenarios::VesselSpec& spec);
-
-/// The controller of the scenario's `controller` section (setpoint defaulting to `initial`),
-/// with the heading loop's gains sized on `vessel`'s yaw inertia and damping when
-/// controller.heading is given.
-vessel::ControllerSpec ToControllerSpec(const scenarios::ControllerSpec& c, const Vec3& initial,
-                                        const vessel::VesselModel& vessel);
-
-/// The realised sea of `environment.waves` for the run seed `seed` (its own stream, "waves"):
-/// the hull's and, where the lines see them, the lines' wave components.
-vessel::WaveRealisation RealiseSea(const scenarios::WavesSpec& spec, double gravity,
-                                   std::uint64_t seed);
-
-/// The lines' wave kinematics of a realised sea (`environment.waves.on_lines`), in the
-/// mooring's water depth, with the scenario's stretching rule.
-std::shared_ptr<const mooring_fem::WaveKinematics> LineWaves(const scenarios::Scenario& scenario,
-                                                             const vessel::WaveRealisation& sea);
+/// The lines' wave kinematics of a realised sea in `water`'s depth, with `stretching` above
+/// the mean surface.
+std::shared_ptr<const mooring_fem::WaveKinematics> LineWaves(
+    const vessel::WaveRealisation& sea, const mooring_fem::Water& water,
+    mooring_fem::WaveStretching stretching);
 
 /// The scenario's detection as a run of it builds it, without the run: the plant is built
 /// and put at its moored static start (the models depend on it) and nothing is integrated.
@@ -134,10 +115,13 @@ std::unique_ptr<Detection> MakeDetection(const scenarios::Scenario& scenario);
 
 class Simulation {
  public:
-  /// Builds every part from the scenario (which must have a vessel section) and puts the
-  /// vessel at its moored static equilibrium (heave, roll, pitch) at the initial pose with
-  /// the lines on their static FEM shape. Throws moorsim::InputError for a scenario that
-  /// cannot be simulated, moorsim::Error if the static start fails.
+  /// Builds every part of `model` and puts the vessel at its moored static equilibrium
+  /// (heave, roll, pitch) at the initial pose with the lines on their static FEM shape.
+  /// Throws moorsim::InputError for a model that cannot be simulated (its message starts
+  /// with the offending part: "detectors[2].floor: ...", "mooring.points[1]: ..."),
+  /// moorsim::Error if the static start fails.
+  Simulation(const PlantModel& model, std::uint64_t seed);
+  /// The plant of a scenario (scenarios::ToPlantModel()), its errors placed in the file.
   Simulation(const scenarios::Scenario& scenario, std::uint64_t seed);
   ~Simulation();
 
@@ -155,6 +139,7 @@ class Simulation {
   /// std::nullopt gives the command back to the controller.
   void SetThrustCommand(const std::optional<Vec3>& command) { thrust_override_ = command; }
 
+  const PlantModel& model() const { return model_; }
   double time() const { return t_; }
   const std::vector<double>& state() const { return x_; }
   Sample Record();
@@ -202,7 +187,7 @@ class Simulation {
   double NextEventTime() const;
   std::vector<PointKinematics> Points();
 
-  scenarios::Scenario scenario_;
+  PlantModel model_;
   std::uint64_t seed_;
   std::shared_ptr<const vessel::HydroData> hydro_;  // shared between runs (read only)
   mooring_fem::MooringSystem mooring_;

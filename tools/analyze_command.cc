@@ -18,6 +18,7 @@
 #include "detectors/hypothesis_bank.h"
 #include "scenarios/convert.h"
 #include "scenarios/load.h"
+#include "scenarios/plant_model.h"
 #include "simulation/detection_models.h"
 #include "simulation/simulation.h"
 #include "tools/commands.h"
@@ -74,8 +75,8 @@ int Analyze(const AnalyzeOptions& o) {
   scenarios::Scenario plant_only = scenario;
   plant_only.detectors.clear();
   simulation::Simulation sim(plant_only, scenario.simulation.seed);
-  const simulation::DetectionModels models =
-      simulation::MakeDetectionModels(scenario, sim.plant().model(), sim.initial_pose());
+  const simulation::DetectionModels models = simulation::MakeDetectionModels(
+      scenarios::ToDetectionSetup(scenario), sim.plant().model(), sim.initial_pose());
   const detectors::HypothesisBank bank(scenarios::ToMooringParameters(scenario.mooring),
                                        models.bank);
   options.sample_interval = 1.0 / scenario.sensors.gnss_rate;
@@ -90,8 +91,7 @@ int Analyze(const AnalyzeOptions& o) {
                        "': analyze closes the pi controller at the position sensors' rate (" +
                        FormatNumber(scenario.sensors.gnss_rate) + " Hz); they must be equal");
     }
-    const vessel::ControllerSpec spec =
-        simulation::ToControllerSpec(controller, pose, sim.plant().model());
+    const vessel::ControllerSpec spec = sim.model().controller.SizedFor(sim.plant().model());
     options.feedback =
         detectors::PoseFeedback{.kp = spec.pi.kp,
                                 .ki = spec.pi.ki,

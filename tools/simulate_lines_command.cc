@@ -20,6 +20,8 @@
 #include "mooring_fem/line_simulation.h"
 #include "scenarios/convert.h"
 #include "scenarios/load.h"
+#include "scenarios/plant_model.h"
+#include "simulation/lines_coupling.h"
 #include "simulation/simulation.h"
 #include "tools/commands.h"
 
@@ -301,11 +303,7 @@ int RunSimulateLines(const SimulateLinesOptions& o) {
   for (const ScheduledPart& p : parts) sim.ScheduleFailure(p.time, p.failure);
   // The scenario's waves on the lines (environment.waves.on_lines), realised from its seed
   // as a run of it would realise them; the motion stays the one prescribed.
-  if (scenario.environment.waves.enabled && scenario.environment.waves.on_lines) {
-    sim.mooring().SetWaves(simulation::LineWaves(
-        scenario, simulation::RealiseSea(scenario.environment.waves, scenario.mooring.water.gravity,
-                                         scenario.simulation.seed)));
-  }
+  if (auto waves = simulation::ScenarioLineWaves(scenario)) sim.mooring().SetWaves(waves);
   const auto t_ready = Clock::now();
 
   auto write_row = [&] {

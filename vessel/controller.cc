@@ -458,4 +458,15 @@ std::unique_ptr<PositionController> MakeController(const ControllerSpec& spec, d
   return it->make(spec, dt);
 }
 
+ControllerSpec WithHeadingLoop(ControllerSpec spec, const HeadingLoopTuning& tuning,
+                               const VesselModel& vessel) {
+  const AxisGains yaw = SizeAxisGains(vessel.mass()(5, 5), vessel.parameters().linear_damping(5, 5),
+                                      0.0, tuning.natural_period, tuning.damping_ratio);
+  spec.pi.kp(2) = yaw.kp;
+  spec.pi.kd(2) = yaw.kd;
+  spec.pi.ki(2) = yaw.ki;
+  spec.pi.filtered_error[2] = true;
+  return spec;
+}
+
 }  // namespace moorsim::vessel

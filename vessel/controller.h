@@ -29,6 +29,7 @@
 #include <Eigen/Core>
 
 #include "core/types.h"
+#include "vessel/vessel_model.h"
 
 namespace moorsim::vessel {
 
@@ -364,6 +365,20 @@ struct ControllerSpec {
   PiControllerOptions pi;
   ObserverPidOptions observer_pid;
 };
+
+/// A heading loop specified by its closed-loop behaviour: natural period [s] and damping
+/// ratio [-], from which the pi controller's heading gains are sized on the hull.
+struct HeadingLoopTuning {
+  double natural_period = 0.0;
+  double damping_ratio = 0.0;
+};
+
+/// `spec` with its pi heading gains (kp, ki, kd of yaw, error filtered) sized by
+/// SizeAxisGains() on `vessel`'s yaw inertia with A66(0) and its linear yaw damping, with
+/// no mooring stiffness (none about a turret on its bearing; a locked turret's only
+/// shortens the period).
+ControllerSpec WithHeadingLoop(ControllerSpec spec, const HeadingLoopTuning& tuning,
+                               const VesselModel& vessel);
 
 /// Builds the controller named by spec.type with sample time dt [s]. Throws
 /// moorsim::InputError for an unknown type ("unknown controller type 'pd' (known: none,

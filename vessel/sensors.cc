@@ -266,4 +266,18 @@ void TensionCells::SetDrift(int line, double from, double rate) {
                                                 std::numeric_limits<double>::quiet_NaN()};
 }
 
+void TensionCells::SetFault(const CellFault& fault) {
+  switch (fault.mode) {
+    case CellFault::Mode::kStuck:
+      SetStuck(fault.line, fault.from);
+      break;
+    case CellFault::Mode::kDrift:
+      SetDrift(fault.line, fault.from, fault.rate);
+      break;
+    case CellFault::Mode::kDead:
+      SetDead(fault.line, fault.from);
+      break;
+  }
+}
+
 }  // namespace moorsim::vessel

@@ -211,6 +211,16 @@ class PoseSensors {
   double gnss_dropout_end_ = -std::numeric_limits<double>::infinity();
 };
 
+/// A load cell that goes wrong during a run: from `from` [s] on, cell `line` (0-based) is
+/// stuck, drifts by `rate` [N/s] or is dead (TensionCells::SetStuck, SetDrift, SetDead).
+struct CellFault {
+  enum class Mode { kStuck, kDrift, kDead };
+  Mode mode = Mode::kDead;
+  int line = 0;
+  double from = 0.0;
+  double rate = 0.0;  ///< kDrift only [N/s]
+};
+
 /// Fairlead tension cells: one per line, all with the same error model and rate, each
 /// with its own streams "tension_cell.<k>.noise" / ".bias" / ".outlier" (k = 1 .. lines).
 /// Readings are not clipped at zero: a load cell on a slack line reads noise around zero.
@@ -240,6 +250,8 @@ class TensionCells {
   /// From time `from` on, cell `line` (0-based) is dead: it reads its noise about zero, as
   /// a cell with a cut cable or a failed bridge does.
   void SetDead(int line, double from);
+  /// The fault's Set* call.
+  void SetFault(const CellFault& fault);
 
  private:
   struct Fault {

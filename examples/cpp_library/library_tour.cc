@@ -5,7 +5,9 @@
 //   2. a scenario run as one call, its rows handed to a callback, stopped on request
 //      after the first minute (simulation::RunScenario);
 //   3. the coupled plant stepped with a thrust command of one's own
-//      (simulation::SteppedPlant).
+//      (simulation::SteppedPlant);
+//   4. the plant's typed model (simulation::PlantModel) taken from the scenario, changed
+//      in code (no failure, another setpoint) and simulated (simulation::Simulation).
 //
 //   library_tour SCENARIO.yaml
 #include <cmath>
@@ -15,7 +17,9 @@
 #include <moorsim/core/version.h>
 #include <moorsim/mooring_fem/coupled_lines.h>
 #include <moorsim/scenarios/load.h>
+#include <moorsim/scenarios/plant_model.h>
 #include <moorsim/simulation/run.h>
+#include <moorsim/simulation/simulation.h>
 #include <moorsim/simulation/stepped_plant.h>
 
 namespace ms = moorsim;
@@ -90,6 +94,18 @@ int main(int argc, char** argv) {
     const double forward =
         (end(0) - start(0)) * std::cos(start(5)) + (end(1) - start(1)) * std::sin(start(5));
     std::printf("plant: %.2f m forward in 60 s under 1 MN of its own thrust\n", forward);
+
+    // 4. The typed model: the scenario's plant without its failure, its controller asked
+    // to hold a point 10 m north of the scenario's setpoint.
+    ms::simulation::PlantModel model =
+        ms::scenarios::ToPlantModel(ms::scenarios::LoadScenario(argv[1]));
+    model.failure.reset();
+    model.controller.spec.setpoint.x() += 10.0;
+    ms::simulation::Simulation moved(model, 1);
+    const double north = moved.Record().pose_true(0);
+    moved.AdvanceTo(120.0);
+    std::printf("typed plant: %.2f m north in 120 s toward a setpoint moved 10 m north\n",
+                moved.Record().pose_true(0) - north);
   } catch (const ms::Error& e) {
     std::fprintf(stderr, "library_tour: %s\n", e.what());
     return 1;

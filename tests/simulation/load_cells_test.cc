@@ -34,7 +34,7 @@ TEST(LoadCells, TheExpectedReadingIsTheFemLinesStaticTension) {
   Simulation sim(scenario, 1);
   const std::vector<double> fem = sim.FairleadTensions();
   const DetectionModels models =
-      MakeDetectionModels(scenario, sim.plant_model(), sim.initial_pose());
+      MakeDetectionModels(*sim.model().detection, sim.plant_model(), sim.initial_pose());
   const detectors::HypothesisBank bank(scenarios::ToMooringParameters(scenario.mooring),
                                        models.bank);
   const Vec6& pose = sim.initial_pose();

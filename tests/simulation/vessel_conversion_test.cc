@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 
+#include "scenarios/plant_model.h"
 #include "simulation/simulation.h"
 #include "tests/simulation/test_scenarios.h"
 #include "vessel/hull_loads.h"
@@ -17,7 +18,7 @@ namespace {
 
 TEST(VesselConversion, DefaultsAreTheSeedFpso) {
   const scenarios::VesselSpec spec;
-  const vessel::HullGeometry hull = ToHullGeometry(spec, 1030.0);
+  const vessel::HullGeometry hull = scenarios::ToHullGeometry(spec, 1030.0);
   const vessel::HullGeometry seed = vessel::SeedFpsoHull();
   EXPECT_EQ(hull.length, seed.length);
   EXPECT_EQ(hull.beam, seed.beam);
@@ -29,7 +30,7 @@ TEST(VesselConversion, DefaultsAreTheSeedFpso) {
   EXPECT_EQ(hull.kinematic_viscosity, seed.kinematic_viscosity);
   EXPECT_EQ(hull.water_density, 1030.0);  // mooring.water.density
 
-  const vessel::WindParameters wind = ToWindParameters(spec);
+  const vessel::WindParameters wind = scenarios::ToWindParameters(spec);
   const vessel::WindParameters seed_wind = vessel::SeedFpsoWind();
   EXPECT_EQ(wind.air_density, seed_wind.air_density);
   EXPECT_EQ(wind.frontal_area, seed_wind.frontal_area);
@@ -48,7 +49,7 @@ TEST(VesselConversion, GivenValuesArrive) {
   spec.hull.draught = 15.0;
   spec.hull.displaced_volume = 150000.0;
   spec.hull.kinematic_viscosity = 1.3e-6;
-  vessel::HullGeometry hull = ToHullGeometry(spec, 1025.0);
+  vessel::HullGeometry hull = scenarios::ToHullGeometry(spec, 1025.0);
   EXPECT_EQ(hull.length, 250.0);
   EXPECT_EQ(hull.beam, 50.0);
   EXPECT_EQ(hull.draught, 15.0);
@@ -58,7 +59,7 @@ TEST(VesselConversion, GivenValuesArrive) {
   spec.hull.wetted_surface = 20000.0;
   spec.hull.cross_flow_drag_coefficient = 0.8;
   spec.hull.form_factor = 0.3;
-  hull = ToHullGeometry(spec, 1025.0);
+  hull = scenarios::ToHullGeometry(spec, 1025.0);
   EXPECT_EQ(hull.wetted_surface, 20000.0);
   EXPECT_EQ(hull.cross_flow_drag_coefficient, 0.8);
   EXPECT_EQ(hull.form_factor, 0.3);
@@ -67,14 +68,14 @@ TEST(VesselConversion, GivenValuesArrive) {
   spec.windage.lateral_area = 6000.0;
   spec.windage.lateral_centroid = -25.0;
   spec.windage.air_density = 1.25;
-  vessel::WindParameters wind = ToWindParameters(spec);
+  vessel::WindParameters wind = scenarios::ToWindParameters(spec);
   EXPECT_EQ(wind.frontal_area, 1500.0);
   EXPECT_EQ(wind.lateral_area, 6000.0);
   EXPECT_EQ(wind.air_density, 1.25);
   EXPECT_EQ(wind.length, 250.0);  // the hull's
   EXPECT_EQ(wind.coefficients.yaw, vessel::LoadedTankerWindCoefficients(1500.0, 6000.0, -0.1).yaw);
   spec.windage.length = 200.0;
-  wind = ToWindParameters(spec);
+  wind = scenarios::ToWindParameters(spec);
   EXPECT_EQ(wind.length, 200.0);
   EXPECT_EQ(wind.coefficients.yaw,
             vessel::LoadedTankerWindCoefficients(1500.0, 6000.0, -0.125).yaw);
@@ -103,14 +104,15 @@ TEST(VesselConversion, TheRunUsesTheScenariosHullAndWindage) {
 
   const scenarios::CurrentProfile& c = s.mooring.current;
   const Vec3 current = c.SurfaceSpeed() * Vec3(std::cos(c.direction), std::sin(c.direction), 0.0);
-  const vessel::CurrentLoad expected_current(ToHullGeometry(*s.vessel, s.mooring.water.density));
+  const vessel::CurrentLoad expected_current(
+      scenarios::ToHullGeometry(*s.vessel, s.mooring.water.density));
   const Vec6 tau_current = LoadNamed(sim, "current").Load(0.0, eta, nu);
   EXPECT_EQ(tau_current, expected_current.Load(eta, nu, current));
   vessel::HullGeometry seed_hull = vessel::SeedFpsoHull();
   seed_hull.water_density = s.mooring.water.density;
   EXPECT_NE(tau_current, vessel::CurrentLoad(seed_hull).Load(eta, nu, current));
 
-  const vessel::WindLoad expected_wind(ToWindParameters(*s.vessel));
+  const vessel::WindLoad expected_wind(scenarios::ToWindParameters(*s.vessel));
   const double direction = s.environment.wind.direction_from;
   const Vec6 tau_wind = LoadNamed(sim, "wind").Load(0.0, eta, nu);
   EXPECT_EQ(tau_wind, expected_wind.Load(eta, nu, 15.0, direction));
