@@ -23,6 +23,7 @@
 #include "scenarios/load.h"
 #include "simulation/detection.h"
 #include "simulation/lines_coupling.h"
+#include "simulation/output_layout.h"
 #include "simulation/run.h"
 #include "simulation/simulation.h"
 #include "simulation/stepped_plant.h"
@@ -439,6 +440,16 @@ PYBIND11_MODULE(_moorsim, m) {
       .def("save", &Plant::Save)
       .def("restore", &Plant::Restore, "state"_a);
 
+  // The tables of run.h5 and detect.h5 as the writers declare them: (path, width, units,
+  // columns), width -1 per line and -2 per hypothesis.
+  m.def("_layout", [] {
+    py::list tables;
+    for (const moorsim::simulation::layout::Table& t : moorsim::simulation::layout::Tables()) {
+      tables.append(py::make_tuple(std::string(t.path), t.width, std::string(t.units),
+                                   std::string(t.columns)));
+    }
+    return tables;
+  });
   m.def("_run", &Run, "scenario"_a, "overrides"_a, "out"_a);
   m.def("_run_campaign", &RunCampaign, "campaign"_a, "out"_a, "threads"_a, "keep_runs"_a,
         "progress"_a);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "detectors/registry.h"
+#include "simulation/output_layout.h"
 
 namespace moorsim::simulation {
 
@@ -18,8 +19,8 @@ void AppendRow(output::Hdf5File& file, output::TableId table, const Vec3& v) {
 
 DetectionTables::DetectionTables(output::Hdf5File& file, const Detection* detection) {
   if (detection != nullptr && detection->estimates_load()) {
-    bias_ = file.CreateTable("/observer/bias", 3, "N,N,N m", {"X", "Y", "N"});
-    wave_motion_ = file.CreateTable("/observer/wave_motion", 3, "m,m,rad", {"x", "y", "psi"});
+    bias_ = layout::Create(file, layout::kObserverBias);
+    wave_motion_ = layout::Create(file, layout::kObserverWaveMotion);
   }
   file.CreateGroup("/detectors");
   if (detection == nullptr) return;
@@ -30,11 +31,13 @@ DetectionTables::DetectionTables(output::Hdf5File& file, const Detection* detect
   for (const DetectorRecord& d : detection->records()) {
     const std::string group = "/detectors/" + d.label;
     Tables t;
-    t.score = file.CreateTable(group + "/score", static_cast<int>(hypotheses.size()),
+    // The scores' units are the detector type's, their columns the hypotheses.
+    t.score = file.CreateTable(group + "/" + std::string(layout::kDetectorScore.path),
+                               static_cast<int>(hypotheses.size()),
                                std::string(detectors::ScoreUnitsOf(d.type)), hypotheses);
-    t.decision = file.CreateTable(group + "/decision", 0, "hypothesis (0 = intact, k = line k)", {},
-                                  output::TableType::kInt32);
-    t.alarm = file.CreateTable(group + "/alarm", 0, "0/1", {}, output::TableType::kInt8);
+    t.decision =
+        layout::Create(file, layout::kDetectorDecision, 0, 0, group, output::TableType::kInt32);
+    t.alarm = layout::Create(file, layout::kDetectorAlarm, 0, 0, group, output::TableType::kInt8);
     file.SetAttribute(group, "type", d.type);
     if (d.threshold) file.SetAttribute(group, "threshold", *d.threshold);
     detectors_.push_back(t);

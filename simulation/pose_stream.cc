@@ -1,5 +1,7 @@
 #include "simulation/pose_stream.h"
 
+#include "simulation/output_layout.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -216,27 +218,22 @@ bool CsvPoseStream::Take(const std::string& line, detectors::Observation* observ
 std::vector<detectors::Observation> ReadRunDetectionInput(const std::string& path, int lines,
                                                           double max_gap) {
   const output::Hdf5Reader file(path);
-  if (!file.Has("/detection/input/time")) {
+  if (!file.Has(std::string(layout::kInputTime.path))) {
     throw InputError(path +
                      ": no /detection/input (the run had no detectors, or an older moorsim "
                      "wrote it): replay needs the samples the detection took");
   }
-  const output::TableData time = file.ReadTable("/detection/input/time");
-  const output::TableData pose = file.ReadTable("/detection/input/pose_measured");
-  const output::TableData thrust = file.ReadTable("/detection/input/thrust");
+  const output::TableData time = layout::Read(file, path, layout::kInputTime);
+  const output::TableData pose = layout::Read(file, path, layout::kInputPose);
+  const output::TableData thrust = layout::Read(file, path, layout::kInputThrust);
   output::TableData tension;
-  if (file.Has("/detection/input/tension_measured")) {
-    tension = file.ReadTable("/detection/input/tension_measured");
-    if (tension.columns != static_cast<std::size_t>(lines)) {
-      throw InputError(path + ": /detection/input/tension_measured: " +
-                       std::to_string(tension.columns) + " columns, the scenario has " +
-                       std::to_string(lines) + " mooring lines (one tension per line)");
-    }
+  if (file.Has(std::string(layout::kInputTension.path))) {
+    tension = layout::Read(file, path, layout::kInputTension, lines);
   }
   const bool tensions = tension.rows > 0;
-  if (pose.rows != time.rows || thrust.rows != time.rows || pose.columns != 3 ||
-      thrust.columns != 3 || (tensions && tension.rows != time.rows)) {
-    throw InputError(path + ": /detection/input: tables of different lengths or widths");
+  if (pose.rows != time.rows || thrust.rows != time.rows ||
+      (tensions && tension.rows != time.rows)) {
+    throw InputError(path + ": /detection/input: tables of different lengths");
   }
   StreamChecks checks(max_gap);
   std::vector<detectors::Observation> observations(time.rows);

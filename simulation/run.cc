@@ -1,5 +1,7 @@
 #include "simulation/run.h"
 
+#include "simulation/output_layout.h"
+
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -53,54 +55,41 @@ class RunWriter {
                        scenario.failure.line > 0 ? scenario.failure.time : kNaN);
     file_.SetAttribute("/", "failure_mode",
                        scenario.failure.line > 0 ? scenario.failure.mode : std::string());
-    const std::vector<std::string> eta = {"x", "y", "z", "phi", "theta", "psi"};
-    const std::string eta_units = "m,m,m,rad,rad,rad";
-    const std::string load_units = "N,N,N,N m,N m,N m";
-    const std::vector<std::string> load = {"X", "Y", "Z", "K", "M", "N"};
-    time_ = file_.CreateTable("/time", 0, "s");
-    pose_true_ = file_.CreateTable("/vessel/pose_true", 6, eta_units, eta);
-    pose_lf_ = file_.CreateTable("/vessel/pose_low_frequency", 6, eta_units, eta);
-    velocity_ = file_.CreateTable("/vessel/velocity_true", 6, "m/s,m/s,m/s,rad/s,rad/s,rad/s",
-                                  {"u", "v", "w", "p", "q", "r"});
-    measured_ = file_.CreateTable("/vessel/pose_measured", 3, "m,m,rad", {"x", "y", "psi"});
-    if (sim.plant().turret_turns()) {
-      turret_ = file_.CreateTable("/vessel/turret", 4, "rad,rad/s,N m,N m",
-                                  {"angle", "rate", "moment_lines", "moment_bearing"});
-    }
+    time_ = layout::Create(file_, layout::kTime);
+    pose_true_ = layout::Create(file_, layout::kPoseTrue);
+    pose_lf_ = layout::Create(file_, layout::kPoseLowFrequency);
+    velocity_ = layout::Create(file_, layout::kVelocityTrue);
+    measured_ = layout::Create(file_, layout::kPoseMeasured);
+    if (sim.plant().turret_turns()) turret_ = layout::Create(file_, layout::kTurret);
     const int lines = sim.num_lines();
     lines_ = static_cast<std::size_t>(lines);
-    std::vector<std::string> line_names;
-    for (int i = 1; i <= lines; ++i) line_names.push_back("line " + std::to_string(i));
-    tension_ = file_.CreateTable("/mooring/fairlead_tension", lines, "N", line_names);
+    tension_ = layout::Create(file_, layout::kFairleadTension, lines);
     if (scenario.sensors.tension_cells) {
-      tension_measured_ = file_.CreateTable("/mooring/tension_measured", lines, "N", line_names);
+      tension_measured_ = layout::Create(file_, layout::kTensionMeasured, lines);
     }
-    const output::TableId anchors =
-        file_.CreateTable("/mooring/anchors", 3, "m,m,m", {"x", "y", "z"});
+    const output::TableId anchors = layout::Create(file_, layout::kAnchors);
     for (int i = 0; i < lines; ++i) {
       const Vec3 a = sim.mooring().line(i).anchor;
       file_.Append(anchors, std::vector<double>{a.x(), a.y(), a.z()});
     }
-    commanded_ = file_.CreateTable("/thrust/commanded", 3, "N,N,N m", {"X", "Y", "N"});
-    delivered_ = file_.CreateTable("/thrust/delivered", 3, "N,N,N m", {"X", "Y", "N"});
-    mooring_ = file_.CreateTable("/environment/mooring", 6, load_units, load);
-    drift_ = file_.CreateTable("/environment/waves_drift", 6, load_units, load);
-    current_ = file_.CreateTable("/environment/current", 6, load_units, load);
-    wind_ = file_.CreateTable("/environment/wind", 6, load_units, load);
-    thrust_ = file_.CreateTable("/environment/thrust", 6, load_units, load);
+    commanded_ = layout::Create(file_, layout::kThrustCommanded);
+    delivered_ = layout::Create(file_, layout::kThrustDelivered);
+    mooring_ = layout::Create(file_, layout::kLoadMooring);
+    drift_ = layout::Create(file_, layout::kLoadWavesDrift);
+    current_ = layout::Create(file_, layout::kLoadCurrent);
+    wind_ = layout::Create(file_, layout::kLoadWind);
+    thrust_ = layout::Create(file_, layout::kLoadThrust);
     detection_tables_.emplace(file_, sim.detection());
     if (sim.detection()) {
       // Every sample the detection took, as it took it: `moorsim detect` replays these.
       sim.KeepDetectionInput(true);
-      input_time_ = file_.CreateTable("/detection/input/time", 0, "s");
-      input_pose_ =
-          file_.CreateTable("/detection/input/pose_measured", 3, "m,m,rad", {"x", "y", "psi"});
-      file_.SetAttribute("/detection/input/pose_measured", "missing",
+      input_time_ = layout::Create(file_, layout::kInputTime);
+      input_pose_ = layout::Create(file_, layout::kInputPose);
+      file_.SetAttribute(std::string(layout::kInputPose.path), "missing",
                          std::string("NaN: the channel delivered nothing at this sample"));
-      input_thrust_ = file_.CreateTable("/detection/input/thrust", 3, "N,N,N m", {"X", "Y", "N"});
+      input_thrust_ = layout::Create(file_, layout::kInputThrust);
       if (scenario.sensors.tension_cells) {
-        input_tension_ =
-            file_.CreateTable("/detection/input/tension_measured", lines, "N", line_names);
+        input_tension_ = layout::Create(file_, layout::kInputTension, lines);
       }
     }
   }

@@ -31,6 +31,7 @@
 #include "scenarios/load.h"
 #include "simulation/detection_tables.h"
 #include "simulation/followed_file.h"
+#include "simulation/output_layout.h"
 #include "simulation/pose_stream.h"
 #include "simulation/run.h"
 #include "simulation/simulation.h"
@@ -124,9 +125,9 @@ class DetectWriter {
     file_.SetAttribute("/", "failure_line", static_cast<std::int64_t>(scenario.failure.line));
     file_.SetAttribute("/", "failure_time",
                        scenario.failure.line > 0 ? scenario.failure.time : kNaN);
-    time_ = file_.CreateTable("/time", 0, "s");
-    pose_ = file_.CreateTable("/vessel/pose_measured", 3, "m,m,rad", {"x", "y", "psi"});
-    thrust_ = file_.CreateTable("/thrust/delivered", 3, "N,N,N m", {"X", "Y", "N"});
+    time_ = simulation::layout::Create(file_, simulation::layout::kTime);
+    pose_ = simulation::layout::Create(file_, simulation::layout::kPoseMeasured);
+    thrust_ = simulation::layout::Create(file_, simulation::layout::kThrustDelivered);
     tables_.emplace(file_, &detection);
   }
 

@@ -114,6 +114,32 @@ class Run:
         return ds
 
 
+def _check_layout(path, data):
+    """Every table of run.h5 (or detect.h5) that moorsim declares has its declared shape:
+    a series one-dimensional, a table its columns (per line: as many as the anchors)."""
+    lines = data["mooring/anchors"].shape[0] if "mooring/anchors" in data else None
+    for table, width, _units, _columns in _moorsim._layout():
+        if table.startswith("/"):
+            names = [table[1:]]
+        else:  # a detector's table, under detectors/<label>/
+            names = [k for k in data if k.startswith("detectors/") and k.endswith("/" + table)]
+        for name in names:
+            if name not in data:
+                continue
+            shape = data[name].shape
+            if width == 0:
+                good, wanted = len(shape) == 1, "(rows,)"
+            elif width == -1:
+                good = len(shape) == 2 and (lines is None or shape[1] == lines)
+                wanted = f"(rows, {lines if lines is not None else 'lines'})"
+            elif width == -2:
+                good, wanted = len(shape) == 2, "(rows, hypotheses)"
+            else:
+                good, wanted = len(shape) == 2 and shape[1] == width, f"(rows, {width})"
+            if not good:
+                raise InputError(f"{path}: /{name}: shape {shape}, expected {wanted}")
+
+
 def read_run(directory_or_file):
     """A run's outputs from its directory (run.h5 and summary.json) or from a run.h5."""
     import h5py
@@ -129,6 +155,7 @@ def read_run(directory_or_file):
                 attrs[name] = dict(obj.attrs)
         f.visititems(visit)
         file_attrs = dict(f.attrs)
+    _check_layout(path, data)
     summary_path = os.path.join(os.path.dirname(path), "summary.json")
     summary = {}
     if os.path.exists(summary_path):

@@ -38,6 +38,21 @@ def test_a_run_is_the_programs_run_bit_for_bit(cli_run):
     assert run.columns("mooring/fairlead_tension")[5] == "line 6"
 
 
+def test_a_run_file_whose_table_has_another_width_is_refused(cli_run, tmp_path):
+    """read_run checks a file against the tables the writer declares."""
+    import h5py
+
+    out = tmp_path / "run.h5"
+    with h5py.File(out, "w") as f:
+        for path in cli_run.keys():
+            f[path] = cli_run[path]
+        del f["vessel/pose_measured"]
+        f["vessel/pose_measured"] = cli_run["vessel/pose_measured"][:, :2]
+    with pytest.raises(moorsim.InputError, match=r"/vessel/pose_measured: shape \(41, 2\), "
+                                                 r"expected \(rows, 3\)"):
+        moorsim.read_run(out)
+
+
 def test_the_plant_stepped_from_python_with_the_scenarios_controller_gives_the_run(cli_run):
     plant = moorsim.Plant(THESIS, seed=1, overrides=[f"{k}={v}" for k, v in SHORT.items()])
     rows = []
