@@ -99,6 +99,15 @@ struct Verdict {
   bool alarm = false;  ///< a failure is declared (by the detector's documented rule)
 };
 
+/// What the detection's models give a detector at set-up, computed once per set-up and
+/// shared: the failure signatures, signatures[k - 1] the mean whitened intact innovation
+/// while hypothesis k holds, over a window of `window` samples (detectors/glr_signatures.h).
+class SignatureSource {
+ public:
+  virtual ~SignatureSource() = default;
+  virtual const std::vector<Vec3>& Signatures(int window) const = 0;
+};
+
 class Detector {
  public:
   virtual ~Detector() = default;
@@ -108,6 +117,10 @@ class Detector {
   virtual Verdict Update(const Evidence& evidence) = 0;
   /// Whether the detector reads Evidence::load (which only the EKF observer bank gives).
   virtual bool NeedsLoadEvidence() const { return false; }
+  /// Takes what it needs of the detection's models, once before the first Reset().
+  virtual void Prepare(const SignatureSource& /*source*/) {}
+  /// The threshold its alarm rule compares its score with, for plots; none by default.
+  virtual std::optional<double> AlarmThreshold() const { return std::nullopt; }
 };
 
 /// A detector as the scenario names it: its type, a unique label (default: the type) and

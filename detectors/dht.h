@@ -76,6 +76,8 @@ class Dht final : public Detector {
   const Verdict& Step(const Evidence& evidence);
 
   const DhtOptions& options() const { return options_; }
+  /// The posterior's alarm threshold.
+  std::optional<double> AlarmThreshold() const override { return options_.threshold; }
   /// The posterior h_0..h_{N-1} (the same numbers as the verdict's score).
   const std::vector<double>& posterior() const { return verdict_.score; }
 

@@ -91,6 +91,11 @@ class Glr final : public Detector {
   /// hypothesis k holds, for k = 1..N-1. Empty: no signatures (log-likelihood isolation).
   /// If Reset() has run, the size must be N - 1 (always-on check); Reset() checks it too.
   void SetSignatures(std::vector<Vec3> signatures);
+  /// SetSignatures() with the source's signatures over the detector's window.
+  void Prepare(const SignatureSource& source) override {
+    SetSignatures(source.Signatures(options_.window));
+  }
+  std::optional<double> AlarmThreshold() const override { return threshold_; }
 
   /// h, the alarm threshold on g.
   double threshold() const { return threshold_; }

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <functional>
+#include <map>
 
 #include "core/error.h"
-#include "detectors/dht.h"
 #include "detectors/ekf_observer.h"
-#include "detectors/glr.h"
 #include "detectors/glr_signatures.h"
 #include "detectors/hypothesis_bank.h"
 #include "detectors/innovation_covariance.h"
@@ -111,32 +111,41 @@ Detection::Detection(const PlantModel& plant, const vessel::VesselModel& vessel,
   } else {
     p.observers.emplace(*p.bank, model, ekf, models.observer_bank);
   }
+  // The failure signatures of the same models, per window, shared like the bank.
+  class SharedSignatures final : public detectors::SignatureSource {
+   public:
+    explicit SharedSignatures(std::function<std::shared_ptr<const std::vector<Vec3>>(int)> make)
+        : make_(std::move(make)) {}
+    const std::vector<Vec3>& Signatures(int window) const override {
+      std::shared_ptr<const std::vector<Vec3>>& held = held_[window];
+      if (!held) held = make_(window);
+      return *held;
+    }
+
+   private:
+    std::function<std::shared_ptr<const std::vector<Vec3>>(int)> make_;
+    mutable std::map<int, std::shared_ptr<const std::vector<Vec3>>> held_;
+  };
+  const SharedSignatures signatures([&](int window) {
+    return SharedOrOwn<std::vector<Vec3>>(
+        key.empty() ? key : key + "\nGLR window " + std::to_string(window), [&] {
+          return detectors::GlrSignatures(*p.bank, model, ekf, options.reference_pose,
+                                          sample_interval, window);
+        });
+  });
   const std::vector<std::array<int, 2>> failed = FailedLines();
   for (std::size_t i = 0; i < setup.detectors.size(); ++i) {
     p.detectors.push_back(BuildDetector(setup, i));
-    detectors::SetPluginHypotheses(*p.detectors.back(), failed);
-    p.detectors.back()->Reset(p.bank->size());
+    detectors::Detector& detector = *p.detectors.back();
+    detectors::SetPluginHypotheses(detector, failed);
+    detector.Prepare(signatures);
+    detector.Reset(p.bank->size());
     DetectorRecord record;
     record.label = setup.detectors[i].label;
     record.type = setup.detectors[i].type;
     if (plant.failure) record.failure_time = plant.failure->time;
-    if (const auto* glr = dynamic_cast<const detectors::Glr*>(p.detectors.back().get())) {
-      record.threshold = glr->threshold();
-    } else if (const auto* dht = dynamic_cast<const detectors::Dht*>(p.detectors.back().get())) {
-      record.threshold = dht->options().threshold;
-    }
+    record.threshold = detector.AlarmThreshold();
     records_.push_back(record);
-  }
-  // GLR detectors isolate by the failure signatures computed from the same models.
-  for (const std::unique_ptr<detectors::Detector>& detector : p.detectors) {
-    if (auto* glr = dynamic_cast<detectors::Glr*>(detector.get())) {
-      const int window = glr->options().window;
-      glr->SetSignatures(*SharedOrOwn<std::vector<Vec3>>(
-          key.empty() ? key : key + "\nGLR window " + std::to_string(window), [&] {
-            return detectors::GlrSignatures(*p.bank, model, ekf, options.reference_pose,
-                                            sample_interval, window);
-          }));
-    }
   }
   p.verdicts.assign(p.detectors.size(), detectors::Verdict{});
   for (detectors::Verdict& v : p.verdicts) v.score.assign(p.bank->size(), 0.0);
