@@ -456,6 +456,26 @@ void ParseNoise(const Reader& r, ChannelNoiseSpec& n) {
   r.Optional("outlier_std_dev", n.outlier_std_dev);
 }
 
+/// A `faults:` list of one sensor (SensorsSpec::Fault): a cell's names its line, a GNSS
+/// fault may name its channel.
+enum class FaultTarget { kGnss, kGyro, kCell };
+void ParseFaults(const Reader& r, FaultTarget target, std::vector<SensorsSpec::Fault>& faults) {
+  r.ForEachItem([&](const Reader& item, std::size_t) {
+    item.CheckKeys();
+    SensorsSpec::Fault fault;
+    fault.mode = item.Required<std::string>("mode");
+    fault.time = item.Required<double>("time");
+    fault.end = item.Maybe<double>("end");
+    item.Optional("offset", fault.offset);
+    item.Optional("rate", fault.rate);
+    item.Optional("factor", fault.factor);
+    item.Optional("gain", fault.gain);
+    if (target == FaultTarget::kCell) fault.line = item.Required<int>("line");
+    if (target == FaultTarget::kGnss) item.Optional("channel", fault.channel);
+    faults.push_back(fault);
+  });
+}
+
 void ParseSensors(const Reader& r, Scenario& scenario) {
   r.CheckKeys();
   SensorsSpec& s = scenario.sensors;
@@ -466,29 +486,24 @@ void ParseSensors(const Reader& r, Scenario& scenario) {
     if (std::optional<Reader> n = g->Find("east")) ParseNoise(*n, s.east);
     g->Optional("dropout_probability", s.gnss_dropout_probability);
     g->Optional("dropout_mean_duration", s.gnss_dropout_mean_duration);
+    if (std::optional<Reader> faults = g->Find("faults"))
+      ParseFaults(*faults, FaultTarget::kGnss, s.gnss_faults);
   }
   if (std::optional<Reader> g = r.Find("gyro")) {
     g->CheckKeys();
     g->Optional("rate_hz", s.gyro_rate);
     if (std::optional<Reader> n = g->Find("heading")) ParseNoise(*n, s.heading);
     g->Optional("dropout_probability", s.gyro_dropout_probability);
+    if (std::optional<Reader> faults = g->Find("faults"))
+      ParseFaults(*faults, FaultTarget::kGyro, s.gyro_faults);
   }
   if (std::optional<Reader> t = r.Find("tension_cells")) {
     t->CheckKeys();
     s.tension_cells = true;
     t->Optional("rate_hz", s.tension_rate);
     if (std::optional<Reader> n = t->Find("noise")) ParseNoise(*n, s.tension_noise);
-    if (std::optional<Reader> faults = t->Find("faults")) {
-      faults->ForEachItem([&](const Reader& item, std::size_t) {
-        item.CheckKeys();
-        SensorsSpec::CellFault fault;
-        fault.line = item.Required<int>("line");
-        fault.mode = item.Required<std::string>("mode");
-        fault.time = item.Required<double>("time");
-        item.Optional("rate", fault.rate);
-        s.tension_faults.push_back(fault);
-      });
-    }
+    if (std::optional<Reader> faults = t->Find("faults"))
+      ParseFaults(*faults, FaultTarget::kCell, s.tension_faults);
   }
 }
 
@@ -1097,16 +1112,49 @@ void CheckEnvironment(const Checker& check, const Scenario& scenario) {
   }
 }
 
-void CheckCellFaults(const Checker& check, const Scenario& scenario) {
-  const SensorsSpec& s = scenario.sensors;
-  for (std::size_t i = 0; i < s.tension_faults.size(); ++i) {
-    const SensorsSpec::CellFault& f = s.tension_faults[i];
-    const std::string path = "sensors.tension_cells.faults[" + std::to_string(i + 1) + "]";
-    check.InRange(path + ".line", f.line, 1, static_cast<int>(scenario.mooring.lines.size()));
-    if (f.mode == "drift" && f.rate == 0.0) {
-      check.Fail(path + ".rate", "a drifting cell needs a nonzero rate [N/s]");
+/// One sensor's faults: each mode's own size given and in range, no other mode's, an end
+/// after the start.
+void CheckFaults(const Checker& check, const Scenario& scenario,
+                 const std::vector<SensorsSpec::Fault>& faults, const std::string& sensor,
+                 const std::string& unit) {
+  for (std::size_t i = 0; i < faults.size(); ++i) {
+    const SensorsSpec::Fault& f = faults[i];
+    const std::string path = sensor + ".faults[" + std::to_string(i + 1) + "]";
+    if (sensor == "sensors.tension_cells") {
+      check.InRange(path + ".line", f.line, 1, static_cast<int>(scenario.mooring.lines.size()));
+    }
+    if (f.end && !(*f.end > f.time)) {
+      check.Fail(path + ".end", WithUnit(*f.end, "s") + " must be after the fault's time (" +
+                                    WithUnit(f.time, "s") + ")");
+    }
+    // Each size belongs to one mode; a size that leaves the sensor as it is (its default)
+    // is one not given.
+    const struct {
+      const char* key;
+      const char* mode;
+      bool given;
+      std::string need;
+    } sizes[] = {
+        {"offset", "step", f.offset != 0.0, "a step needs a nonzero offset [" + unit + "]"},
+        {"rate", "drift", f.rate != 0.0, "a drift needs a nonzero rate [" + unit + "/s]"},
+        {"factor", "degraded", f.factor != 1.0, "a degraded sensor needs its noise factor (> 1)"},
+        {"gain", "gain", f.gain != 1.0, "a gain error needs its gain (> 0, not 1)"}};
+    for (const auto& size : sizes) {
+      const std::string key = path + "." + size.key;
+      if (f.mode == size.mode && !size.given) check.Fail(key, size.need);
+      if (f.mode != size.mode && size.given) {
+        check.Fail(key, "only applies to mode '" + std::string(size.mode) + "' (the mode is '" +
+                            f.mode + "')");
+      }
     }
   }
+}
+
+void CheckSensorFaults(const Checker& check, const Scenario& scenario) {
+  const SensorsSpec& s = scenario.sensors;
+  CheckFaults(check, scenario, s.gnss_faults, "sensors.gnss", "m");
+  CheckFaults(check, scenario, s.gyro_faults, "sensors.gyro", "rad");
+  CheckFaults(check, scenario, s.tension_faults, "sensors.tension_cells", "N");
 }
 
 void CheckFailure(const Checker& check, const Scenario& scenario) {
@@ -1208,7 +1256,7 @@ void Validate(const Scenario& scenario) {
   // The same rules at the start pose: only news if they hold at the origin.
   if (lines_hold) group([&] { CheckLinesAtInitialPose(check, scenario); });
   group([&] { CheckEnvironment(check, scenario); });
-  group([&] { CheckCellFaults(check, scenario); });
+  group([&] { CheckSensorFaults(check, scenario); });
   group([&] { CheckSimulation(check, scenario.simulation); });
   group([&] { CheckFailure(check, scenario); });
   group([&] { CheckDetectors(check, scenario); });

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "core/error.h"
@@ -42,17 +43,51 @@ vessel::PoseSensorSpec ToPoseSensorSpec(const SensorsSpec& s) {
   return spec;
 }
 
+vessel::SensorFault ToSensorFault(const SensorsSpec::Fault& f) {
+  using Mode = vessel::SensorFault::Mode;
+  vessel::SensorFault fault;
+  fault.from = f.time;
+  fault.until = f.end.value_or(std::numeric_limits<double>::infinity());
+  if (f.mode == "step") {
+    fault.mode = Mode::kStep;
+    fault.size = f.offset;
+  } else if (f.mode == "stuck") {
+    fault.mode = Mode::kStuck;
+  } else if (f.mode == "degraded") {
+    fault.mode = Mode::kDegraded;
+    fault.size = f.factor;
+  } else if (f.mode == "drift") {
+    fault.mode = Mode::kDrift;
+    fault.size = f.rate;
+  } else if (f.mode == "gain") {
+    fault.mode = Mode::kGain;
+    fault.size = f.gain;
+  } else {
+    fault.mode = Mode::kDead;
+  }
+  return fault;
+}
+
+std::vector<simulation::PoseFault> ToPoseFaults(const SensorsSpec& s) {
+  std::vector<simulation::PoseFault> faults;
+  for (const SensorsSpec::Fault& f : s.gnss_faults) {
+    // The receiver (both channels) or one of its channels.
+    if (f.channel != "east") faults.push_back({vessel::PoseChannel::kNorth, ToSensorFault(f)});
+    if (f.channel != "north") faults.push_back({vessel::PoseChannel::kEast, ToSensorFault(f)});
+  }
+  for (const SensorsSpec::Fault& f : s.gyro_faults) {
+    faults.push_back({vessel::PoseChannel::kHeading, ToSensorFault(f)});
+  }
+  return faults;
+}
+
 std::optional<simulation::TensionCellsModel> ToTensionCells(const SensorsSpec& s) {
   if (!s.tension_cells) return std::nullopt;
   simulation::TensionCellsModel cells;
   cells.noise = ToNoise(s.tension_noise);
   cells.rate = s.tension_rate;
-  for (const SensorsSpec::CellFault& f : s.tension_faults) {
-    using Mode = vessel::CellFault::Mode;
-    const Mode mode = f.mode == "stuck"  ? Mode::kStuck
-                      : f.mode == "dead" ? Mode::kDead
-                                         : Mode::kDrift;
-    cells.faults.push_back({.mode = mode, .line = f.line - 1, .from = f.time, .rate = f.rate});
+  for (const SensorsSpec::Fault& f : s.tension_faults) {
+    cells.faults.push_back({.line = f.line - 1, .fault = ToSensorFault(f)});
   }
   return cells;
 }
@@ -259,6 +294,7 @@ simulation::PlantModel ToPlantModel(const Scenario& scenario) {
     wind.gust = env.wind.gust;
   }
   model.pose_sensors = ToPoseSensorSpec(scenario.sensors);
+  model.pose_faults = ToPoseFaults(scenario.sensors);
   model.tension_cells = ToTensionCells(scenario.sensors);
   model.controller = ToControllerModel(scenario.controller, v.initial_pose);
   model.failure = ToFailure(scenario);

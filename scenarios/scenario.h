@@ -246,17 +246,26 @@ struct SensorsSpec {
   bool tension_cells = false;
   ChannelNoiseSpec tension_noise;  ///< [N]
   double tension_rate = 1.0;       ///< [Hz]
-  /// A load cell that goes wrong during the run (`tension_cells.faults`): from `time` on,
-  /// line `line`'s cell is "stuck" (repeats its last reading before `time`), "drift"s
-  /// (reads `rate` [N/s] x (t - time) off, on top of its noise) or is "dead" (reads its
-  /// noise about zero).
-  struct CellFault {
-    int line = 0;
+  /// A sensor that goes wrong during the run (`faults:` of gnss, gyro and tension_cells),
+  /// from `time` to `end` (unset: the end of the run), in the sensor's unit u (m, rad, N):
+  /// "step" (reads `offset` [u] off), "stuck" (repeats its last reading before `time`),
+  /// "degraded" (its white noise `factor` times larger), "drift" (runs off by `rate`
+  /// [u/s] x (t - time)), "dead" (GNSS, gyro: no reading; a cell reads its noise about
+  /// zero), "gain" (reads `gain` x the true value).
+  struct Fault {
     std::string mode;
     double time = 0.0;
+    std::optional<double> end;
+    double offset = 0.0;
     double rate = 0.0;
+    double factor = 1.0;
+    double gain = 1.0;
+    int line = 0;                  ///< tension cells: the line, 1-based
+    std::string channel = "both";  ///< gnss: both, north or east
   };
-  std::vector<CellFault> tension_faults;
+  std::vector<Fault> gnss_faults;
+  std::vector<Fault> gyro_faults;
+  std::vector<Fault> tension_faults;
 };
 
 struct FailureSpec {

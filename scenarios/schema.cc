@@ -831,6 +831,108 @@ constexpr Block kPositionNoise{"Errors of one position channel.", kPositionNoise
 constexpr Block kHeadingNoise{"Errors of the heading channel.", kHeadingNoiseKeys};
 constexpr Block kTensionNoise{"Errors of every load cell.", kTensionNoiseKeys};
 
+// A sensor's faults (`faults:` of gnss, gyro and tension_cells), in the sensor's unit.
+constexpr std::string_view kFaultModes[] = {"dead", "degraded", "drift", "gain", "step", "stuck"};
+constexpr std::string_view kGnssChannels[] = {"both", "east", "north"};
+
+struct FaultUnits {
+  std::string_view unit;       // m, rad, N
+  std::string_view rate_unit;  // m/s, rad/s, N/s
+  double largest_offset;
+  double largest_rate;
+};
+
+constexpr Key FaultEnd() {
+  return NonNegative("end", "s", kMaxTime, "When the fault clears; omitted = never.");
+}
+constexpr Key FaultFactor() {
+  return {.name = "factor",
+          .description = "degraded: how many times larger the white noise is.",
+          .minimum = Above(1.0),
+          .maximum = AtMost(1000.0)};
+}
+constexpr Key FaultGain() {
+  return {.name = "gain",
+          .description = "gain: the reading is gain x the true value (plus the errors).",
+          .minimum = Above(0.0),
+          .maximum = AtMost(10.0)};
+}
+constexpr Key FaultMode() {
+  return {.name = "mode",
+          .kind = Kind::kString,
+          .description =
+              "step (reads offset off), stuck (repeats its last reading), degraded "
+              "(noise x factor), drift (adds rate x time), dead (no reading; a load "
+              "cell reads its noise about zero), gain (reads gain x the truth).",
+          .required = true,
+          .choices = kFaultModes,
+          .choice_noun = "sensor fault"};
+}
+constexpr Key FaultOffset(const FaultUnits& u) {
+  return {.name = "offset",
+          .unit = u.unit,
+          .description = "step: how far off the reading jumps; nonzero.",
+          .minimum = AtLeast(-u.largest_offset),
+          .maximum = AtMost(u.largest_offset),
+          .interval = true};
+}
+constexpr Key FaultRate(const FaultUnits& u) {
+  return {.name = "rate",
+          .unit = u.rate_unit,
+          .description = "drift: the rate; nonzero.",
+          .minimum = AtLeast(-u.largest_rate),
+          .maximum = AtMost(u.largest_rate),
+          .interval = true};
+}
+constexpr Key FaultTime() {
+  return Required(NonNegative("time", "s", kMaxTime, "When the fault starts."));
+}
+
+constexpr FaultUnits kPositionFault{"m", "m/s", 1e4, 10.0};
+constexpr FaultUnits kHeadingFault{"rad", "rad/s", 2.0 * std::numbers::pi, 1.0};
+constexpr FaultUnits kCellFault{"N", "N/s", 1e8, 1e6};
+
+constexpr Key kGnssFaultKeys[] = {
+    WithDefault({.name = "channel",
+                 .kind = Kind::kString,
+                 .description = "The channel that goes wrong: both (the receiver), north or east.",
+                 .choices = kGnssChannels,
+                 .choice_noun = "GNSS channel"},
+                MOORSIM_DEFAULT(SensorsSpec::Fault{}.channel)),
+    FaultEnd(),
+    FaultFactor(),
+    FaultGain(),
+    FaultMode(),
+    FaultOffset(kPositionFault),
+    FaultRate(kPositionFault),
+    FaultTime(),
+};
+constexpr Key kGyroFaultKeys[] = {
+    FaultEnd(),
+    FaultFactor(),
+    FaultGain(),
+    FaultMode(),
+    FaultOffset(kHeadingFault),
+    FaultRate(kHeadingFault),
+    FaultTime(),
+};
+constexpr Key kCellFaultKeys[] = {
+    FaultEnd(),
+    FaultFactor(),
+    FaultGain(),
+    {.name = "line",
+     .kind = Kind::kInteger,
+     .description = "The line whose cell goes wrong.",
+     .required = true},
+    FaultMode(),
+    FaultOffset(kCellFault),
+    FaultRate(kCellFault),
+    FaultTime(),
+};
+constexpr Block kGnssFault{"A fault of the position sensor during the run.", kGnssFaultKeys};
+constexpr Block kGyroFault{"A fault of the heading sensor during the run.", kGyroFaultKeys};
+constexpr Block kCellFaultBlock{"A load cell that goes wrong during the run.", kCellFaultKeys};
+
 constexpr Key kGnssKeys[] = {
     WithDefault(NonNegative("dropout_mean_duration", "s", kMaxTime,
                             "Mean length of a dropout; 0 = one sample."),
@@ -839,6 +941,7 @@ constexpr Key kGnssKeys[] = {
         Probability("dropout_probability", "Chance per sample of a dropout (x and y together)."),
         MOORSIM_DEFAULT(SensorsSpec{}.gnss_dropout_probability)),
     Map("east", kPositionNoise, "East channel."),
+    List("faults", kGnssFault, "Faults of the receiver during the run."),
     Map("north", kPositionNoise, "North channel."),
     WithDefault(Rate("rate_hz", "Sample rate."), MOORSIM_DEFAULT(SensorsSpec{}.gnss_rate)),
 };
@@ -847,37 +950,14 @@ constexpr Block kGnss{"The position sensor.", kGnssKeys};
 constexpr Key kGyroKeys[] = {
     WithDefault(Probability("dropout_probability", "Chance per sample of a dropout."),
                 MOORSIM_DEFAULT(SensorsSpec{}.gyro_dropout_probability)),
+    List("faults", kGyroFault, "Faults of the gyro during the run."),
     Map("heading", kHeadingNoise, "Heading channel."),
     WithDefault(Rate("rate_hz", "Sample rate."), MOORSIM_DEFAULT(SensorsSpec{}.gyro_rate)),
 };
 constexpr Block kGyro{"The heading sensor.", kGyroKeys};
 
-constexpr std::string_view kCellFaults[] = {"dead", "drift", "stuck"};
-
-constexpr Key kCellFaultKeys[] = {
-    {.name = "line",
-     .kind = Kind::kInteger,
-     .description = "The line whose cell goes wrong.",
-     .required = true},
-    {.name = "mode",
-     .kind = Kind::kString,
-     .description = "stuck (repeats its last reading), drift (adds rate x time), dead (reads "
-                    "its noise about zero).",
-     .required = true,
-     .choices = kCellFaults,
-     .choice_noun = "cell fault"},
-    {.name = "rate",
-     .unit = "N/s",
-     .description = "drift: the rate; nonzero.",
-     .minimum = AtLeast(-1e6),
-     .maximum = AtMost(1e6),
-     .interval = true},
-    Required(NonNegative("time", "s", kMaxTime, "When the fault starts.")),
-};
-constexpr Block kCellFault{"A load cell that goes wrong during the run.", kCellFaultKeys};
-
 constexpr Key kTensionCellsKeys[] = {
-    List("faults", kCellFault, "Cells that go wrong during the run."),
+    List("faults", kCellFaultBlock, "Cells that go wrong during the run."),
     Map("noise", kTensionNoise, "The cells' errors."),
     WithDefault(Rate("rate_hz", "Sample rate."), MOORSIM_DEFAULT(SensorsSpec{}.tension_rate)),
 };

@@ -58,6 +58,12 @@ struct TensionCellsModel {
   std::vector<vessel::CellFault> faults;
 };
 
+/// A fault of one channel of the pose sensors (GNSS north, east; gyro heading).
+struct PoseFault {
+  vessel::PoseChannel channel = vessel::PoseChannel::kNorth;
+  vessel::SensorFault fault;
+};
+
 /// The position-mooring controller sampled at `rate` [Hz]; with `heading` its pi heading
 /// gains are sized on the hull (vessel::WithHeadingLoop()).
 struct ControllerModel {
@@ -129,6 +135,7 @@ struct PlantModel {
   std::optional<WindModel> wind;
 
   vessel::PoseSensorSpec pose_sensors;
+  std::vector<PoseFault> pose_faults;
   std::optional<TensionCellsModel> tension_cells;
   ControllerModel controller;
   std::optional<FailureEvent> failure;

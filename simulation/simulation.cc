@@ -206,6 +206,7 @@ Simulation::Simulation(const PlantModel& model, std::uint64_t seed)
     plant_->AddLoad(&*parts_->wind);
   }
   parts_->sensors.emplace(model_.pose_sensors, seed_);
+  for (const PoseFault& f : model_.pose_faults) parts_->sensors->AddFault(f.channel, f.fault);
   parts_->controller = vessel::MakeController(model_.controller.SizedFor(plant_->model()),
                                               1.0 / model_.controller.rate);
   parts_->allocator.emplace(plant_->thrusters());
@@ -217,7 +218,7 @@ Simulation::Simulation(const PlantModel& model, std::uint64_t seed)
   if (model_.tension_cells) {
     const TensionCellsModel& cells = *model_.tension_cells;
     parts_->tension_cells.emplace(mooring_.num_lines(), cells.noise, cells.rate, seed_);
-    for (const vessel::CellFault& fault : cells.faults) parts_->tension_cells->SetFault(fault);
+    for (const vessel::CellFault& fault : cells.faults) parts_->tension_cells->AddFault(fault);
   }
   failure_pending_ = model_.failure.has_value();
 

@@ -115,9 +115,9 @@ ChannelError::ChannelError(const ChannelNoise& noise, double sample_interval,
   }
 }
 
-double ChannelError::Next() {
+double ChannelError::Next(double white_factor) {
   // Every stream gives its fixed share whatever the configuration (file comment).
-  const double white = noise_.std_dev * noise_stream_.Normal();
+  const double white = white_factor * noise_.std_dev * noise_stream_.Normal();
   const double outlier_draw = outlier_stream_.Uniform();
   const double outlier_size = noise_.outlier_std_dev * outlier_stream_.Normal();
   double error = bias_ + white;
@@ -126,7 +126,87 @@ double ChannelError::Next() {
   return error;
 }
 
+namespace {
+
+bool Active(const SensorFault& fault, double t) { return t >= fault.from && t < fault.until; }
+
+}  // namespace
+
+double ChannelFaults::NoiseFactor(double t) const {
+  double factor = 1.0;
+  for (const Held& h : faults_) {
+    if (h.fault.mode == SensorFault::Mode::kDegraded && Active(h.fault, t)) factor *= h.fault.size;
+  }
+  return factor;
+}
+
+std::optional<double> ChannelFaults::Reading(double t, double truth, double error,
+                                             bool dead_reads_noise) {
+  using Mode = SensorFault::Mode;
+  double gain = 1.0;
+  for (const Held& h : faults_) {
+    if (h.fault.mode == Mode::kGain && Active(h.fault, t)) gain *= h.fault.size;
+  }
+  double reading = gain * truth + error;
+  for (Held& h : faults_) {
+    const SensorFault& f = h.fault;
+    const bool active = Active(f, t);
+    switch (f.mode) {
+      case Mode::kStep:
+        if (active) reading += f.size;
+        break;
+      case Mode::kDrift:
+        if (active) reading += f.size * (t - f.from);
+        break;
+      case Mode::kDead:
+        if (active) {
+          if (!dead_reads_noise) return std::nullopt;
+          reading -= gain * truth;
+        }
+        break;
+      case Mode::kStuck:
+        // The last reading before the fault (the first one if there was none before).
+        if (t < f.from || std::isnan(h.value)) h.value = reading;
+        if (active) reading = h.value;
+        break;
+      case Mode::kDegraded:
+      case Mode::kGain:
+        break;  // in the error's draw and the gain above
+    }
+  }
+  return reading;
+}
+
 }  // namespace internal
+
+std::string_view SensorFaultSizeKey(SensorFault::Mode mode) {
+  switch (mode) {
+    case SensorFault::Mode::kStep:
+      return "offset";
+    case SensorFault::Mode::kDrift:
+      return "rate";
+    case SensorFault::Mode::kDegraded:
+      return "factor";
+    case SensorFault::Mode::kGain:
+      return "gain";
+    case SensorFault::Mode::kStuck:
+    case SensorFault::Mode::kDead:
+      break;
+  }
+  return "size";
+}
+
+void ValidateSensorFault(const SensorFault& fault, std::string_view key_path) {
+  RequireNonNegative(Key(key_path, "time"), fault.from);
+  if (!(fault.until > fault.from)) {
+    ThrowBadValue(Key(key_path, "end"), fault.until, "must be after the fault's time");
+  }
+  const std::string size = Key(key_path, SensorFaultSizeKey(fault.mode));
+  RequireFinite(size, fault.size);
+  if (fault.mode == SensorFault::Mode::kDegraded || fault.mode == SensorFault::Mode::kGain) {
+    RequirePositive(size, fault.size);
+  }
+}
 
 // --- PoseSensors ---------------------------------------------------------------------
 
@@ -149,10 +229,10 @@ double PoseSensors::NextSampleTime(double t) const {
 
 PoseSensors::GnssDraw PoseSensors::DrawGnss(std::int64_t k) {
   GnssDraw draw;
-  draw.north = north_.Next();
-  draw.east = east_.Next();
-  const double onset_draw = gnss_dropout_stream_.Uniform();
   const double t_k = gnss_clock_.Instant(k);
+  draw.north = north_.Next(faults_[0].NoiseFactor(t_k));
+  draw.east = east_.Next(faults_[1].NoiseFactor(t_k));
+  const double onset_draw = gnss_dropout_stream_.Uniform();
   if (t_k < gnss_dropout_end_) {
     draw.lost = true;  // inside a dropout that started earlier
   } else if (onset_draw < spec_.gnss_dropout_probability) {
@@ -167,9 +247,9 @@ PoseSensors::GnssDraw PoseSensors::DrawGnss(std::int64_t k) {
   return draw;
 }
 
-PoseSensors::GyroDraw PoseSensors::DrawGyro() {
+PoseSensors::GyroDraw PoseSensors::DrawGyro(std::int64_t k) {
   GyroDraw draw;
-  draw.heading = heading_.Next();
+  draw.heading = heading_.Next(faults_[2].NoiseFactor(gyro_clock_.Instant(k)));
   draw.lost = gyro_dropout_stream_.Uniform() < spec_.gyro_dropout_probability;
   return draw;
 }
@@ -190,24 +270,38 @@ PoseMeasurement PoseSensors::Sample(double t, const Vec3& true_pose) {
     while (gnss_next_index_ < *gnss_k) DrawGnss(gnss_next_index_++);
     const GnssDraw draw = DrawGnss(gnss_next_index_++);
     if (!draw.lost) {
-      measurement.value.x() = true_pose.x() + draw.north;
-      measurement.value.y() = true_pose.y() + draw.east;
-      measurement.valid[0] = measurement.valid[1] = true;
+      const double errors[2] = {draw.north, draw.east};
+      for (int i = 0; i < 2; ++i) {
+        if (const std::optional<double> reading = faults_[i].Reading(t, true_pose(i), errors[i],
+                                                                     /*dead_reads_noise=*/false)) {
+          measurement.value(i) = *reading;
+          measurement.valid[i] = true;
+        }
+      }
     }
   }
   if (gyro_k) {
     while (gyro_next_index_ < *gyro_k) {
-      DrawGyro();
+      DrawGyro(gyro_next_index_);
       ++gyro_next_index_;
     }
-    const GyroDraw draw = DrawGyro();
+    const GyroDraw draw = DrawGyro(gyro_next_index_);
     ++gyro_next_index_;
     if (!draw.lost) {
-      measurement.value.z() = WrapAngle(true_pose.z() + draw.heading);
-      measurement.valid[2] = true;
+      if (const std::optional<double> reading =
+              faults_[2].Reading(t, true_pose.z(), draw.heading, /*dead_reads_noise=*/false)) {
+        measurement.value.z() = WrapAngle(*reading);
+        measurement.valid[2] = true;
+      }
     }
   }
   return measurement;
+}
+
+void PoseSensors::AddFault(PoseChannel channel, const SensorFault& fault,
+                           std::string_view key_path) {
+  ValidateSensorFault(fault, key_path);
+  faults_[static_cast<std::size_t>(channel)].Add(fault);
 }
 
 // --- TensionCells --------------------------------------------------------------------
@@ -236,48 +330,20 @@ std::vector<double> TensionCells::Sample(double t, std::span<const double> true_
     for (internal::ChannelError& cell : cells_) cell.Next();
   }
   for (std::size_t i = 0; i < cells_.size(); ++i) {
-    measured[i] = true_tensions[i] + cells_[i].Next();
-    Fault& fault = faults_[i];
-    if (fault.kind == Fault::Kind::kStuck) {
-      if (t < fault.from || std::isnan(fault.held)) fault.held = measured[i];
-      if (t >= fault.from) measured[i] = fault.held;
-    } else if (fault.kind == Fault::Kind::kDrift && t >= fault.from) {
-      measured[i] += fault.rate * (t - fault.from);
-    } else if (fault.kind == Fault::Kind::kDead && t >= fault.from) {
-      measured[i] -= true_tensions[i];
-    }
+    const double error = cells_[i].Next(faults_[i].NoiseFactor(t));
+    measured[i] = *faults_[i].Reading(t, true_tensions[i], error, /*dead_reads_noise=*/true);
   }
   ++next_index_;
   return measured;
 }
 
-void TensionCells::SetStuck(int line, double from) {
-  faults_.at(static_cast<std::size_t>(line)) = {Fault::Kind::kStuck, from, 0.0,
-                                                std::numeric_limits<double>::quiet_NaN()};
-}
-
-void TensionCells::SetDead(int line, double from) {
-  faults_.at(static_cast<std::size_t>(line)) = {Fault::Kind::kDead, from, 0.0,
-                                                std::numeric_limits<double>::quiet_NaN()};
-}
-
-void TensionCells::SetDrift(int line, double from, double rate) {
-  faults_.at(static_cast<std::size_t>(line)) = {Fault::Kind::kDrift, from, rate,
-                                                std::numeric_limits<double>::quiet_NaN()};
-}
-
-void TensionCells::SetFault(const CellFault& fault) {
-  switch (fault.mode) {
-    case CellFault::Mode::kStuck:
-      SetStuck(fault.line, fault.from);
-      break;
-    case CellFault::Mode::kDrift:
-      SetDrift(fault.line, fault.from, fault.rate);
-      break;
-    case CellFault::Mode::kDead:
-      SetDead(fault.line, fault.from);
-      break;
+void TensionCells::AddFault(const CellFault& fault, std::string_view key_path) {
+  if (fault.line < 0 || fault.line >= lines()) {
+    throw InputError(Key(key_path, "line") + ": " + std::to_string(fault.line + 1) +
+                     " is not a line of the mooring (1.." + std::to_string(lines()) + ")");
   }
+  ValidateSensorFault(fault.fault, key_path);
+  faults_[static_cast<std::size_t>(fault.line)].Add(fault.fault);
 }
 
 }  // namespace moorsim::vessel

@@ -120,6 +120,32 @@ void ValidatePoseSensorSpec(const PoseSensorSpec& spec, std::string_view key_pat
 /// The instants k / rate of a sampled instrument (core/sample_clock.h).
 using SensorClock = SampleClock;
 
+/// A fault of one sensor channel from `from` [s] until `until` [s] (infinity: to the end
+/// of the run). In the channel's unit u (m, rad or N):
+struct SensorFault {
+  enum class Mode {
+    kStep,      ///< the reading jumps by `size` [u] and stays off by it
+    kStuck,     ///< a frozen output: the reading repeats its last value before `from`
+    kDegraded,  ///< the white noise is `size` (> 0) times larger
+    kDrift,     ///< the reading runs off by `size` [u/s] x (t - from)
+    kDead,      ///< GNSS, gyro: no reading at all; a load cell reads its noise about zero
+    kGain,      ///< the reading is `size` x the true value, plus the error
+  };
+  Mode mode = Mode::kStep;
+  double from = 0.0;
+  double until = std::numeric_limits<double>::infinity();
+  double size = 0.0;
+};
+
+/// The scenario's name of a mode's size: "offset" (step), "rate" (drift), "factor"
+/// (degraded), "gain" (gain); "size" for the modes without one.
+std::string_view SensorFaultSizeKey(SensorFault::Mode mode);
+
+/// Throws moorsim::InputError naming the key under `key_path` ("time", "end" or the size's
+/// key) for a fault whose times or size are out of range: from finite and >= 0, until >
+/// from, a finite size, > 0 for kDegraded and kGain.
+void ValidateSensorFault(const SensorFault& fault, std::string_view key_path);
+
 namespace internal {
 
 /// One channel's error b_k + sigma w_k + o_k at successive samples (file comment), with
@@ -129,8 +155,9 @@ class ChannelError {
   /// `noise` must have passed ValidateChannelNoise; sample_interval dt [s] > 0.
   ChannelError(const ChannelNoise& noise, double sample_interval, std::uint64_t run_seed,
                std::string_view prefix);
-  /// The error at the next sample, after which the bias moves on one interval.
-  double Next();
+  /// The error at the next sample, its white noise `white_factor` times its size, after
+  /// which the bias moves on one interval.
+  double Next(double white_factor = 1.0);
 
  private:
   ChannelNoise noise_;
@@ -142,7 +169,29 @@ class ChannelError {
   RandomStream outlier_stream_;
 };
 
+/// A channel's faults, acting in the order they were added.
+class ChannelFaults {
+ public:
+  void Add(const SensorFault& fault) { faults_.push_back({fault}); }
+  /// The white noise's factor at t: the product of the degraded periods' sizes (1 outside).
+  double NoiseFactor(double t) const;
+  /// The reading at t of a channel whose true value is `truth` and whose error (drawn with
+  /// NoiseFactor(t)) is `error`; nullopt for a dead channel that gives no reading
+  /// (`dead_reads_noise` false), else one that reads its error about zero.
+  std::optional<double> Reading(double t, double truth, double error, bool dead_reads_noise);
+
+ private:
+  struct Held {
+    SensorFault fault;
+    double value = std::numeric_limits<double>::quiet_NaN();  // a stuck channel's reading
+  };
+  std::vector<Held> faults_;
+};
+
 }  // namespace internal
+
+/// A channel of the pose sensors.
+enum class PoseChannel { kNorth, kEast, kHeading };
 
 /// One sample of the pose sensors. A channel that was not sampled at `time` (its
 /// instrument is not due then) or whose sample was lost to a dropout has valid = false and
@@ -179,6 +228,11 @@ class PoseSensors {
   /// measured once: measuring it again would need the same numbers twice).
   PoseMeasurement Sample(double t, const Vec3& true_pose);
 
+  /// A fault of one channel (ValidateSensorFault; keys under `key_path`). A GNSS fault of
+  /// both channels is one fault of each.
+  void AddFault(PoseChannel channel, const SensorFault& fault,
+                std::string_view key_path = "sensors.faults");
+
   const PoseSensorSpec& spec() const { return spec_; }
   const SensorClock& gnss_clock() const { return gnss_clock_; }
   const SensorClock& gyro_clock() const { return gyro_clock_; }
@@ -194,7 +248,7 @@ class PoseSensors {
     bool lost = false;
   };
   GnssDraw DrawGnss(std::int64_t k);
-  GyroDraw DrawGyro();
+  GyroDraw DrawGyro(std::int64_t k);
 
   PoseSensorSpec spec_;
   SensorClock gnss_clock_;
@@ -202,6 +256,7 @@ class PoseSensors {
   internal::ChannelError north_;
   internal::ChannelError east_;
   internal::ChannelError heading_;
+  std::array<internal::ChannelFaults, 3> faults_;  // north, east, heading
   RandomStream gnss_dropout_stream_;
   RandomStream gnss_dropout_duration_stream_;
   RandomStream gyro_dropout_stream_;
@@ -211,14 +266,10 @@ class PoseSensors {
   double gnss_dropout_end_ = -std::numeric_limits<double>::infinity();
 };
 
-/// A load cell that goes wrong during a run: from `from` [s] on, cell `line` (0-based) is
-/// stuck, drifts by `rate` [N/s] or is dead (TensionCells::SetStuck, SetDrift, SetDead).
+/// A load cell that goes wrong during a run: cell `line` (0-based) with `fault`.
 struct CellFault {
-  enum class Mode { kStuck, kDrift, kDead };
-  Mode mode = Mode::kDead;
   int line = 0;
-  double from = 0.0;
-  double rate = 0.0;  ///< kDrift only [N/s]
+  SensorFault fault;
 };
 
 /// Fairlead tension cells: one per line, all with the same error model and rate, each
@@ -242,27 +293,14 @@ class TensionCells {
   int lines() const { return static_cast<int>(cells_.size()); }
   const SensorClock& clock() const { return clock_; }
 
-  /// From time `from` on, cell `line` (0-based) is stuck: it repeats its last reading
-  /// before `from` (the true tension at `from` if it had none).
-  void SetStuck(int line, double from);
-  /// From time `from` on, cell `line` (0-based) reads `rate` [N/s] x (t - from) off.
-  void SetDrift(int line, double from, double rate);
-  /// From time `from` on, cell `line` (0-based) is dead: it reads its noise about zero, as
-  /// a cell with a cut cable or a failed bridge does.
-  void SetDead(int line, double from);
-  /// The fault's Set* call.
-  void SetFault(const CellFault& fault);
+  /// Adds a fault of one cell (ValidateSensorFault and the line's range; keys under
+  /// `key_path`).
+  void AddFault(const CellFault& fault, std::string_view key_path = "sensors.tension_cells.faults");
 
  private:
-  struct Fault {
-    enum class Kind { kNone, kStuck, kDrift, kDead } kind = Kind::kNone;
-    double from = 0.0;
-    double rate = 0.0;
-    double held = std::numeric_limits<double>::quiet_NaN();  // the stuck reading
-  };
   SensorClock clock_;
   std::vector<internal::ChannelError> cells_;
-  std::vector<Fault> faults_;
+  std::vector<internal::ChannelFaults> faults_;
   std::int64_t next_index_ = 0;
 };
 

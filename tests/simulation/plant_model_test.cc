@@ -71,7 +71,8 @@ PlantModel PlantInCode(const mooring_fem::MooringParameters& mooring) {
   m.pose_sensors = vessel::SeedPoseSensors();
   TensionCellsModel& cells = m.tension_cells.emplace();
   cells.noise.std_dev = 1.0e4;
-  cells.faults.push_back({.mode = vessel::CellFault::Mode::kStuck, .line = 2, .from = 20.0});
+  cells.faults.push_back(
+      {.line = 2, .fault = {.mode = vessel::SensorFault::Mode::kStuck, .from = 20.0}});
   m.controller.spec.type = "pi";
   m.controller.spec.pi.kp = Vec3(1e5, 1e6, 1e3);
   m.controller.spec.pi.ki = Vec3(1e3, 1e3, 1e2);

@@ -726,9 +726,10 @@ TEST(TensionCellsTest, StuckDriftingAndDeadCellsReadAsTheyShould) {
   const ChannelNoise noise{.std_dev = 100.0};
   TensionCells healthy(4, noise, 1.0, 12);
   TensionCells faulty(4, noise, 1.0, 12);
-  faulty.SetStuck(0, 10.0);
-  faulty.SetDrift(2, 20.0, -500.0);
-  faulty.SetDead(3, 30.0);
+  using Mode = SensorFault::Mode;
+  faulty.AddFault({.line = 0, .fault = {.mode = Mode::kStuck, .from = 10.0}});
+  faulty.AddFault({.line = 2, .fault = {.mode = Mode::kDrift, .from = 20.0, .size = -500.0}});
+  faulty.AddFault({.line = 3, .fault = {.mode = Mode::kDead, .from = 30.0}});
   double stuck = 0.0;
   for (int k = 0; k < 40; ++k) {
     const std::vector<double> truth = {1e6 + 1e3 * k, 1.1e6, 0.9e6, 1.2e6};
@@ -743,6 +744,93 @@ TEST(TensionCellsTest, StuckDriftingAndDeadCellsReadAsTheyShould) {
     EXPECT_EQ(f[1], h[1]);  // the other cells are untouched, noise included
     EXPECT_DOUBLE_EQ(f[2], h[2] - (k >= 20 ? 500.0 * (k - 20) : 0.0)) << k;
     EXPECT_DOUBLE_EQ(f[3], k >= 30 ? h[3] - truth[3] : h[3]) << k;  // its noise alone
+  }
+}
+
+TEST(TensionCellsTest, StepGainAndDegradedCellsForAPeriod) {
+  using Mode = SensorFault::Mode;
+  const ChannelNoise noise{.std_dev = 100.0};
+  TensionCells healthy(3, noise, 1.0, 5);
+  TensionCells faulty(3, noise, 1.0, 5);
+  faulty.AddFault(
+      {.line = 0, .fault = {.mode = Mode::kStep, .from = 5.0, .until = 15.0, .size = 2e4}});
+  faulty.AddFault({.line = 1, .fault = {.mode = Mode::kGain, .from = 5.0, .size = 1.1}});
+  faulty.AddFault(
+      {.line = 2, .fault = {.mode = Mode::kDegraded, .from = 5.0, .until = 10.0, .size = 8.0}});
+  const std::vector<double> truth = {1e6, 1.1e6, 0.9e6};
+  for (int k = 0; k < 20; ++k) {
+    const std::vector<double> h = healthy.Sample(k, truth);
+    const std::vector<double> f = faulty.Sample(k, truth);
+    const bool step = k >= 5 && k < 15;
+    EXPECT_DOUBLE_EQ(f[0], h[0] + (step ? 2e4 : 0.0)) << k;
+    // The gain scales the truth, not the error.
+    EXPECT_NEAR(f[1], k >= 5 ? 1.1 * truth[1] + (h[1] - truth[1]) : h[1], 1e-6) << k;
+    const double error = f[2] - truth[2], healthy_error = h[2] - truth[2];
+    EXPECT_NEAR(error, (k >= 5 && k < 10 ? 8.0 : 1.0) * healthy_error, 1e-6) << k;
+  }
+}
+
+TEST(TensionCellsTest, AFaultOutsideTheMooringOrOutOfRangeIsNamed) {
+  using Mode = SensorFault::Mode;
+  TensionCells cells(3, ChannelNoise{}, 1.0, 1);
+  ExpectInputError([&] { cells.AddFault({.line = 3, .fault = {.mode = Mode::kDead}}); },
+                   "sensors.tension_cells.faults.line: 4 is not a line of the mooring (1..3)");
+  ExpectInputError(
+      [&] { cells.AddFault({.line = 0, .fault = {.mode = Mode::kGain, .size = 0.0}}); },
+      "sensors.tension_cells.faults.gain: 0 must be > 0");
+  ExpectInputError(
+      [&] {
+        cells.AddFault({.line = 0, .fault = {.mode = Mode::kStep, .from = 10.0, .until = 5.0}});
+      },
+      "sensors.tension_cells.faults.end: 5 must be after the fault's time");
+}
+
+TEST(PoseSensorsTest, EachFaultActsOnItsChannelAlone) {
+  using Mode = SensorFault::Mode;
+  PoseSensorSpec spec;
+  spec.north.bias_walk = 0.01;  // a bias, which the faults leave as it is
+  PoseSensors healthy(spec, 21);
+  PoseSensors faulty(spec, 21);
+  faulty.AddFault(PoseChannel::kNorth, {.mode = Mode::kStep, .from = 10.0, .size = 2.0});
+  faulty.AddFault(PoseChannel::kEast, {.mode = Mode::kStuck, .from = 20.0, .until = 30.0});
+  faulty.AddFault(PoseChannel::kHeading, {.mode = Mode::kDrift, .from = 5.0, .size = 1e-3});
+  faulty.AddFault(PoseChannel::kNorth, {.mode = Mode::kDead, .from = 40.0, .until = 45.0});
+  double frozen = 0.0;
+  for (int k = 0; k < 50; ++k) {
+    const Vec3 truth(10.0 + 0.1 * k, -5.0 + 0.05 * k, 0.2);
+    const PoseMeasurement h = healthy.Sample(k, truth);
+    const PoseMeasurement f = faulty.Sample(k, truth);
+    SCOPED_TRACE("t = " + std::to_string(k));
+    if (k >= 40 && k < 45) {
+      EXPECT_FALSE(f.valid[0]);  // dead: no reading, the east channel still has one
+    } else {
+      EXPECT_TRUE(f.valid[0]);
+      EXPECT_DOUBLE_EQ(f.value.x(), h.value.x() + (k >= 10 ? 2.0 : 0.0));
+    }
+    EXPECT_TRUE(f.valid[1]);
+    if (k < 20) frozen = f.value.y();
+    EXPECT_EQ(f.value.y(), k >= 20 && k < 30 ? frozen : h.value.y());
+    EXPECT_NEAR(f.value.z(), WrapAngle(h.value.z() + (k >= 5 ? 1e-3 * (k - 5) : 0.0)), 1e-12);
+  }
+}
+
+TEST(PoseSensorsTest, ADegradedGnssIsNoisierOnlyWhileItLasts) {
+  using Mode = SensorFault::Mode;
+  PoseSensors healthy(PoseSensorSpec{}, 3);
+  PoseSensors faulty(PoseSensorSpec{}, 3);
+  faulty.AddFault(PoseChannel::kNorth,
+                  {.mode = Mode::kDegraded, .from = 100.0, .until = 200.0, .size = 10.0});
+  faulty.AddFault(PoseChannel::kEast,
+                  {.mode = Mode::kDegraded, .from = 100.0, .until = 200.0, .size = 10.0});
+  const Vec3 truth(1.0, 2.0, 0.0);
+  for (int k = 0; k < 300; ++k) {
+    const PoseMeasurement h = healthy.Sample(k, truth);
+    const PoseMeasurement f = faulty.Sample(k, truth);
+    const double factor = k >= 100 && k < 200 ? 10.0 : 1.0;
+    for (int i = 0; i < 2; ++i) {
+      EXPECT_NEAR(f.value(i) - truth(i), factor * (h.value(i) - truth(i)), 1e-12) << k;
+    }
+    EXPECT_EQ(f.value.z(), h.value.z());
   }
 }
 
