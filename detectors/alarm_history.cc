@@ -83,4 +83,38 @@ double AlarmHistory::AlarmSeconds(double t0, double t1) const {
   return total;
 }
 
+std::string SensorId::Name() const {
+  switch (kind) {
+    case Kind::kGnss:
+      return "GNSS";
+    case Kind::kGyro:
+      return "gyro";
+    case Kind::kCell:
+      break;
+  }
+  std::string name = "cell ";  // built in steps: GCC 12 warns wrongly on "..." + string
+  name += std::to_string(line);
+  return name;
+}
+
+void SensorFaultHistory::Update(double t, const std::vector<SensorId>& faulty) {
+  if (faulty == current_) return;
+  const auto contains = [](const std::vector<SensorId>& list, const SensorId& id) {
+    return std::find(list.begin(), list.end(), id) != list.end();
+  };
+  for (const SensorId& id : current_) {
+    if (contains(faulty, id)) continue;
+    for (auto spell = spells_.rbegin(); spell != spells_.rend(); ++spell) {
+      if (spell->sensor == id && !spell->until) {
+        spell->until = t;
+        break;
+      }
+    }
+  }
+  for (const SensorId& id : faulty) {
+    if (!contains(current_, id)) spells_.push_back({.sensor = id, .since = t, .until = {}});
+  }
+  current_ = faulty;
+}
+
 }  // namespace moorsim::detectors

@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "detectors/detector.h"
+
 namespace moorsim::detectors {
 
 struct AlarmEvent {
@@ -55,6 +57,26 @@ class AlarmHistory {
   bool alarm_ = false;
   int hypothesis_ = 0;
   double time_ = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// A spell during which a detector judged a sensor faulty: from `since` [s] to `until`
+/// (unset while it lasts).
+struct SensorFaultSpell {
+  SensorId sensor;
+  double since = 0.0;
+  std::optional<double> until;
+};
+
+/// Every spell of every sensor a detector judged faulty over a run, in the order they began.
+class SensorFaultHistory {
+ public:
+  /// Takes the verdict's faulty sensors at time `t` [s].
+  void Update(double t, const std::vector<SensorId>& faulty);
+  const std::vector<SensorFaultSpell>& spells() const { return spells_; }
+
+ private:
+  std::vector<SensorFaultSpell> spells_;
+  std::vector<SensorId> current_;
 };
 
 }  // namespace moorsim::detectors

@@ -18,7 +18,7 @@ void Cells::Reset(int hypotheses) {
   lines_.clear();
   bias_history_.clear();
   cell_faults_ = 0;
-  verdict_ = Verdict{std::vector<double>(static_cast<std::size_t>(hypotheses), 0.0), 0, false};
+  verdict_ = Verdict{std::vector<double>(static_cast<std::size_t>(hypotheses), 0.0), 0, false, {}};
 }
 
 Cells::OtherCells Cells::ReadOtherCells(const TensionEvidence& cells, int k) const {
@@ -127,6 +127,12 @@ Verdict Cells::Update(const Evidence& evidence) {
   }
   verdict_.alarm = best != 0;
   verdict_.hypothesis = best;
+  verdict_.faulty_sensors.clear();
+  for (int k = 0; k < n; ++k) {
+    if (lines_[static_cast<std::size_t>(k)].faulty) {
+      verdict_.faulty_sensors.push_back({.kind = SensorId::Kind::kCell, .line = k + 1});
+    }
+  }
   return verdict_;
 }
 

@@ -90,6 +90,16 @@ struct Evidence {
   std::optional<TensionEvidence> tensions;
 };
 
+/// A sensor a detector can judge faulty: the GNSS receiver, the gyro or a line's load cell.
+struct SensorId {
+  enum class Kind { kGnss, kGyro, kCell };
+  Kind kind = Kind::kCell;
+  int line = 0;  ///< kCell: the cell's line, 1-based
+  bool operator==(const SensorId&) const = default;
+  /// "GNSS", "gyro", "cell 3".
+  std::string Name() const;
+};
+
 /// A detector's state after a sample.
 struct Verdict {
   /// Per hypothesis: probability (DHT), negative log-likelihood (MLE) or test statistic
@@ -97,6 +107,9 @@ struct Verdict {
   std::vector<double> score;
   int hypothesis = 0;  ///< the detector's best hypothesis, 0 = intact
   bool alarm = false;  ///< a failure is declared (by the detector's documented rule)
+  /// The sensors the detector judges faulty now (their readings are not a line's failure);
+  /// empty for a detector that does not judge its sensors.
+  std::vector<SensorId> faulty_sensors;
 };
 
 /// What the detection's models give a detector at set-up, computed once per set-up and

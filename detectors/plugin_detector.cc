@@ -113,7 +113,7 @@ class PluginDetector final : public Detector {
               << "), alarm " << verdict.alarm << " at t = " << evidence.t << " s";
       internal::ContractViolation(where_, message.str());
     }
-    return Verdict{score_, verdict.hypothesis, verdict.alarm == 1};
+    return Verdict{score_, verdict.hypothesis, verdict.alarm == 1, {}};
   }
 
  private:

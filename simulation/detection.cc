@@ -168,6 +168,7 @@ void Detection::Update(const detectors::Observation& observation) {
   for (std::size_t i = 0; i < p.detectors.size(); ++i) {
     const detectors::Verdict& v = p.verdicts[i] = p.detectors[i]->Update(evidence);
     records_[i].history.Update(observation.t, v.alarm, v.hypothesis);
+    records_[i].sensor_faults.Update(observation.t, v.faulty_sensors);
   }
   timing_.update_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -290,6 +291,15 @@ nlohmann::json DetectorsSummary(const scenarios::Scenario& scenario, const Detec
                                             : nlohmann::json(labels.at(e.hypothesis))}});
     }
     j["history"] = history;
+    // The sensors it judged faulty (not a line's failure), each spell.
+    nlohmann::json sensor_faults = nlohmann::json::array();
+    for (const detectors::SensorFaultSpell& spell : d.sensor_faults.spells()) {
+      sensor_faults.push_back(
+          {{"sensor", spell.sensor.Name()},
+           {"since", spell.since},
+           {"until", spell.until ? nlohmann::json(*spell.until) : nlohmann::json(nullptr)}});
+    }
+    j["sensor_faults"] = sensor_faults;
     detectors[d.label] = j;
   }
   return detectors;

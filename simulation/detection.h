@@ -42,6 +42,8 @@ struct DetectorRecord {
   std::optional<double> failure_time;
   /// Every onset, revision of the named hypothesis and end of its alarm.
   detectors::AlarmHistory history;
+  /// Every spell of a sensor the detector judged faulty.
+  detectors::SensorFaultHistory sensor_faults;
 
   /// The first alarm onset at or after the failure (without a failure, the first onset):
   /// its time is the alarm time, its hypothesis the isolated one.

@@ -83,5 +83,26 @@ TEST(AlarmHistory, TimeMustNotGoBack) {
   EXPECT_THROW(h.Update(4.0, false, 0), ContractError);
 }
 
+TEST(SensorFaultHistory, EachSpellOfEachSensorWithItsStartAndEnd) {
+  SensorFaultHistory h;
+  const SensorId cell3{.kind = SensorId::Kind::kCell, .line = 3};
+  const SensorId gnss{.kind = SensorId::Kind::kGnss};
+  h.Update(1.0, {});
+  h.Update(2.0, {cell3});
+  h.Update(3.0, {cell3, gnss});
+  h.Update(4.0, {gnss});
+  h.Update(5.0, {cell3, gnss});
+  ASSERT_EQ(h.spells().size(), 3u);
+  EXPECT_EQ(h.spells()[0].sensor.Name(), "cell 3");
+  EXPECT_EQ(h.spells()[0].since, 2.0);
+  EXPECT_EQ(h.spells()[0].until, 4.0);
+  EXPECT_EQ(h.spells()[1].sensor.Name(), "GNSS");
+  EXPECT_EQ(h.spells()[1].since, 3.0);
+  EXPECT_FALSE(h.spells()[1].until);
+  EXPECT_EQ(h.spells()[2].sensor, cell3);
+  EXPECT_EQ(h.spells()[2].since, 5.0);
+  EXPECT_FALSE(h.spells()[2].until);
+}
+
 }  // namespace
 }  // namespace moorsim::detectors

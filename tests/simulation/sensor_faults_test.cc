@@ -6,7 +6,11 @@
 #include <cmath>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
+#include "scenarios/load.h"
 #include "scenarios/plant_model.h"
+#include "simulation/detection.h"
 #include "simulation/simulation.h"
 #include "tests/simulation/test_scenarios.h"
 
@@ -82,6 +86,32 @@ TEST(SensorFaults, AFaultyRunMeasuresTheHealthyRunsPlantWithItsFaults) {
                 1e-6);
     EXPECT_EQ(f.tension_measured[0], h.tension_measured[0]);
   }
+}
+
+TEST(SensorFaults, ACellJudgedFaultyIsReportedAsASensorNotALine) {
+  // Line 6's cell dies at 300 s on an intact mooring. The cells test waits confirm_time
+  // (180 s) for the vessel to feel the lost load; it does not, so the cell is named faulty,
+  // not line 6. (On this seed; across seeds it names the line in some runs:
+  // scenarios/campaigns/sensor_faults_baseline.yaml measures how often.)
+  scenarios::Scenario scenario = scenarios::LoadScenario(
+      MOORSIM_SOURCE_DIR "/scenarios/library/thesis_no_failure_current.yaml",
+      {"sensors.tension_cells={rate_hz: 1, noise: {std_dev: 1.0e4}, faults: [{line: 6, mode: "
+       "dead, time: 300}]}",
+       "detectors=[{type: cells}]", "simulation.duration=700"});
+  Simulation sim(scenario, 1);
+  sim.AdvanceTo(700.0);
+  const DetectorRecord& cells = sim.detection()->records().at(0);
+  EXPECT_EQ(cells.FalseAlarms(), 0);
+  ASSERT_EQ(cells.sensor_faults.spells().size(), 1u);
+  const detectors::SensorFaultSpell& spell = cells.sensor_faults.spells()[0];
+  EXPECT_EQ(spell.sensor.Name(), "cell 6");
+  EXPECT_GT(spell.since, 300.0);
+  EXPECT_LE(spell.since, 300.0 + 180.0 + 10.0);
+  EXPECT_FALSE(spell.until.has_value());
+  // summary.json says the same.
+  const nlohmann::json summary = DetectorsSummary(scenario, *sim.detection(), 700.0);
+  EXPECT_EQ(summary["cells"]["sensor_faults"][0]["sensor"], "cell 6");
+  EXPECT_EQ(summary["cells"]["sensor_faults"][0]["since"].get<double>(), spell.since);
 }
 
 }  // namespace
