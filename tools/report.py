@@ -60,6 +60,9 @@ VERDICT_COLUMNS = {"isolation_delay": float, "final_line": int,
 # them and the report leaves the section out). A hull that left its setpoint heading met the
 # waves from another side than the campaign set.
 STATION_COLUMNS = {"heading_error_max_deg": float, "thrust_saturated_share": float}
+# The sensors a detector judged faulty, "cell 6 from 482 s" ("" for none; campaigns from
+# 2026-11-27 on; older ones lack it and count none).
+SENSOR_COLUMN = "sensor_faults"
 HEADING_LOST_DEG = 10.0  # as `moorsim batch` warns
 
 
@@ -160,6 +163,9 @@ def read_campaign(path: Path) -> Campaign:
             if all(f"runs/{label}.{name}" in h5 for name in VERDICT_COLUMNS):
                 columns.update({name: read_column(h5, f"runs/{label}.{name}", kind, rows)
                                 for name, kind in VERDICT_COLUMNS.items()})
+            if f"runs/{label}.{SENSOR_COLUMN}" in h5:
+                columns[SENSOR_COLUMN] = read_column(h5, f"runs/{label}.{SENSOR_COLUMN}", str,
+                                                     rows)
             group = h5.get(f"detectors/{label}")
             grid = crossings = first = None
             kind = statistic = ""
@@ -307,9 +313,13 @@ def analyse_detector(c: Campaign, d: Detector) -> dict:
                 for line in range(1, lines + 1)}
     per_factor = {f: [dict(level=label, **rates(mask))
                       for label, mask in factor_levels(r[f], c.fail_ok)] for f in c.factors}
-    named = np.where(detected & (col["isolated_line"] >= 1) & (col["isolated_line"] <= lines),
-                     col["isolated_line"], lines + 1)  # column lines + 1: missed
-    confusion = np.zeros((lines, lines + 1), dtype=int)
+    # Columns 1..lines: the line named at the alarm; lines + 1: no line named but a sensor
+    # judged faulty; lines + 2: missed.
+    sensor = np.array([bool(x) for x in col[SENSOR_COLUMN]]) if SENSOR_COLUMN in col \
+        else np.zeros(c.size, dtype=bool)
+    names_line = detected & (col["isolated_line"] >= 1) & (col["isolated_line"] <= lines)
+    named = np.where(names_line, col["isolated_line"], np.where(sensor, lines + 1, lines + 2))
+    confusion = np.zeros((lines, lines + 2), dtype=int)
     for true, seen in zip(r["failure_line"][c.fail_ok], named[c.fail_ok]):
         if 1 <= true <= lines:
             confusion[true - 1, seen - 1] += 1
@@ -323,8 +333,12 @@ def analyse_detector(c: Campaign, d: Detector) -> dict:
                      for k, v in per_line.items()},
         "per_factor": per_factor,
         "confusion": confusion.tolist(),
-        "confusion_columns": [str(i) for i in range(1, lines + 1)] + ["missed"],
-        "alarms_without_line": int((detected & (named == lines + 1)).sum()),
+        "confusion_columns": [str(i) for i in range(1, lines + 1)] + ["sensor fault", "missed"],
+        "alarms_without_line": int((detected & ~names_line).sum()),
+        "sensor_faults_named": {"failure": proportion(int((sensor & c.fail_ok).sum()),
+                                                      int(c.fail_ok.sum())),
+                                "intact": proportion(int((sensor & c.intact_ok).sum()),
+                                                     int(c.intact_ok.sum()))},
         "delay": dict(delay_summary(col["delay"][detected]),
                       per_line={k: v["delay"] for k, v in per_line.items()}),
         "false_alarms_per_hour": {
@@ -565,7 +579,7 @@ def plot_rates(plt, out_dir, name, title, groups, series) -> str:
 def plot_confusion(plt, out_dir, c: Campaign, results: dict) -> str:
     count = len(results)
     figure, axes = plt.subplots(1, count, squeeze=False, layout="constrained",
-                                figsize=(min(18, 0.55 * (c.num_lines + 1) * count + 2 * count),
+                                figsize=(min(18, 0.55 * (c.num_lines + 2) * count + 2 * count),
                                          0.5 * c.num_lines + 2))
     for ax, (label, result) in zip(axes[0], results.items()):
         matrix = np.array(result["confusion"])
@@ -574,7 +588,8 @@ def plot_confusion(plt, out_dir, c: Campaign, results: dict) -> str:
             if value:
                 ax.text(j, i, str(value), ha="center", va="center", fontsize="medium",
                         color="white" if value > 0.6 * matrix.max() else "black")
-        ax.set_xticks(range(c.num_lines + 1), result["confusion_columns"])
+        ax.set_xticks(range(len(result["confusion_columns"])), result["confusion_columns"],
+                      rotation=45, ha="right")
         ax.set_yticks(range(c.num_lines), [str(i) for i in range(1, c.num_lines + 1)])
         ax.set_xlabel("line named by the detector")
         ax.set_ylabel("line that failed")
@@ -841,13 +856,18 @@ def rates_section(p: Page) -> list:
 
 def confusion_section(p: Page) -> list:
     out = [f"<h2>Confusion matrices</h2><p class='note'>From {p.fail_note}: rows the line that "
-           f"failed, columns the line the detector named at its alarm; <i>missed</i>: no alarm "
-           f"at or after the failure, or an alarm naming no line.</p>"]
+           f"failed, columns the line the detector named at its alarm; <i>sensor fault</i>: no "
+           f"line named, a sensor judged faulty; <i>missed</i>: neither (no alarm at or after "
+           f"the failure, or an alarm naming no line).</p>"]
     if p.n_fail:
         out.append(image(plot_confusion(p.plt, p.out_dir, p.c, p.results), "confusion matrices"))
     for l, r in p.results.items():
-        extra = (f" ({r['alarms_without_line']} alarms named no line, counted as missed)"
+        extra = (f" ({r['alarms_without_line']} alarms named no line)"
                  if r["alarms_without_line"] else "")
+        intact = r["sensor_faults_named"]["intact"]
+        if intact["k"]:
+            extra += (f"; on intact runs it judged a sensor faulty in {intact['k']} of "
+                      f"{intact['n']}")
         out += [f"<h4>{html.escape(l + extra)}</h4>",
                 table(["failed line \\ named"] + r["confusion_columns"],
                       [[i + 1] + row for i, row in enumerate(r["confusion"])])]

@@ -127,11 +127,12 @@ def check(directory: Path) -> list[str]:
                 expect(f"{label} {what} low", entry.get("low"), max(0.0, centre - half), 1e-9)
                 expect(f"{label} {what} high", entry.get("high"), min(1.0, centre + half), 1e-9)
 
-        confusion = [[0] * (lines + 1) for _ in range(lines)]
+        # The fake campaigns judge no sensor faulty: the column before "missed" stays 0.
+        confusion = [[0] * (lines + 2) for _ in range(lines)]
         for i in failure_runs:
             named = col["isolated_line"][i]
             if not (math.isfinite(col["alarm_time"][i]) and 1 <= named <= lines):
-                named = lines + 1
+                named = lines + 2
             if 1 <= line[i] <= lines:
                 confusion[line[i] - 1][named - 1] += 1
         expect(f"{label} confusion", got.get("confusion"), confusion)
