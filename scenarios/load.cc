@@ -23,6 +23,7 @@
 #include "mooring_fem/seabed.h"
 #include "scenarios/convert.h"
 #include "scenarios/depth_grid.h"
+#include "scenarios/plant_model.h"
 #include "scenarios/strict_yaml.h"
 
 namespace moorsim::scenarios {
@@ -1127,25 +1128,22 @@ void CheckFaults(const Checker& check, const Scenario& scenario,
       check.Fail(path + ".end", WithUnit(*f.end, "s") + " must be after the fault's time (" +
                                     WithUnit(f.time, "s") + ")");
     }
-    // Each size belongs to one mode; a size that leaves the sensor as it is (its default)
-    // is one not given.
-    const struct {
-      const char* key;
-      const char* mode;
-      bool given;
-      std::string need;
-    } sizes[] = {
-        {"offset", "step", f.offset != 0.0, "a step needs a nonzero offset [" + unit + "]"},
-        {"rate", "drift", f.rate != 0.0, "a drift needs a nonzero rate [" + unit + "/s]"},
-        {"factor", "degraded", f.factor != 1.0, "a degraded sensor needs its noise factor (> 1)"},
-        {"gain", "gain", f.gain != 1.0, "a gain error needs its gain (> 0, not 1)"}};
-    for (const auto& size : sizes) {
-      const std::string key = path + "." + size.key;
-      if (f.mode == size.mode && !size.given) check.Fail(key, size.need);
-      if (f.mode != size.mode && size.given) {
-        check.Fail(key, "only applies to mode '" + std::string(size.mode) + "' (the mode is '" +
-                            f.mode + "')");
+    // Each size belongs to one mode; a size that leaves the sensor as it is (its neutral
+    // value, the default) is one not given.
+    const FaultModeName* own = FindFaultMode(f.mode);
+    for (const FaultModeName& m : FaultModeNames()) {
+      if (&m != own && m.size != nullptr && f.*m.size != m.neutral) {
+        check.Fail(
+            path + "." + std::string(vessel::SensorFaultSizeKey(m.mode)),
+            "only applies to mode '" + std::string(m.name) + "' (the mode is '" + f.mode + "')");
       }
+    }
+    if (own != nullptr && own->size != nullptr && f.*own->size == own->neutral) {
+      std::string need(own->need);
+      if (const std::size_t at = need.find("{unit}"); at != std::string::npos) {
+        need.replace(at, 6, unit);
+      }
+      check.Fail(path + "." + std::string(vessel::SensorFaultSizeKey(own->mode)), need);
     }
   }
 }

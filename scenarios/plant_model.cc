@@ -44,27 +44,13 @@ vessel::PoseSensorSpec ToPoseSensorSpec(const SensorsSpec& s) {
 }
 
 vessel::SensorFault ToSensorFault(const SensorsSpec::Fault& f) {
-  using Mode = vessel::SensorFault::Mode;
+  const FaultModeName* mode = FindFaultMode(f.mode);
+  if (mode == nullptr) throw InputError("sensor fault mode '" + f.mode + "': not a mode");
   vessel::SensorFault fault;
+  fault.mode = mode->mode;
   fault.from = f.time;
   fault.until = f.end.value_or(std::numeric_limits<double>::infinity());
-  if (f.mode == "step") {
-    fault.mode = Mode::kStep;
-    fault.size = f.offset;
-  } else if (f.mode == "stuck") {
-    fault.mode = Mode::kStuck;
-  } else if (f.mode == "degraded") {
-    fault.mode = Mode::kDegraded;
-    fault.size = f.factor;
-  } else if (f.mode == "drift") {
-    fault.mode = Mode::kDrift;
-    fault.size = f.rate;
-  } else if (f.mode == "gain") {
-    fault.mode = Mode::kGain;
-    fault.size = f.gain;
-  } else {
-    fault.mode = Mode::kDead;
-  }
+  if (mode->size != nullptr) fault.size = f.*mode->size;
   return fault;
 }
 
@@ -181,6 +167,28 @@ std::string DetectionIdentity(const Scenario& s) {
 }
 
 }  // namespace
+
+std::span<const FaultModeName> FaultModeNames() {
+  using Mode = vessel::SensorFault::Mode;
+  using F = SensorsSpec::Fault;
+  static constexpr FaultModeName kModes[] = {
+      {"dead", Mode::kDead, nullptr, 0.0, ""},
+      {"degraded", Mode::kDegraded, &F::factor, 1.0,
+       "a degraded sensor needs its noise factor (> 1)"},
+      {"drift", Mode::kDrift, &F::rate, 0.0, "a drift needs a nonzero rate [{unit}/s]"},
+      {"gain", Mode::kGain, &F::gain, 1.0, "a gain error needs its gain (> 0, not 1)"},
+      {"step", Mode::kStep, &F::offset, 0.0, "a step needs a nonzero offset [{unit}]"},
+      {"stuck", Mode::kStuck, nullptr, 0.0, ""},
+  };
+  return kModes;
+}
+
+const FaultModeName* FindFaultMode(std::string_view name) {
+  for (const FaultModeName& m : FaultModeNames()) {
+    if (m.name == name) return &m;
+  }
+  return nullptr;
+}
 
 vessel::HullGeometry ToHullGeometry(const VesselSpec& spec, double water_density) {
   const HullSpec& h = spec.hull;

@@ -5,11 +5,29 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
+#include <string_view>
 
 #include "scenarios/scenario.h"
 #include "simulation/plant_model.h"
 
 namespace moorsim::scenarios {
+
+/// A sensor fault's mode as a scenario names it ("step", ...): the vessel's mode, the field
+/// of SensorsSpec::Fault that holds its size (null for stuck and dead; its key is
+/// vessel::SensorFaultSizeKey), the size that would leave the sensor as it is, and what the
+/// loader says when that size is missing ("{unit}": the sensor's unit).
+struct FaultModeName {
+  std::string_view name;
+  vessel::SensorFault::Mode mode;
+  double SensorsSpec::Fault::*size;
+  double neutral;
+  std::string_view need;
+};
+/// Every mode, sorted by name; the schema's choice list names the same.
+std::span<const FaultModeName> FaultModeNames();
+/// The row of `name`, or null for an unknown one.
+const FaultModeName* FindFaultMode(std::string_view name);
 
 /// The plant of a scenario with a vessel section. Throws InputError (naming the file) for
 /// a scenario without one.

@@ -153,8 +153,10 @@ std::shared_ptr<const vessel::HydroData> SharedHydroData(const std::string& stem
   char key[128];
   std::snprintf(key, sizeof key, "\n%.17g %.17g %.17g", options.water_density, options.gravity,
                 options.length_scale);
-  return SharedPart<vessel::HydroData>("WAMIT " + stem + key,
-                                       [&] { return vessel::ReadWamit(stem, options); });
+  std::string name = "WAMIT ";  // built in steps: GCC 12 warns wrongly on "..." + string
+  name += stem;
+  name += key;
+  return SharedPart<vessel::HydroData>(name, [&] { return vessel::ReadWamit(stem, options); });
 }
 
 }  // namespace
