@@ -101,7 +101,7 @@ void BM_EkfBank(benchmark::State& state) {
   const bool pairs = state.range(0) != 0;
   const double switch_rate = state.range(1) != 0 ? ObserverBankOptions{}.switch_rate : 0.0;
   ObserverBank observers(Bank(pairs), SeedLowFrequencyModel(), EkfOptions{},
-                         ObserverBankOptions{switch_rate});
+                         ObserverBankOptions{.switch_rate = switch_rate, .sensor_checks = {}});
   RunObservers(state, observers);
 }
 // {pairs, mixing}

@@ -213,14 +213,18 @@ std::vector<Column> TableColumns(const std::vector<std::string>& factor_keys,
     c.push_back({d + ".final_line", K::kInt, of("final_line", 0)});
     c.push_back({d + ".alarm_seconds_before_failure", K::kFloat,
                  of("alarm_seconds_before_failure", nlohmann::json())});
-    // The sensors it judged faulty: "cell 3 from 412 s; GNSS from 930 s", "" for none.
+    // The sensors it judged faulty: "cell 3 disagrees from 412 s; GNSS jump from 930 s", ""
+    // for none.
     c.push_back({d + ".sensor_faults", K::kText, [d](const nlohmann::json& row) {
                    const nlohmann::json& all = row.at("detectors");
                    std::string text;
                    if (!all.contains(d) || !all.at(d).contains("sensor_faults")) return text;
                    for (const nlohmann::json& spell : all.at(d).at("sensor_faults")) {
                      if (!text.empty()) text += "; ";
-                     text += spell.at("sensor").get<std::string>() + " from " +
+                     text += spell.at("sensor").get<std::string>();
+                     if (spell.contains("fault"))
+                       text += " " + spell.at("fault").get<std::string>();
+                     text += " from " +
                              scenarios::strict_yaml::WithUnit(spell.at("since").get<double>(), "s");
                    }
                    return text;

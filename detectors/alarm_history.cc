@@ -97,22 +97,40 @@ std::string SensorId::Name() const {
   return name;
 }
 
-void SensorFaultHistory::Update(double t, const std::vector<SensorId>& faulty) {
+std::string_view SensorSymptomName(SensorSymptom symptom) {
+  switch (symptom) {
+    case SensorSymptom::kDisagrees:
+      return "disagrees";
+    case SensorSymptom::kFrozen:
+      return "frozen";
+    case SensorSymptom::kJump:
+      return "jump";
+    case SensorSymptom::kNoisy:
+      return "noisy";
+    case SensorSymptom::kSilent:
+      return "silent";
+  }
+  return "disagrees";
+}
+
+void SensorFaultHistory::Update(double t, const std::vector<SensorFinding>& faulty) {
   if (faulty == current_) return;
-  const auto contains = [](const std::vector<SensorId>& list, const SensorId& id) {
-    return std::find(list.begin(), list.end(), id) != list.end();
+  const auto contains = [](const std::vector<SensorFinding>& list, const SensorFinding& f) {
+    return std::find(list.begin(), list.end(), f) != list.end();
   };
-  for (const SensorId& id : current_) {
-    if (contains(faulty, id)) continue;
+  for (const SensorFinding& f : current_) {
+    if (contains(faulty, f)) continue;
     for (auto spell = spells_.rbegin(); spell != spells_.rend(); ++spell) {
-      if (spell->sensor == id && !spell->until) {
+      if (spell->sensor == f.sensor && spell->symptom == f.symptom && !spell->until) {
         spell->until = t;
         break;
       }
     }
   }
-  for (const SensorId& id : faulty) {
-    if (!contains(current_, id)) spells_.push_back({.sensor = id, .since = t, .until = {}});
+  for (const SensorFinding& f : faulty) {
+    if (!contains(current_, f)) {
+      spells_.push_back({.sensor = f.sensor, .symptom = f.symptom, .since = t, .until = {}});
+    }
   }
   current_ = faulty;
 }

@@ -63,6 +63,7 @@ class AlarmHistory {
 /// (unset while it lasts).
 struct SensorFaultSpell {
   SensorId sensor;
+  SensorSymptom symptom = SensorSymptom::kDisagrees;
   double since = 0.0;
   std::optional<double> until;
 };
@@ -71,12 +72,12 @@ struct SensorFaultSpell {
 class SensorFaultHistory {
  public:
   /// Takes the verdict's faulty sensors at time `t` [s].
-  void Update(double t, const std::vector<SensorId>& faulty);
+  void Update(double t, const std::vector<SensorFinding>& faulty);
   const std::vector<SensorFaultSpell>& spells() const { return spells_; }
 
  private:
   std::vector<SensorFaultSpell> spells_;
-  std::vector<SensorId> current_;
+  std::vector<SensorFinding> current_;
 };
 
 }  // namespace moorsim::detectors

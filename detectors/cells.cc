@@ -1,5 +1,6 @@
 #include "detectors/cells.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -18,6 +19,9 @@ void Cells::Reset(int hypotheses) {
   lines_.clear();
   bias_history_.clear();
   cell_faults_ = 0;
+  pose_trusted_ = true;
+  trusted_since_ = -std::numeric_limits<double>::infinity();
+  unconfirmed_ = 0;
   verdict_ = Verdict{std::vector<double>(static_cast<std::size_t>(hypotheses), 0.0), 0, false, {}};
 }
 
@@ -37,7 +41,9 @@ Cells::OtherCells Cells::ReadOtherCells(const TensionEvidence& cells, int k) con
   return out;
 }
 
-Verdict Cells::Update(const Evidence& evidence) {
+Verdict Cells::Update(const Evidence& evidence) { return Step(evidence); }
+
+const Verdict& Cells::Step(const Evidence& evidence) {
   internal::CheckEvidence("cells", evidence, hypotheses_);
   if (!evidence.tensions || !evidence.load) return verdict_;
   const TensionEvidence& cells = *evidence.tensions;
@@ -52,8 +58,11 @@ Verdict Cells::Update(const Evidence& evidence) {
   if (bias_history_.size() > window + 1) bias_history_.pop_front();
 
   const double t = evidence.t;
+  if (!pose_trusted_) trusted_since_ = t;
   int best = 0;
   double best_ratio = 1.0;
+  unconfirmed_ = 0;
+  double unconfirmed_ratio = 1.0;
   for (int k = 0; k < n; ++k) {
     Line& line = lines_[static_cast<std::size_t>(k)];
     const double expected = cells.expected(k);
@@ -89,7 +98,7 @@ Verdict Cells::Update(const Evidence& evidence) {
       line.bias_before = bias_history_.front();
     }
     line.low = low;
-    if (!low) line.confirmed = false;
+    if (!low) line.confirmed = line.agreeing = false;
     if (!low || t - line.low_since < options_.hold || h >= hypotheses_) continue;
     const OtherCells others = ReadOtherCells(cells, k);
     if (!others.explained) {
@@ -110,9 +119,13 @@ Verdict Cells::Update(const Evidence& evidence) {
       const double size = lost.norm();
       const double shift =
           size > 0.0 ? -(load.bias - line.bias_before).head<2>().dot(lost) / size : 0.0;
-      agrees = shift >=
-               std::max(options_.confirm_fraction * (1.0 - mean) * size, options_.confirm_floor);
-      if (!agrees && t - line.low_since >= options_.confirm_time) {
+      const bool shows = shift >= std::max(options_.confirm_fraction * (1.0 - mean) * size,
+                                           options_.confirm_floor);
+      if (shows && !line.agreeing) line.agree_since = t;
+      line.agreeing = shows;
+      agrees = shows && t - line.agree_since >= options_.confirm_hold;
+      if (!agrees && pose_trusted_ &&
+          t - std::max(line.low_since, trusted_since_) >= options_.confirm_time) {
         line.faulty = true;  // the vessel never felt it: the cell, not the line
         line.low = false;
         ++cell_faults_;
@@ -124,13 +137,18 @@ Verdict Cells::Update(const Evidence& evidence) {
       best = h;
       best_ratio = mean;
     }
+    if (!agrees && mean < unconfirmed_ratio) {
+      unconfirmed_ = h;
+      unconfirmed_ratio = mean;
+    }
   }
   verdict_.alarm = best != 0;
   verdict_.hypothesis = best;
   verdict_.faulty_sensors.clear();
   for (int k = 0; k < n; ++k) {
     if (lines_[static_cast<std::size_t>(k)].faulty) {
-      verdict_.faulty_sensors.push_back({.kind = SensorId::Kind::kCell, .line = k + 1});
+      verdict_.faulty_sensors.push_back({.sensor = {.kind = SensorId::Kind::kCell, .line = k + 1},
+                                         .symptom = SensorSymptom::kDisagrees});
     }
   }
   return verdict_;

@@ -26,7 +26,8 @@
 //    samples before the cell began to read low and l_k the horizontal part of
 //    line_load[k], the shift toward the lost load is z_k = -(b - b0) . l_k / |l_k|; the
 //    alarm needs z_k >= max(confirm_fraction d_k |l_k|, confirm_floor) (the floor keeps the
-//    wave-drift wander of the bias from confirming a faulty cell). A cell that reads low for
+//    wave-drift wander of the bias from confirming a faulty cell), for `confirm_hold`
+//    seconds on end (a wander crosses the line and falls back). A cell that reads low for
 //    `confirm_time` seconds without the pose agreeing is declared faulty and ignored until
 //    it reads within drop / 2 of its expectation again; cell_faults() counts them.
 //
@@ -46,6 +47,7 @@
 #pragma once
 
 #include <deque>
+#include <limits>
 #include <string_view>
 #include <vector>
 
@@ -68,6 +70,9 @@ struct CellsOptions {
   double confirm_floor = 1.5e6;
   /// [s] How long a low cell waits for the pose before it is declared faulty, > 0.
   double confirm_time = 180.0;
+  /// [s] How long the bias must keep showing the lost load before it confirms, >= 0
+  /// (0: the first sample that shows it).
+  double confirm_hold = 0.0;
   /// [s] A cell must have read true this long before it reads low (a fall, not a drift);
   /// >= 0, 0 = any.
   double fall_time = 30.0;
@@ -80,10 +85,27 @@ class Cells final : public Detector {
   bool NeedsLoadEvidence() const override { return true; }
   void Reset(int hypotheses) override;
   Verdict Update(const Evidence& evidence) override;
+  /// Update() without the copy: the verdict stays valid until the next Step/Reset.
+  const Verdict& Step(const Evidence& evidence);
 
   /// Cells declared faulty so far (each time a low cell went unconfirmed for
   /// confirm_time).
   int cell_faults() const { return cell_faults_; }
+
+  /// Whether the pose can be trusted to confirm (the fused detector clears it while a pose
+  /// sensor is judged faulty): while it cannot, a low cell is not declared faulty for want
+  /// of confirmation, and its confirm_time runs from when the pose is trusted again.
+  /// Call before Update(). True by default.
+  void SetPoseTrusted(bool trusted) { pose_trusted_ = trusted; }
+  /// After Update(): the hypothesis of the lowest cell that has read low for `hold` and is
+  /// explained by the other cells, but that the pose has not confirmed; 0 if none.
+  int unconfirmed() const { return unconfirmed_; }
+  /// After Update(): whether line k's cell (1-based) is reading low, or judged faulty.
+  bool reads_low(int line) const { return lines_.at(static_cast<std::size_t>(line - 1)).low; }
+  bool judged_faulty(int line) const {
+    return lines_.at(static_cast<std::size_t>(line - 1)).faulty;
+  }
+  int num_cells() const { return static_cast<int>(lines_.size()); }
 
  private:
   struct Line {
@@ -93,6 +115,8 @@ class Cells final : public Detector {
     double low_since = 0.0;
     Vec3 bias_before = Vec3::Zero();  // b0: the bias `window` samples before the low began
     bool confirmed = false;           // the pose agreed during this low spell
+    bool agreeing = false;            // the bias shows the lost load now
+    double agree_since = 0.0;
     bool faulty = false;
   };
 
@@ -110,6 +134,9 @@ class Cells final : public Detector {
   std::vector<Line> lines_;
   std::deque<Vec3> bias_history_;  // the last window + 1 biases
   int cell_faults_ = 0;
+  bool pose_trusted_ = true;
+  double trusted_since_ = -std::numeric_limits<double>::infinity();
+  int unconfirmed_ = 0;
   Verdict verdict_;
 };
 

@@ -75,6 +75,35 @@ struct TensionEvidence {
   Eigen::MatrixXd expected_if_parted;  ///< [N] lines x lines, or empty
 };
 
+/// A sensor a detector can judge faulty: the GNSS receiver, the gyro or a line's load cell.
+struct SensorId {
+  enum class Kind { kGnss, kGyro, kCell };
+  Kind kind = Kind::kCell;
+  int line = 0;  ///< kCell: the cell's line, 1-based
+  bool operator==(const SensorId&) const = default;
+  /// "GNSS", "gyro", "cell 3".
+  std::string Name() const;
+};
+
+/// Why a sensor is judged faulty.
+enum class SensorSymptom {
+  kDisagrees,  ///< it tells of a change the other sensors do not see
+  kFrozen,     ///< it repeats its reading bit for bit: it has stopped measuring
+  kJump,       ///< its reading stepped by more than the vessel can move, and stayed there
+  kNoisy,      ///< its scatter has grown well beyond its rated noise
+  kSilent,     ///< it has delivered no reading for a while
+};
+
+/// "disagrees", "frozen", "jump", "noisy", "silent".
+std::string_view SensorSymptomName(SensorSymptom symptom);
+
+/// A sensor judged faulty, and why.
+struct SensorFinding {
+  SensorId sensor;
+  SensorSymptom symptom = SensorSymptom::kDisagrees;
+  bool operator==(const SensorFinding&) const = default;
+};
+
 /// The evidence of every hypothesis at one sample; hypotheses[0] is "all intact".
 struct Evidence {
   double t = 0.0;
@@ -88,16 +117,9 @@ struct Evidence {
   std::optional<LoadEvidence> load;
   /// Set with `load` when the observation carries load-cell readings.
   std::optional<TensionEvidence> tensions;
-};
-
-/// A sensor a detector can judge faulty: the GNSS receiver, the gyro or a line's load cell.
-struct SensorId {
-  enum class Kind { kGnss, kGyro, kCell };
-  Kind kind = Kind::kCell;
-  int line = 0;  ///< kCell: the cell's line, 1-based
-  bool operator==(const SensorId&) const = default;
-  /// "GNSS", "gyro", "cell 3".
-  std::string Name() const;
+  /// The sensors the observers' own checks judge faulty now (detectors/sensor_monitor.h);
+  /// their readings are withheld, re-anchored or weighted less. Empty without the checks.
+  std::vector<SensorFinding> sensor_faults;
 };
 
 /// A detector's state after a sample.
@@ -109,7 +131,7 @@ struct Verdict {
   bool alarm = false;  ///< a failure is declared (by the detector's documented rule)
   /// The sensors the detector judges faulty now (their readings are not a line's failure);
   /// empty for a detector that does not judge its sensors.
-  std::vector<SensorId> faulty_sensors;
+  std::vector<SensorFinding> faulty_sensors;
 };
 
 /// What the detection's models give a detector at set-up, computed once per set-up and

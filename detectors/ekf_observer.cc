@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "detectors/observer_support.h"
+#include "detectors/sensor_monitor.h"
 
 namespace moorsim::detectors {
 namespace {
@@ -245,7 +246,7 @@ HypothesisEvidence HypothesisEkf::MeasurementUpdate(const Observation& observati
   Mat3 S;
   for (int j = 0; j < 3; ++j) S.col(j) = HP.col(kWave + 3 + j) + HP.col(kPose + j);
   S = 0.5 * (S + S.transpose()).eval();
-  S.diagonal() += options_.measurement_variance;
+  S.diagonal() += options_.measurement_variance.cwiseProduct(noise_scale_);
   evidence.covariance = S;
 
   int channel[3];
@@ -276,7 +277,7 @@ HypothesisEvidence HypothesisEkf::MeasurementUpdate(const Observation& observati
   for (int a = 0; a < m; ++a) {
     HP_v.row(a) = HP.row(channel[a]);
     e_v(a) = innovation(channel[a]);
-    R_v(a, a) = options_.measurement_variance(channel[a]);
+    R_v(a, a) = options_.measurement_variance(channel[a]) * noise_scale_(channel[a]);
     for (int b = 0; b < m; ++b) S_v(a, b) = S(channel[a], channel[b]);
   }
   const Eigen::LLT<Small> llt(S_v);
@@ -338,7 +339,12 @@ void Validate(const ObserverBankOptions& options) {
   if (!(std::isfinite(options.switch_rate) && options.switch_rate >= 0.0)) {
     internal::ThrowField("detection.switch_rate", options.switch_rate, "must be finite and >= 0");
   }
+  if (options.sensor_checks) Validate(*options.sensor_checks);
 }
+
+ObserverBank::~ObserverBank() = default;
+ObserverBank::ObserverBank(ObserverBank&&) noexcept = default;
+ObserverBank& ObserverBank::operator=(ObserverBank&&) noexcept = default;
 
 ObserverBank::ObserverBank(const HypothesisBank& bank, const LowFrequencyModel& model,
                            const EkfOptions& options, const ObserverBankOptions& bank_options)
@@ -375,6 +381,10 @@ ObserverBank::ObserverBank(const HypothesisBank& bank, const LowFrequencyModel& 
       }
     }
   }
+  if (bank_options.sensor_checks) {
+    monitor_ =
+        std::make_unique<SensorMonitor>(*bank_options.sensor_checks, options.measurement_variance);
+  }
   evidence_.hypotheses.resize(n);
   log_probability_.resize(n);
   probability_.resize(n);
@@ -389,7 +399,9 @@ ObserverBank::ObserverBank(const HypothesisBank& bank, const LowFrequencyModel& 
 void ObserverBank::Reset() {
   for (HypothesisEkf& filter : filters_) filter.Reset();
   if (nominal_) nominal_->Reset();
+  if (monitor_) monitor_->Reset();
   evidence_.t = 0.0;
+  evidence_.sensor_faults.clear();
   for (HypothesisEvidence& e : evidence_.hypotheses) e = HypothesisEvidence();
   evidence_.nominal.reset();
   evidence_.load.reset();
@@ -436,19 +448,27 @@ void ObserverBank::Mix(double dt) {
   for (int j = 0; j < n; ++j) filters_[j].SetEstimate(mixed_state_[j], mixed_covariance_[j]);
 }
 
-const Evidence& ObserverBank::Update(const Observation& observation) {
-  evidence_.t = observation.t;
+const Evidence& ObserverBank::Update(const Observation& raw) {
+  evidence_.t = raw.t;
   const int n = size();
   bool initialised = true;
   for (const HypothesisEkf& filter : filters_) initialised = initialised && filter.initialised();
   // Mix only on a valid step; a bad time is left to the filters to report.
-  const double dt = initialised ? observation.t - filters_[0].time() : 0.0;
-  const bool mixing =
-      options_.switch_rate > 0.0 && initialised && dt > 0.0 && std::isfinite(observation.t);
+  const double dt = initialised ? raw.t - filters_[0].time() : 0.0;
+  const bool mixing = options_.switch_rate > 0.0 && initialised && dt > 0.0 && std::isfinite(raw.t);
   if (mixing) {
     Mix(dt);
   } else {
     std::copy(probability_.begin(), probability_.end(), predicted_.begin());
+  }
+  // The sensor checks screen the sample against the intact filter's prediction; every
+  // filter then takes the screened sample, with the noise weights they set.
+  const Observation& observation =
+      monitor_ ? monitor_->Screen(raw, nominal_ ? *nominal_ : filters_[0]) : raw;
+  if (monitor_) {
+    for (HypothesisEkf& filter : filters_) filter.SetMeasurementNoiseScale(monitor_->noise_scale());
+    if (nominal_) nominal_->SetMeasurementNoiseScale(monitor_->noise_scale());
+    evidence_.sensor_faults = monitor_->findings();
   }
   if (nominal_) evidence_.nominal = nominal_->Update(observation);
   double best = -std::numeric_limits<double>::infinity();

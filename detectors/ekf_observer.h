@@ -77,6 +77,7 @@
 // (or jumps by more than max_interval), throws moorsim::InputError.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -89,6 +90,8 @@
 #include "detectors/observer_state.h"
 
 namespace moorsim::detectors {
+
+class SensorMonitor;
 
 struct EkfOptions {
   /// Wave model (TAPM thesis section 4.4; docs/design.md section 9): peak frequency
@@ -151,6 +154,10 @@ class HypothesisEkf : public ObserverStateLayout {
   /// predicted S, of which the valid block is what the log-likelihood used.
   HypothesisEvidence Update(const Observation& observation);
 
+  /// Multiplies R per channel from the next sample on (a sensor judged noisy; the observer
+  /// bank's sensor checks set it). Ones by default.
+  void SetMeasurementNoiseScale(const Vec3& scale) { noise_scale_ = scale; }
+
   bool initialised() const { return initialised_; }
   double time() const { return t_; }
   const State& state() const { return x_; }
@@ -192,7 +199,34 @@ class HypothesisEkf : public ObserverStateLayout {
   State x_ = State::Zero();
   Covariance P_ = Covariance::Zero();
   double nis_ = 0.0;
+  Vec3 noise_scale_ = Vec3::Ones();
 };
+
+/// The checks the observer bank makes on the sensors before its filters take a sample
+/// (detectors/sensor_monitor.h).
+struct SensorCheckOptions {
+  /// Samples of a bit-identical reading that make it frozen, and samples without a reading
+  /// that make it silent, >= 2.
+  int frozen_samples = 4;
+  /// Normalised innovation squared beyond which a sample is withheld (per sensor: 2 degrees
+  /// of freedom for the GNSS, 1 for the gyro), > 0. 25: about 5 standard deviations.
+  double gate = 25.0;
+  /// Consecutive withheld samples that agree that make a jump, >= 1.
+  int jump_samples = 3;
+  /// Normalised squared distance within which each of them must lie from their mean, > 0.
+  /// 9: 3 standard deviations.
+  double agree = 9.0;
+  /// [s] Averaging time of the innovations' recent variance, > 0.
+  double noise_time = 90.0;
+  /// [s] Averaging time of their usual variance, > noise_time; it is learned while the
+  /// sensor is not judged noisy, and the noisy check waits for a quarter of it.
+  double baseline_time = 600.0;
+  /// Recent over usual variance beyond which a sensor is noisy, > 1.
+  double noisy_ratio = 5.0;
+};
+
+/// Throws moorsim::InputError naming the field ("detection.sensor_checks.gate") and value.
+void Validate(const SensorCheckOptions& options);
 
 /// How the observer bank couples its filters.
 struct ObserverBankOptions {
@@ -209,6 +243,9 @@ struct ObserverBankOptions {
   /// wave-drift groups raise MLE false alarms, 0.03 lost the failure filters to the drift
   /// (misisolations and false alarms); 0.01 was the balance.
   double switch_rate = 0.01;
+  /// Checks on the sensors before the filters take a sample; unset: none (the papers'
+  /// observers take every delivered sample as it is).
+  std::optional<SensorCheckOptions> sensor_checks;
 };
 
 /// Throws moorsim::InputError naming the field ("detection.switch_rate") and the value.
@@ -244,6 +281,9 @@ class ObserverBank {
  public:
   ObserverBank(const HypothesisBank& bank, const LowFrequencyModel& model,
                const EkfOptions& options = {}, const ObserverBankOptions& bank_options = {});
+  ~ObserverBank();
+  ObserverBank(ObserverBank&&) noexcept;
+  ObserverBank& operator=(ObserverBank&&) noexcept;
 
   int size() const { return static_cast<int>(filters_.size()); }
   void Reset();
@@ -263,7 +303,8 @@ class ObserverBank {
 
   ObserverBankOptions options_;
   std::vector<HypothesisEkf> filters_;
-  std::optional<HypothesisEkf> nominal_;  // unmixed intact filter (mixing banks only)
+  std::optional<HypothesisEkf> nominal_;    // unmixed intact filter (mixing banks only)
+  std::unique_ptr<SensorMonitor> monitor_;  // options_.sensor_checks
   Evidence evidence_;
   std::vector<double> log_probability_;  // log mu
   std::vector<double> probability_;      // mu

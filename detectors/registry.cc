@@ -13,6 +13,7 @@
 #include "detectors/cells.h"
 #include "detectors/deficit.h"
 #include "detectors/dht.h"
+#include "detectors/fused.h"
 #include "detectors/glr.h"
 #include "detectors/mle.h"
 #include "detectors/plugin_detector.h"
@@ -49,24 +50,33 @@ constexpr ParameterRange kCount{1.0, 10000.0, false, false, true};  // [1, 10000
 constexpr ParameterRange kDelay{0.0, 10000.0, false, false, true};  // [0, 10000]
 constexpr ParameterRange kSwitch{0.0, 1.0, false, false, true};     // 0 or 1
 
-constexpr std::array<DetectorParameter, 8> kCellsParameters = {{
-    {"confirm", 1.0, "", kSwitch, "",
-     "1: the intact filter's bias must show the lost load before the alarm; 0: cells alone"},
-    {"confirm_floor", CellsOptions{}.confirm_floor, "", kNonNegative, "N",
-     "least bias shift toward the lost line that confirms"},
-    {"confirm_fraction", CellsOptions{}.confirm_fraction, "", kNonNegative, "",
-     "share of the horizontal load the cell says is lost that the bias must show"},
-    {"confirm_time", CellsOptions{}.confirm_time, "", kPositive, "s",
-     "how long a low cell waits for the pose before it is declared faulty"},
-    {"drop", CellsOptions{}.drop, "", kProbability, "",
-     "fraction of its expected reading a cell must lose to read low"},
-    {"fall_time", CellsOptions{}.fall_time, "", kNonNegative, "s",
-     "a low cell counts only if it read true this long before (a fall, not a drift; 0: off)"},
-    {"hold", CellsOptions{}.hold, "", kNonNegative, "s",
-     "time a cell must read low before the alarm"},
-    {"window", CellsOptions{}.window, "", kCount, "samples",
-     "samples in the moving mean of reading / expected"},
-}};
+// The cells test's parameters; the fused detector takes the same with its own confirm_time.
+constexpr std::array<DetectorParameter, 9> CellsParameters(double confirm_time) {
+  return {{
+      {"confirm", 1.0, "", kSwitch, "",
+       "1: the intact filter's bias must show the lost load before the alarm; 0: cells alone"},
+      {"confirm_floor", CellsOptions{}.confirm_floor, "", kNonNegative, "N",
+       "least bias shift toward the lost line that confirms"},
+      {"confirm_fraction", CellsOptions{}.confirm_fraction, "", kNonNegative, "",
+       "share of the horizontal load the cell says is lost that the bias must show"},
+      {"confirm_hold", CellsOptions{}.confirm_hold, "", kNonNegative, "s",
+       "how long the bias must keep showing the lost load before it confirms"},
+      {"confirm_time", confirm_time, "", kPositive, "s",
+       "how long a low cell waits for the pose before it is declared faulty"},
+      {"drop", CellsOptions{}.drop, "", kProbability, "",
+       "fraction of its expected reading a cell must lose to read low"},
+      {"fall_time", CellsOptions{}.fall_time, "", kNonNegative, "s",
+       "a low cell counts only if it read true this long before (a fall, not a drift; 0: off)"},
+      {"hold", CellsOptions{}.hold, "", kNonNegative, "s",
+       "time a cell must read low before the alarm"},
+      {"window", CellsOptions{}.window, "", kCount, "samples",
+       "samples in the moving mean of reading / expected"},
+  }};
+}
+constexpr std::array<DetectorParameter, 9> kCellsParameters =
+    CellsParameters(CellsOptions{}.confirm_time);
+constexpr std::array<DetectorParameter, 9> kFusedParameters =
+    CellsParameters(FusedOptions{}.cells.confirm_time);
 
 constexpr std::array<DetectorParameter, 20> kDeficitParameters = {{
     {"baseline_time", DeficitOptions{}.baseline_time, "", kPositive, "s",
@@ -151,17 +161,26 @@ constexpr std::array<DetectorParameter, 3> kMleParameters = {{
      "lead J_0 - J_k the failure hypothesis needs over the intact one for the alarm"},
 }};
 
-std::unique_ptr<Detector> MakeCells(const DetectorParameters& p) {
+CellsOptions ReadCellsOptions(const DetectorParameters& p) {
   CellsOptions options;
   options.confirm = p.Get("confirm") != 0.0;
   options.confirm_floor = p.Get("confirm_floor");
   options.confirm_fraction = p.Get("confirm_fraction");
   options.confirm_time = p.Get("confirm_time");
+  options.confirm_hold = p.Get("confirm_hold");
   options.drop = p.Get("drop");
   options.fall_time = p.Get("fall_time");
   options.hold = p.Get("hold");
   options.window = static_cast<int>(p.Get("window"));
-  return std::make_unique<Cells>(options);
+  return options;
+}
+
+std::unique_ptr<Detector> MakeCells(const DetectorParameters& p) {
+  return std::make_unique<Cells>(ReadCellsOptions(p));
+}
+
+std::unique_ptr<Detector> MakeFused(const DetectorParameters& p) {
+  return std::make_unique<Fused>(FusedOptions{.cells = ReadCellsOptions(p), .pose = {}});
 }
 
 std::unique_ptr<Detector> MakeDeficit(const DetectorParameters& p) {
@@ -246,7 +265,7 @@ double GlrStatistic(std::span<const double> score) {
 }
 
 // The registry, sorted by name.
-constexpr std::array<DetectorType, 5> kDetectors = {{
+constexpr std::array<DetectorType, 6> kDetectors = {{
     {"cells",
      MakeCells,
      kCellsParameters,
@@ -267,6 +286,13 @@ constexpr std::array<DetectorType, 5> kDetectors = {{
      {"largest posterior probability of a failure hypothesis, max_k>=1 h_k", kDhtThresholds,
       DhtStatistic},
      "probability"},
+    {"fused",
+     MakeFused,
+     kFusedParameters,
+     "load cells and the pose checking each other, with the sensors judged: a confirmed low "
+     "cell names its line; the force-deficit test speaks for a line whose cell cannot; "
+     "faulty sensors are named as such (parameters: the cells test's; confirm_time 60 s)",
+     {}},
     {"glr",
      MakeGlr,
      kGlrParameters,

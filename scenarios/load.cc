@@ -549,6 +549,11 @@ void ParseDetection(const Reader& r, Scenario& scenario) {
   r.Optional("pairs", d.pairs);
   r.Optional("measurement_variance", d.measurement_variance);
   d.switch_rate = r.Maybe<double>("switch_rate");
+  d.sensor_checks = r.Maybe<bool>("sensor_checks");
+  if (d.sensor_checks.value_or(false) && d.observer == "passive") {
+    r.Child("sensor_checks")
+        .Fail("the passive observers make no sensor checks (they need observer: ekf)");
+  }
   if (const auto m = r.Find("model")) {
     m->CheckKeys();
     d.model.wave_motion_std = m->Maybe<Vec3>("wave_motion_std");
@@ -594,6 +599,11 @@ void ParseDocument(const Reader& root, Scenario& scenario) {
     root.Attempt([&] {
       if (std::optional<Reader> value = root.Find(section.key)) section.parse(*value, scenario);
     });
+  }
+  // A vessel with load cells and no `detectors:` runs the detector made for them.
+  if (!root.Find("detectors") && scenario.vessel && scenario.sensors.tension_cells) {
+    scenario.detectors.push_back(
+        {.type = "fused", .label = "fused", .parameters = {}, .plugin = {}});
   }
 }
 

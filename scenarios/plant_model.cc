@@ -263,6 +263,11 @@ simulation::DetectionSetup ToDetectionSetup(const Scenario& scenario) {
   ekf.force_noise = d.model.force_noise.value_or(ekf.force_noise);
   ekf.mooring_damping_ratio = d.model.mooring_damping_ratio.value_or(ekf.mooring_damping_ratio);
   setup.observer_bank.switch_rate = d.switch_rate.value_or(setup.observer_bank.switch_rate);
+  const bool fused = std::any_of(scenario.detectors.begin(), scenario.detectors.end(),
+                                 [](const DetectorEntry& e) { return e.type == "fused"; });
+  if (d.sensor_checks.value_or(fused)) {
+    setup.observer_bank.sensor_checks = detectors::SensorCheckOptions{};
+  }
   setup.identity = DetectionIdentity(scenario);
   return setup;
 }

@@ -301,6 +301,10 @@ struct DetectionSpec {
   /// Rate [1/s] at which the observer bank lets the truth switch hypothesis (IMM mixing,
   /// detectors/ekf_observer.h); 0 = independent filters as in the papers.
   std::optional<double> switch_rate;
+  /// Whether the observers check the sensors before they take a sample (frozen readings,
+  /// jumps, noisy spells; detectors/sensor_monitor.h). Unset: on when a fused detector is
+  /// listed, off otherwise (the papers' observers take every sample as delivered).
+  std::optional<bool> sensor_checks;
   /// The observers' disturbance model (`detection.model`, detectors::EkfOptions); unset
   /// fields keep the detectors library's defaults. Per DOF [surge, sway, yaw].
   struct Model {

@@ -296,6 +296,7 @@ nlohmann::json DetectorsSummary(const scenarios::Scenario& scenario, const Detec
     for (const detectors::SensorFaultSpell& spell : d.sensor_faults.spells()) {
       sensor_faults.push_back(
           {{"sensor", spell.sensor.Name()},
+           {"fault", detectors::SensorSymptomName(spell.symptom)},
            {"since", spell.since},
            {"until", spell.until ? nlohmann::json(*spell.until) : nlohmann::json(nullptr)}});
     }

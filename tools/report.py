@@ -60,8 +60,8 @@ VERDICT_COLUMNS = {"isolation_delay": float, "final_line": int,
 # them and the report leaves the section out). A hull that left its setpoint heading met the
 # waves from another side than the campaign set.
 STATION_COLUMNS = {"heading_error_max_deg": float, "thrust_saturated_share": float}
-# The sensors a detector judged faulty, "cell 6 from 482 s" ("" for none); a campaign
-# written before detectors reported them has no such column and counts none.
+# The sensors a detector judged faulty, "cell 6 disagrees from 482 s; GNSS jump from 930 s"
+# ("" for none); a campaign written before detectors reported them has no such column.
 SENSOR_COLUMN = "sensor_faults"
 HEADING_LOST_DEG = 10.0  # as `moorsim batch` warns
 

@@ -186,8 +186,9 @@ TEST(PluginCommand, WithPluginOnTheCommandLineItsTypesAreNamedAloneListedAndReco
   r = RunCli({"batch", campaign.string(), "--out", (dir.path() / "none").string(), "--quiet"},
              dir.path());
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("unknown detector 'bank_cusum' (known: cells, deficit, dht, glr, mle)"),
-            std::string::npos)
+  EXPECT_NE(
+      r.err.find("unknown detector 'bank_cusum' (known: cells, deficit, dht, fused, glr, mle)"),
+      std::string::npos)
       << r.err;
 }
 

@@ -301,7 +301,7 @@ TEST(ValidateDetectors, BadConfigurationIsOneLineWithExitCode2) {
   };
   const Case cases[] = {
       {"{type: dhx}",
-       "detectors[1].type: unknown detector 'dhx' (known: cells, deficit, dht, glr, mle)"},
+       "detectors[1].type: unknown detector 'dhx' (known: cells, deficit, dht, fused, glr, mle)"},
       {"{type: dht, floor: 0}", "detectors[1].floor: 0 must be in (0, 1)"},
       {"{type: dht, floor: 1}", "detectors[1].floor: 1 must be in (0, 1)"},
       {"{type: mle, forgetting_factor: 1.5}",

@@ -86,22 +86,30 @@ TEST(AlarmHistory, TimeMustNotGoBack) {
 TEST(SensorFaultHistory, EachSpellOfEachSensorWithItsStartAndEnd) {
   SensorFaultHistory h;
   const SensorId cell3{.kind = SensorId::Kind::kCell, .line = 3};
-  const SensorId gnss{.kind = SensorId::Kind::kGnss};
+  const SensorFinding cell3_low{.sensor = cell3, .symptom = SensorSymptom::kDisagrees};
+  const SensorFinding gnss_jump{.sensor = {.kind = SensorId::Kind::kGnss},
+                                .symptom = SensorSymptom::kJump};
+  const SensorFinding gnss_noisy{.sensor = {.kind = SensorId::Kind::kGnss},
+                                 .symptom = SensorSymptom::kNoisy};
   h.Update(1.0, {});
-  h.Update(2.0, {cell3});
-  h.Update(3.0, {cell3, gnss});
-  h.Update(4.0, {gnss});
-  h.Update(5.0, {cell3, gnss});
-  ASSERT_EQ(h.spells().size(), 3u);
+  h.Update(2.0, {cell3_low});
+  h.Update(3.0, {cell3_low, gnss_jump});
+  h.Update(4.0, {gnss_jump});
+  h.Update(5.0, {cell3_low, gnss_jump});
+  h.Update(6.0, {cell3_low, gnss_noisy});  // the same sensor, another symptom: a new spell
+  ASSERT_EQ(h.spells().size(), 4u);
   EXPECT_EQ(h.spells()[0].sensor.Name(), "cell 3");
   EXPECT_EQ(h.spells()[0].since, 2.0);
   EXPECT_EQ(h.spells()[0].until, 4.0);
   EXPECT_EQ(h.spells()[1].sensor.Name(), "GNSS");
+  EXPECT_EQ(SensorSymptomName(h.spells()[1].symptom), "jump");
   EXPECT_EQ(h.spells()[1].since, 3.0);
-  EXPECT_FALSE(h.spells()[1].until);
+  EXPECT_EQ(h.spells()[1].until, 6.0);
   EXPECT_EQ(h.spells()[2].sensor, cell3);
   EXPECT_EQ(h.spells()[2].since, 5.0);
   EXPECT_FALSE(h.spells()[2].until);
+  EXPECT_EQ(SensorSymptomName(h.spells()[3].symptom), "noisy");
+  EXPECT_EQ(h.spells()[3].since, 6.0);
 }
 
 }  // namespace

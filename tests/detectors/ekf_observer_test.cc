@@ -201,7 +201,9 @@ std::vector<double> SummedLogLikelihood(int truth_h, std::uint64_t seed, int sam
   const LowFrequencyModel model = SeedLowFrequencyModel();
   const EkfOptions options;
   OwnModelSimulator truth(bank.mooring(truth_h), model, options, seed, Vec3::Zero());
-  ObserverBank observers(bank, model, options, ObserverBankOptions{0.0});  // independent
+  ObserverBank observers(
+      bank, model, options,
+      ObserverBankOptions{.switch_rate = 0.0, .sensor_checks = {}});  // independent
   std::vector<double> sum(bank.size(), 0.0);
   for (int k = 0; k <= samples; ++k) {
     if (k > 0) truth.Advance(1.0, Vec3::Zero());
@@ -371,7 +373,8 @@ TEST(ObserverBankTest, UnmixedProbabilitiesAreTheBayesianPosterior) {
   const HypothesisBank& bank = SeedBank();
   const LowFrequencyModel model = SeedLowFrequencyModel();
   const EkfOptions options;
-  ObserverBank observers(bank, model, options, ObserverBankOptions{0.0});
+  ObserverBank observers(bank, model, options,
+                         ObserverBankOptions{.switch_rate = 0.0, .sensor_checks = {}});
   OwnModelSimulator truth(bank.mooring(7), model, options, 31, Vec3::Zero());
   std::vector<double> sum(bank.size(), 0.0);
   for (int k = 0; k <= 40; ++k) {
@@ -400,7 +403,8 @@ BreakRun RunBreak(int line, double switch_rate, std::uint64_t seed) {
   const HypothesisBank& bank = SeedBank();
   const LowFrequencyModel model = SeedLowFrequencyModel();
   const EkfOptions options;
-  ObserverBank observers(bank, model, options, ObserverBankOptions{switch_rate});
+  ObserverBank observers(bank, model, options,
+                         ObserverBankOptions{.switch_rate = switch_rate, .sensor_checks = {}});
   OwnModelSimulator truth(bank.mooring(0), model, options, seed, Vec3::Zero());
   BreakRun run;
   int nominal_samples = 0;
@@ -458,7 +462,8 @@ TEST(ObserverBankTest, LoadEvidenceIsTheIntactBiasAndTheFailedLinesLoad) {
   const HypothesisBank& bank = SeedBank();
   const LowFrequencyModel model = SeedLowFrequencyModel();
   const EkfOptions options;
-  ObserverBank observers(bank, model, options, ObserverBankOptions{0.0});
+  ObserverBank observers(bank, model, options,
+                         ObserverBankOptions{.switch_rate = 0.0, .sensor_checks = {}});
   OwnModelSimulator truth(bank.mooring(0), model, options, 17, Vec3(3.0, -2.0, 0.02));
   for (int k = 0; k <= 30; ++k) {
     if (k > 0) truth.Advance(1.0, Vec3::Zero());
@@ -487,7 +492,8 @@ TEST(ObserverBankTest, AfterABreakTheIntactBiasSettlesByMinusTheLinesLoad) {
   const LowFrequencyModel model = SeedLowFrequencyModel();
   const EkfOptions options;
   for (const int line : {6, 3}) {
-    ObserverBank observers(bank, model, options, ObserverBankOptions{1e-2});
+    ObserverBank observers(bank, model, options,
+                           ObserverBankOptions{.switch_rate = 1e-2, .sensor_checks = {}});
     OwnModelSimulator truth(bank.mooring(0), model, options, 60 + line, Vec3::Zero());
     Eigen::Vector2d before = Eigen::Vector2d::Zero();
     Eigen::Vector2d after = Eigen::Vector2d::Zero();
@@ -510,7 +516,7 @@ TEST(ObserverBankTest, AfterABreakTheIntactBiasSettlesByMinusTheLinesLoad) {
 TEST(ObserverBankTest, BadSwitchRateNamesTheField) {
   try {
     ObserverBank observers(SeedBank(), SeedLowFrequencyModel(), EkfOptions{},
-                           ObserverBankOptions{-1.0});
+                           ObserverBankOptions{.switch_rate = -1.0, .sensor_checks = {}});
     FAIL() << "no exception";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("detection.switch_rate = -1"), std::string::npos)

@@ -35,7 +35,7 @@ std::string MessageOf(const DetectorSpec& spec) {
 
 TEST(RegistryTest, TypesAreSortedAndEveryOneBuildsWithDefaults) {
   EXPECT_EQ(DetectorTypes(),
-            (std::vector<std::string_view>{"cells", "deficit", "dht", "glr", "mle"}));
+            (std::vector<std::string_view>{"cells", "deficit", "dht", "fused", "glr", "mle"}));
   for (const std::string_view type : DetectorTypes()) {
     const std::unique_ptr<Detector> detector = MakeDetector(Spec(std::string(type)), "d");
     ASSERT_NE(detector, nullptr);
@@ -85,8 +85,9 @@ TEST(RegistryTest, GivenParametersReachTheDetector) {
 }
 
 TEST(RegistryTest, UnknownTypeNamesTheKnownOnes) {
-  EXPECT_EQ(MessageOf(Spec("glrx")),
-            "detectors[2].type: unknown detector 'glrx' (known: cells, deficit, dht, glr, mle)");
+  EXPECT_EQ(
+      MessageOf(Spec("glrx")),
+      "detectors[2].type: unknown detector 'glrx' (known: cells, deficit, dht, fused, glr, mle)");
 }
 
 TEST(RegistryTest, UnknownParameterNamesTheKnownOnes) {

@@ -118,6 +118,7 @@ failure: {line: 2, time: 300, mode: node, node: 10}
 simulation: {duration: 1000, output_rate_hz: 2, seed: 7}
 detection:
   observer: ekf
+  sensor_checks: false
   pairs: false
   measurement_variance: 0.005
   switch_rate: 0.01
@@ -710,6 +711,10 @@ inline const BadInput kValidationErrors[] = {
      "failure.mode: unknown failure mode 'middle' (known: anchor, fairlead, node)"},
     {"FailureNodeOutOfRange", "failure:", "node: 10", "node: 60", "node: ^60",
      "failure.node: 60 must be in 1..39"},
+    {"SensorChecksWithPassiveObservers", "detection:", "observer: ekf\n  sensor_checks: false",
+     "observer: passive\n  sensor_checks: true", "sensor_checks: ^true",
+     "detection.sensor_checks: the passive observers make no sensor checks (they need "
+     "observer: ekf)"},
     {"DetectionSwitchRateNegative", "detection:", "switch_rate: 0.01", "switch_rate: -1",
      "switch_rate: ^-1", "detection.switch_rate: -1 1/s must be >= 0"},
     {"TurretUnknownBearing", "turret:", "bearing: friction", "bearing: sliding",

@@ -111,7 +111,38 @@ TEST(SensorFaults, ACellJudgedFaultyIsReportedAsASensorNotALine) {
   // summary.json says the same.
   const nlohmann::json summary = DetectorsSummary(scenario, *sim.detection(), 700.0);
   EXPECT_EQ(summary["cells"]["sensor_faults"][0]["sensor"], "cell 6");
+  EXPECT_EQ(summary["cells"]["sensor_faults"][0]["fault"], "disagrees");
   EXPECT_EQ(summary["cells"]["sensor_faults"][0]["since"].get<double>(), spell.since);
+}
+
+TEST(SensorFaults, TheFusedDetectorNamesAGnssJumpAndNoLine) {
+  // The receiver jumps 2.5 m north at 300 s on an intact mooring. Without the sensor checks
+  // the force-deficit test reads the jump as a lost line (scenarios/campaigns/
+  // sensor_faults_baseline.yaml: 5 of 8 runs); the fused detector, which turns the checks
+  // on, names the jump within seconds and no line.
+  const auto run = [](const std::string& detectors) {
+    scenarios::Scenario scenario = scenarios::LoadScenario(
+        MOORSIM_SOURCE_DIR "/scenarios/library/thesis_no_failure_current.yaml",
+        {"sensors.tension_cells={rate_hz: 1, noise: {std_dev: 1.0e4}}",
+         "sensors.gnss.faults=[{mode: step, time: 300, offset: 2.5}]", "detectors=" + detectors,
+         "simulation.duration=600"});
+    Simulation sim(scenario, 3);
+    sim.AdvanceTo(600.0);
+    return DetectorsSummary(scenario, *sim.detection(), 600.0);
+  };
+  const nlohmann::json fused = run("[{type: fused}, {type: deficit, label: pose}]");
+  EXPECT_EQ(fused["fused"]["false_alarms"], 0);
+  EXPECT_EQ(fused["pose"]["false_alarms"], 0);  // the same checks serve every detector
+  ASSERT_EQ(fused["fused"]["sensor_faults"].size(), 1u);
+  const nlohmann::json& spell = fused["fused"]["sensor_faults"][0];
+  EXPECT_EQ(spell["sensor"], "GNSS");
+  EXPECT_EQ(spell["fault"], "jump");
+  EXPECT_GE(spell["since"].get<double>(), 300.0);
+  EXPECT_LE(spell["since"].get<double>(), 303.0);
+  EXPECT_TRUE(spell["until"].is_null());
+  // Without the checks (no fused detector listed) nothing judges the receiver.
+  const nlohmann::json plain = run("[{type: deficit, label: pose}]");
+  EXPECT_TRUE(plain["pose"]["sensor_faults"].empty());
 }
 
 }  // namespace

@@ -1,0 +1,68 @@
+// Load cells and the pose together, each checking the other, and the sensors judged as well
+// as the lines: the detector to run where the vessel has fairlead load cells.
+//
+// Three sources of evidence, each with its own way of lying:
+//  - the cells (detectors/cells.h) tell at once which line lost its load, but a cell that
+//    dies, sticks or drifts tells the same of a line that still holds;
+//  - the pose, through the force-deficit test (detectors/deficit.h), feels the lost load
+//    whatever the cells read, but slower, and a position reference that jumps, freezes or
+//    grows noisy moves it as a lost line would;
+//  - the observers' sensor checks (detectors/sensor_monitor.h, Evidence::sensor_faults)
+//    judge the GNSS, the gyro and frozen cells from their own readings.
+//
+// The verdict, at every sample:
+//  1. A cell that reads low and that the pose confirms (the cells test's rule) names its
+//     line: the cells for speed, the pose to confirm.
+//  2. While a pose sensor is judged faulty the pose confirms nothing: a low cell that the
+//     other cells explain names its line after the cells' hold, and no cell is declared
+//     faulty for want of the pose's confirmation.
+//  3. The force-deficit test names a line only where that line's cell cannot speak: no cells
+//     fitted, the cell judged faulty (it read low while the vessel felt nothing, or it is
+//     frozen), or no reading from it. Where the line's cell reads true, the cell outweighs
+//     the pose: a pose that says otherwise is a position reference in error.
+//  4. A named line stays named while its cell reads low, or, named by the pose, while the
+//     force-deficit alarm stands on it.
+// The sensors it judges faulty are the sensor checks' and the cells test's; a sensor judged
+// faulty is reported as such, never as a parted line.
+#pragma once
+
+#include <string_view>
+
+#include "detectors/cells.h"
+#include "detectors/deficit.h"
+#include "detectors/detector.h"
+
+namespace moorsim::detectors {
+
+struct FusedOptions {
+  /// The cells test's options, but a low cell waits only 60 s for the pose: in a seaway the
+  /// intact filter's bias wanders by the confirmation's 1.5 MN within minutes, and the
+  /// shorter wait gives a faulty cell fewer chances of a false confirmation. A real
+  /// parting shows in the bias within a minute; a line whose cell was judged faulty is
+  /// then the pose's to name.
+  CellsOptions cells{.confirm_time = 60.0};
+  DeficitOptions pose;
+};
+
+class Fused final : public Detector {
+ public:
+  explicit Fused(const FusedOptions& options = {});
+  std::string_view type() const override { return "fused"; }
+  bool NeedsLoadEvidence() const override { return true; }
+  void Reset(int hypotheses) override;
+  Verdict Update(const Evidence& evidence) override;
+
+ private:
+  // Whether line k's cell (1-based) can speak for it: fitted, read, neither frozen nor
+  // judged faulty.
+  bool CellSpeaks(const Evidence& evidence, int line) const;
+
+  Cells cells_;
+  Deficit pose_;
+  int hypotheses_ = 0;
+  int named_ = 0;  // the line named, 0 none
+  bool named_by_pose_ = false;
+  Verdict verdict_;
+};
+
+}  // namespace moorsim::detectors

@@ -1,0 +1,242 @@
+#include "detectors/sensor_monitor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace moorsim::detectors {
+
+namespace {
+
+// Samples after a gap in a channel whose innovations teach nothing of its noise.
+constexpr int kAfterGap = 30;
+
+void Refuse(const char* field, double value, const char* rule) {
+  std::ostringstream out;
+  out << "detection.sensor_checks." << field << ": " << value << " " << rule;
+  throw InputError(out.str());
+}
+
+}  // namespace
+
+void Validate(const SensorCheckOptions& options) {
+  if (options.frozen_samples < 2) {
+    Refuse("frozen_samples", options.frozen_samples, "must be >= 2");
+  }
+  if (!(std::isfinite(options.gate) && options.gate > 0.0)) {
+    Refuse("gate", options.gate, "must be finite and > 0");
+  }
+  if (options.jump_samples < 1) Refuse("jump_samples", options.jump_samples, "must be >= 1");
+  if (!(std::isfinite(options.agree) && options.agree > 0.0)) {
+    Refuse("agree", options.agree, "must be finite and > 0");
+  }
+  if (!(std::isfinite(options.noise_time) && options.noise_time > 0.0)) {
+    Refuse("noise_time", options.noise_time, "must be finite and > 0");
+  }
+  if (!(std::isfinite(options.baseline_time) && options.baseline_time > options.noise_time)) {
+    Refuse("baseline_time", options.baseline_time, "must be finite and > noise_time");
+  }
+  if (!(std::isfinite(options.noisy_ratio) && options.noisy_ratio > 1.0)) {
+    Refuse("noisy_ratio", options.noisy_ratio, "must be finite and > 1");
+  }
+}
+
+SensorMonitor::SensorMonitor(const SensorCheckOptions& options, const Vec3& rated_variance)
+    : options_(options), rated_(rated_variance) {
+  Validate(options);
+  sensors_ = {{.id = {.kind = SensorId::Kind::kGnss}, .first = 0, .count = 2, .pending = {}},
+              {.id = {.kind = SensorId::Kind::kGyro}, .first = 2, .count = 1, .pending = {}}};
+  for (PoseSensor& s : sensors_) s.pending.reserve(static_cast<std::size_t>(options.jump_samples));
+  Reset();
+}
+
+void SensorMonitor::Reset() {
+  channels_.assign(3, Channel{});
+  for (PoseSensor& s : sensors_) {
+    s.pending.clear();
+    s.before.setZero();
+    s.before_in_gate = false;
+    s.noisy = false;
+  }
+  cells_.clear();
+  noise_scale_ = Vec3::Ones();
+  findings_.clear();
+  started_ = false;
+}
+
+bool SensorMonitor::Frozen(Channel& channel, double reading) const {
+  if (channel.seen && reading == channel.last) {
+    ++channel.repeats;
+  } else {
+    channel.repeats = 0;
+  }
+  channel.seen = true;
+  channel.last = reading;
+  return channel.repeats + 1 >= options_.frozen_samples;
+}
+
+double SensorMonitor::GateVariance(int i, const Mat3& S) const {
+  const Channel& c = channels_[static_cast<std::size_t>(i)];
+  return c.learned > 0.0 ? std::max(S(i, i), c.usual) : S(i, i);
+}
+
+void SensorMonitor::LearnNoise(int i, double innovation, double gate_variance, double dt) {
+  Channel& c = channels_[static_cast<std::size_t>(i)];
+  // Just after a gap (a dropout, a frozen spell) the innovations carry the motion the
+  // filter could not follow: no evidence of the noise.
+  if (c.since_gap < kAfterGap) return;
+  const double square = std::min(innovation * innovation, options_.gate * gate_variance);
+  // Exponential means that start as plain means (the first samples weigh equally). The
+  // usual level learns over its first quarter, then only while the recent one is near it: a
+  // sensor turning noisy must not teach it.
+  ++c.samples;
+  const double recent =
+      std::max(1.0 / static_cast<double>(c.samples), 1.0 - std::exp(-dt / options_.noise_time));
+  c.recent += recent * (square - c.recent);
+  const PoseSensor& sensor = sensors_[i < 2 ? 0 : 1];
+  const bool warm = c.learned >= options_.baseline_time / 4.0;
+  if (!sensor.noisy && (!warm || c.recent <= c.usual * options_.noisy_ratio / 2.0)) {
+    ++c.usual_samples;
+    const double usual = std::max(1.0 / static_cast<double>(c.usual_samples),
+                                  1.0 - std::exp(-dt / options_.baseline_time));
+    c.usual += usual * (square - c.usual);
+    c.learned += dt;
+  }
+}
+
+void SensorMonitor::CheckPoseSensor(PoseSensor& sensor, const HypothesisEvidence& predicted,
+                                    double dt) {
+  const int a = sensor.first, n = sensor.count;
+  bool any = false;
+  for (int i = a; i < a + n; ++i) any = any || screened_.valid[i];
+  if (!any || predicted.dimension == 0) return;
+  // The sensor's valid channels: their innovations and the variances they are judged by.
+  Eigen::Vector2d e = Eigen::Vector2d::Zero();
+  Eigen::Vector2d variance = Eigen::Vector2d::Ones();
+  for (int r = 0; r < n; ++r) {
+    if (!screened_.valid[a + r]) continue;
+    e(r) = predicted.innovation(a + r);
+    variance(r) = GateVariance(a + r, predicted.covariance);
+  }
+  const auto nis = [&](const Eigen::Vector2d& v) {
+    return v.cwiseAbs2().cwiseQuotient(variance).sum();
+  };
+  const auto learn = [&](const Eigen::Vector2d& v) {
+    for (int r = 0; r < n; ++r) {
+      if (screened_.valid[a + r]) {
+        LearnNoise(a + r, v(r), variance(r), dt);
+      }
+    }
+  };
+  if (nis(e) <= options_.gate) {
+    for (const Eigen::Vector2d& outlier : sensor.pending) learn(outlier);
+    sensor.pending.clear();
+    learn(e);
+    sensor.before = e;
+    sensor.before_in_gate = true;
+    return;
+  }
+  // Withheld, until a run of them is long enough to judge.
+  for (int i = a; i < a + n; ++i) screened_.valid[i] = false;
+  sensor.pending.push_back(e);
+  if (static_cast<int>(sensor.pending.size()) < options_.jump_samples) return;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2d& p : sensor.pending) mean += p;
+  mean /= static_cast<double>(sensor.pending.size());
+  // A step: from a sample the filter predicted well, by more than the gate, to readings
+  // that then stay put (each near their mean, and no trend from the first to the last).
+  bool agree = sensor.before_in_gate &&
+               nis(sensor.pending.front() - sensor.before) > options_.gate &&
+               nis(sensor.pending.back() - sensor.pending.front()) <= options_.agree;
+  for (const Eigen::Vector2d& p : sensor.pending) agree = agree && nis(p - mean) <= options_.agree;
+  if (agree) {
+    for (int r = 0; r < n; ++r) channels_[static_cast<std::size_t>(a + r)].offset += mean(r);
+    sensor.pending.clear();
+    sensor.before = Eigen::Vector2d::Zero();
+    sensor.before_in_gate = false;
+    return;
+  }
+  // As many withheld samples as a jump takes, and not a jump: the vessel moves in a way the
+  // filter did not predict (a line parting, a gust). The filter must see it.
+  for (int i = a; i < a + n; ++i) screened_.valid[i] = observation_valid_[i];
+  sensor.pending.clear();
+  sensor.before = e;
+  sensor.before_in_gate = false;
+}
+
+const Observation& SensorMonitor::Screen(const Observation& observation,
+                                         const HypothesisEkf& intact) {
+  screened_ = observation;
+  const double dt = started_ ? observation.t - t_ : 0.0;
+  t_ = observation.t;
+  started_ = true;
+  findings_.clear();
+  // Frozen channels, then the offsets of earlier jumps.
+  bool frozen[3] = {false, false, false};
+  for (int i = 0; i < 3; ++i) {
+    Channel& c = channels_[static_cast<std::size_t>(i)];
+    c.missing = observation.valid[i] ? 0 : c.missing + 1;
+    c.since_gap = observation.valid[i] ? c.since_gap + 1 : 0;
+    if (!observation.valid[i]) continue;
+    frozen[i] = Frozen(c, observation.pose(i));
+    if (frozen[i]) {
+      screened_.valid[i] = false;
+      c.since_gap = 0;
+    }
+    screened_.pose(i) -= c.offset;
+  }
+  observation_valid_ = screened_.valid;
+  if (observation.tensions) {
+    const VecX& readings = *observation.tensions;
+    cells_.resize(static_cast<std::size_t>(readings.size()));
+    for (Eigen::Index k = 0; k < readings.size(); ++k) {
+      Cell& c = cells_[static_cast<std::size_t>(k)];
+      c.repeats = c.seen && readings(k) == c.last ? c.repeats + 1 : 0;
+      c.seen = true;
+      c.last = readings(k);
+      if (c.repeats + 1 >= options_.frozen_samples) {
+        (*screened_.tensions)(k) = std::numeric_limits<double>::quiet_NaN();
+        findings_.push_back({.sensor = {.kind = SensorId::Kind::kCell, .line = int(k) + 1},
+                             .symptom = SensorSymptom::kFrozen});
+      }
+    }
+  }
+  // The intact model's prediction of this sample.
+  if (intact.initialised() && dt > 0.0) {
+    if (probe_) {
+      *probe_ = intact;
+    } else {
+      probe_.emplace(intact);
+    }
+    const HypothesisEvidence predicted = probe_->Update(screened_);
+    for (PoseSensor& s : sensors_) CheckPoseSensor(s, predicted, dt);
+  }
+  // The verdict on each pose sensor, and the weight the observers give it.
+  for (PoseSensor& s : sensors_) {
+    bool is_frozen = false, jumped = false, silent = true;
+    double ratio = 1.0;
+    for (int i = s.first; i < s.first + s.count; ++i) {
+      const Channel& c = channels_[static_cast<std::size_t>(i)];
+      is_frozen = is_frozen || frozen[i];
+      silent = silent && c.missing >= options_.frozen_samples;
+      jumped = jumped || c.offset * c.offset > options_.gate * std::max(rated_(i), c.usual);
+      if (c.learned >= options_.baseline_time / 4.0 && c.usual > 0.0) {
+        ratio = std::max(ratio, c.recent / c.usual);
+      }
+    }
+    s.noisy = s.noisy ? ratio > options_.noisy_ratio / 2.0 : ratio > options_.noisy_ratio;
+    for (int i = s.first; i < s.first + s.count; ++i) {
+      const Channel& c = channels_[static_cast<std::size_t>(i)];
+      noise_scale_(i) = s.noisy ? 1.0 + std::max(0.0, c.recent - c.usual) / rated_(i) : 1.0;
+    }
+    if (is_frozen) findings_.push_back({.sensor = s.id, .symptom = SensorSymptom::kFrozen});
+    if (silent) findings_.push_back({.sensor = s.id, .symptom = SensorSymptom::kSilent});
+    if (jumped) findings_.push_back({.sensor = s.id, .symptom = SensorSymptom::kJump});
+    if (s.noisy) findings_.push_back({.sensor = s.id, .symptom = SensorSymptom::kNoisy});
+  }
+  return screened_;
+}
+
+}  // namespace moorsim::detectors

@@ -1,0 +1,230 @@
+// The fused detector (detectors/fused.h) on synthetic evidence: four lines whose loads of
+// 4.5 MN point at their anchors 90 degrees apart, a cell on each reading 6 MN as the intact
+// model expects, and an intact filter's bias with a slowly varying disturbance (0.3 MN, 60 s)
+// that a parted line shifts by minus its load (with a 10 s lag). Each rule of the file
+// comment is checked where it decides: a cell the pose confirms names its line as the cells
+// test does; while a pose sensor is judged faulty a low cell decides alone; a dead cell the
+// vessel did not feel is a faulty cell, not a line; where a line's cell is frozen the pose
+// speaks for it; where a line's cell reads true the pose's claim (a position reference in
+// error) names nothing.
+#include "detectors/fused.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "core/random.h"
+
+namespace moorsim::detectors {
+namespace {
+
+constexpr int kLines = 4;
+constexpr double kExpected = 6.0e6;  // [N] every cell's intact reading
+
+Vec3 LineLoad(int line) {
+  const double angle = (line - 1) * M_PI / 2;
+  return Vec3(4.5e6 * std::cos(angle), 4.5e6 * std::sin(angle), 0.0);
+}
+
+// What happens to the plant and its sensors in a test.
+struct Story {
+  int parted = 0;  // the line that parts, at `part_time`
+  double part_time = std::numeric_limits<double>::infinity();
+  Vec3 bias_error = Vec3::Zero();  // added to the bias from `error_time` (a lying pose)
+  double error_time = std::numeric_limits<double>::infinity();
+  std::function<void(double, VecX&)> cells = [](double, VecX&) {};  // cell faults
+  std::function<std::vector<SensorFinding>(double)> findings = [](double) {
+    return std::vector<SensorFinding>{};
+  };
+};
+
+class Plant {
+ public:
+  explicit Plant(Story story)
+      : story_(std::move(story)),
+        x_(RandomStream::Derive(11, "fused.x")),
+        y_(RandomStream::Derive(11, "fused.y")) {
+    evidence_.hypotheses.resize(kLines + 1);
+    evidence_.load.emplace();
+    evidence_.load->line_load.push_back(Vec3::Zero());
+    for (int k = 1; k <= kLines; ++k) evidence_.load->line_load.push_back(LineLoad(k));
+    evidence_.tensions.emplace();
+    evidence_.tensions->expected = VecX::Constant(kLines, kExpected);
+  }
+  const Evidence& Sample(double t) {
+    const double decay = std::exp(-1.0 / 60.0);
+    disturbance_ = decay * disturbance_ +
+                   3e5 * std::sqrt(1 - decay * decay) * Vec3(x_.Normal(), y_.Normal(), 0.0);
+    const Vec3 lost = t >= story_.part_time ? LineLoad(story_.parted) : Vec3::Zero();
+    lag_ += (lost - lag_) * (1.0 - std::exp(-1.0 / 10.0));
+    evidence_.t = t;
+    evidence_.load->bias =
+        disturbance_ - lag_ + (t >= story_.error_time ? story_.bias_error : Vec3::Zero());
+    VecX cells = VecX::Constant(kLines, kExpected);
+    if (t >= story_.part_time) cells(story_.parted - 1) = 0.0;
+    story_.cells(t, cells);
+    evidence_.tensions->measured = cells;
+    evidence_.sensor_faults = story_.findings(t);
+    return evidence_;
+  }
+
+ private:
+  Story story_;
+  RandomStream x_, y_;
+  Vec3 disturbance_ = Vec3::Zero(), lag_ = Vec3::Zero();
+  Evidence evidence_;
+};
+
+struct Outcome {
+  std::optional<double> alarm;  // the first alarm
+  int hypothesis = 0;           // named at the first alarm
+  Verdict last;
+};
+
+Outcome RunStory(Detector& detector, const Story& story, double seconds) {
+  detector.Reset(kLines + 1);
+  Plant plant(story);
+  Outcome out;
+  for (double t = 0; t <= seconds; t += 1.0) {
+    out.last = detector.Update(plant.Sample(t));
+    if (out.last.alarm && !out.alarm) {
+      out.alarm = t;
+      out.hypothesis = out.last.hypothesis;
+    }
+  }
+  return out;
+}
+
+bool Lists(const Verdict& v, SensorId sensor, SensorSymptom symptom) {
+  return std::find(v.faulty_sensors.begin(), v.faulty_sensors.end(),
+                   SensorFinding{.sensor = sensor, .symptom = symptom}) != v.faulty_sensors.end();
+}
+
+constexpr SensorId kGnss{.kind = SensorId::Kind::kGnss};
+
+TEST(Fused, ACellThePoseConfirmsNamesItsLineAsTheCellsTestDoes) {
+  Story story;
+  story.parted = 2;
+  story.part_time = 400;
+  Fused fused;
+  Cells cells;
+  const Outcome f = RunStory(fused, story, 900);
+  const Outcome c = RunStory(cells, story, 900);
+  ASSERT_TRUE(f.alarm.has_value());
+  EXPECT_EQ(f.alarm, c.alarm);
+  EXPECT_GT(*f.alarm, 400.0);
+  EXPECT_LT(*f.alarm, 420.0);
+  EXPECT_EQ(f.hypothesis, 2);
+  EXPECT_TRUE(f.last.alarm);  // and stays named
+  EXPECT_EQ(f.last.hypothesis, 2);
+  EXPECT_TRUE(f.last.faulty_sensors.empty());
+}
+
+TEST(Fused, WhileTheGnssIsJudgedFaultyALowCellDecidesAlone) {
+  // The receiver jumped at 300 s (the sensor checks say so) and the bias shows nothing of
+  // line 2's parting at 400 s: the cells test waits for a confirmation that cannot come;
+  // the fused detector names line 2 after the cells' hold.
+  Story story;
+  story.parted = 2;
+  story.part_time = 400;
+  story.error_time = 400;
+  story.bias_error = LineLoad(2);  // cancels the lost load: the pose feels nothing
+  story.findings = [](double t) {
+    return t >= 300 ? std::vector<SensorFinding>{{.sensor = kGnss, .symptom = SensorSymptom::kJump}}
+                    : std::vector<SensorFinding>{};
+  };
+  Fused fused;
+  Cells cells;
+  const Outcome f = RunStory(fused, story, 900);
+  ASSERT_TRUE(f.alarm.has_value());
+  // The window's mean (10 samples) falls below 0.75 with the third zero, plus the 3 s hold.
+  EXPECT_EQ(*f.alarm, 405.0);
+  EXPECT_EQ(f.hypothesis, 2);
+  EXPECT_TRUE(f.last.alarm);
+  EXPECT_TRUE(Lists(f.last, kGnss, SensorSymptom::kJump));
+  EXPECT_FALSE(RunStory(cells, story, 900).alarm.has_value());
+}
+
+TEST(Fused, ADeadCellTheVesselDidNotFeelIsAFaultyCellNotALine) {
+  Story story;
+  story.cells = [](double t, VecX& cells) {
+    if (t >= 400) cells(2) = 0.0;  // cell 3 dies
+  };
+  Fused fused;
+  const Outcome f = RunStory(fused, story, 900);
+  EXPECT_FALSE(f.alarm.has_value());
+  // Declared faulty once it has waited confirm_time (180 s) for the pose.
+  EXPECT_TRUE(
+      Lists(f.last, SensorId{.kind = SensorId::Kind::kCell, .line = 3}, SensorSymptom::kDisagrees));
+}
+
+TEST(Fused, ThePoseSpeaksForALineWhoseCellIsFrozen) {
+  // Cell 2 froze at 300 s (the sensor checks withhold it: NaN) and line 2 parts at 700 s.
+  Story story;
+  story.parted = 2;
+  story.part_time = 700;
+  story.cells = [](double t, VecX& cells) {
+    if (t >= 300) cells(1) = std::numeric_limits<double>::quiet_NaN();
+  };
+  const SensorId cell2{.kind = SensorId::Kind::kCell, .line = 2};
+  story.findings = [cell2](double t) {
+    return t >= 300
+               ? std::vector<SensorFinding>{{.sensor = cell2, .symptom = SensorSymptom::kFrozen}}
+               : std::vector<SensorFinding>{};
+  };
+  Fused fused;
+  Cells cells;
+  const Outcome f = RunStory(fused, story, 1500);
+  ASSERT_TRUE(f.alarm.has_value());
+  EXPECT_GT(*f.alarm, 700.0);
+  EXPECT_LT(*f.alarm, 760.0);  // the force-deficit test's time (within a minute)
+  EXPECT_EQ(f.hypothesis, 2);
+  EXPECT_TRUE(f.last.alarm);
+  EXPECT_TRUE(Lists(f.last, cell2, SensorSymptom::kFrozen));
+  EXPECT_FALSE(RunStory(cells, story, 1500).alarm.has_value());  // the cells alone cannot see it
+}
+
+TEST(Fused, ACellReadingTrueOutweighsAPoseThatSaysItsLineParted) {
+  // From 700 s the bias shifts as if line 2 had parted (a position reference in error, not
+  // caught by the checks); cell 2 reads its 6 MN throughout.
+  Story story;
+  story.error_time = 700;
+  story.bias_error = -LineLoad(2);
+  Deficit deficit;
+  const Outcome d = RunStory(deficit, story, 1500);
+  ASSERT_TRUE(d.alarm.has_value());  // the pose alone names line 2
+  EXPECT_EQ(d.hypothesis, 2);
+  Fused fused;
+  EXPECT_FALSE(RunStory(fused, story, 1500).alarm.has_value());
+}
+
+TEST(Fused, WithoutCellsItIsTheForceDeficitTest) {
+  Story story;
+  story.parted = 3;
+  story.part_time = 700;
+  Fused fused;
+  Deficit deficit;
+  const auto without_cells = [](Detector& d, const Story& s) {
+    d.Reset(kLines + 1);
+    Plant plant(s);
+    std::optional<double> first;
+    for (double t = 0; t <= 1500; t += 1.0) {
+      Evidence e = plant.Sample(t);
+      e.tensions.reset();
+      const Verdict v = d.Update(e);
+      if (v.alarm && !first) first = t;
+    }
+    return first;
+  };
+  const std::optional<double> f = without_cells(fused, story);
+  ASSERT_TRUE(f.has_value());
+  EXPECT_EQ(f, without_cells(deficit, story));
+}
+
+}  // namespace
+}  // namespace moorsim::detectors

@@ -1,0 +1,152 @@
+#!/usr/bin/env python3
+"""Writes the sensor-fault campaigns (training and held-out) from one description, so that
+the two differ in their seed and header alone. Run from the repository root:
+    tools/dev/sensor_fault_campaigns.py
+"""
+import re
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+CELLS = (ROOT / "scenarios/campaigns/detection_cells_training.yaml").read_text()
+# The turret-forward set-up of the cells campaigns: its mooring and turret keys.
+SETUP = [l for l in CELLS.splitlines()
+         if l.startswith('  "mooring.lines[') or l.startswith("  vessel.turret.")]
+
+HEADING = """      - {key: "environment.current.profile[1].speed", values: [0, 0.5]}
+      - {key: environment.waves.direction_toward_deg, uniform: [0, 360]}
+      - {key: controller.setpoint.heading_deg, follows: environment.waves.direction_toward_deg, add: [165, 195], modulo: 360}
+      - {key: vessel.initial_pose.heading_deg, follows: controller.setpoint.heading_deg}
+      - {key: controller.setpoint.x, follows: controller.setpoint.heading_deg, function: cos, scale: -60, add: 60}
+      - {key: controller.setpoint.y, follows: controller.setpoint.heading_deg, function: sin, scale: -60}
+      - {key: vessel.initial_pose.x, follows: controller.setpoint.x}
+      - {key: vessel.initial_pose.y, follows: controller.setpoint.y}
+      - {key: environment.current.direction_deg, choice: [0, 45, 90, 135, 180, 225, 270, 315]}"""
+SEA = """      - {key: environment.waves.hs, values: [2.5, 4, 6]}
+      - {key: environment.waves.tp, follows: environment.waves.hs, add: 4.5}"""
+
+# (block name, sensor key, fault mode, the size key and its draw)
+FAULTS = [
+    ("gnss_step", "gnss", "step", "offset", "uniform: [1, 5]"),
+    ("gnss_frozen", "gnss", "stuck", None, None),
+    ("gnss_noisy", "gnss", "degraded", "factor", "uniform: [3, 10]"),
+    ("gnss_drift", "gnss", "drift", "rate", "uniform: [0.002, 0.01]"),
+    ("gnss_dead", "gnss", "dead", None, None),
+    ("gnss_gain", "gnss", "gain", "gain", "uniform: [0.97, 1.03]"),
+    ("gyro_step", "gyro", "step", "offset", "uniform: [0.1, 0.3]"),
+    ("gyro_frozen", "gyro", "stuck", None, None),
+    ("gyro_noisy", "gyro", "degraded", "factor", "uniform: [3, 10]"),
+    ("gyro_drift", "gyro", "drift", "rate", "uniform: [2.0e-4, 1.0e-3]"),
+    ("gyro_dead", "gyro", "dead", None, None),
+    ("cell_step", "tension_cells", "step", "offset", "uniform: [-3.0e6, -1.0e6]"),
+    ("cell_stuck", "tension_cells", "stuck", None, None),
+    ("cell_noisy", "tension_cells", "degraded", "factor", "uniform: [3, 10]"),
+    ("cell_drift", "tension_cells", "drift", "rate", "uniform: [-20000, -2000]"),
+    ("cell_dead", "tension_cells", "dead", None, None),
+    ("cell_gain", "tension_cells", "gain", "gain", "uniform: [0.5, 0.8]"),
+]
+
+
+def fault_block(name, sensor, mode, size, draw, failure, other_line=False):
+    key = f"sensors.{sensor}.faults[1]"
+    fault = {"mode": mode, "time": 400, "end": 700}
+    if sensor == "tension_cells":
+        fault = {"line": 1, **fault}
+    if size:
+        fault[size] = {"offset": 1, "factor": 2, "rate": 1, "gain": 0.9}[size]
+    text = ", ".join(f"{k}: {v}" for k, v in fault.items())
+    suffix = ("_other" if other_line else "") + ("_failure" if failure else "")
+    lines = [f"  - name: {name}{suffix}", "    set:"]
+    lines.append(f"      simulation.duration: {1200 if failure else 1800}")
+    lines.append(f"      sensors.{sensor}.faults: [{{{text}}}]")
+    if failure:
+        lines.append("      failure.mode: fairlead")
+    lines.append("    factors:")
+    lines.append(SEA)
+    if size:
+        lines.append(f'      - {{key: "{key}.{size}", {draw}}}')
+    if failure:
+        # Before (200-400 s), during (400-700 s) or after (700-1000 s) the fault.
+        lines.append("      - {key: failure.line, choice: [1, 2, 3, 4, 5, 6, 7, 8]}")
+        lines.append("      - {key: failure.time, uniform: [200, 1000]}")
+        if sensor == "tension_cells" and not other_line:
+            lines.append(f'      - {{key: "{key}.line", follows: failure.line}}')
+        elif sensor == "tension_cells":
+            lines.append(f'      - {{key: "{key}.line", choice: [1, 2, 3, 4, 5, 6, 7, 8]}}')
+    elif sensor == "tension_cells":
+        lines.append(f'      - {{key: "{key}.line", choice: [1, 2, 3, 4, 5, 6, 7, 8]}}')
+    lines.append(HEADING)
+    lines.append("    seeds: 2")
+    return "\n".join(lines)
+
+
+def failure_block(name, mode_set):
+    return "\n".join([
+        f"  - name: {name}",
+        f"    set: {{simulation.duration: 900, {mode_set}}}",
+        "    factors:",
+        SEA,
+        "      - {key: failure.line, choice: [1, 2, 3, 4, 5, 6, 7, 8]}",
+        "      - {key: failure.time, uniform: [200, 600]}",
+        HEADING,
+        "    seeds: 8",
+    ])
+
+
+def campaign(name, seed, header):
+    body = [header.rstrip(), f"name: {name}", "scenario: ../library/thesis_no_failure_current.yaml",
+            f"seed: {seed}", "set:"]
+    body += SETUP
+    body += ["  sensors.tension_cells: {rate_hz: 1, noise: {std_dev: 1.0e4}}",
+             "  detectors:",
+             "    - {type: fused}",
+             "    - {type: cells}",
+             "    - {type: deficit}",
+             "    - {type: dht}",
+             "    - {type: glr}",
+             "blocks:"]
+    body.append(failure_block("fairlead", "failure.mode: fairlead"))
+    body.append(failure_block("midline", "failure.mode: node, failure.arc_length: 1125"))
+    body.append(failure_block("anchor", "failure.mode: anchor"))
+    body.append("\n".join(["  - name: intact", "    set: {simulation.duration: 3600}",
+                           "    factors:", SEA, HEADING, "    seeds: 4"]))
+    for f in FAULTS:
+        body.append(fault_block(*f, failure=False))
+    for f in FAULTS:
+        body.append(fault_block(*f, failure=True))
+    for f in FAULTS:
+        if f[1] == "tension_cells":
+            body.append(fault_block(*f, failure=True, other_line=True))
+    return "\n".join(body) + "\n"
+
+
+COMMON = """# Every sensor fault the simulator models, on every sensor, against the detectors with the
+# observers' sensor checks (on with the fused detector): the turret-forward mooring of the
+# load-cell campaigns, waves of Hs 2.5, 4 and 6 m (Tp = Hs + 4.5 s) from a heading drawn
+# over the compass, the current none or 0.5 m/s, a load cell on every fairlead (1 Hz, 10 kN
+# noise). Five detectors in every run: fused, cells, the pose-only force-deficit test, DHT
+# and GLR. Blocks: fairlead, mid-line and anchor failures with healthy sensors (24 runs
+# each); the intact mooring with healthy sensors (12 h); each of 17 faults (GNSS: step,
+# frozen, noisy, drift, dead, gain; gyro: step, frozen, noisy, drift, dead; a cell: step,
+# stuck, noisy, drift, dead, gain) from 400 to 700 s on an intact mooring (6 runs of
+# 1800 s each) and with a fairlead break drawn in 200-1000 s, before, during or after it
+# (6 runs of 1200 s each; a cell's fault on the parting line's cell, and again on a cell
+# drawn from the eight).
+"""
+
+TRAINING = COMMON + """# The training campaign: the checks' and the fused detector's settings were chosen on it;
+# sensor_faults.yaml is its held-out twin.
+#
+#   moorsim batch scenarios/campaigns/sensor_faults_training.yaml --out out/sensor_faults_training
+"""
+HELD_OUT = COMMON + """# The held-out campaign: its own seed, nothing chosen on it; the results in the README and
+# benchmarks/README.md are its. sensor_faults_training.yaml is its training twin.
+#
+#   moorsim batch scenarios/campaigns/sensor_faults.yaml --out out/sensor_faults
+"""
+
+if __name__ == "__main__":
+    schema = "# yaml-language-server: $schema=../moorsim-campaign.schema.json\n"
+    out = ROOT / "scenarios/campaigns"
+    (out / "sensor_faults_training.yaml").write_text(
+        schema + campaign("sensor_faults_training", 3601, TRAINING))
+    (out / "sensor_faults.yaml").write_text(schema + campaign("sensor_faults", 3602, HELD_OUT))
