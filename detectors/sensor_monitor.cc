@@ -10,7 +10,8 @@ namespace moorsim::detectors {
 
 namespace {
 
-// Samples after a gap in a channel whose innovations teach nothing of its noise.
+// Samples after a gap in a channel (no reading, or a frozen one) whose innovations teach
+// nothing of its noise and from which no jump is judged.
 constexpr int kAfterGap = 30;
 
 void Refuse(const char* field, double value, const char* rule) {
@@ -135,7 +136,13 @@ void SensorMonitor::CheckPoseSensor(PoseSensor& sensor, const HypothesisEvidence
     sensor.pending.clear();
     learn(e);
     sensor.before = e;
+    // Within kAfterGap samples of a gap the filter is still catching up with where the
+    // vessel went meanwhile: what then looks like a step may be the vessel's own travel.
     sensor.before_in_gate = true;
+    for (int r = 0; r < n; ++r) {
+      sensor.before_in_gate = sensor.before_in_gate &&
+                              channels_[static_cast<std::size_t>(a + r)].since_gap >= kAfterGap;
+    }
     return;
   }
   // Withheld, until a run of them is long enough to judge.

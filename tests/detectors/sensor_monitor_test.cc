@@ -157,6 +157,33 @@ TEST(SensorMonitor, AJumpIsReanchoredSoTheFilterDoesNotFollowIt) {
   EXPECT_NEAR(last.pose.x(), Stream::Truth(909).x(), 5 * kNoise);
 }
 
+TEST(SensorMonitor, AfterAGapADisplacementIsTheVesselsTravelNotAJump) {
+  // The receiver is silent for a minute, and when it speaks again the vessel is 10 m
+  // further north (it drifted meanwhile: a line parted while the GNSS was out). That is not a
+  // jump: it is let through, and the filter follows.
+  Screened s;
+  Stream stream(9);
+  Feed(s, stream, 0, 600, kNoFault, [] { return false; });
+  Observation last;
+  const std::optional<double> silent = Feed(
+      s, stream, 600, 60,
+      [](Observation& obs) {
+        obs.valid = {false, false, true};
+      },
+      [&] { return s.Judged(SensorId::Kind::kGnss, SensorSymptom::kSilent); });
+  ASSERT_TRUE(silent.has_value());
+  EXPECT_EQ(*silent, 603.0);  // the fourth sample without a reading
+  const auto moved = [](Observation& obs) { obs.pose.x() += 10.0; };
+  EXPECT_FALSE(Feed(
+                   s, stream, 660, 100, moved,
+                   [&] { return s.Judged(SensorId::Kind::kGnss, SensorSymptom::kJump); }, &last)
+                   .has_value());
+  EXPECT_TRUE(s.monitor.findings().empty());
+  EXPECT_TRUE(last.valid[0]);
+  EXPECT_NEAR(last.pose.x(), Stream::Truth(759).x() + 10.0, 5 * kNoise);  // not re-anchored
+  EXPECT_NEAR(s.filter.pose().x() + s.filter.wave_motion().x(), Stream::Truth(759).x() + 10.0, 0.3);
+}
+
 TEST(SensorMonitor, FiveTimesTheNoiseIsNamedNoisyAndWeightedLess) {
   Screened s;
   Stream stream(6);
