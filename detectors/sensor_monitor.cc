@@ -136,13 +136,7 @@ void SensorMonitor::CheckPoseSensor(PoseSensor& sensor, const HypothesisEvidence
     sensor.pending.clear();
     learn(e);
     sensor.before = e;
-    // Within kAfterGap samples of a gap the filter is still catching up with where the
-    // vessel went meanwhile: what then looks like a step may be the vessel's own travel.
     sensor.before_in_gate = true;
-    for (int r = 0; r < n; ++r) {
-      sensor.before_in_gate = sensor.before_in_gate &&
-                              channels_[static_cast<std::size_t>(a + r)].since_gap >= kAfterGap;
-    }
     return;
   }
   // Withheld, until a run of them is long enough to judge.
@@ -154,8 +148,12 @@ void SensorMonitor::CheckPoseSensor(PoseSensor& sensor, const HypothesisEvidence
   mean /= static_cast<double>(sensor.pending.size());
   // A step: from a sample the filter predicted well, by more than the gate, to readings
   // that then stay put (each near their mean, and no trend from the first to the last).
-  bool agree = sensor.before_in_gate &&
-               nis(sensor.pending.front() - sensor.before) > options_.gate &&
+  bool settled = sensor.before_in_gate;  // ... and not just after a gap
+  for (int r = 0; r < n; ++r) {
+    settled = settled && channels_[static_cast<std::size_t>(a + r)].since_gap >=
+                             kAfterGap + static_cast<int>(sensor.pending.size());
+  }
+  bool agree = settled && nis(sensor.pending.front() - sensor.before) > options_.gate &&
                nis(sensor.pending.back() - sensor.pending.front()) <= options_.agree;
   for (const Eigen::Vector2d& p : sensor.pending) agree = agree && nis(p - mean) <= options_.agree;
   if (agree) {
