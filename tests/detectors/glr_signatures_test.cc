@@ -11,17 +11,13 @@
 #include "core/error.h"
 #include "scenarios/convert.h"
 #include "scenarios/load.h"
+#include "tests/detectors/observer_test_support.h"
 
 namespace moorsim::detectors {
 namespace {
 
-mooring_fem::MooringParameters SeedMooring() {
-  return scenarios::ToMooringParameters(
-      scenarios::LoadScenario(MOORSIM_SOURCE_DIR "/scenarios/library/seed_tapm.yaml").mooring);
-}
-
 TEST(GlrSignatures, PointAwayFromTheFailedLinesAnchor) {
-  const mooring_fem::MooringParameters mooring = SeedMooring();
+  const mooring_fem::MooringParameters mooring = testing::SeedMooring();
   HypothesisBankOptions options;
   options.moored_heave = 0.47;
   const HypothesisBank bank(mooring, options);
@@ -47,7 +43,7 @@ TEST(GlrSignatures, PointAwayFromTheFailedLinesAnchor) {
 }
 
 TEST(GlrSignatures, BadArgumentsThrow) {
-  const HypothesisBank bank(SeedMooring());
+  const HypothesisBank bank(testing::SeedMooring());
   EXPECT_THROW(GlrSignatures(bank, SeedLowFrequencyModel(), {}, Vec3::Zero(), 0.0, 50), InputError);
   EXPECT_THROW(GlrSignatures(bank, SeedLowFrequencyModel(), {}, Vec3::Zero(), 1.0, 0), InputError);
 }

@@ -5,6 +5,7 @@
 // bookkeeping.
 #include "detectors/hypothesis_bank.h"
 #include "core/angles.h"
+#include "tests/detectors/observer_test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -21,12 +22,6 @@
 
 namespace moorsim::detectors {
 namespace {
-
-mooring_fem::MooringParameters SeedMooring() {
-  return scenarios::ToMooringParameters(
-      scenarios::LoadScenario(std::string(MOORSIM_SOURCE_DIR) + "/scenarios/library/seed_tapm.yaml")
-          .mooring);
-}
 
 mooring_fem::CompositeLine CatenaryOf(const mooring_fem::MooringParameters& spec, int index) {
   return mooring_fem::CatenaryLineOf(mooring_fem::MakeLineProperties(spec, spec.lines[index]));
@@ -54,7 +49,7 @@ Vec3 DirectLoad(const mooring_fem::MooringParameters& spec, const std::vector<in
 class HypothesisBankTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    spec_ = new mooring_fem::MooringParameters(SeedMooring());
+    spec_ = new mooring_fem::MooringParameters(testing::SeedMooring());
     bank_ = new HypothesisBank(*spec_);
   }
   static void TearDownTestSuite() {
@@ -380,7 +375,7 @@ TEST(LowFrequencyModelTest, SeedNumbers) {
 }
 
 TEST(HypothesisBankInputTest, BadParametersNameTheField) {
-  mooring_fem::MooringParameters spec = SeedMooring();
+  mooring_fem::MooringParameters spec = testing::SeedMooring();
   HypothesisBankOptions options;
   options.table.span_step = 0.0;
   try {
@@ -409,7 +404,7 @@ TEST(HypothesisBankInputTest, BadParametersNameTheField) {
 
 // A table asked to reach farther than the line can stretch stops short of the limit.
 TEST(HypothesisBankInputTest, TableStopsWhereTheLineCannotReach) {
-  mooring_fem::MooringParameters spec = SeedMooring();
+  mooring_fem::MooringParameters spec = testing::SeedMooring();
   const auto line = CatenaryOf(spec, 0);
   LineForceTableOptions options;
   options.span_margin = 600.0;
