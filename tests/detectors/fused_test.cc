@@ -20,7 +20,7 @@
 
 #include "core/random.h"
 
-namespace moorsim::detectors {
+namespace moorsim::detectors::fused_test {
 namespace {
 
 constexpr int kLines = 4;
@@ -227,4 +227,4 @@ TEST(Fused, WithoutCellsItIsTheForceDeficitTest) {
 }
 
 }  // namespace
-}  // namespace moorsim::detectors
+}  // namespace moorsim::detectors::fused_test

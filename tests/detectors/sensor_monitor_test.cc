@@ -24,7 +24,7 @@
 #include "detectors/passive_observer.h"
 #include "tests/detectors/observer_test_support.h"
 
-namespace moorsim::detectors {
+namespace moorsim::detectors::sensor_monitor_test {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -273,4 +273,4 @@ TEST(SensorMonitor, BadOptionsNameTheirField) {
 }
 
 }  // namespace
-}  // namespace moorsim::detectors
+}  // namespace moorsim::detectors::sensor_monitor_test
