@@ -67,15 +67,11 @@ void SensorMonitor::Reset() {
   started_ = false;
 }
 
-bool SensorMonitor::Frozen(Channel& channel, double reading) const {
-  if (channel.seen && reading == channel.last) {
-    ++channel.repeats;
-  } else {
-    channel.repeats = 0;
-  }
-  channel.seen = true;
-  channel.last = reading;
-  return channel.repeats + 1 >= options_.frozen_samples;
+bool SensorMonitor::Repeats::Frozen(double reading, int samples) {
+  repeats = seen && reading == last ? repeats + 1 : 0;
+  seen = true;
+  last = reading;
+  return repeats + 1 >= samples;
 }
 
 double SensorMonitor::GateVariance(int i, const Mat3& S) const {
@@ -185,7 +181,7 @@ const Observation& SensorMonitor::Screen(const Observation& observation,
     c.missing = observation.valid[i] ? 0 : c.missing + 1;
     c.since_gap = observation.valid[i] ? c.since_gap + 1 : 0;
     if (!observation.valid[i]) continue;
-    frozen[i] = Frozen(c, observation.pose(i));
+    frozen[i] = c.readings.Frozen(observation.pose(i), options_.frozen_samples);
     if (frozen[i]) {
       screened_.valid[i] = false;
       c.since_gap = 0;
@@ -197,11 +193,7 @@ const Observation& SensorMonitor::Screen(const Observation& observation,
     const VecX& readings = *observation.tensions;
     cells_.resize(static_cast<std::size_t>(readings.size()));
     for (Eigen::Index k = 0; k < readings.size(); ++k) {
-      Cell& c = cells_[static_cast<std::size_t>(k)];
-      c.repeats = c.seen && readings(k) == c.last ? c.repeats + 1 : 0;
-      c.seen = true;
-      c.last = readings(k);
-      if (c.repeats + 1 >= options_.frozen_samples) {
+      if (cells_[static_cast<std::size_t>(k)].Frozen(readings(k), options_.frozen_samples)) {
         (*screened_.tensions)(k) = std::numeric_limits<double>::quiet_NaN();
         findings_.push_back({.sensor = {.kind = SensorId::Kind::kCell, .line = int(k) + 1},
                              .symptom = SensorSymptom::kFrozen});

@@ -59,10 +59,16 @@ class SensorMonitor {
   const std::vector<SensorFinding>& findings() const { return findings_; }
 
  private:
-  struct Channel {
-    double last = 0.0;  // the latest delivered raw reading
+  // A reading and how many samples in a row repeated it bit for bit.
+  struct Repeats {
+    double last = 0.0;
     bool seen = false;
     int repeats = 0;  // consecutive samples equal to `last`, after the first
+    /// Takes a delivered reading; whether it has now been frozen for `samples` samples.
+    bool Frozen(double reading, int samples);
+  };
+  struct Channel {
+    Repeats readings;
     int missing = 0;  // consecutive samples without a reading
     double offset = 0.0;
     double recent = 0.0, usual = 0.0;  // mean squared innovation, short and long
@@ -78,14 +84,7 @@ class SensorMonitor {
     bool before_in_gate = false;                       // ... and it was within the gate
     bool noisy = false;
   };
-  struct Cell {
-    double last = 0.0;
-    bool seen = false;
-    int repeats = 0;
-  };
-
   void CheckPoseSensor(PoseSensor& sensor, const HypothesisEvidence& predicted, double dt);
-  bool Frozen(Channel& channel, double reading) const;
   void LearnNoise(int channel, double innovation, double gate_variance, double dt);
   // The variance an innovation of channel i is judged against: the larger of S_ii and the
   // usual level once learned.
@@ -95,7 +94,7 @@ class SensorMonitor {
   Vec3 rated_;
   std::vector<Channel> channels_;  // north, east, heading
   std::vector<PoseSensor> sensors_;
-  std::vector<Cell> cells_;
+  std::vector<Repeats> cells_;
   std::optional<HypothesisEkf> probe_;
   Observation screened_;
   std::array<bool, 3> observation_valid_ = {true, true, true};  // after the frozen check

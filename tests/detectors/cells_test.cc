@@ -14,18 +14,13 @@
 #include <vector>
 
 #include "core/error.h"
+#include "tests/detectors/evidence_support.h"
 
 namespace moorsim::detectors {
 namespace {
 
 constexpr int kCellLines = 4;
 constexpr double kPretension = 6.0e6;  // [N] every cell's expected reading
-
-// Line k's horizontal load on the vessel: 4.5 MN pointing to its anchor at 90 deg steps.
-Vec3 CellLineLoad(int line) {
-  const double angle = (line - 1) * M_PI / 2;
-  return Vec3(4.5e6 * std::cos(angle), 4.5e6 * std::sin(angle), 0.0);
-}
 
 // One sample at time t: cell readings `measured` and the intact filter's bias `bias`.
 Evidence CellEvidence(double t, const std::vector<double>& measured, const Vec3& bias) {
@@ -35,7 +30,7 @@ Evidence CellEvidence(double t, const std::vector<double>& measured, const Vec3&
   LoadEvidence load;
   load.bias = bias;
   load.line_load.push_back(Vec3::Zero());
-  for (int k = 1; k <= kCellLines; ++k) load.line_load.push_back(CellLineLoad(k));
+  for (int k = 1; k <= kCellLines; ++k) load.line_load.push_back(testing::QuarterLineLoad(k));
   e.load = load;
   TensionEvidence cells;
   cells.measured = Eigen::Map<const VecX>(measured.data(), kCellLines);
@@ -70,7 +65,7 @@ TEST(Cells, APartedLinesCellNamesItOnceThePoseAgrees) {
   };
   const auto bias = [](double t) -> Vec3 {
     const double share = std::clamp((t - 100) / 20.0, 0.0, 1.0);
-    return -share * CellLineLoad(2);
+    return -share * testing::QuarterLineLoad(2);
   };
   for (const bool confirm : {false, true}) {
     SCOPED_TRACE(confirm ? "confirmed" : "cells alone");
@@ -134,7 +129,7 @@ TEST(Cells, ADriftingCellOnALineThatHoldsIsAFaultNotAFailure) {
     return r;
   };
   const auto parted_bias = [](double t) -> Vec3 {
-    return -std::clamp((t - 700) / 20.0, 0.0, 1.0) * CellLineLoad(3);
+    return -std::clamp((t - 700) / 20.0, 0.0, 1.0) * testing::QuarterLineLoad(3);
   };
   const std::optional<double> alarm =
       FirstAlarm(confirmed, 600, 200, repaired_then_parted, parted_bias, &last);

@@ -1,11 +1,20 @@
 // Hand-made evidence for the detector tests.
 #pragma once
 
+#include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "detectors/detector.h"
 
 namespace moorsim::detectors::testing {
+
+/// The load tests' four lines: line k's horizontal load on the vessel, 4.5 MN pointing to
+/// its anchor at (k - 1) x 90 deg.
+inline Vec3 QuarterLineLoad(int line) {
+  const double angle = (line - 1) * std::numbers::pi / 2;
+  return Vec3(4.5e6 * std::cos(angle), 4.5e6 * std::sin(angle), 0.0);
+}
 
 /// Evidence at time t whose hypotheses carry only the given log-likelihoods.
 inline Evidence WithLogLikelihoods(double t, const std::vector<double>& log_likelihood) {

@@ -19,17 +19,13 @@
 #include <vector>
 
 #include "core/random.h"
+#include "tests/detectors/evidence_support.h"
 
 namespace moorsim::detectors::fused_test {
 namespace {
 
 constexpr int kLines = 4;
 constexpr double kExpected = 6.0e6;  // [N] every cell's intact reading
-
-Vec3 LineLoad(int line) {
-  const double angle = (line - 1) * M_PI / 2;
-  return Vec3(4.5e6 * std::cos(angle), 4.5e6 * std::sin(angle), 0.0);
-}
 
 // What happens to the plant and its sensors in a test.
 struct Story {
@@ -52,7 +48,8 @@ class Plant {
     evidence_.hypotheses.resize(kLines + 1);
     evidence_.load.emplace();
     evidence_.load->line_load.push_back(Vec3::Zero());
-    for (int k = 1; k <= kLines; ++k) evidence_.load->line_load.push_back(LineLoad(k));
+    for (int k = 1; k <= kLines; ++k)
+      evidence_.load->line_load.push_back(testing::QuarterLineLoad(k));
     evidence_.tensions.emplace();
     evidence_.tensions->expected = VecX::Constant(kLines, kExpected);
   }
@@ -60,7 +57,8 @@ class Plant {
     const double decay = std::exp(-1.0 / 60.0);
     disturbance_ = decay * disturbance_ +
                    3e5 * std::sqrt(1 - decay * decay) * Vec3(x_.Normal(), y_.Normal(), 0.0);
-    const Vec3 lost = t >= story_.part_time ? LineLoad(story_.parted) : Vec3::Zero();
+    const Vec3 lost =
+        t >= story_.part_time ? testing::QuarterLineLoad(story_.parted) : Vec3::Zero();
     lag_ += (lost - lag_) * (1.0 - std::exp(-1.0 / 10.0));
     evidence_.t = t;
     evidence_.load->bias =
@@ -133,7 +131,7 @@ TEST(Fused, WhileTheGnssIsJudgedFaultyALowCellDecidesAlone) {
   story.parted = 2;
   story.part_time = 400;
   story.error_time = 400;
-  story.bias_error = LineLoad(2);  // cancels the lost load: the pose feels nothing
+  story.bias_error = testing::QuarterLineLoad(2);  // cancels the lost load: the pose feels nothing
   story.findings = [](double t) {
     return t >= 300 ? std::vector<SensorFinding>{{.sensor = kGnss, .symptom = SensorSymptom::kJump}}
                     : std::vector<SensorFinding>{};
@@ -194,7 +192,7 @@ TEST(Fused, ACellReadingTrueOutweighsAPoseThatSaysItsLineParted) {
   // caught by the checks); cell 2 reads its 6 MN throughout.
   Story story;
   story.error_time = 700;
-  story.bias_error = -LineLoad(2);
+  story.bias_error = -testing::QuarterLineLoad(2);
   Deficit deficit;
   const Outcome d = RunStory(deficit, story, 1500);
   ASSERT_TRUE(d.alarm.has_value());  // the pose alone names line 2
