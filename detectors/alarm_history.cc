@@ -89,6 +89,8 @@ std::string SensorId::Name() const {
       return "GNSS";
     case Kind::kGyro:
       return "gyro";
+    case Kind::kPose:
+      return "pose";
     case Kind::kCell:
       break;
   }

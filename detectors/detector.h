@@ -75,13 +75,14 @@ struct TensionEvidence {
   Eigen::MatrixXd expected_if_parted;  ///< [N] lines x lines, or empty
 };
 
-/// A sensor a detector can judge faulty: the GNSS receiver, the gyro or a line's load cell.
+/// A sensor a detector can judge faulty: the GNSS receiver, the gyro, a line's load cell, or
+/// the pose the GNSS and gyro give together (where the cells show it wrong, and not which).
 struct SensorId {
-  enum class Kind { kGnss, kGyro, kCell };
+  enum class Kind { kGnss, kGyro, kCell, kPose };
   Kind kind = Kind::kCell;
   int line = 0;  ///< kCell: the cell's line, 1-based
   bool operator==(const SensorId&) const = default;
-  /// "GNSS", "gyro", "cell 3".
+  /// "GNSS", "gyro", "cell 3", "pose".
   std::string Name() const;
 };
 

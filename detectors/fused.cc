@@ -8,13 +8,15 @@
 
 namespace moorsim::detectors {
 
-Fused::Fused(const FusedOptions& options) : cells_(options.cells), pose_(options.pose) {}
+Fused::Fused(const FusedOptions& options)
+    : cells_(options.cells), pose_(options.pose), agreement_(options.agreement) {}
 
 void Fused::Reset(int hypotheses) {
   internal::Require(hypotheses >= 1, "fused", "at least one hypothesis");
   hypotheses_ = hypotheses;
   cells_.Reset(hypotheses);
   pose_.Reset(hypotheses);
+  agreement_.Reset();
   named_ = 0;
   named_by_pose_ = false;
   verdict_ = Verdict{std::vector<double>(static_cast<std::size_t>(hypotheses), 0.0), 0, false, {}};
@@ -32,7 +34,23 @@ bool Fused::CellSpeaks(const Evidence& evidence, int line) const {
 
 Verdict Fused::Update(const Evidence& evidence) {
   internal::CheckEvidence("fused", evidence, hypotheses_);
+  // The pose against the cells that speak (as of the sample before). Only while the mooring
+  // is the intact model's: from a cell reading low or a line named, the judgement stands
+  // (a parting vessel's line dynamics make patterns of their own).
+  bool pose_disagrees = agreement_.disagrees();
+  if (evidence.tensions && named_ == 0) {
+    const auto n = static_cast<int>(evidence.tensions->measured.size());
+    counts_.assign(static_cast<std::size_t>(n), false);
+    bool any_low = false;
+    for (int line = 1; line <= n; ++line) {
+      const bool low = line <= cells_.num_cells() && cells_.reads_low(line);
+      any_low = any_low || low;
+      counts_[static_cast<std::size_t>(line - 1)] = CellSpeaks(evidence, line) && !low;
+    }
+    if (!any_low) pose_disagrees = agreement_.Update(evidence, counts_);
+  }
   const bool pose_trusted =
+      !pose_disagrees &&
       std::none_of(evidence.sensor_faults.begin(), evidence.sensor_faults.end(),
                    [](const SensorFinding& f) { return f.sensor.kind != SensorId::Kind::kCell; });
   cells_.SetPoseTrusted(pose_trusted);
@@ -75,6 +93,10 @@ Verdict Fused::Update(const Evidence& evidence) {
   verdict_.alarm = named_ != 0;
   verdict_.hypothesis = named_;
   verdict_.faulty_sensors = evidence.sensor_faults;
+  if (pose_disagrees) {
+    verdict_.faulty_sensors.push_back(
+        {.sensor = {.kind = SensorId::Kind::kPose}, .symptom = SensorSymptom::kDisagrees});
+  }
   for (const SensorFinding& f : cells.faulty_sensors) {
     if (std::find(verdict_.faulty_sensors.begin(), verdict_.faulty_sensors.end(), f) ==
         verdict_.faulty_sensors.end()) {

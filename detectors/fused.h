@@ -8,12 +8,18 @@
 //    whatever the cells read, but slower, and a position reference that jumps, freezes or
 //    grows noisy moves it as a lost line would;
 //  - the observers' sensor checks (detectors/sensor_monitor.h, Evidence::sensor_faults)
-//    judge the GNSS, the gyro and frozen cells from their own readings.
+//    judge the GNSS, the gyro and frozen cells from their own readings;
+//  - the cells judge the pose (detectors/pose_agreement.h): a GNSS or gyro error of a few
+//    metres or a tenth of a radian, too small or too slow for the sensor checks, puts the
+//    turret where every cell disagrees with its expectation in one pattern ("pose
+//    disagrees"). It judges while every cell reads true and no line is named; from then on
+//    its judgement stands.
 //
 // The verdict, at every sample:
 //  1. A cell that reads low and that the pose confirms (the cells test's rule) names its
 //     line: the cells for speed, the pose to confirm.
-//  2. While a pose sensor is judged faulty the pose confirms nothing: a low cell that the
+//  2. While a pose sensor is judged faulty, or the pose disagrees with the cells, the pose
+//     confirms nothing: a low cell that the
 //     other cells explain names its line after the cells' hold, and no cell is declared
 //     faulty for want of the pose's confirmation.
 //  3. The force-deficit test names a line only where that line's cell cannot speak: no cells
@@ -31,6 +37,7 @@
 #include "detectors/cells.h"
 #include "detectors/deficit.h"
 #include "detectors/detector.h"
+#include "detectors/pose_agreement.h"
 
 namespace moorsim::detectors {
 
@@ -42,6 +49,8 @@ struct FusedOptions {
   /// then the pose's to name.
   CellsOptions cells{.confirm_time = 60.0};
   DeficitOptions pose;
+  /// The check of the pose against the cells (detectors/pose_agreement.h).
+  PoseAgreementOptions agreement;
 };
 
 class Fused final : public Detector {
@@ -59,6 +68,8 @@ class Fused final : public Detector {
 
   Cells cells_;
   Deficit pose_;
+  PoseAgreement agreement_;
+  std::vector<bool> counts_;  // per cell, whether it enters the pose agreement's fit
   int hypotheses_ = 0;
   int named_ = 0;  // the line named, 0 none
   bool named_by_pose_ = false;

@@ -180,7 +180,8 @@ std::unique_ptr<Detector> MakeCells(const DetectorParameters& p) {
 }
 
 std::unique_ptr<Detector> MakeFused(const DetectorParameters& p) {
-  return std::make_unique<Fused>(FusedOptions{.cells = ReadCellsOptions(p), .pose = {}});
+  return std::make_unique<Fused>(
+      FusedOptions{.cells = ReadCellsOptions(p), .pose = {}, .agreement = {}});
 }
 
 std::unique_ptr<Detector> MakeDeficit(const DetectorParameters& p) {

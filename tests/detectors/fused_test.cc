@@ -6,7 +6,8 @@
 // test does; while a pose sensor is judged faulty a low cell decides alone; a dead cell the
 // vessel did not feel is a faulty cell, not a line; where a line's cell is frozen the pose
 // speaks for it; where a line's cell reads true the pose's claim (a position reference in
-// error) names nothing.
+// error) names nothing; a pose the cells show wrong is named, and a low cell then decides
+// alone.
 #include "detectors/fused.h"
 
 #include <gtest/gtest.h>
@@ -199,6 +200,35 @@ TEST(Fused, ACellReadingTrueOutweighsAPoseThatSaysItsLineParted) {
   EXPECT_EQ(d.hypothesis, 2);
   Fused fused;
   EXPECT_FALSE(RunStory(fused, story, 1500).alarm.has_value());
+}
+
+TEST(Fused, APoseTheCellsShowWrongIsNamedAndALowCellThenDecidesAlone) {
+  // From 300 s the pose is 6 m off (a gyro 0.1 rad off, say, that its own checks miss):
+  // every cell reads 0.6 % per metre of it off its expectation, in the pattern of a
+  // misplaced turret. Line 2 parts at 700 s, and the bias shows nothing of it.
+  Story story;
+  story.cells = [](double t, VecX& cells) {
+    if (t < 300) return;
+    for (int k = 0; k < kLines; ++k) {
+      const Vec3 pull = testing::QuarterLineLoad(k + 1).normalized();
+      cells(k) *= 1.0 - 0.006 * (3.0 * pull.x() + 5.2 * pull.y());
+    }
+  };
+  const SensorId pose{.kind = SensorId::Kind::kPose};
+  Fused fused;
+  const Outcome intact = RunStory(fused, story, 1500);
+  EXPECT_FALSE(intact.alarm.has_value());
+  EXPECT_TRUE(Lists(intact.last, pose, SensorSymptom::kDisagrees));
+  story.parted = 2;
+  story.part_time = 700;
+  story.error_time = 700;
+  story.bias_error = testing::QuarterLineLoad(2);  // cancels the lost load
+  const Outcome f = RunStory(fused, story, 1500);
+  ASSERT_TRUE(f.alarm.has_value());
+  EXPECT_EQ(*f.alarm, 705.0);  // the cells' window and hold, as with a GNSS judged faulty
+  EXPECT_EQ(f.hypothesis, 2);
+  Cells cells;
+  EXPECT_FALSE(RunStory(cells, story, 1500).alarm.has_value());
 }
 
 TEST(Fused, WithoutCellsItIsTheForceDeficitTest) {

@@ -46,7 +46,17 @@ FAULTS = [
 ]
 
 
-def fault_block(name, sensor, mode, size, draw, failure, other_line=False):
+# A failure's scenario keys by the campaign's name for it.
+FAILURE_SET = {
+    "fairlead": "failure.mode: fairlead",
+    "midline": "failure.mode: node, failure.arc_length: 1125",
+    "anchor": "failure.mode: anchor",
+}
+
+
+def fault_block(name, sensor, mode, size, draw, failure=None, other_line=False):
+    """One fault from 400 to 700 s: on an intact mooring (failure None), or with a line
+    failure ("fairlead", "midline" or "anchor") drawn in 200-1000 s."""
     key = f"sensors.{sensor}.faults[1]"
     fault = {"mode": mode, "time": 400, "end": 700}
     if sensor == "tension_cells":
@@ -54,12 +64,13 @@ def fault_block(name, sensor, mode, size, draw, failure, other_line=False):
     if size:
         fault[size] = {"offset": 1, "factor": 2, "rate": 1, "gain": 0.9}[size]
     text = ", ".join(f"{k}: {v}" for k, v in fault.items())
-    suffix = ("_other" if other_line else "") + ("_failure" if failure else "")
+    suffix = ("_other" if other_line else "") + {None: "", "fairlead": "_failure",
+                                                  "midline": "_midline", "anchor": "_anchor"}[failure]
     lines = [f"  - name: {name}{suffix}", "    set:"]
     lines.append(f"      simulation.duration: {1200 if failure else 1800}")
     lines.append(f"      sensors.{sensor}.faults: [{{{text}}}]")
     if failure:
-        lines.append("      failure.mode: fairlead")
+        lines += [f"      {k}" for k in FAILURE_SET[failure].split(", ")]
     lines.append("    factors:")
     lines.append(SEA)
     if size:
@@ -79,10 +90,10 @@ def fault_block(name, sensor, mode, size, draw, failure, other_line=False):
     return "\n".join(lines)
 
 
-def failure_block(name, mode_set):
+def failure_block(name):
     return "\n".join([
         f"  - name: {name}",
-        f"    set: {{simulation.duration: 900, {mode_set}}}",
+        f"    set: {{simulation.duration: 900, {FAILURE_SET[name]}}}",
         "    factors:",
         SEA,
         "      - {key: failure.line, choice: [1, 2, 3, 4, 5, 6, 7, 8]}",
@@ -92,30 +103,59 @@ def failure_block(name, mode_set):
     ])
 
 
-def campaign(name, seed, header):
+def preamble(name, seed, header):
+    """The header, the base scenario, the set-up, the cells and the six detectors."""
     body = [header.rstrip(), f"name: {name}", "scenario: ../library/thesis_no_failure_current.yaml",
             f"seed: {seed}", "set:"]
     body += SETUP
-    body += ["  sensors.tension_cells: {rate_hz: 1, noise: {std_dev: 1.0e4}}",
-             "  detectors:",
-             "    - {type: fused}",
-             "    - {type: cells}",
-             "    - {type: deficit}",
-             "    - {type: dht}",
-             "    - {type: glr}",
-             "blocks:"]
-    body.append(failure_block("fairlead", "failure.mode: fairlead"))
-    body.append(failure_block("midline", "failure.mode: node, failure.arc_length: 1125"))
-    body.append(failure_block("anchor", "failure.mode: anchor"))
+    body += ["  sensors.tension_cells: {rate_hz: 1, noise: {std_dev: 1.0e4}}", "  detectors:"]
+    body += [f"    - {{type: {d}}}" for d in ("fused", "cells", "deficit", "dht", "glr", "mle")]
+    return body + ["blocks:"]
+
+
+def campaign(name, seed, header):
+    body = preamble(name, seed, header)
+    for failure in FAILURE_SET:
+        body.append(failure_block(failure))
     body.append("\n".join(["  - name: intact", "    set: {simulation.duration: 3600}",
                            "    factors:", SEA, HEADING, "    seeds: 4"]))
     for f in FAULTS:
-        body.append(fault_block(*f, failure=False))
+        body.append(fault_block(*f))
     for f in FAULTS:
-        body.append(fault_block(*f, failure=True))
+        body.append(fault_block(*f, failure="fairlead"))
     for f in FAULTS:
         if f[1] == "tension_cells":
-            body.append(fault_block(*f, failure=True, other_line=True))
+            body.append(fault_block(*f, failure="fairlead", other_line=True))
+    for failure in ("midline", "anchor"):
+        for f in FAULTS:
+            body.append(fault_block(*f, failure=failure))
+    return "\n".join(body) + "\n"
+
+
+def intact_campaign(name, seed, header, healthy_seeds):
+    """Hours on an intact mooring: healthy sensors, and each fault from 300 s to the end of
+    an hour (a drift for 600 s: longer, it would carry the reading kilometres away)."""
+    body = preamble(name, seed, header)
+    body.append("\n".join(["  - name: intact", "    set: {simulation.duration: 3600}",
+                           "    factors:", SEA, HEADING, f"    seeds: {healthy_seeds}"]))
+    for name_, sensor, mode, size, draw in FAULTS:
+        key = f"sensors.{sensor}.faults[1]"
+        fault = {"mode": mode, "time": 300}
+        if mode == "drift":
+            fault["end"] = 900
+        if sensor == "tension_cells":
+            fault = {"line": 1, **fault}
+        if size:
+            fault[size] = {"offset": 1, "factor": 2, "rate": 1, "gain": 0.9}[size]
+        text = ", ".join(f"{k}: {v}" for k, v in fault.items())
+        lines = [f"  - name: {name_}", "    set:", "      simulation.duration: 3600",
+                 f"      sensors.{sensor}.faults: [{{{text}}}]", "    factors:", SEA]
+        if size:
+            lines.append(f'      - {{key: "{key}.{size}", {draw}}}')
+        if sensor == "tension_cells":
+            lines.append(f'      - {{key: "{key}.line", choice: [1, 2, 3, 4, 5, 6, 7, 8]}}')
+        lines += [HEADING, "    seeds: 1"]
+        body.append("\n".join(lines))
     return "\n".join(body) + "\n"
 
 
@@ -123,14 +163,14 @@ COMMON = """# Every sensor fault the simulator models, on every sensor, against 
 # observers' sensor checks (on with the fused detector): the turret-forward mooring of the
 # load-cell campaigns, waves of Hs 2.5, 4 and 6 m (Tp = Hs + 4.5 s) from a heading drawn
 # over the compass, the current none or 0.5 m/s, a load cell on every fairlead (1 Hz, 10 kN
-# noise). Five detectors in every run: fused, cells, the pose-only force-deficit test, DHT
-# and GLR. Blocks: fairlead, mid-line and anchor failures with healthy sensors (24 runs
+# noise). Six detectors in every run: fused, cells, the pose-only force-deficit test, DHT,
+# GLR and MLE. Blocks: fairlead, mid-line and anchor failures with healthy sensors (24 runs
 # each); the intact mooring with healthy sensors (12 h); each of 17 faults (GNSS: step,
 # frozen, noisy, drift, dead, gain; gyro: step, frozen, noisy, drift, dead; a cell: step,
 # stuck, noisy, drift, dead, gain) from 400 to 700 s on an intact mooring (6 runs of
-# 1800 s each) and with a fairlead break drawn in 200-1000 s, before, during or after it
-# (6 runs of 1200 s each; a cell's fault on the parting line's cell, and again on a cell
-# drawn from the eight).
+# 1800 s each) and with a failure drawn in 200-1000 s, before, during or after it (6 runs
+# of 1200 s each): fairlead breaks (a cell's fault on the parting line's cell, and again on
+# a cell drawn from the eight), mid-line breaks and anchor releases.
 """
 
 TRAINING = COMMON + """# The training campaign: the checks' and the fused detector's settings were chosen on it;
@@ -144,9 +184,21 @@ HELD_OUT = COMMON + """# The held-out campaign: its own seed, nothing chosen on 
 #   moorsim batch scenarios/campaigns/sensor_faults.yaml --out out/sensor_faults
 """
 
+INTACT = """# The false-alarm campaign: hours on an intact mooring, the set-up and detectors of
+# sensor_faults.yaml (the turret-forward mooring, Hs 2.5, 4 and 6 m, any wave heading, the
+# current none or 0.5 m/s, a load cell on every fairlead). 900 healthy hours (300 per sea
+# state) and each of its 17 sensor faults from 300 s to the end of an hour (a drift for
+# 600 s), 6 hours per fault. No line parts: every line named is a false alarm. Held out:
+# nothing was chosen on it.
+#
+#   moorsim batch scenarios/campaigns/sensor_faults_intact.yaml --out out/sensor_faults_intact
+"""
+
 if __name__ == "__main__":
     schema = "# yaml-language-server: $schema=../moorsim-campaign.schema.json\n"
     out = ROOT / "scenarios/campaigns"
     (out / "sensor_faults_training.yaml").write_text(
         schema + campaign("sensor_faults_training", 3601, TRAINING))
     (out / "sensor_faults.yaml").write_text(schema + campaign("sensor_faults", 3602, HELD_OUT))
+    (out / "sensor_faults_intact.yaml").write_text(
+        schema + intact_campaign("sensor_faults_intact", 3603, INTACT, 150))
