@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 #include <set>
 #include <string>
@@ -557,6 +558,33 @@ TEST(Campaign, NormalDrawOfASmallWindowHasTheTruncatedLawsMean) {
   const double mean = (pdf(2.6) - pdf(3.5)) / (cdf(3.5) - cdf(2.6));  // about 2.83
   // The law's standard deviation here is below 0.25: 0.05 is over 4 standard errors.
   EXPECT_NEAR(sum / 400, mean, 0.05);
+}
+
+}  // namespace
+}  // namespace moorsim::scenarios
+
+namespace moorsim::scenarios {
+namespace {
+
+// Every campaign of the library reads, names its base scenario in the library and expands
+// into runs (each run's draws made): a campaign file edited or generated wrong fails here,
+// not in the middle of a batch.
+TEST(Campaign, EveryLibraryCampaignReadsAndExpands) {
+  const std::filesystem::path dir =
+      std::filesystem::path(MOORSIM_SOURCE_DIR) / "scenarios/campaigns";
+  int campaigns = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.path().extension() != ".yaml") continue;
+    SCOPED_TRACE(entry.path().string());
+    const Campaign campaign = LoadCampaign(entry.path().string());
+    EXPECT_TRUE(std::filesystem::exists(campaign.scenario_path)) << campaign.scenario_path;
+    ASSERT_GT(campaign.NumRuns(), 0);
+    for (std::int64_t i = 0; i < campaign.NumRuns(); ++i) {
+      EXPECT_FALSE(MakeCampaignRun(campaign, i).overrides.empty());
+    }
+    ++campaigns;
+  }
+  EXPECT_GE(campaigns, 10);
 }
 
 }  // namespace
