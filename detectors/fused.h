@@ -19,9 +19,8 @@
 //  1. A cell that reads low and that the pose confirms (the cells test's rule) names its
 //     line: the cells for speed, the pose to confirm.
 //  2. While a pose sensor is judged faulty, or the pose disagrees with the cells, the pose
-//     confirms nothing: a low cell that the
-//     other cells explain names its line after the cells' hold, and no cell is declared
-//     faulty for want of the pose's confirmation.
+//     confirms nothing: a low cell that the other cells explain names its line after the
+//     cells' hold, and no cell is declared faulty for want of the pose's confirmation.
 //  3. The force-deficit test names a line only where that line's cell cannot speak: no cells
 //     fitted, the cell judged faulty (it read low while the vessel felt nothing, or it is
 //     frozen), or no reading from it. Where the line's cell reads true, the cell outweighs

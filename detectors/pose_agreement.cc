@@ -17,7 +17,7 @@ PoseAgreement::PoseAgreement(const PoseAgreementOptions& options) : options_(opt
 void PoseAgreement::Reset() {
   mean_.resize(0);
   started_ = false;
-  amplitude_ = explained_ = 0.0;
+  amplitude_ = 0.0;
   beyond_ = disagrees_ = false;
 }
 
@@ -38,7 +38,8 @@ bool PoseAgreement::Update(const Evidence& evidence, const std::vector<bool>& co
   // Each counting cell's mean residual, and the normal equations of rho_k = u_k . a.
   Eigen::Matrix2d normal = Eigen::Matrix2d::Zero();
   Eigen::Vector2d right = Eigen::Vector2d::Zero();
-  fitted_.clear();
+  double total = 0.0;  // sum of the fitted means' squares
+  int fitted = 0;
   for (Eigen::Index k = 0; k < n; ++k) {
     const auto line = static_cast<std::size_t>(k) + 1;
     const double expected = cells.expected(k);
@@ -52,26 +53,22 @@ bool PoseAgreement::Update(const Evidence& evidence, const std::vector<bool>& co
     const Eigen::Vector2d u = pull.normalized();
     normal += u * u.transpose();
     right += u * mean;
-    fitted_.emplace_back(u, mean);
+    total += mean * mean;
+    ++fitted;
   }
-  const double count = static_cast<double>(fitted_.size());
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> spread(normal, Eigen::EigenvaluesOnly);
-  if (static_cast<int>(fitted_.size()) < options_.min_cells ||
-      spread.eigenvalues()(0) < count / 4.0 || evidence.t - start_ < 2.0 * options_.time) {
+  if (fitted < options_.min_cells || spread.eigenvalues()(0) < fitted / 4.0 ||
+      evidence.t - start_ < 2.0 * options_.time) {
     return disagrees_;  // no fit, or the means still settling: the judgement stands
   }
   const Eigen::Vector2d a = normal.ldlt().solve(right);
-  double total = 0.0, left = 0.0;
-  for (const auto& [u, mean] : fitted_) {
-    total += mean * mean;
-    left += (mean - u.dot(a)) * (mean - u.dot(a));
-  }
   amplitude_ = a.norm();
-  explained_ = total > 0.0 ? 1.0 - left / total : 0.0;
+  // The least-squares residual sum of squares is sum rho^2 - a . (U^T rho).
+  const double explained = total > 0.0 ? a.dot(right) / total : 0.0;
   // Judged wrong on the pattern; trusted again only once its amplitude is down.
   const bool beyond = disagrees_
                           ? amplitude_ >= options_.threshold / 2.0
-                          : explained_ >= options_.explained && amplitude_ >= options_.threshold;
+                          : explained >= options_.explained && amplitude_ >= options_.threshold;
   if (beyond && !beyond_) beyond_since_ = evidence.t;
   beyond_ = beyond;
   disagrees_ = disagrees_ ? beyond : beyond && evidence.t - beyond_since_ >= options_.hold;

@@ -26,7 +26,6 @@
 // and the smaller eigenvalue of sum u_k u_k^T at least a quarter of their number).
 #pragma once
 
-#include <utility>
 #include <vector>
 
 #include "core/types.h"
@@ -58,17 +57,15 @@ class PoseAgreement {
   bool Update(const Evidence& evidence, const std::vector<bool>& counts);
 
   bool disagrees() const { return disagrees_; }
-  /// The latest fit's amplitude |a| and explained share (0 before the first fit).
+  /// The latest fit's amplitude |a| (0 before the first fit).
   double amplitude() const { return amplitude_; }
-  double explained() const { return explained_; }
 
  private:
   PoseAgreementOptions options_;
-  VecX mean_;  // per cell, the mean of rho_k; NaN until its first reading
-  std::vector<std::pair<Eigen::Vector2d, double>> fitted_;  // (u_k, mean rho_k) of the fit
+  VecX mean_;                     // per cell, the mean of rho_k; NaN until its first reading
   double t_ = 0.0, start_ = 0.0;  // the latest sample's time and the first's
   bool started_ = false;
-  double amplitude_ = 0.0, explained_ = 0.0;
+  double amplitude_ = 0.0;
   double beyond_since_ = 0.0;
   bool beyond_ = false, disagrees_ = false;
 };
