@@ -223,6 +223,11 @@ struct SensorCheckOptions {
   double baseline_time = 600.0;
   /// Recent over usual variance beyond which a sensor is noisy, > 1.
   double noisy_ratio = 5.0;
+  /// [s] Averaging time of the noise's fast estimate from successive differences, which
+  /// judges a sensor noisy at the onset of its noise; > 0 and < noise_time.
+  double fast_time = 10.0;
+  /// That estimate over the usual variance beyond which a sensor is noisy, > 1.
+  double fast_ratio = 8.0;
 };
 
 /// Throws moorsim::InputError naming the field ("detection.sensor_checks.gate") and value.

@@ -28,7 +28,9 @@ bool Fused::CellSpeaks(const Evidence& evidence, int line) const {
   if (line <= cells_.num_cells() && cells_.judged_faulty(line)) return false;
   return std::none_of(evidence.sensor_faults.begin(), evidence.sensor_faults.end(),
                       [line](const SensorFinding& f) {
-                        return f.sensor.kind == SensorId::Kind::kCell && f.sensor.line == line;
+                        // A noisy cell still speaks: the cells test averages its readings.
+                        return f.sensor.kind == SensorId::Kind::kCell && f.sensor.line == line &&
+                               f.symptom != SensorSymptom::kNoisy;
                       });
 }
 

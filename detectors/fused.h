@@ -62,7 +62,7 @@ class Fused final : public Detector {
 
  private:
   // Whether line k's cell (1-based) can speak for it: fitted, read, neither frozen nor
-  // judged faulty.
+  // judged faulty (a cell judged noisy still speaks).
   bool CellSpeaks(const Evidence& evidence, int line) const;
 
   Cells cells_;

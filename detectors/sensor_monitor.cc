@@ -42,6 +42,13 @@ void Validate(const SensorCheckOptions& options) {
   if (!(std::isfinite(options.noisy_ratio) && options.noisy_ratio > 1.0)) {
     Refuse("noisy_ratio", options.noisy_ratio, "must be finite and > 1");
   }
+  if (!(std::isfinite(options.fast_time) && options.fast_time > 0.0 &&
+        options.fast_time < options.noise_time)) {
+    Refuse("fast_time", options.fast_time, "must be finite, > 0 and < noise_time");
+  }
+  if (!(std::isfinite(options.fast_ratio) && options.fast_ratio > 1.0)) {
+    Refuse("fast_ratio", options.fast_ratio, "must be finite and > 1");
+  }
 }
 
 SensorMonitor::SensorMonitor(const SensorCheckOptions& options, const Vec3& rated_variance)
@@ -76,31 +83,75 @@ bool SensorMonitor::Repeats::Frozen(double reading, int samples) {
 
 double SensorMonitor::GateVariance(int i, const Mat3& S) const {
   const Channel& c = channels_[static_cast<std::size_t>(i)];
-  return c.learned > 0.0 ? std::max(S(i, i), c.usual) : S(i, i);
+  return c.level.learned > 0.0 ? std::max(S(i, i), c.level.usual) : S(i, i);
+}
+
+namespace {
+// An exponential mean that starts as a plain mean (its first samples weigh equally).
+void Average(double& mean, long& samples, double value, double dt, double time) {
+  ++samples;
+  const double weight = std::max(1.0 / static_cast<double>(samples), 1.0 - std::exp(-dt / time));
+  mean += weight * (value - mean);
+}
+}  // namespace
+
+void SensorMonitor::NoiseLevel::Learn(double square, double dt, const SensorCheckOptions& options,
+                                      bool noisy) {
+  Average(recent, samples, square, dt, options.noise_time);
+  // The usual level learns over its first quarter, then only while the recent one is near
+  // it: a sensor turning noisy must not teach it.
+  if (!noisy && (!Warm(options) || recent <= usual * options.noisy_ratio / 2.0)) {
+    Average(usual, usual_samples, square, dt, options.baseline_time);
+    learned += dt;
+  }
+}
+
+bool SensorMonitor::NoiseLevel::Warm(const SensorCheckOptions& options) const {
+  return learned >= options.baseline_time / 4.0 && usual > 0.0;
+}
+
+bool SensorMonitor::NoiseLevel::Judge(double ratio, double limit, bool noisy) {
+  return noisy ? ratio > limit / 2.0 : ratio > limit;
 }
 
 void SensorMonitor::LearnNoise(int i, double innovation, double gate_variance, double dt) {
   Channel& c = channels_[static_cast<std::size_t>(i)];
   // Just after a gap (a dropout, a frozen spell) the innovations carry the motion the
   // filter could not follow: no evidence of the noise.
-  if (c.since_gap < kAfterGap) return;
-  const double square = std::min(innovation * innovation, options_.gate * gate_variance);
-  // Exponential means that start as plain means (the first samples weigh equally). The
-  // usual level learns over its first quarter, then only while the recent one is near it: a
-  // sensor turning noisy must not teach it.
-  ++c.samples;
-  const double recent =
-      std::max(1.0 / static_cast<double>(c.samples), 1.0 - std::exp(-dt / options_.noise_time));
-  c.recent += recent * (square - c.recent);
-  const PoseSensor& sensor = sensors_[i < 2 ? 0 : 1];
-  const bool warm = c.learned >= options_.baseline_time / 4.0;
-  if (!sensor.noisy && (!warm || c.recent <= c.usual * options_.noisy_ratio / 2.0)) {
-    ++c.usual_samples;
-    const double usual = std::max(1.0 / static_cast<double>(c.usual_samples),
-                                  1.0 - std::exp(-dt / options_.baseline_time));
-    c.usual += usual * (square - c.usual);
-    c.learned += dt;
+  if (c.since_gap < kAfterGap) {
+    c.follows = false;
+    return;
   }
+  const double bound = options_.gate * gate_variance;
+  c.level.Learn(std::min(innovation * innovation, bound), dt, options_,
+                sensors_[i < 2 ? 0 : 1].noisy);
+  if (c.follows) {
+    const double step = innovation - c.previous;
+    Average(c.fast, c.fast_samples, std::min(step * step / 2.0, bound), dt, options_.fast_time);
+  }
+  c.previous = innovation;
+  c.follows = true;
+}
+
+void SensorMonitor::CheckCell(Cell& cell, double reading, double dt) {
+  if (!std::isfinite(reading)) {
+    cell.follows = false;
+    return;
+  }
+  if (cell.follows && dt > 0.0) {
+    // Half the squared difference of successive readings, bounded as an innovation is: a
+    // parting line's fall is one large difference, not noise.
+    const double step = reading - cell.previous;
+    const double square = step * step / 2.0;
+    const double bound = cell.level.Warm(options_) ? options_.gate * cell.level.usual : square;
+    cell.level.Learn(std::min(square, bound), dt, options_, cell.noisy);
+    if (cell.level.Warm(options_)) {
+      cell.noisy =
+          NoiseLevel::Judge(cell.level.recent / cell.level.usual, options_.noisy_ratio, cell.noisy);
+    }
+  }
+  cell.previous = reading;
+  cell.follows = true;
 }
 
 void SensorMonitor::CheckPoseSensor(PoseSensor& sensor, const HypothesisEvidence& predicted,
@@ -161,7 +212,10 @@ void SensorMonitor::CheckPoseSensor(PoseSensor& sensor, const HypothesisEvidence
   }
   // As many withheld samples as a jump takes, and not a jump: the vessel moves in a way the
   // filter did not predict (a line parting, a gust). The filter must see it.
-  for (int i = a; i < a + n; ++i) screened_.valid[i] = observation_valid_[i];
+  for (int i = a; i < a + n; ++i) {
+    screened_.valid[i] = observation_valid_[i];
+    channels_[static_cast<std::size_t>(i)].follows = false;  // its innovations go unlearned
+  }
   sensor.pending.clear();
   sensor.before = e;
   sensor.before_in_gate = false;
@@ -193,11 +247,14 @@ const Observation& SensorMonitor::Screen(const Observation& observation,
     const VecX& readings = *observation.tensions;
     cells_.resize(static_cast<std::size_t>(readings.size()));
     for (Eigen::Index k = 0; k < readings.size(); ++k) {
-      if (cells_[static_cast<std::size_t>(k)].Frozen(readings(k), options_.frozen_samples)) {
+      Cell& cell = cells_[static_cast<std::size_t>(k)];
+      const SensorId id{.kind = SensorId::Kind::kCell, .line = int(k) + 1};
+      if (cell.readings.Frozen(readings(k), options_.frozen_samples)) {
         (*screened_.tensions)(k) = std::numeric_limits<double>::quiet_NaN();
-        findings_.push_back({.sensor = {.kind = SensorId::Kind::kCell, .line = int(k) + 1},
-                             .symptom = SensorSymptom::kFrozen});
+        findings_.push_back({.sensor = id, .symptom = SensorSymptom::kFrozen});
       }
+      CheckCell(cell, (*screened_.tensions)(k), dt);
+      if (cell.noisy) findings_.push_back({.sensor = id, .symptom = SensorSymptom::kNoisy});
     }
   }
   // The intact model's prediction of this sample.
@@ -213,20 +270,24 @@ const Observation& SensorMonitor::Screen(const Observation& observation,
   // The verdict on each pose sensor, and the weight the observers give it.
   for (PoseSensor& s : sensors_) {
     bool is_frozen = false, jumped = false, silent = true;
-    double ratio = 1.0;
+    double ratio = 1.0, fast_ratio = 1.0;  // the recent and fast levels over usual
     for (int i = s.first; i < s.first + s.count; ++i) {
       const Channel& c = channels_[static_cast<std::size_t>(i)];
       is_frozen = is_frozen || frozen[i];
       silent = silent && c.missing >= options_.frozen_samples;
-      jumped = jumped || c.offset * c.offset > options_.gate * std::max(rated_(i), c.usual);
-      if (c.learned >= options_.baseline_time / 4.0 && c.usual > 0.0) {
-        ratio = std::max(ratio, c.recent / c.usual);
+      jumped = jumped || c.offset * c.offset > options_.gate * std::max(rated_(i), c.level.usual);
+      if (c.level.Warm(options_)) {
+        ratio = std::max(ratio, c.level.recent / c.level.usual);
+        fast_ratio = std::max(fast_ratio, c.fast / c.level.usual);
       }
     }
-    s.noisy = s.noisy ? ratio > options_.noisy_ratio / 2.0 : ratio > options_.noisy_ratio;
+    // Noisy by either level; trusted again once both are below half their ratios.
+    s.noisy = NoiseLevel::Judge(ratio, options_.noisy_ratio, s.noisy) ||
+              NoiseLevel::Judge(fast_ratio, options_.fast_ratio, s.noisy);
     for (int i = s.first; i < s.first + s.count; ++i) {
       const Channel& c = channels_[static_cast<std::size_t>(i)];
-      noise_scale_(i) = s.noisy ? 1.0 + std::max(0.0, c.recent - c.usual) / rated_(i) : 1.0;
+      const double excess = std::max(c.level.recent, c.fast) - c.level.usual;
+      noise_scale_(i) = s.noisy ? 1.0 + std::max(0.0, excess) / rated_(i) : 1.0;
     }
     if (is_frozen) findings_.push_back({.sensor = s.id, .symptom = SensorSymptom::kFrozen});
     if (silent) findings_.push_back({.sensor = s.id, .symptom = SensorSymptom::kSilent});

@@ -1,7 +1,7 @@
 // Checks on the sensors themselves, made before the observers take a sample: a position
 // reference that freezes, jumps or grows noisy, a heading that does the same, a load cell
-// that freezes. Without them every such fault reaches the observers as vessel motion, and
-// a force-deficit or residual test reads the motion as a lost line.
+// that freezes or grows noisy. Without them every such fault reaches the observers as vessel
+// motion, and a force-deficit or residual test reads the motion as a lost line.
 //
 // The checks, per sensor (the GNSS receiver's north and east together, the gyro, each cell):
 //  - Frozen: a reading that repeats bit for bit for `frozen_samples` samples has stopped
@@ -30,6 +30,18 @@
 //    excess as measurement noise: R + (recent - usual) in place of R (covariance matching,
 //    after Mehra 1972). Below half the ratio it is trusted again. Judged against its own
 //    usual level, the check does not mistake a rough sea for a noisy sensor.
+//    The recent level takes a minute to rise, and meanwhile the noise moves the filters'
+//    bias as a lost load would. So a fast estimate judges the onset: half the mean squared
+//    difference of successive innovations over `fast_time` (von Neumann's estimator of a
+//    variance, von Neumann et al. 1941), beyond `fast_ratio` times usual. A sensor's noise
+//    is white, and the differences carry all of it; a motion the filter did not predict (a
+//    parting line's drift, tens of centimetres a sample) changes little from one sample to
+//    the next, and they carry almost none of it, however large the innovations grow. The
+//    observers take the larger of the two levels' excess, and the sensor is trusted again
+//    once both are below half their ratios.
+//    A load cell's noise is judged the same way, by its readings' successive differences
+//    (the line's own wave-frequency tension is in the usual level): a cell judged noisy is
+//    named, and still read (the cells test averages its readings).
 //
 // The intact filter's prediction is taken from a copy of it advanced to the sample, so
 // every hypothesis's filter then sees the same screened sample.
@@ -67,14 +79,35 @@ class SensorMonitor {
     /// Takes a delivered reading; whether it has now been frozen for `samples` samples.
     bool Frozen(double reading, int samples);
   };
+  // A noise level, recent and usual (the means of a squared innovation or difference).
+  struct NoiseLevel {
+    double recent = 0.0, usual = 0.0;
+    double learned = 0.0;  // [s] time the usual level has been learned
+    long samples = 0, usual_samples = 0;
+    /// Takes a squared value; `noisy`: the sensor is judged noisy (the usual level waits).
+    void Learn(double square, double dt, const SensorCheckOptions& options, bool noisy);
+    /// Whether the usual level has been learned long enough to judge by.
+    bool Warm(const SensorCheckOptions& options) const;
+    /// Noisy beyond `limit` times usual, trusted again below half of it.
+    static bool Judge(double ratio, double limit, bool noisy);
+  };
   struct Channel {
     Repeats readings;
     int missing = 0;  // consecutive samples without a reading
     double offset = 0.0;
-    double recent = 0.0, usual = 0.0;  // mean squared innovation, short and long
-    int since_gap = 0;                 // samples since it last had none or a frozen one
-    double learned = 0.0;              // [s] time the usual level has been learned
-    long samples = 0, usual_samples = 0;
+    NoiseLevel level;   // of its squared innovations
+    double fast = 0.0;  // half the mean squared difference of successive innovations
+    long fast_samples = 0;
+    double previous = 0.0;  // the innovation learned last
+    bool follows = false;   // ... and the next one learned follows it
+    int since_gap = 0;      // samples since it last had none or a frozen one
+  };
+  struct Cell {
+    Repeats readings;
+    NoiseLevel level;  // of half its successive readings' squared difference
+    double previous = 0.0;
+    bool follows = false;
+    bool noisy = false;
   };
   struct PoseSensor {
     SensorId id;
@@ -86,6 +119,8 @@ class SensorMonitor {
   };
   void CheckPoseSensor(PoseSensor& sensor, const HypothesisEvidence& predicted, double dt);
   void LearnNoise(int channel, double innovation, double gate_variance, double dt);
+  // The noise check of a cell: its reading (NaN: withheld).
+  void CheckCell(Cell& cell, double reading, double dt);
   // The variance an innovation of channel i is judged against: the larger of S_ii and the
   // usual level once learned.
   double GateVariance(int i, const Mat3& S) const;
@@ -94,7 +129,7 @@ class SensorMonitor {
   Vec3 rated_;
   std::vector<Channel> channels_;  // north, east, heading
   std::vector<PoseSensor> sensors_;
-  std::vector<Repeats> cells_;
+  std::vector<Cell> cells_;
   std::optional<HypothesisEkf> probe_;
   Observation screened_;
   std::array<bool, 3> observation_valid_ = {true, true, true};  // after the frozen check

@@ -5,8 +5,10 @@
 // bank does. Each fault is put on the readings by hand: a healthy stream raises no finding;
 // a frozen receiver is withheld and named within `frozen_samples`; a 2.5 m step is withheld,
 // named a jump and re-anchored, so the filter's pose does not follow it, and its end clears
-// the finding; five times the noise is named noisy and weighted less; a lone outlier is
-// withheld and named nothing; a frozen cell is named and withheld.
+// the finding; five times the noise is named noisy and weighted less, within seconds of its
+// onset, while a motion the filter did not predict is not; a lone outlier is withheld and
+// named nothing; a frozen cell is named and withheld; a noisy cell is named, and a parted
+// line's cell is not.
 #include "detectors/sensor_monitor.h"
 
 #include <gtest/gtest.h>
@@ -203,6 +205,42 @@ TEST(SensorMonitor, FiveTimesTheNoiseIsNamedNoisyAndWeightedLess) {
   EXPECT_EQ(s.monitor.noise_scale(), Vec3::Ones());
 }
 
+TEST(SensorMonitor, NoiseIsNamedAtItsOnsetByTheFastWindow) {
+  for (std::uint64_t seed : {11, 12, 13}) {
+    Screened s;
+    Stream stream(seed);
+    Feed(s, stream, 0, 600, kNoFault, [] { return false; });
+    const std::optional<double> named = Feed(
+        s, stream, 600, 120, kNoFault,
+        [&] { return s.Judged(SensorId::Kind::kGnss, SensorSymptom::kNoisy); }, nullptr, 5.0);
+    ASSERT_TRUE(named.has_value()) << "seed " << seed;
+    EXPECT_LT(*named - 600, 15.0) << "seed " << seed;  // the recent level would take a minute
+  }
+}
+
+TEST(SensorMonitor, AMotionTheFilterDidNotPredictIsNotNoise) {
+  // The vessel sets off 8 m north over a minute and a half, as it does when a line parts:
+  // the intact filter lags, and its innovations grow large but keep one sign.
+  for (std::uint64_t seed : {14, 15, 16}) {
+    Screened s;
+    Stream stream(seed);
+    Feed(s, stream, 0, 600, kNoFault, [] { return false; });
+    double largest = 0.0;  // the largest innovation the drift gave, in noise deviations
+    const auto drift = [&](Observation& obs) {
+      const double x = 8.0 * (1.0 - std::exp(-(obs.t - 600.0) / 30.0));
+      obs.pose.x() += x;
+      largest = std::max(
+          largest,
+          std::abs(obs.pose.x() - s.filter.pose().x() - s.filter.wave_motion().x()) / kNoise);
+    };
+    EXPECT_FALSE(Feed(s, stream, 600, 300, drift,
+                      [&] { return s.Judged(SensorId::Kind::kGnss, SensorSymptom::kNoisy); })
+                     .has_value())
+        << "seed " << seed;
+    EXPECT_GT(largest, 5.0) << "seed " << seed;  // the fast window's ratio, had it no mean
+  }
+}
+
 TEST(SensorMonitor, ALoneOutlierIsWithheldAndNamesNothing) {
   Screened s;
   Stream stream(7);
@@ -247,6 +285,45 @@ TEST(SensorMonitor, AFrozenCellIsNamedAndWithheld) {
   EXPECT_TRUE(std::isfinite((*last.tensions)(0)));
 }
 
+TEST(SensorMonitor, ANoisyCellIsNamedAndAPartedLinesCellIsNot) {
+  // Three cells reading a line's wave-frequency tension (50 kN at 9 s, a moderate sea's) with
+  // 10 kN noise.
+  // From 600 s, cell 2 is ten times as noisy and cell 3's line parts (its reading falls to
+  // the noise about zero within two seconds).
+  Screened s;
+  Stream stream(17);
+  RandomStream noise(RandomStream::Derive(17, "cells"));
+  const auto with_cells = [&](Observation& obs) {
+    VecX readings(3);
+    for (int k = 0; k < 3; ++k) {
+      readings(k) = 6e6 + 5e4 * std::sin(2 * kPi * obs.t / 9 + k) + 1e4 * noise.Normal();
+    }
+    if (obs.t >= 600) readings(1) += 9e4 * noise.Normal();
+    if (obs.t >= 600) readings(2) = (obs.t >= 601 ? 0.0 : 3e6) + 1e4 * noise.Normal();
+    obs.tensions = readings;
+  };
+  const auto noisy = [&](int line) {
+    return std::any_of(s.monitor.findings().begin(), s.monitor.findings().end(),
+                       [&](const SensorFinding& f) {
+                         return f.sensor == SensorId{.kind = SensorId::Kind::kCell, .line = line} &&
+                                f.symptom == SensorSymptom::kNoisy;
+                       });
+  };
+  EXPECT_FALSE(Feed(s, stream, 0, 600, with_cells, [&] {
+                 return noisy(1) || noisy(2) || noisy(3);
+               }).has_value());
+  bool parted_named = false, healthy_named = false;
+  const std::optional<double> named = Feed(s, stream, 600, 300, with_cells, [&] {
+    parted_named = parted_named || noisy(3);
+    healthy_named = healthy_named || noisy(1);
+    return noisy(2);
+  });
+  ASSERT_TRUE(named.has_value());
+  EXPECT_LT(*named - 600, 90.0);
+  EXPECT_FALSE(parted_named);
+  EXPECT_FALSE(healthy_named);
+}
+
 TEST(SensorMonitor, BadOptionsNameTheirField) {
   const auto message = [](SensorCheckOptions options) {
     try {
@@ -269,6 +346,13 @@ TEST(SensorMonitor, BadOptionsNameTheirField) {
   o = {};
   o.noisy_ratio = 1.0;
   EXPECT_EQ(message(o), "detection.sensor_checks.noisy_ratio: 1 must be finite and > 1");
+  o = {};
+  o.fast_time = o.noise_time;
+  EXPECT_EQ(message(o),
+            "detection.sensor_checks.fast_time: 90 must be finite, > 0 and < noise_time");
+  o = {};
+  o.fast_ratio = 0.5;
+  EXPECT_EQ(message(o), "detection.sensor_checks.fast_ratio: 0.5 must be finite and > 1");
   EXPECT_EQ(message(SensorCheckOptions{}), "");
 }
 
