@@ -7,7 +7,7 @@
 // vessel did not feel is a faulty cell, not a line; where a line's cell is frozen the pose
 // speaks for it; where a line's cell reads true the pose's claim (a position reference in
 // error) names nothing; a pose the cells show wrong is named, and a low cell then decides
-// alone.
+// alone; a cell judged noisy still outweighs the pose.
 #include "detectors/fused.h"
 
 #include <gtest/gtest.h>
@@ -186,6 +186,29 @@ TEST(Fused, ThePoseSpeaksForALineWhoseCellIsFrozen) {
   EXPECT_TRUE(f.last.alarm);
   EXPECT_TRUE(Lists(f.last, cell2, SensorSymptom::kFrozen));
   EXPECT_FALSE(RunStory(cells, story, 1500).alarm.has_value());  // the cells alone cannot see it
+}
+
+TEST(Fused, ANoisyCellStillSpeaksForItsLine) {
+  // Cell 2 is judged noisy from 300 s (its readings 100 kN noisier, their mean true), and
+  // from 700 s the bias shifts as if line 2 had parted (a position reference in error): the
+  // noisy cell still outweighs the pose, where a frozen one would leave line 2 to it.
+  Story story;
+  story.error_time = 700;
+  story.bias_error = -testing::QuarterLineLoad(2);
+  RandomStream noise(RandomStream::Derive(11, "fused.cell"));
+  story.cells = [&noise](double t, VecX& cells) {
+    if (t >= 300) cells(1) += 1e5 * noise.Normal();
+  };
+  const SensorId cell2{.kind = SensorId::Kind::kCell, .line = 2};
+  story.findings = [cell2](double t) {
+    return t >= 300
+               ? std::vector<SensorFinding>{{.sensor = cell2, .symptom = SensorSymptom::kNoisy}}
+               : std::vector<SensorFinding>{};
+  };
+  Fused fused;
+  const Outcome f = RunStory(fused, story, 1500);
+  EXPECT_FALSE(f.alarm.has_value());
+  EXPECT_TRUE(Lists(f.last, cell2, SensorSymptom::kNoisy));  // named, as a sensor
 }
 
 TEST(Fused, ACellReadingTrueOutweighsAPoseThatSaysItsLineParted) {
