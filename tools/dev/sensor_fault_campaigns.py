@@ -2,6 +2,8 @@
 """Writes the sensor-fault campaigns (training and held-out) from one description, so that
 the two differ in their seed and header alone. Run from the repository root:
     tools/dev/sensor_fault_campaigns.py
+A training-side campaign on one question (see focus_campaign), to a file of your choice:
+    tools/dev/sensor_fault_campaigns.py --focus noisy_onset|cell_faults_hs6 OUT.yaml
 """
 import re
 from pathlib import Path
@@ -194,7 +196,46 @@ INTACT = """# The false-alarm campaign: hours on an intact mooring, the set-up a
 #   moorsim batch scenarios/campaigns/sensor_faults_intact.yaml --out out/sensor_faults_intact
 """
 
+def focus_campaign(name):
+    """A training-side campaign on one question, written outside the library (its scenario
+    path absolute): "noisy_onset" (seed 3641: a noisier GNSS, alone 120 runs and with a
+    fairlead break 48, and 48 healthy breaks; fused and deficit) or "cell_faults_hs6" (seed
+    3631: at Hs 6 m, five cell faults 40 runs each, three with a fairlead break or anchor
+    release 16 each, and 32 of each failure with healthy sensors; fused)."""
+    global SEA
+    seed, detectors = {"noisy_onset": (3641, ("fused", "deficit")),
+                       "cell_faults_hs6": (3631, ("fused",))}[name]
+    sea = SEA
+    if name == "cell_faults_hs6":
+        SEA = SEA.replace("values: [2.5, 4, 6]", "values: [6]")
+    body = preamble(name, seed, f"# {name}: a training-side focus campaign")
+    body = [l.replace("../library/", str(ROOT / "scenarios/library") + "/") for l in body]
+    body = [l for l in body if not l.startswith("    - {type:") or
+            any(f"type: {d}}}" in l for d in detectors)]
+    by_name = {f[0]: f for f in FAULTS}
+    if name == "noisy_onset":
+        body.append(fault_block(*by_name["gnss_noisy"]).replace("seeds: 2", "seeds: 20"))
+        body.append(fault_block(*by_name["gnss_noisy"], failure="fairlead")
+                    .replace("seeds: 2", "seeds: 8"))
+        body.append(failure_block("fairlead"))
+    else:
+        for f in ("cell_step", "cell_stuck", "cell_drift", "cell_dead", "cell_gain"):
+            body.append(fault_block(*by_name[f]).replace("seeds: 2", "seeds: 20"))
+        for f in ("cell_step", "cell_dead", "cell_gain"):
+            for failure in ("fairlead", "anchor"):
+                body.append(fault_block(*by_name[f], failure=failure)
+                            .replace("seeds: 2", "seeds: 8"))
+        for failure in ("fairlead", "anchor", "midline"):
+            body.append(failure_block(failure).replace("seeds: 8", "seeds: 16"))
+    SEA = sea
+    return "\n".join(body) + "\n"
+
+
 if __name__ == "__main__":
+    import sys
+    if len(sys.argv) == 4 and sys.argv[1] == "--focus":
+        Path(sys.argv[3]).write_text(focus_campaign(sys.argv[2]))
+        sys.exit(0)
     schema = "# yaml-language-server: $schema=../moorsim-campaign.schema.json\n"
     out = ROOT / "scenarios/campaigns"
     (out / "sensor_faults_training.yaml").write_text(
