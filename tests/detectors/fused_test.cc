@@ -106,6 +106,15 @@ bool Lists(const Verdict& v, SensorId sensor, SensorSymptom symptom) {
 
 constexpr SensorId kGnss{.kind = SensorId::Kind::kGnss};
 
+// The sensor checks' findings for a story: `sensor` judged `symptom` from t0 on.
+std::function<std::vector<SensorFinding>(double)> FindingFrom(double t0, SensorId sensor,
+                                                              SensorSymptom symptom) {
+  return [=](double t) {
+    return t >= t0 ? std::vector<SensorFinding>{{.sensor = sensor, .symptom = symptom}}
+                   : std::vector<SensorFinding>{};
+  };
+}
+
 TEST(Fused, ACellThePoseConfirmsNamesItsLineAsTheCellsTestDoes) {
   Story story;
   story.parted = 2;
@@ -133,10 +142,7 @@ TEST(Fused, WhileTheGnssIsJudgedFaultyALowCellDecidesAlone) {
   story.part_time = 400;
   story.error_time = 400;
   story.bias_error = testing::QuarterLineLoad(2);  // cancels the lost load: the pose feels nothing
-  story.findings = [](double t) {
-    return t >= 300 ? std::vector<SensorFinding>{{.sensor = kGnss, .symptom = SensorSymptom::kJump}}
-                    : std::vector<SensorFinding>{};
-  };
+  story.findings = FindingFrom(300, kGnss, SensorSymptom::kJump);
   Fused fused;
   Cells cells;
   const Outcome f = RunStory(fused, story, 900);
@@ -171,11 +177,7 @@ TEST(Fused, ThePoseSpeaksForALineWhoseCellIsFrozen) {
     if (t >= 300) cells(1) = std::numeric_limits<double>::quiet_NaN();
   };
   const SensorId cell2{.kind = SensorId::Kind::kCell, .line = 2};
-  story.findings = [cell2](double t) {
-    return t >= 300
-               ? std::vector<SensorFinding>{{.sensor = cell2, .symptom = SensorSymptom::kFrozen}}
-               : std::vector<SensorFinding>{};
-  };
+  story.findings = FindingFrom(300, cell2, SensorSymptom::kFrozen);
   Fused fused;
   Cells cells;
   const Outcome f = RunStory(fused, story, 1500);
@@ -200,11 +202,7 @@ TEST(Fused, ANoisyCellStillSpeaksForItsLine) {
     if (t >= 300) cells(1) += 1e5 * noise.Normal();
   };
   const SensorId cell2{.kind = SensorId::Kind::kCell, .line = 2};
-  story.findings = [cell2](double t) {
-    return t >= 300
-               ? std::vector<SensorFinding>{{.sensor = cell2, .symptom = SensorSymptom::kNoisy}}
-               : std::vector<SensorFinding>{};
-  };
+  story.findings = FindingFrom(300, cell2, SensorSymptom::kNoisy);
   Fused fused;
   const Outcome f = RunStory(fused, story, 1500);
   EXPECT_FALSE(f.alarm.has_value());
