@@ -211,10 +211,23 @@ void SensorMonitor::CheckPoseSensor(PoseSensor& sensor, const HypothesisEvidence
     return;
   }
   // As many withheld samples as a jump takes, and not a jump: the vessel moves in a way the
-  // filter did not predict (a line parting, a gust). The filter must see it.
+  // filter did not predict (a line parting, a gust), or the sensor has turned noisy. The
+  // filter must see it. A motion changes little from one sample to the next; if these
+  // samples scatter from one to the next by more than half the gate, they are the noise's
+  // first samples and are learned at once, so the noise is named before they move the
+  // observers. Otherwise their innovations go unlearned.
+  double scatter = 0.0;
+  for (std::size_t j = 1; j < sensor.pending.size(); ++j) {
+    scatter += nis(sensor.pending[j] - sensor.pending[j - 1]) / 2.0;
+  }
+  scatter /= static_cast<double>(std::max<std::size_t>(1, sensor.pending.size() - 1));
+  const bool scatters = sensor.pending.size() > 1 && scatter > options_.gate / 2.0;
   for (int i = a; i < a + n; ++i) {
     screened_.valid[i] = observation_valid_[i];
-    channels_[static_cast<std::size_t>(i)].follows = false;  // its innovations go unlearned
+    if (!scatters) channels_[static_cast<std::size_t>(i)].follows = false;
+  }
+  if (scatters) {
+    for (const Eigen::Vector2d& p : sensor.pending) learn(p);
   }
   sensor.pending.clear();
   sensor.before = e;

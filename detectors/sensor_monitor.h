@@ -8,22 +8,25 @@
 //    measuring (a live sensor's noise never repeats to the last bit). The channel is
 //    withheld from the observers until it changes. A pose sensor that delivers no reading
 //    for as many samples is silent (its channels are invalid anyway).
-//  - Outlier and jump: the intact model's one-step prediction gives each sample an
-//    innovation e. A sample whose innovation, normalised by the larger of the filter's own
-//    innovation variance S and the variance the sensor's innovations usually show (below),
-//    is beyond `gate` is withheld. (The filter's S alone is too small in a seaway: its wave
-//    model predicts the wave-frequency motion only roughly.) If `jump_samples` consecutive
-//    samples are withheld, their innovations stepped by more than the gate from the one
-//    before (itself within the gate, and not within 30 samples of a gap in the sensor's
-//    readings, after which the filter is still finding where the vessel went), and they agree (each
-//    within `agree` of their mean, the last within `agree` of the first: flat, where a motion the
-//    filter failed to predict grows), the sensor has jumped: its channels are re-anchored by that
-//    mean (later readings have it subtracted), so the step does not reach the observers as a
-//    motion. If they do not, the next sample is taken whatever its innovation: outliers come alone,
-//    and a run of them that is no step is the vessel moving as the filter did not predict (a line
-//    parting), which the observers must see. The sensor stays judged "jump" while its offset is
-//    beyond the gate of its rated noise; a jump back clears it. A vessel cannot move metres between
-//    two samples a second apart, a position reference can.
+//  - Outlier and jump: the intact model's one-step prediction gives each sample an innovation e. A
+//    sample whose innovation, normalised by the larger of the filter's own innovation variance S
+//    and the variance the sensor's innovations usually show (below), is beyond `gate` is withheld.
+//    (The filter's S alone is too small in a seaway: its wave model predicts the wave-frequency
+//    motion only roughly.) If `jump_samples` consecutive samples are withheld, their innovations
+//    stepped by more than the gate from the one before (itself within the gate, and not within 30
+//    samples of a gap in the sensor's readings, after which the filter is still finding where the
+//    vessel went), and they agree (each within `agree` of their mean, the last within `agree` of
+//    the first: flat, where a motion the filter failed to predict grows), the sensor has jumped:
+//    its channels are re-anchored by that mean (later readings have it subtracted), so the step
+//    does not reach the observers as a motion. If they do not, the next sample is taken whatever
+//    its innovation: outliers come alone, and a run of them that is no step is the vessel moving as
+//    the filter did not predict (a line parting), which the observers must see. Such a run's
+//    innovations are not learned as noise, unless they scatter from sample to sample (the mean of
+//    half their successive differences' normalised squares beyond half the gate): that is a much
+//    noisier sensor's onset, learned at once so the noise is named before it moves the observers.
+//    The sensor stays judged "jump" while its offset is beyond the gate of its rated noise; a jump
+//    back clears it. A vessel cannot move metres between two samples a second apart, a position
+//    reference can.
 //  - Noisy: each channel's squared innovations averaged over `noise_time` (recent) and over
 //    `baseline_time` (usual, learned while the recent level stays within half the ratio). Recent
 //    beyond `noisy_ratio` times usual, the sensor is judged noisy, and the observers take the

@@ -6,7 +6,8 @@
 // a frozen receiver is withheld and named within `frozen_samples`; a 2.5 m step is withheld,
 // named a jump and re-anchored, so the filter's pose does not follow it, and its end clears
 // the finding; five times the noise is named noisy and weighted less, within seconds of its
-// onset, while a motion the filter did not predict is not; a lone outlier is withheld and
+// onset, ten times the noise from its first withheld samples, while a motion the filter did
+// not predict is not; a lone outlier is withheld and
 // named nothing; a frozen cell is named and withheld; a noisy cell is named, and a parted
 // line's cell is not.
 #include "detectors/sensor_monitor.h"
@@ -215,6 +216,22 @@ TEST(SensorMonitor, NoiseIsNamedAtItsOnsetByTheFastWindow) {
         [&] { return s.Judged(SensorId::Kind::kGnss, SensorSymptom::kNoisy); }, nullptr, 5.0);
     ASSERT_TRUE(named.has_value()) << "seed " << seed;
     EXPECT_LT(*named - 600, 15.0) << "seed " << seed;  // the recent level would take a minute
+  }
+}
+
+TEST(SensorMonitor, AMuchNoisierSensorIsNamedFromItsFirstWithheldRun) {
+  // Ten times the noise: most samples fall outside the gate and are withheld in runs. A run
+  // that scatters from sample to sample is the noise itself, learned at once.
+  for (std::uint64_t seed = 17; seed < 37; ++seed) {
+    Screened s;
+    Stream stream(seed);
+    Feed(s, stream, 0, 600, kNoFault, [] { return false; });
+    const std::optional<double> named = Feed(
+        s, stream, 600, 60, kNoFault,
+        [&] { return s.Judged(SensorId::Kind::kGnss, SensorSymptom::kNoisy); }, nullptr, 10.0);
+    ASSERT_TRUE(named.has_value()) << "seed " << seed;
+    // 1-8 s; taking the run's samples only once they are back in the gate, 1-16 s.
+    EXPECT_LE(*named - 600, 10.0) << "seed " << seed;
   }
 }
 
