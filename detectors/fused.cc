@@ -19,6 +19,7 @@ void Fused::Reset(int hypotheses) {
   agreement_.Reset();
   named_ = 0;
   named_by_pose_ = false;
+  noisy_when_named_.clear();
   verdict_ = Verdict{std::vector<double>(static_cast<std::size_t>(hypotheses), 0.0), 0, false, {}};
 }
 
@@ -94,7 +95,24 @@ Verdict Fused::Update(const Evidence& evidence) {
   }
   verdict_.alarm = named_ != 0;
   verdict_.hypothesis = named_;
-  verdict_.faulty_sensors = evidence.sensor_faults;
+  // Once a line is named, the remaining lines carry more dynamic tension than their cells'
+  // usual noise level holds: a cell judged noisy only from then on is not named.
+  if (named_ == 0) {
+    noisy_when_named_.clear();
+    for (const SensorFinding& f : evidence.sensor_faults) {
+      if (f.sensor.kind == SensorId::Kind::kCell && f.symptom == SensorSymptom::kNoisy) {
+        noisy_when_named_.push_back(f.sensor.line);
+      }
+    }
+  }
+  verdict_.faulty_sensors.clear();
+  for (const SensorFinding& f : evidence.sensor_faults) {
+    const bool since_named = named_ != 0 && f.sensor.kind == SensorId::Kind::kCell &&
+                             f.symptom == SensorSymptom::kNoisy &&
+                             std::find(noisy_when_named_.begin(), noisy_when_named_.end(),
+                                       f.sensor.line) == noisy_when_named_.end();
+    if (!since_named) verdict_.faulty_sensors.push_back(f);
+  }
   if (pose_disagrees) {
     verdict_.faulty_sensors.push_back(
         {.sensor = {.kind = SensorId::Kind::kPose}, .symptom = SensorSymptom::kDisagrees});

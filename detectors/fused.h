@@ -28,7 +28,9 @@
 //  4. A named line stays named while its cell reads low, or, named by the pose, while the
 //     force-deficit alarm stands on it.
 // The sensors it judges faulty are the sensor checks' and the cells test's; a sensor judged
-// faulty is reported as such, never as a parted line.
+// faulty is reported as such, never as a parted line. Once a line is named, a cell judged
+// noisy only from then on is not reported: the remaining lines carry more dynamic tension
+// than their cells' usual noise level holds.
 #pragma once
 
 #include <string_view>
@@ -72,6 +74,7 @@ class Fused final : public Detector {
   int hypotheses_ = 0;
   int named_ = 0;  // the line named, 0 none
   bool named_by_pose_ = false;
+  std::vector<int> noisy_when_named_;  // the cells judged noisy before the line was named
   Verdict verdict_;
 };
 

@@ -7,7 +7,8 @@
 // vessel did not feel is a faulty cell, not a line; where a line's cell is frozen the pose
 // speaks for it; where a line's cell reads true the pose's claim (a position reference in
 // error) names nothing; a pose the cells show wrong is named, and a low cell then decides
-// alone; a cell judged noisy still outweighs the pose.
+// alone; a cell judged noisy still outweighs the pose, and one judged noisy only after a line
+// is named is not reported.
 #include "detectors/fused.h"
 
 #include <gtest/gtest.h>
@@ -207,6 +208,30 @@ TEST(Fused, ANoisyCellStillSpeaksForItsLine) {
   const Outcome f = RunStory(fused, story, 1500);
   EXPECT_FALSE(f.alarm.has_value());
   EXPECT_TRUE(Lists(f.last, cell2, SensorSymptom::kNoisy));  // named, as a sensor
+}
+
+TEST(Fused, ACellJudgedNoisyOnlyAfterALineIsNamedIsNotReported) {
+  // Line 2 parts at 400 s. Cell 4 is judged noisy from 300 s, cell 3 only from 600 s (the
+  // remaining lines' tensions grow livelier than their cells' usual level): cell 4 is
+  // reported, cell 3 is not.
+  Story story;
+  story.parted = 2;
+  story.part_time = 400;
+  const SensorId cell3{.kind = SensorId::Kind::kCell, .line = 3};
+  const SensorId cell4{.kind = SensorId::Kind::kCell, .line = 4};
+  story.findings = [&](double t) {
+    std::vector<SensorFinding> found;
+    if (t >= 300) found.push_back({.sensor = cell4, .symptom = SensorSymptom::kNoisy});
+    if (t >= 600) found.push_back({.sensor = cell3, .symptom = SensorSymptom::kNoisy});
+    return found;
+  };
+  Fused fused;
+  const Outcome f = RunStory(fused, story, 900);
+  ASSERT_TRUE(f.alarm.has_value());
+  EXPECT_EQ(f.hypothesis, 2);
+  EXPECT_TRUE(f.last.alarm);
+  EXPECT_TRUE(Lists(f.last, cell4, SensorSymptom::kNoisy));
+  EXPECT_FALSE(Lists(f.last, cell3, SensorSymptom::kNoisy));
 }
 
 TEST(Fused, ACellReadingTrueOutweighsAPoseThatSaysItsLineParted) {
