@@ -118,6 +118,11 @@ Verdict Fused::Update(const Evidence& evidence) {
         {.sensor = {.kind = SensorId::Kind::kPose}, .symptom = SensorSymptom::kDisagrees});
   }
   for (const SensorFinding& f : cells.faulty_sensors) {
+    // Rule 5: the named line's cell, declared faulty before the pose confirmed it.
+    if (named_by_pose_ && f.sensor.kind == SensorId::Kind::kCell && f.sensor.line == named_ &&
+        f.symptom == SensorSymptom::kDisagrees) {
+      continue;
+    }
     if (std::find(verdict_.faulty_sensors.begin(), verdict_.faulty_sensors.end(), f) ==
         verdict_.faulty_sensors.end()) {
       verdict_.faulty_sensors.push_back(f);

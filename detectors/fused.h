@@ -27,6 +27,8 @@
 //     the pose: a pose that says otherwise is a position reference in error.
 //  4. A named line stays named while its cell reads low, or, named by the pose, while the
 //     force-deficit alarm stands on it.
+//  5. A cell declared faulty for want of the pose's confirmation, whose line the pose then
+//     names, was right after all: it is not reported faulty while its line stays named.
 // The sensors it judges faulty are the sensor checks' and the cells test's; a sensor judged
 // faulty is reported as such, never as a parted line. Once a line is named, a cell judged
 // noisy only from then on is not reported: the remaining lines carry more dynamic tension
@@ -43,12 +45,13 @@
 namespace moorsim::detectors {
 
 struct FusedOptions {
-  /// The cells test's options, but a low cell waits only 60 s for the pose: in a seaway the
-  /// intact filter's bias wanders by the confirmation's 1.5 MN within minutes, and the
-  /// shorter wait gives a faulty cell fewer chances of a false confirmation. A real
-  /// parting shows in the bias within a minute; a line whose cell was judged faulty is
-  /// then the pose's to name.
-  CellsOptions cells{.confirm_time = 60.0};
+  /// The cells test's options, but a low cell waits only 30 s for the pose: in a rough sea
+  /// the intact filter's bias wanders by the confirmation's 1.5 MN within a minute (a
+  /// wave-drift group), and the shorter wait gives a faulty cell fewer chances of a false
+  /// confirmation. A parting shows in the bias within 30 s but for some anchor releases,
+  /// whose load leaves over minutes; a line whose cell was judged faulty is then the
+  /// pose's to name, and the cell is cleared again.
+  CellsOptions cells{.confirm_time = 30.0};
   DeficitOptions pose;
   /// The check of the pose against the cells (detectors/pose_agreement.h).
   PoseAgreementOptions agreement;

@@ -8,7 +8,8 @@
 // speaks for it; where a line's cell reads true the pose's claim (a position reference in
 // error) names nothing; a pose the cells show wrong is named, and a low cell then decides
 // alone; a cell judged noisy still outweighs the pose, and one judged noisy only after a line
-// is named is not reported.
+// is named is not reported; a cell declared faulty before the pose felt its line go is
+// cleared when the pose names the line.
 #include "detectors/fused.h"
 
 #include <gtest/gtest.h>
@@ -33,6 +34,7 @@ constexpr double kExpected = 6.0e6;  // [N] every cell's intact reading
 struct Story {
   int parted = 0;  // the line that parts, at `part_time`
   double part_time = std::numeric_limits<double>::infinity();
+  double lag_time = 10.0;          // [s] the bias's lag behind the lost load
   Vec3 bias_error = Vec3::Zero();  // added to the bias from `error_time` (a lying pose)
   double error_time = std::numeric_limits<double>::infinity();
   std::function<void(double, VecX&)> cells = [](double, VecX&) {};  // cell faults
@@ -61,7 +63,7 @@ class Plant {
                    3e5 * std::sqrt(1 - decay * decay) * Vec3(x_.Normal(), y_.Normal(), 0.0);
     const Vec3 lost =
         t >= story_.part_time ? testing::QuarterLineLoad(story_.parted) : Vec3::Zero();
-    lag_ += (lost - lag_) * (1.0 - std::exp(-1.0 / 10.0));
+    lag_ += (lost - lag_) * (1.0 - std::exp(-1.0 / story_.lag_time));
     evidence_.t = t;
     evidence_.load->bias =
         disturbance_ - lag_ + (t >= story_.error_time ? story_.bias_error : Vec3::Zero());
@@ -164,9 +166,40 @@ TEST(Fused, ADeadCellTheVesselDidNotFeelIsAFaultyCellNotALine) {
   Fused fused;
   const Outcome f = RunStory(fused, story, 900);
   EXPECT_FALSE(f.alarm.has_value());
-  // Declared faulty once it has waited confirm_time (180 s) for the pose.
+  // Declared faulty once it has waited confirm_time (30 s) for the pose.
   EXPECT_TRUE(
       Lists(f.last, SensorId{.kind = SensorId::Kind::kCell, .line = 3}, SensorSymptom::kDisagrees));
+}
+
+TEST(Fused, ACellDeclaredFaultyBeforeThePoseFeltItsLineGoIsClearedWhenThePoseNamesIt) {
+  // Line 2's anchor lets go at 400 s: its cell falls to the hanging chain's 70 % at once,
+  // while the bias feels the load leave over minutes (a 120 s lag). The cell waits 30 s
+  // for a confirmation that comes too late and is declared faulty; the force-deficit test
+  // then names line 2, and the cell, right after all, is no longer reported.
+  Story story;
+  story.parted = 2;
+  story.part_time = 400;
+  story.lag_time = 120;
+  story.cells = [](double t, VecX& cells) {
+    if (t >= 400) cells(1) = 0.7 * kExpected;
+  };
+  const SensorId cell2{.kind = SensorId::Kind::kCell, .line = 2};
+  Fused fused;
+  fused.Reset(kLines + 1);
+  Plant plant(story);
+  std::optional<double> declared, named;
+  Verdict last;
+  for (double t = 0; t <= 900; t += 1.0) {
+    last = fused.Update(plant.Sample(t));
+    if (!declared && Lists(last, cell2, SensorSymptom::kDisagrees)) declared = t;
+    if (!named && last.alarm) named = t;
+  }
+  ASSERT_TRUE(declared.has_value());
+  ASSERT_TRUE(named.has_value());
+  EXPECT_LT(*declared, *named);
+  EXPECT_EQ(last.hypothesis, 2);
+  EXPECT_TRUE(last.alarm);
+  EXPECT_FALSE(Lists(last, cell2, SensorSymptom::kDisagrees));
 }
 
 TEST(Fused, ThePoseSpeaksForALineWhoseCellIsFrozen) {
