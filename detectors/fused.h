@@ -45,13 +45,12 @@
 namespace moorsim::detectors {
 
 struct FusedOptions {
-  /// The cells test's options, but a low cell waits only 30 s for the pose: in a rough sea
-  /// the intact filter's bias wanders by the confirmation's 1.5 MN within a minute (a
-  /// wave-drift group), and the shorter wait gives a faulty cell fewer chances of a false
-  /// confirmation. A parting shows in the bias within 30 s but for some anchor releases,
-  /// whose load leaves over minutes; a line whose cell was judged faulty is then the
-  /// pose's to name, and the cell is cleared again.
-  CellsOptions cells{.confirm_time = 30.0};
+  /// The cells test's options, but a low cell waits only 60 s for the pose: in a seaway the
+  /// intact filter's bias wanders by the confirmation's 1.5 MN within minutes, and the
+  /// shorter wait gives a faulty cell fewer chances of a false confirmation. A real
+  /// parting shows in the bias within a minute; a line whose cell was judged faulty is
+  /// then the pose's to name, and the cell is cleared again.
+  CellsOptions cells{.confirm_time = 60.0};
   DeficitOptions pose;
   /// The check of the pose against the cells (detectors/pose_agreement.h).
   PoseAgreementOptions agreement;

@@ -292,7 +292,7 @@ constexpr std::array<DetectorType, 6> kDetectors = {{
      kFusedParameters,
      "load cells and the pose checking each other, with the sensors judged: a confirmed low "
      "cell names its line; the force-deficit test speaks for a line whose cell cannot; "
-     "faulty sensors are named as such (parameters: the cells test's; confirm_time 30 s)",
+     "faulty sensors are named as such (parameters: the cells test's; confirm_time 60 s)",
      {}},
     {"glr",
      MakeGlr,

@@ -166,20 +166,20 @@ TEST(Fused, ADeadCellTheVesselDidNotFeelIsAFaultyCellNotALine) {
   Fused fused;
   const Outcome f = RunStory(fused, story, 900);
   EXPECT_FALSE(f.alarm.has_value());
-  // Declared faulty once it has waited confirm_time (30 s) for the pose.
+  // Declared faulty once it has waited confirm_time (60 s) for the pose.
   EXPECT_TRUE(
       Lists(f.last, SensorId{.kind = SensorId::Kind::kCell, .line = 3}, SensorSymptom::kDisagrees));
 }
 
 TEST(Fused, ACellDeclaredFaultyBeforeThePoseFeltItsLineGoIsClearedWhenThePoseNamesIt) {
   // Line 2's anchor lets go at 400 s: its cell falls to the hanging chain's 70 % at once,
-  // while the bias feels the load leave over minutes (a 120 s lag). The cell waits 30 s
+  // while the bias feels the load leave over minutes (a 240 s lag). The cell waits 60 s
   // for a confirmation that comes too late and is declared faulty; the force-deficit test
   // then names line 2, and the cell, right after all, is no longer reported.
   Story story;
   story.parted = 2;
   story.part_time = 400;
-  story.lag_time = 120;
+  story.lag_time = 240;
   story.cells = [](double t, VecX& cells) {
     if (t >= 400) cells(1) = 0.7 * kExpected;
   };
