@@ -9,14 +9,13 @@ the confusion matrix, detection delays, false alarms per hour, ROC curves over t
 detector's threshold grid, the run counts by status, the station keeping per block (runs
 that left their setpoint heading, flagged) and the worst runs with the command that repeats
 each. All intervals are 95 %: Wilson (1927) score intervals for proportions,
-exact (Garwood 1936) intervals for Poisson rates, whose chi-square quantiles come from
-bisection on the regularised incomplete gamma function (series and continued fraction,
-Press et al. 2007; stdlib only, quantiles accurate to about 1e-12 relative).
+exact (Garwood 1936) intervals for Poisson rates, from scipy's distributions.
 
 A missing directory or file, or a file that is not a campaign, ends the script with a
 one-line error naming the file and exit code 2.
 
-Needs Debian's python3-numpy, python3-h5py and python3-matplotlib (tools/setup.sh); if
+Needs Debian's python3-numpy, python3-scipy, python3-h5py and python3-matplotlib
+(tools/setup.sh); if
 `python3` on PATH is not Debian's, run /usr/bin/python3.
 """
 
@@ -25,7 +24,6 @@ import html
 import json
 import math
 import re
-import statistics
 import sys
 from dataclasses import dataclass
 from pathlib import Path
@@ -34,15 +32,16 @@ try:
     import h5py
     import matplotlib
     import numpy as np
+    from scipy.stats import binomtest, chi2
 except ImportError as error:
     print(f"report: python module '{error.name}' is missing: install python3-numpy "
-          f"python3-h5py python3-matplotlib (tools/setup.sh) and use /usr/bin/python3",
+          f"python3-scipy python3-h5py python3-matplotlib (tools/setup.sh) and use "
+          f"/usr/bin/python3",
           file=sys.stderr)
     sys.exit(1)
 
 EXIT_BAD_INPUT = 2
 CONFIDENCE = 0.95
-Z = statistics.NormalDist().inv_cdf(0.5 + CONFIDENCE / 2)  # 1.95996...
 WITHIN = (60.0, 120.0, 300.0)  # s, the ROC's detection deadlines
 MAX_LEVELS = 8  # numeric factors with more distinct values are binned into quartiles
 MAX_WORST = 20
@@ -198,59 +197,14 @@ def read_campaign(path: Path) -> Campaign:
 # ---------------------------------------------------------------------------- statistics
 
 
-def gamma_p(a: float, x: float) -> float:
-    """Regularised lower incomplete gamma function P(a, x): its power series for x < a + 1,
-    else the continued fraction for 1 - P by the modified Lentz method (Press et al. 2007,
-    section 6.2); relative accuracy about 1e-14."""
-    if x <= 0.0:
-        return 0.0
-    log_front = -x + a * math.log(x) - math.lgamma(a)
-    if x < a + 1.0:
-        term = total = 1.0 / a
-        for n in range(1, 100000):
-            term *= x / (a + n)
-            total += term
-            if abs(term) < abs(total) * 1e-16:
-                break
-        return min(1.0, total * math.exp(log_front))
-    tiny = 1e-300
-    b = x + 1.0 - a
-    c, d = 1.0 / tiny, 1.0 / b
-    h = d
-    for i in range(1, 100000):
-        an = -i * (i - a)
-        b += 2.0
-        d = an * d + b
-        d = 1.0 / (d if abs(d) > tiny else tiny)
-        c = b + an / c
-        c = c if abs(c) > tiny else tiny
-        h *= d * c
-        if abs(d * c - 1.0) < 1e-16:
-            break
-    return max(0.0, 1.0 - math.exp(log_front) * h)
-
-
-def chi2_quantile(p: float, dof: float) -> float:
-    """The p-quantile of the chi-square distribution: bisection on its CDF P(dof/2, x/2) to a
-    relative width of 1e-13 (the CDF's own accuracy limits the result to about 1e-12)."""
-    low, high = 0.0, max(1.0, 2.0 * dof)
-    while gamma_p(dof / 2, high / 2) < p:
-        high *= 2.0
-    while high - low > 1e-13 * high:
-        middle = 0.5 * (low + high)
-        low, high = (middle, high) if gamma_p(dof / 2, middle / 2) < p else (low, middle)
-    return 0.5 * (low + high)
-
-
 def proportion(k: int, n: int) -> dict:
     """k of n with its Wilson (1927) score interval; numbers None when n = 0."""
     if n == 0:
         return {"k": 0, "n": 0, "rate": None, "low": None, "high": None}
-    p, z2 = k / n, Z * Z
-    centre = (p + z2 / (2 * n)) / (1 + z2 / n)
-    half = Z / (1 + z2 / n) * math.sqrt(p * (1 - p) / n + z2 / (4 * n * n))
-    return {"k": int(k), "n": int(n), "rate": p, "low": min(p, max(0.0, centre - half)),
-            "high": max(p, min(1.0, centre + half))}  # min, max: rounding at p = 0 or 1
+    p = k / n
+    interval = binomtest(int(k), int(n)).proportion_ci(CONFIDENCE, method="wilson")
+    return {"k": int(k), "n": int(n), "rate": p, "low": min(p, interval.low),
+            "high": max(p, interval.high)}  # min, max: rounding at p = 0 or 1
 
 
 def poisson_rate(count: int, hours: float, runs: int) -> dict:
@@ -260,9 +214,9 @@ def poisson_rate(count: int, hours: float, runs: int) -> dict:
               "low": None, "high": None}
     if hours > 0:
         alpha = 1 - CONFIDENCE
-        low = chi2_quantile(alpha / 2, 2 * count) / 2 if count > 0 else 0.0
-        result.update(rate=count / hours, low=low / hours,
-                      high=chi2_quantile(1 - alpha / 2, 2 * count + 2) / 2 / hours)
+        low = chi2.ppf(alpha / 2, 2 * count) / 2 if count > 0 else 0.0
+        result.update(rate=count / hours, low=float(low) / hours,
+                      high=float(chi2.ppf(1 - alpha / 2, 2 * count + 2)) / 2 / hours)
     return result
 
 

@@ -18,6 +18,7 @@ packages=(
   nettle-dev               # SHA-256 of detector plugin libraries
   libopenmpi-dev openmpi-bin   # moorsim batch under mpirun
   python3-numpy python3-h5py python3-matplotlib   # tools/plot_run.py
+  python3-scipy            # tools/report.py: the intervals' distributions
   python3-jsonschema python3-yaml   # tests: library scenarios against moorsim.schema.json
   pybind11-dev python3-dev python3-pytest   # the Python module (import moorsim) and its tests
   gfortran                 # tests: the C API from Fortran (examples/fortran_coupling)
