@@ -3,7 +3,7 @@
 the two differ in their seed and header alone. Run from the repository root:
     tools/dev/sensor_fault_campaigns.py
 A training-side campaign on one question (see focus_campaign), to a file of your choice:
-    tools/dev/sensor_fault_campaigns.py --focus noisy_onset|cell_faults_hs6 OUT.yaml
+    tools/dev/sensor_fault_campaigns.py --focus noisy_onset|cell_faults_hs6|gnss_outage OUT.yaml
 """
 import re
 from pathlib import Path
@@ -199,12 +199,16 @@ INTACT = """# The false-alarm campaign: hours on an intact mooring, the set-up a
 def focus_campaign(name):
     """A training-side campaign on one question, written outside the library (its scenario
     path absolute): "noisy_onset" (seed 3641: a noisier GNSS, alone 120 runs and with a
-    fairlead break 48, and 48 healthy breaks; fused and deficit) or "cell_faults_hs6" (seed
+    fairlead break 48, and 48 healthy breaks; fused and deficit), "cell_faults_hs6" (seed
     3631: at Hs 6 m, five cell faults 40 runs each, three with a fairlead break or anchor
-    release 16 each, and 32 of each failure with healthy sensors; fused)."""
+    release 16 each, and 32 of each failure with healthy sensors; fused) or "gnss_outage"
+    (seed 3651: the GNSS dead or frozen from 300 s to the end of an hour, 36 runs each; a
+    fairlead break during a 400-700 s outage, 24 runs each; 48 healthy breaks; fused and
+    deficit)."""
     global SEA
     seed, detectors = {"noisy_onset": (3641, ("fused", "deficit")),
-                       "cell_faults_hs6": (3631, ("fused",))}[name]
+                       "cell_faults_hs6": (3631, ("fused",)),
+                       "gnss_outage": (3651, ("fused", "deficit"))}[name]
     sea = SEA
     if name == "cell_faults_hs6":
         SEA = SEA.replace("values: [2.5, 4, 6]", "values: [6]")
@@ -218,6 +222,16 @@ def focus_campaign(name):
         body.append(fault_block(*by_name["gnss_noisy"], failure="fairlead")
                     .replace("seeds: 2", "seeds: 8"))
         body.append(failure_block("fairlead"))
+    elif name == "gnss_outage":
+        for block, mode in (("dead", "dead"), ("frozen", "stuck")):
+            body.append("\n".join([
+                f"  - name: gnss_{block}_hour", "    set:", "      simulation.duration: 3600",
+                f"      sensors.gnss.faults: [{{mode: {mode}, time: 300}}]", "    factors:", SEA,
+                HEADING, "    seeds: 12"]))
+        for f in ("gnss_dead", "gnss_frozen"):
+            body.append(fault_block(*by_name[f], failure="fairlead")
+                        .replace("seeds: 2", "seeds: 8"))
+        body.append(failure_block("fairlead").replace("seeds: 8", "seeds: 16"))
     else:
         for f in ("cell_step", "cell_stuck", "cell_drift", "cell_dead", "cell_gain"):
             body.append(fault_block(*by_name[f]).replace("seeds: 2", "seeds: 20"))
