@@ -24,6 +24,7 @@ packages=(
   gfortran                 # tests: the C API from Fortran (examples/fortran_coupling)
   python3-pandas python3-xarray     # campaign tables as DataFrames, runs as xarray Datasets
   clang-format
+  mkdocs                   # the user guide (docs/) as a site, checked by tools/dev/test.sh
 )
 
 missing=()

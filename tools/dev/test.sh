@@ -20,6 +20,18 @@ cd "$(dirname "$0")/../.."
 echo "== clang-format check ($SECONDS s)"
 git ls-files '*.cc' '*.h' | xargs clang-format --dry-run -Werror
 
+echo "== user guide ($SECONDS s)"
+# A broken link is an error (strict); so is a page left out of mkdocs.yml's navigation.
+if ! guide=$(mkdocs build --strict 2>&1); then
+  echo "$guide"
+  exit 1
+fi
+if grep -q 'not included in the "nav"' <<<"$guide"; then
+  echo "$guide"
+  echo "user guide: a page in docs/ is missing from mkdocs.yml's nav"
+  exit 1
+fi
+
 echo "== release build and tests ($SECONDS s)"
 cmake --preset release >/dev/null
 # The test executables and the program only: the benchmarks build with tools/main.sh.
