@@ -560,8 +560,8 @@ std::string WriteTemplate(const TemplateRequest& request, const TemplateLayout& 
     field("added_mass_normal", Number(rope.added_mass_normal), "C_MN [-]");
   }
   if (!composite) {
-    y << "\n  defaults: {segments: 50}          # equal segments per line (README.md: "
-         "convergence)\n";
+    y << "\n  defaults: {segments: 50}          # equal segments per line (docs/line-model.md: "
+         "the choice of segments)\n";
   }
   y << "\n";
 
