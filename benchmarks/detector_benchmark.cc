@@ -1,4 +1,4 @@
-// Micro benchmarks of detection (issue 4): the cost per observation of the observer banks
+// Micro benchmarks of detection: the cost per observation of the observer banks
 // and of each detector, with the 9 hypotheses of the thesis mooring (intact + 8 lines; the
 // pairs bank, 37 hypotheses, for the EKF bank too).
 //

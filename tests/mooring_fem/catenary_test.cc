@@ -545,7 +545,7 @@ TEST(SolveCatenaryTest, ConvergesOverWideRangeOfGeometries) {
 }
 
 TEST(SolveCatenaryTest, NearlyVerticalAndTwentyKilometreLinesSolveOrSayTheyCannotReach) {
-  // Issue 9, item 6: an anchor (almost) straight under its fairlead, and lines of up to
+  // An anchor (almost) straight under its fairlead, and lines of up to
   // 20 km, at every regime (slack, touchdown, lifted, taut). No iteration may end
   // unconverged: either the end is reproduced or Error says the line cannot reach.
   int solved = 0;

@@ -178,7 +178,7 @@ TEST(StaticFem, BrokenLineSixLeavesThreePointFiveMeganewtonsAwayFromIt) {
   EXPECT_NEAR(net.x(), -net.y(), 1e-3 * net.head<2>().norm());
 }
 
-// --- Geometries that used to stop the static solution (issue 9, item 6) -------------------
+// --- Geometries that used to stop the static solution ------------------------------------
 
 // Line 1 of the seed alone, with its anchor and length changed.
 MooringSystem LineOne(const Vec3& anchor, double length) {

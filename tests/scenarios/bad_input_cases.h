@@ -260,7 +260,7 @@ inline const BadInput kParseErrors[] = {
      "direction:", "mooring.current: unknown key 'direction' (did you mean 'direction_deg'?)"},
     {"SecondDocument", "", "linear_solver: klu\n", "linear_solver: klu\n---\nname: other\n",
      "name: other", "a scenario file holds one YAML document; this is a second one"},
-    // The coupled-simulation sections (issue 3).
+    // The coupled-simulation sections.
     {"VesselUnknownKey", "vessel:", "mass: 1.0041e8", "mas: 1.0041e8", "mas",
      "vessel: unknown key 'mas' (did you mean 'mass'?)"},
     {"HullUnknownKey", "hull:", "beam: 44", "breadth: 44", "breadth",
@@ -280,7 +280,7 @@ inline const BadInput kParseErrors[] = {
      "hull_viscous_drag: true\n  current: {direction_deg: 0, profile: [{depth: 0, speed: 0.1}]}",
      "direction_deg: 90",
      "mooring.current: the current is given twice; keep it under environment.current only"},
-    // YAML tags (issue 9): none is accepted, on values or keys. `!!str 1.0041e8` is text
+    // YAML tags: none is accepted, on values or keys. `!!str 1.0041e8` is text
     // that yaml-cpp would still convert to a number.
     {"TaggedStringOnNumber", "vessel:", "mass: 1.0041e8", "mass: !!str 1.0041e8", "!!str",
      "vessel.mass: tagged value '!!str' (tags are not accepted; write the plain number)"},
@@ -315,7 +315,7 @@ inline const BadInput kParseErrors[] = {
     {"TaggedDetectorParameter", "detectors:", "floor: 1.0e-9", "floor: !!float 1.0e-9", "!!float",
      "detectors[1].floor: tagged value '!!float' (tags are not accepted; write the plain "
      "number)"},
-    // Bytes that are not UTF-8 (issue 9): placed at the first bad byte, wherever it is.
+    // Bytes that are not UTF-8: placed at the first bad byte, wherever it is.
     {"Latin1ByteInName", "", "name: base", "name: b\xE9se", "\xE9",
      "not valid UTF-8 (byte 0xE9); save the file as UTF-8"},
     {"LoneContinuationByteInComment", "vessel:", "  mass: 1.0041e8", "  mass: 1.0041e8  # 10\x80 t",
@@ -326,7 +326,7 @@ inline const BadInput kParseErrors[] = {
      "not valid UTF-8 (byte 0xED); save the file as UTF-8"},
     {"TruncatedSequence", "- id: 2", "type: wire", "type: wir\xC3", "\xC3",
      "not valid UTF-8 (byte 0xC3); save the file as UTF-8"},
-    // Angles (issue 9): a full turn either way at most.
+    // Angles: a full turn either way at most.
     {"DirectionBeyondAFullTurn", "", "direction_deg: 90", "direction_deg: 400", "400",
      "mooring.current.direction_deg: 400 deg must be in [-360, 360]"},
     {"HeadingBeyondAFullTurn", "initial_pose:", "heading_deg: 10", "heading_deg: -720", "-720",
@@ -413,7 +413,7 @@ inline const BadInput kValidationErrors[] = {
      "mooring.lines[2].length: 0 m must be > 0"},
     {"LengthAboveTwentyKilometres", "- id: 2", "length: 2250", "length: 20001", "20001",
      "mooring.lines[2].length: 20001 m must be <= 20000"},
-    // Geometry the static solution cannot hold (issue 9, item 6). Line 2 runs from (0, 20,
+    // Geometry the static solution cannot hold. Line 2 runs from (0, 20,
     // 12) to (0, 1950, 1000): 1930 m across, 988 m down.
     {"LineWouldLieSlack", "- id: 2", "length: 2250", "length: 3000", "3000",
      "mooring.lines[2].length: 3000 m must be shorter than the horizontal anchor-fairlead "
@@ -548,7 +548,7 @@ inline const BadInput kValidationErrors[] = {
      "atol_velocity: ^5", "solver.atol_velocity: 5 m/s must be <= 1"},
     {"MaxStepHuge", "", "max_step: 0.5", "max_step: 1e8", "1e8",
      "solver.max_step: 1e+08 s must be <= 1e+07"},
-    // The coupled-simulation sections (issue 3).
+    // The coupled-simulation sections.
     {"HydrodynamicsMissing", "vessel:", "fpso_wamit/fpso", "fpso_wamit/nothing", "hydrodynamics: ^",
      "vessel.hydrodynamics: '" MOORSIM_SOURCE_DIR
      "/data/fpso_wamit/nothing': no WAMIT file '" MOORSIM_SOURCE_DIR "/data/fpso_wamit/nothing.1'"},

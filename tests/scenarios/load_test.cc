@@ -379,7 +379,7 @@ TEST(BadScenarioText, ValuesWithoutPositionAreNamedByPathOnly) {
 }
 
 // ---------------------------------------------------------------------------------------
-// Tags, encodings and ranges (issue 9): what must still be accepted, and the cases a
+// Tags, encodings and ranges: what must still be accepted, and the cases a
 // one-spot edit of kBase cannot express.
 
 std::string OverrideError(const std::vector<std::string>& overrides) {

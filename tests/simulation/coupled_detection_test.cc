@@ -1,4 +1,4 @@
-// Detection on the coupled plant (issue 4's acceptance): the thesis scenario with waves
+// Detection on the coupled plant (its acceptance test): the thesis scenario with waves
 // (JONSWAP Hs 2.5 m, Tp 7 s, beam-on), the 0.1 m/s current, the thesis's PI and GNSS/gyro
 // noise of variance 0.005 per DOF, each DOF from its own stream, with the library's four
 // detectors at their defaults. Everything comes from scenarios/library/

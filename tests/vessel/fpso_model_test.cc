@@ -1,5 +1,5 @@
 // The seed FPSO's low-frequency model from its WAMIT data: free-decay periods in heave,
-// roll and pitch against sqrt((M + A) / C) (issue 3), and the damping rule.
+// roll and pitch against sqrt((M + A) / C), and the damping rule.
 #include "vessel/fpso_model.h"
 
 #include <gtest/gtest.h>
@@ -25,7 +25,7 @@ TEST(FpsoModel, FreeDecayPeriodsMatchTheDiagonalEstimate) {
     Vec6 eta0 = Vec6::Zero();
     eta0(dof) = dof == 2 ? 0.2 : 0.01;  // 0.2 m or 0.6 deg: linear range
     const double period = testing::DecayPeriod(model, eta0, dof, 12.0 * estimate);
-    // Issue 3's bar: 3 %. Couplings (heave-pitch through C35 and A35, roll-sway through the
+    // The bar: 3 %. Couplings (heave-pitch through C35 and A35, roll-sway through the
     // CG height and A24) and the damping (10 % of critical lengthens a period by 0.5 %)
     // move the decay period off the one-DOF estimate by less than that.
     EXPECT_NEAR(period, estimate, 0.03 * estimate) << "DOF " << dof + 1;

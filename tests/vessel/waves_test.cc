@@ -274,7 +274,7 @@ TEST(WaveRealisationTest, ComponentsFollowTheConstruction) {
 }
 
 TEST(WaveRealisationTest, RealisedSignificantHeightMatchesTarget) {
-  // Issue 3: Hs = 4 sqrt(m0) of the realised record within 2 % of the requested 2.5 m.
+  // Hs = 4 sqrt(m0) of the realised record within 2 % of the requested 2.5 m.
   // Two estimates of m0 for ten seeds: the realisation's sum a_i^2/2, and the sample
   // variance of a 3-hour record sampled at 0.5 s (what a wave probe would report). Expected
   // deviations: the default range drops 0.32 % of m0 and DNV's A_gamma adds 0.24 % (Hs
