@@ -216,12 +216,12 @@ void SensorMonitor::CheckPoseSensor(PoseSensor& sensor, const HypothesisEvidence
   // samples scatter from one to the next by more than half the gate, they are the noise's
   // first samples and are learned at once, so the noise is named before they move the
   // observers. Otherwise their innovations go unlearned.
-  double scatter = 0.0;
-  for (std::size_t j = 1; j < sensor.pending.size(); ++j) {
+  const std::size_t m = sensor.pending.size();
+  double scatter = 0.0;  // the sum of half the successive differences' normalised squares
+  for (std::size_t j = 1; j < m; ++j) {
     scatter += nis(sensor.pending[j] - sensor.pending[j - 1]) / 2.0;
   }
-  scatter /= static_cast<double>(std::max<std::size_t>(1, sensor.pending.size() - 1));
-  const bool scatters = sensor.pending.size() > 1 && scatter > options_.gate / 2.0;
+  const bool scatters = m > 1 && scatter > static_cast<double>(m - 1) * options_.gate / 2.0;
   for (int i = a; i < a + n; ++i) {
     screened_.valid[i] = observation_valid_[i];
     if (!scatters) channels_[static_cast<std::size_t>(i)].follows = false;
