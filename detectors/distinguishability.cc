@@ -454,7 +454,7 @@ double ExpectedLogLikelihood(const MatX& innovation_covariance, const Innovation
   return -0.5 * (m * kLogTwoPi + LogDet(llt) + trace);
 }
 
-Distinguishability AnalyseDistinguishability(const HypothesisBank& bank,
+Distinguishability AnalyzeDistinguishability(const HypothesisBank& bank,
                                              const LowFrequencyModel& model, const EkfOptions& ekf,
                                              const Vec3& pose,
                                              const DistinguishabilityOptions& options) {

@@ -205,7 +205,7 @@ struct Distinguishability {
 /// Throws moorsim::InputError on bad options, moorsim::SolverError if a filter has no
 /// steady state. About 0.3 s for the 9 hypotheses of the thesis mooring, 2 s with its 28
 /// pairs.
-Distinguishability AnalyseDistinguishability(const HypothesisBank& bank,
+Distinguishability AnalyzeDistinguishability(const HypothesisBank& bank,
                                              const LowFrequencyModel& model, const EkfOptions& ekf,
                                              const Vec3& pose,
                                              const DistinguishabilityOptions& options = {});

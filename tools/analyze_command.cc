@@ -109,7 +109,7 @@ int Analyze(const AnalyzeOptions& o) {
                      "controller");
   }
   const detectors::Distinguishability d =
-      detectors::AnalyseDistinguishability(bank, models.model, models.ekf, pose, options);
+      detectors::AnalyzeDistinguishability(bank, models.model, models.ekf, pose, options);
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const int n = bank.size();

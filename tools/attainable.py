@@ -248,7 +248,7 @@ def intact_runs_by_block(directory):
     return blocks
 
 
-def analyse(directory, line_loads, rates, shares, lag_seconds, skip, target, off_bow):
+def analyze(directory, line_loads, rates, shares, lag_seconds, skip, target, off_bow):
     result = []
     for block, runs in intact_runs_by_block(directory).items():
         data = [read_run(run, skip) for run in runs]
@@ -459,7 +459,7 @@ def main(argv=None):
               file=sys.stderr)
         return EXIT_BAD_INPUT
     try:
-        result = analyse(args.directory, read_line_loads(args.static), rates, shares,
+        result = analyze(args.directory, read_line_loads(args.static), rates, shares,
                          args.lag, args.skip, args.target, args.off_bow)
     except InputError as error:
         print(f"attainable: {error}", file=sys.stderr)

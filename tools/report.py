@@ -252,7 +252,7 @@ def factor_levels(values: np.ndarray, mask: np.ndarray) -> list:
 # ---------------------------------------------------------------------------- analysis
 
 
-def analyse_detector(c: Campaign, d: Detector) -> dict:
+def analyze_detector(c: Campaign, d: Detector) -> dict:
     r, col, lines = c.runs, d.columns, c.num_lines
     detected = c.fail_ok & np.isfinite(col["alarm_time"])
     isolated = c.fail_ok & (col["isolated_line"] == r["failure_line"])
@@ -451,7 +451,7 @@ def station_keeping(c: Campaign) -> dict | None:
     return out
 
 
-def analyse(c: Campaign) -> dict:
+def analyze(c: Campaign) -> dict:
     r = c.runs
     statuses = {s: int((r["status"] == s).sum()) for s in sorted(set(r["status"]))}
     blocks = {b: {s: int(((r["block"] == b) & (r["status"] == s)).sum()) for s in statuses}
@@ -470,7 +470,7 @@ def analyse(c: Campaign) -> dict:
         "runs": {"total": c.size, "status": statuses, "by_block": blocks,
                  "failure_runs_ok": int(c.fail_ok.sum()), "intact_runs_ok": int(c.intact_ok.sum()),
                  "not_ok": not_ok, "station_keeping": station_keeping(c)},
-        "detectors": {d.label: analyse_detector(c, d) for d in c.detectors},
+        "detectors": {d.label: analyze_detector(c, d) for d in c.detectors},
         "worst_runs": worst_runs(c),
     }
 
@@ -992,7 +992,7 @@ def main(argv: list[str]) -> int:
         return EXIT_BAD_INPUT
     out_dir = args.out if args.out is not None else args.dir
     out_dir.mkdir(parents=True, exist_ok=True)
-    rep = json_safe(analyse(campaign))
+    rep = json_safe(analyze(campaign))
     with open(out_dir / "report.json", "w", encoding="utf-8") as stream:
         json.dump(rep, stream, indent=1, allow_nan=False)
     print(f"wrote {out_dir / 'report.json'}")

@@ -123,7 +123,10 @@ fs::path* BatchTest::root_ = nullptr;
 fs::path* BatchTest::campaign_ = nullptr;
 BatchResult* BatchTest::reference_ = nullptr;
 
-TEST_F(BatchTest, ADivergingRunIsAFailedRowAndTheRestFinish) {
+// Whole campaigns of coupled runs: labelled acceptance by the suite name.
+using BatchAcceptance = BatchTest;
+
+TEST_F(BatchAcceptance, ADivergingRunIsAFailedRowAndTheRestFinish) {
   const BatchResult& reference = Reference();
   EXPECT_EQ(reference.status, BatchStatus::kRunsFailed) << reference.message;
   EXPECT_EQ(reference.runs, 7);
@@ -161,7 +164,7 @@ TEST_F(BatchTest, FourThreadsGiveTheRowsOfOne) {
   EXPECT_EQ(RowsOf(*root_ / "threads"), RowsOf(*root_ / "sequential"));
 }
 
-TEST_F(BatchTest, ARunRepeatedAloneGivesItsRow) {
+TEST_F(BatchAcceptance, ARunRepeatedAloneGivesItsRow) {
   Reference();
   const PreparedCampaign p = PrepareCampaign(campaign_->string());
   const auto rows = RowsOf(*root_ / "sequential");
@@ -187,7 +190,7 @@ TEST_F(BatchTest, ARunRepeatedAloneGivesItsRow) {
   }
 }
 
-TEST_F(BatchTest, AnInterruptedCampaignResumesToTheSameTable) {
+TEST_F(BatchAcceptance, AnInterruptedCampaignResumesToTheSameTable) {
   const fs::path out = *root_ / "interrupted";
   BatchOptions o = Options(*campaign_, out, 2);
   std::atomic<long> calls{0};
@@ -209,7 +212,7 @@ TEST_F(BatchTest, AnInterruptedCampaignResumesToTheSameTable) {
   EXPECT_EQ(RowsOf(out), RowsOf(*root_ / "sequential"));
 }
 
-TEST_F(BatchTest, ShardsMergeToTheWholeCampaign) {
+TEST_F(BatchAcceptance, ShardsMergeToTheWholeCampaign) {
   std::vector<fs::path> shards;
   for (int k = 0; k < 3; ++k) {
     BatchOptions o = Options(*campaign_, *root_ / ("shard" + std::to_string(k)), 1);

@@ -81,7 +81,9 @@ TEST_F(AnalyzeCommandTest, JsonOnTheThesisScenario) {
 
 // The library's turret is free (the heading loop holds the hull); locked, the mooring
 // holds the heading too, and every line's break still gives evidence.
-TEST_F(AnalyzeCommandTest, ALockedTurret) {
+using AnalyzeCommandSlow = AnalyzeCommandTest;
+
+TEST_F(AnalyzeCommandSlow, ALockedTurret) {
   const CliResult r = Run({"analyze", kThesis, "--json", "--set", "vessel.turret.bearing=locked"});
   ASSERT_EQ(r.exit_code, 0) << r.Describe();
   const nlohmann::json out = nlohmann::json::parse(r.out);
@@ -117,7 +119,7 @@ TEST_F(AnalyzeCommandTest, BadInputIsOneLineAndExitCodeTwo) {
 
 // A mooring with free points (a bridle): the detectors' quasi-static model solves the
 // apex's balance, and every line is a hypothesis, the bridle's legs too.
-TEST_F(AnalyzeCommandTest, AMooringWithFreePointsIsAnalysed) {
+TEST_F(AnalyzeCommandTest, AMooringWithFreePointsIsAnalyzed) {
   const auto r = Run({"analyze", MOORSIM_SOURCE_DIR "/scenarios/library/seed_bridled.yaml"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("11 hypotheses"), std::string::npos) << r.out;

@@ -103,7 +103,7 @@ TEST(BatchCommand, MergeOfADirectoryWithoutItsCampaignRecordIsOneLineAndExit2) {
   EXPECT_FALSE(std::filesystem::exists(merged));
 }
 
-TEST(BatchCommand, WritesTheTableAndTheReportMatchesIt) {
+TEST(BatchCommandAcceptance, WritesTheTableAndTheReportMatchesIt) {
   TempDirectory dir(::testing::TempDir());
   const std::string campaign = WriteCampaign(dir.path(), 80);
   const std::string out = (dir.path() / "results").string();

@@ -169,7 +169,7 @@ TEST(RunCommand, BadOverridesAndFlagsExitWithCode2AndOneLine) {
   }
 }
 
-TEST(RunCommand, ThesisCaseLine6PartsAtItsTime) {
+TEST(RunCommandSlow, ThesisCaseLine6PartsAtItsTime) {
   TempDirectory dir(::testing::TempDir());
   const std::string out = (dir.path() / "l6").string();
   const CliResult r = RunCli({"run", MOORSIM_SOURCE_DIR "/scenarios/library/thesis_line6.yaml",
@@ -196,7 +196,7 @@ TEST(RunCommand, ThesisCaseLine6PartsAtItsTime) {
 // The alarm history in summary.json against the alarm and decision tables of run.h5, read
 // here without the library: line 6 parts at 60 s of the thesis case under a GLR with a
 // threshold low enough to raise, revise and end alarms before and after the break.
-TEST(RunCommand, TheAlarmHistoryIsTheAlarmTableSummarised) {
+TEST(RunCommandSlow, TheAlarmHistoryIsTheAlarmTableSummarised) {
   TempDirectory dir(::testing::TempDir());
   const std::string out = (dir.path() / "h").string();
   const CliResult r =

@@ -203,7 +203,7 @@ HypothesisBankOptions ThesisBankOptions() {
 const Distinguishability& ThesisAnalysis() {
   static const HypothesisBank bank(ThesisMooring(), ThesisBankOptions());
   static const Distinguishability d =
-      AnalyseDistinguishability(bank, SeedLowFrequencyModel(), EkfOptions(), kThesisPose);
+      AnalyzeDistinguishability(bank, SeedLowFrequencyModel(), EkfOptions(), kThesisPose);
   return d;
 }
 
@@ -275,7 +275,7 @@ TEST(DistinguishabilityTest, BadOptionsNameTheField) {
   DistinguishabilityOptions options;
   options.sample_interval = 0.0;
   try {
-    AnalyseDistinguishability(bank, SeedLowFrequencyModel(), EkfOptions(), kThesisPose, options);
+    AnalyzeDistinguishability(bank, SeedLowFrequencyModel(), EkfOptions(), kThesisPose, options);
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("distinguishability.sample_interval = 0"),
@@ -285,11 +285,11 @@ TEST(DistinguishabilityTest, BadOptionsNameTheField) {
   options = {};
   options.min_rate = -1.0;
   EXPECT_THROW(
-      AnalyseDistinguishability(bank, SeedLowFrequencyModel(), EkfOptions(), kThesisPose, options),
+      AnalyzeDistinguishability(bank, SeedLowFrequencyModel(), EkfOptions(), kThesisPose, options),
       InputError);
   EkfOptions ekf;
   ekf.bias_std(1) = -1.0;
-  EXPECT_THROW(AnalyseDistinguishability(bank, SeedLowFrequencyModel(), ekf, kThesisPose),
+  EXPECT_THROW(AnalyzeDistinguishability(bank, SeedLowFrequencyModel(), ekf, kThesisPose),
                InputError);
 }
 
@@ -460,7 +460,7 @@ struct MonteCarloSetUp {
   EkfOptions options;
   std::optional<vessel::PiControllerOptions> controller;
 
-  Distinguishability Analyse() const {
+  Distinguishability Analyze() const {
     DistinguishabilityOptions analysis;
     if (controller) {
       analysis.feedback = PoseFeedback{.kp = controller->kp,
@@ -469,7 +469,7 @@ struct MonteCarloSetUp {
                                        .derivative_filter_time = controller->derivative_filter_time,
                                        .filtered_error = controller->filtered_error};
     }
-    return AnalyseDistinguishability(*bank, model, options, kThesisPose, analysis);
+    return AnalyzeDistinguishability(*bank, model, options, kThesisPose, analysis);
   }
 
   /// The body thrust that holds hypothesis h at rest at the thesis pose.
@@ -522,10 +522,10 @@ class MonteCarloRun {
 /// D(truth||h) against the real EKFs: data from `truth` at rest, every filter of the bank
 /// fed the same data and thrust; after the burn-in the per-sample log-likelihood differences
 /// averaged over `samples`, in independent replications; checked within 4 standard errors
-/// plus 3 % of the analysed rate.
+/// plus 3 % of the analyzed rate.
 void ExpectStationaryRatesMatch(const MonteCarloSetUp& setup, int truth, int burn_in, int samples,
                                 int replications, std::uint64_t seed) {
-  const Distinguishability d = setup.Analyse();
+  const Distinguishability d = setup.Analyze();
   const HypothesisBank& bank = *setup.bank;
   std::vector<std::vector<double>> rates(bank.size());
   for (int r = 0; r < replications; ++r) {
@@ -547,10 +547,10 @@ void ExpectStationaryRatesMatch(const MonteCarloSetUp& setup, int truth, int bur
   for (int h = 0; h < bank.size(); ++h) {
     if (h == truth) continue;
     const Estimate mc = Summarise(rates[h]);
-    const double analysed = d.rate(truth, h);
-    EXPECT_NEAR(mc.mean, analysed, 4.0 * mc.standard_error + 0.03 * analysed)
+    const double analyzed = d.rate(truth, h);
+    EXPECT_NEAR(mc.mean, analyzed, 4.0 * mc.standard_error + 0.03 * analyzed)
         << "D(" << truth << "||" << h << "): Monte-Carlo " << mc.mean << " +- " << mc.standard_error
-        << ", analysis " << analysed;
+        << ", analysis " << analyzed;
   }
 }
 
@@ -560,7 +560,7 @@ void ExpectStationaryRatesMatch(const MonteCarloSetUp& setup, int truth, int bur
 /// errors plus 1.5 %.
 void ExpectTransientEvidenceMatches(const MonteCarloSetUp& setup, int k, int burn_in,
                                     int replications, std::uint64_t seed) {
-  const Distinguishability d = setup.Analyse();
+  const Distinguishability d = setup.Analyze();
   const HypothesisBank& bank = *setup.bank;
   const int window = d.transient_samples;
   std::vector<double> evidence;
@@ -579,9 +579,9 @@ void ExpectTransientEvidenceMatches(const MonteCarloSetUp& setup, int k, int bur
     evidence.push_back(sum);
   }
   const Estimate mc = Summarise(evidence);
-  const double analysed = d.transient[k - 1].against_intact;
-  EXPECT_NEAR(mc.mean, analysed, 4.0 * mc.standard_error + 0.015 * analysed)
-      << "Monte-Carlo " << mc.mean << " +- " << mc.standard_error << ", analysis " << analysed;
+  const double analyzed = d.transient[k - 1].against_intact;
+  EXPECT_NEAR(mc.mean, analyzed, 4.0 * mc.standard_error + 0.015 * analyzed)
+      << "Monte-Carlo " << mc.mean << " +- " << mc.standard_error << ", analysis " << analyzed;
 }
 
 // The stationary rates against the real EKFs: data from hypothesis 1 (line 1 parted) held
@@ -594,7 +594,7 @@ void ExpectTransientEvidenceMatches(const MonteCarloSetUp& setup, int k, int bur
 // The 3 % are for what the analysis leaves out (the EKF's trapezoidal Q, its linearisation
 // at a fluctuating estimate, the simulator's O(h^2) noise). Measured: D(1||0) 0.340 +- 0.010
 // against 0.342, D(1||2) 0.680 +- 0.011 against 0.681, D(1||3) 1.356 +- 0.011 against 1.359.
-TEST(DistinguishabilityMonteCarloTest, StationaryRatesMatchTheRealFilters) {
+TEST(DistinguishabilityMonteCarloSlow, StationaryRatesMatchTheRealFilters) {
   MonteCarloSetUp setup;
   setup.bank = &FourLineBank();
   setup.options.bias_std = Vec3(3e5, 3e5, 1.5e7);
@@ -611,7 +611,7 @@ TEST(DistinguishabilityMonteCarloTest, StationaryRatesMatchTheRealFilters) {
 // the analysis by 7.3 +- 1.7 % at 1 MN (10.5 nats), 2.0 +- 0.8 % at 0.5 MN and 0.5 +- 0.3 %
 // at 0.25 MN. This test runs at 0.25 MN (195 nats, replication spread 26 nats), where the
 // bound is 4 standard errors (~0.9 % each) plus 1.5 %.
-TEST(DistinguishabilityMonteCarloTest, TransientEvidenceMatchesTheRealFilters) {
+TEST(DistinguishabilityMonteCarloSlow, TransientEvidenceMatchesTheRealFilters) {
   MonteCarloSetUp setup;
   setup.bank = &FourLineBank();
   setup.options.bias_std = Vec3(2.5e5, 2.5e5, 1.25e7);
@@ -624,7 +624,7 @@ TEST(DistinguishabilityMonteCarloTest, TransientEvidenceMatchesTheRealFilters) {
 // The open-loop analysis refuses a truth that nothing holds: without the controller the
 // free turret's heading is an integrator.
 TEST(DistinguishabilityTest, AFreeTurretNeedsTheController) {
-  EXPECT_THROW(AnalyseDistinguishability(FourLineFreeTurretBank(), SeedLowFrequencyModel(),
+  EXPECT_THROW(AnalyzeDistinguishability(FourLineFreeTurretBank(), SeedLowFrequencyModel(),
                                          EkfOptions(), kThesisPose),
                SolverError);
 }
@@ -633,7 +633,7 @@ TEST(DistinguishabilityTest, AFreeTurretNeedsTheController) {
 // slowest closed-loop mode, the sway integral at ki/kp = 1e-3 /s, then holds e^-3 of its
 // start, e^-6 of its variance). Measured: 0.345 +- 0.005, 0.685 +- 0.005, 1.367 +- 0.009,
 // 0.682 +- 0.007 against 0.341, 0.679, 1.359, 0.679.
-TEST(DistinguishabilityMonteCarloTest, ClosedLoopStationaryRatesMatchTheRealFilters) {
+TEST(DistinguishabilityMonteCarloSlow, ClosedLoopStationaryRatesMatchTheRealFilters) {
   MonteCarloSetUp setup;
   setup.bank = &FourLineFreeTurretBank();
   setup.options.bias_std = Vec3(3e5, 3e5, 1.5e7);
@@ -644,9 +644,9 @@ TEST(DistinguishabilityMonteCarloTest, ClosedLoopStationaryRatesMatchTheRealFilt
 
 // The transient evidence with the loop closed: the controller reacts to the drift after
 // the break (and to the noise before it). Measured (200 replications, 3000 s burn-in):
-// 189.1 +- 1.0 nats against 189.3 analysed. Without the controller the analysis has no
+// 189.1 +- 1.0 nats against 189.3 analyzed. Without the controller the analysis has no
 // answer here; on the locked thesis mooring closing it moves the transient evidence by 5 %.
-TEST(DistinguishabilityMonteCarloTest, ClosedLoopTransientEvidenceMatchesTheRealFilters) {
+TEST(DistinguishabilityMonteCarloSlow, ClosedLoopTransientEvidenceMatchesTheRealFilters) {
   MonteCarloSetUp setup;
   setup.bank = &FourLineFreeTurretBank();
   setup.options.bias_std = Vec3(2.5e5, 2.5e5, 1.25e7);

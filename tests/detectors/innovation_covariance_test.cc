@@ -171,7 +171,7 @@ double MeanNis(int h, std::uint64_t seed, int samples) {
 // innovations are autocorrelated - the wave motion - so both Sigma_h and the mean carry a
 // few % of Monte-Carlo error: over 10 replay seeds the means were 2.98-3.10 for the
 // intact and 2.89-3.01 for the line-6 observer.)
-TEST(PassiveCovarianceTrainingTest, TrainedCovarianceIsConsistent) {
+TEST(PassiveCovarianceTrainingSlow, TrainedCovarianceIsConsistent) {
   for (int h : {0, 6}) {
     const Mat3& sigma = SeedCovariances()[h];
     EXPECT_EQ(sigma, sigma.transpose());
@@ -188,7 +188,7 @@ TEST(PassiveCovarianceTrainingTest, TrainedCovarianceIsConsistent) {
 // The recorded-run overload on the same data as the simulated training gives the same
 // Sigma, bit for bit: the training is observer h on a HypothesisModelSimulator with the
 // streams "training", held by HoldingThrust.
-TEST(PassiveCovarianceTrainingTest, RecordedRunAndSimulatedTrainingAgree) {
+TEST(PassiveCovarianceTrainingSlow, RecordedRunAndSimulatedTrainingAgree) {
   const HypothesisBank& bank = SeedBank();
   const LowFrequencyModel model = SeedLowFrequencyModel();
   CovarianceTrainingOptions training;
@@ -228,7 +228,7 @@ TEST(PassiveCovarianceTrainingTest, RecordedRunAndSimulatedTrainingAgree) {
 // starting load looks like part of a line's.) On intact data the intact observer beats
 // the line-6 one over the first 200 s (2.6-13 nats over 10 seeds), but over 2000 s only
 // in 6 of 10: that check is on the transient.
-TEST(PassiveCovarianceTrainingTest, TrueHypothesisBeatsTheAlternative) {
+TEST(PassiveCovarianceTrainingSlow, TrueHypothesisBeatsTheAlternative) {
   const HypothesisBank& bank = SeedBank();
   const LowFrequencyModel model = SeedLowFrequencyModel();
   PassiveObserverBank observers(bank, model, {}, SeedCovariances());
@@ -257,7 +257,7 @@ TEST(PassiveCovarianceTrainingTest, TrueHypothesisBeatsTheAlternative) {
   }
 }
 
-TEST(PassiveCovarianceTrainingTest, BadOptionsNameTheField) {
+TEST(PassiveCovarianceTrainingSlow, BadOptionsNameTheField) {
   const HypothesisBank& bank = SeedBank();
   const LowFrequencyModel model = SeedLowFrequencyModel();
   auto message = [&](const CovarianceTrainingOptions& training, int h) -> std::string {

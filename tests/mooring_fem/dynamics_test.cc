@@ -61,7 +61,7 @@ LineNodes NodesOfLine(const LineSimulation& sim, MooringSystem& mooring, int lin
   return n;
 }
 
-TEST(LineDynamics, PartedLineFallsToTheSeabedAndEnergyNeverGrows) {
+TEST(LineDynamicsSlow, PartedLineFallsToTheSeabedAndEnergyNeverGrows) {
   const testing::SeedCase s = SeedScenario(50);
   LineSimulation sim(s.mooring, s.solver, PrescribedMotion{});
   const double t_fail = 5.0;
@@ -242,7 +242,7 @@ double LargestDifferenceFromRungeKutta(double tolerance_scale) {
   return largest;
 }
 
-TEST(LineDynamics, CvodeAgreesWithSmallStepExplicitRungeKutta) {
+TEST(LineDynamicsSlow, CvodeAgreesWithSmallStepExplicitRungeKutta) {
   // Tight tolerances: the two integrators must agree closely (measured 0.2 kN of 6 MN).
   EXPECT_LT(LargestDifferenceFromRungeKutta(0.01), 2e3);
   // Defaults: within the error they are chosen for (measured 11 kN; 20 kN is 0.3 % of the

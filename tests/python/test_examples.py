@@ -26,7 +26,7 @@ def test_the_python_detector_names_line_6_beside_moorsims():
     assert "moorsim DHT: line 6 at" in out, out
 
 
-def test_a_campaigns_table_is_analysed():
+def test_a_campaigns_table_is_analyzed():
     out = run_example("campaign_analysis.py")
     assert "4 runs with a failure" in out, out
     for detector in ("dht", "mle", "glr", "deficit"):

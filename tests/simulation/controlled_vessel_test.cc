@@ -12,7 +12,7 @@
 namespace moorsim::simulation {
 namespace {
 
-TEST(ControlledVessel, PiRemovesTheOffsetOfAConstantLoad) {
+TEST(ControlledVesselSlow, PiRemovesTheOffsetOfAConstantLoad) {
   // 300 kN toward north on the seed FPSO at heading 0. Moorings alone: ~3.7 m offset (the
   // catenary's 81 kN/m). With the PI (Kp 1e5 N/m, Ki 1e3 N/(m s)) the integral takes the
   // load over with a time constant of about (Kp + k_mooring) / Ki = 180 s; after 2000 s

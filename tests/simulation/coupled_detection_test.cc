@@ -37,9 +37,9 @@ void ExpectEveryDetectorFinds(const Simulation& sim, int line) {
   }
 }
 
-class SingleLineFailure : public ::testing::TestWithParam<int> {};
+class SingleLineFailureAcceptance : public ::testing::TestWithParam<int> {};
 
-TEST_P(SingleLineFailure, EveryDetectorAlarmsAndNamesTheLineWithin180s) {
+TEST_P(SingleLineFailureAcceptance, EveryDetectorAlarmsAndNamesTheLineWithin180s) {
   const int line = GetParam();
   const scenarios::Scenario scenario =
       scenarios::LoadScenario(kLibrary + "thesis_line6_current.yaml",
@@ -52,7 +52,7 @@ TEST_P(SingleLineFailure, EveryDetectorAlarmsAndNamesTheLineWithin180s) {
   ExpectEveryDetectorFinds(sim, line);
 }
 
-INSTANTIATE_TEST_SUITE_P(AllEightLines, SingleLineFailure, ::testing::Range(1, 9));
+INSTANTIATE_TEST_SUITE_P(AllEightLines, SingleLineFailureAcceptance, ::testing::Range(1, 9));
 
 // detection.observer: passive (the TAPM thesis's observers with covariances from training runs of
 // their own models) on the thesis's line-6 case: every detector names line 6 within 180 s
@@ -60,7 +60,7 @@ INSTANTIATE_TEST_SUITE_P(AllEightLines, SingleLineFailure, ::testing::Range(1, 9
 // Measured at seed 1: DHT 83 s, MLE 57 s, GLR 52 s. Over all eight lines the MLE and GLR
 // isolate every one (37-57 s); the DHT misses lines 3, 4, 7 and names line 1 for line 8
 // (benchmarks/README.md), so the EKF bank stays the default.
-TEST(CoupledDetection, PassiveObserversFindLineSix) {
+TEST(CoupledDetectionAcceptance, PassiveObserversFindLineSix) {
   const scenarios::Scenario scenario =
       scenarios::LoadScenario(kLibrary + "thesis_line6_current.yaml",
                               {"detection.observer=passive", "simulation.duration=600",
@@ -70,7 +70,7 @@ TEST(CoupledDetection, PassiveObserversFindLineSix) {
   ExpectEveryDetectorFinds(sim, 6);
 }
 
-TEST(CoupledDetection, NoAlarmInAnHourWithoutFailure) {
+TEST(CoupledDetectionAcceptance, NoAlarmInAnHourWithoutFailure) {
   const scenarios::Scenario scenario = scenarios::LoadScenario(
       kLibrary + "thesis_no_failure_current.yaml", {"simulation.duration=3600"});
   ASSERT_EQ(scenario.detectors.size(), 4u);

@@ -147,11 +147,17 @@ TEST_P(CoupledGolden, MatchesTheRecordedRun) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Library, CoupledGolden,
-    ::testing::Values(GoldenCase{"thesis_line6_current", "thesis_line6_current.yaml", 1000.0, 25.0},
-                      GoldenCase{"seed_tapm_coupled", "seed_tapm.yaml", 300.0, 10.0}),
-    [](const ::testing::TestParamInfo<GoldenCase>& info) { return info.param.name; });
+std::string CaseName(const ::testing::TestParamInfo<GoldenCase>& info) { return info.param.name; }
+
+INSTANTIATE_TEST_SUITE_P(Library, CoupledGolden,
+                         ::testing::Values(GoldenCase{"seed_tapm_coupled", "seed_tapm.yaml", 300.0,
+                                                      10.0}),
+                         CaseName);
+// The longer run: labelled slow by the prefix.
+INSTANTIATE_TEST_SUITE_P(LibrarySlow, CoupledGolden,
+                         ::testing::Values(GoldenCase{"thesis_line6_current",
+                                                      "thesis_line6_current.yaml", 1000.0, 25.0}),
+                         CaseName);
 
 }  // namespace
 }  // namespace moorsim::simulation

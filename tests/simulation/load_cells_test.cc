@@ -70,7 +70,7 @@ CellRun RunWithCells(const std::vector<std::string>& more) {
   return run;
 }
 
-TEST(LoadCells, HealthyCellsNameTheLineSoonerStuckOnesHideItDriftingOnesNeedThePose) {
+TEST(LoadCellsSlow, HealthyCellsNameTheLineSoonerStuckOnesHideItDriftingOnesNeedThePose) {
   const CellRun healthy = RunWithCells({});
   for (const char* label : {"deficit", "cells", "cells_alone"}) {
     EXPECT_EQ(healthy.line.at(label), 6) << label;

@@ -107,7 +107,7 @@ TEST(MooredVessel, ConstantForceGivesTheCatenaryStaticOffset) {
   RecordProperty("offset_m", std::to_string(offset));
 }
 
-TEST(MooredVessel, SurgeDecayPeriodFollowsTheCatenaryStiffness) {
+TEST(MooredVesselSlow, SurgeDecayPeriodFollowsTheCatenaryStiffness) {
   // Linear surge damping switched off (surge_time 1e6 s) so the period is the undamped one up
   // to the lines' own drag (they still take the amplitude from 3 m to ~1.3 m in 1500 s:
   // zeta ~ 0.02, which changes the period by 0.02 %).
@@ -145,7 +145,7 @@ TEST(MooredVessel, SurgeDecayPeriodFollowsTheCatenaryStiffness) {
   RecordProperty("expected_s", std::to_string(expected));
 }
 
-TEST(MooredVessel, PartedLineDriftsAwayFromItsAnchorToTheCatenaryBalance) {
+TEST(MooredVesselSlow, PartedLineDriftsAwayFromItsAnchorToTheCatenaryBalance) {
   // Line 6 (anchor at (-1378.9, 1378.9)) parts at its fairlead at 50 s; no controller, no
   // environment. The vessel moves away from that anchor, toward (+x, -y), and settles where
   // the seven remaining catenaries balance.

@@ -78,7 +78,9 @@ class RunTest : public ::testing::Test {
   void TearDown() override { alarm(0); }
 };
 
-TEST_F(RunTest, EveryControllerRateReachesEveryInstant) {
+using RunSlow = RunTest;
+
+TEST_F(RunSlow, EveryControllerRateReachesEveryInstant) {
   // 10 Hz and 5 Hz once hung: the loop stopped at k / rate but fired at t >= k * (1 / rate).
   for (const char* rate : {"0.5", "1", "2", "3", "5", "10", "20"}) {
     SCOPED_TRACE(rate);
@@ -323,7 +325,7 @@ void ExpectTheDeficitTestNames(const RunRequest& request, int line = 6) {
 // A mooring of composite lines (chain, polyester, chain, a clump weight on each) runs
 // through the same coupled plant and detectors unchanged: the force-deficit test, whose
 // quasi-static model tabulates each line's composite catenary, names the line that parts.
-TEST(CompositeMooring, TheDeficitTestNamesThePartedLine) {
+TEST(CompositeMooringSlow, TheDeficitTestNamesThePartedLine) {
   RunRequest request;
   request.scenario_path = MOORSIM_SOURCE_DIR "/scenarios/library/composite_line6.yaml";
   request.write_files = false;
@@ -334,7 +336,7 @@ TEST(CompositeMooring, TheDeficitTestNamesThePartedLine) {
 // each anchor moved onto it: 51 m deeper at y = 1950 m, 51 m shallower at y = -1950 m): the
 // detectors' line model lays each chain on its slope, and the deficit test still names the
 // parted line.
-TEST(SlopingSeabed, TheDeficitTestNamesThePartedLine) {
+TEST(SlopingSeabedSlow, TheDeficitTestNamesThePartedLine) {
   auto scenario = std::make_shared<scenarios::Scenario>(
       scenarios::LoadScenario(MOORSIM_SOURCE_DIR "/scenarios/library/thesis_line6.yaml"));
   const double slope = 1.5 * std::numbers::pi / 180.0;
@@ -355,7 +357,7 @@ TEST(SlopingSeabed, TheDeficitTestNamesThePartedLine) {
 // meets two legs to the turret): the detectors' quasi-static model solves the apex's
 // balance at every pose, and the force-deficit test names the anchor line when it parts
 // at the apex, as it names the seed's own line 1.
-TEST(BridledMooring, TheDeficitTestNamesThePartedLine) {
+TEST(BridledMooringSlow, TheDeficitTestNamesThePartedLine) {
   RunRequest request;
   request.scenario_path = MOORSIM_SOURCE_DIR "/scenarios/library/seed_bridled.yaml";
   request.overrides = {"failure={line: 1, time: 400, mode: fairlead}",
@@ -368,7 +370,7 @@ TEST(BridledMooring, TheDeficitTestNamesThePartedLine) {
 // vessel (no pose-only detector sees it), but its twin's cell takes the load, which
 // corroborates the leg's own cell reading zero: the cells test names the leg within
 // seconds, with no false alarm.
-TEST(BridledMooring, TheCellsTestNamesAPartedLeg) {
+TEST(BridledMooringSlow, TheCellsTestNamesAPartedLeg) {
   RunRequest request;
   request.scenario_path = MOORSIM_SOURCE_DIR "/scenarios/library/seed_bridled.yaml";
   request.overrides = {"failure={line: 9, time: 400, mode: fairlead}",

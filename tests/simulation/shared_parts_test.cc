@@ -56,7 +56,7 @@ TEST(SharedPart, ThreadsAskingAtOnceAllGetTheFirstStored) {
 // The moored equilibrium is the calm-water one, so the hypothesis bank, the GLR signatures and
 // the passive observers' training (from detection.training_seed) depend on the set-up, not
 // on the run seed: a second seed with waves adds no entry, another set-up does.
-TEST(SharedPart, RunsOfOneSetUpShareTheDetectorsPartsWhateverTheirSeed) {
+TEST(SharedPartSlow, RunsOfOneSetUpShareTheDetectorsPartsWhateverTheirSeed) {
   const std::string library = MOORSIM_SOURCE_DIR "/scenarios/library/";
   const std::vector<std::string> passive = {"detection.observer=passive", "simulation.duration=500",
                                             "detectors=[{type: dht}, {type: mle}, {type: glr}]"};

@@ -73,7 +73,7 @@ TEST(Turret, FreeAtTheReferencePointLeavesYawWithoutMooringStiffness) {
   EXPECT_LT(std::abs(Heading(locked)), 3.0 * kDegree);
 }
 
-TEST(Turret, ForwardOfTheReferencePointWeathervanesIntoTheCurrent) {
+TEST(TurretSlow, ForwardOfTheReferencePointWeathervanesIntoTheCurrent) {
   // The turret 80 m forward of midship, over the middle of the spread (the vessel starts
   // 80 m aft of the origin), 1.5 m/s of current from 30 deg off the bow, no thrusters. The
   // current's sway force acts behind the turret, so the hull turns until it heads into the
@@ -115,7 +115,7 @@ double Breakaway(Simulation& sim) {
   return t.friction_coefficient * t.bearing_radius * (std::abs(F.z()) + F.head<2>().norm());
 }
 
-TEST(Turret, FrictionHoldsBelowTheBreakawayMomentAndSlipsAbove) {
+TEST(TurretSlow, FrictionHoldsBelowTheBreakawayMomentAndSlipsAbove) {
   const std::string turret = "{bearing: friction, friction_coefficient: 0.01, slip_rate: 1.0e-5}";
   Simulation probe(TurretScenario(turret), 1);
   const double breakaway = Breakaway(probe);  // 0.01 x 20 m x ~40 MN of line weight
@@ -192,9 +192,9 @@ TEST(Turret, EnergyNeverGrowsWithoutInput) {
 // with the thesis's current, the low-frequency heading stays within 1.5 deg of the setpoint
 // (measured at seed 1: -0.9 to +1.0 deg, standard deviation 0.35 deg), and the vessel within 25 m
 // of the field origin (the locked turret's band: 7-16 m).
-class FreeTurretHeading : public ::testing::TestWithParam<const char*> {};
+class FreeTurretHeadingAcceptance : public ::testing::TestWithParam<const char*> {};
 
-TEST_P(FreeTurretHeading, StaysWithinItsBandForAnHour) {
+TEST_P(FreeTurretHeadingAcceptance, StaysWithinItsBandForAnHour) {
   const scenarios::Scenario scenario = scenarios::LoadScenario(
       std::string(MOORSIM_SOURCE_DIR "/scenarios/library/") + GetParam() + ".yaml",
       {"simulation.duration=3600"});
@@ -212,7 +212,7 @@ TEST_P(FreeTurretHeading, StaysWithinItsBandForAnHour) {
   RecordProperty("worst_heading_error_deg", std::to_string(worst / kDegree));
 }
 
-INSTANTIATE_TEST_SUITE_P(ThesisSea, FreeTurretHeading,
+INSTANTIATE_TEST_SUITE_P(ThesisSea, FreeTurretHeadingAcceptance,
                          ::testing::Values("thesis_no_failure", "thesis_no_failure_current"));
 
 }  // namespace

@@ -37,6 +37,13 @@ cmake --preset release >/dev/null
 # The test executables and the program only: the benchmarks build with tools/main.sh.
 cmake --build --preset release --target moorsim_tests
 echo "== release tests ($SECONDS s)"
+# Every test carries one of the three labels (set by its name, tests/CMakeLists.txt): an
+# unlabelled one would be left out of the sanitizer pass unnoticed.
+unlabelled=$(ctest --preset release -N -LE '^(unit|slow|acceptance)$' | sed -n 's/^ *Test *#[0-9]*: //p')
+if [[ -n "$unlabelled" ]]; then
+  echo "tests without a label (unit, slow or acceptance): $unlabelled"
+  exit 1
+fi
 ctest --preset release
 
 if [[ "${1:-}" != "--fast" ]]; then
