@@ -39,6 +39,7 @@
 #include "core/error.h"
 
 #include "campaign/batch_mpi.h"
+#include "core/types.h"
 #include "detectors/registry.h"
 #include "scenarios/campaign.h"
 #include "simulation/run.h"
@@ -62,8 +63,8 @@ class StatisticTrace {
   std::vector<double> thresholds_;
   std::vector<std::int64_t> false_crossings_;
   std::vector<double> first_crossing_;
-  double max_before_ = std::numeric_limits<double>::quiet_NaN();
-  double previous_ = std::numeric_limits<double>::quiet_NaN();
+  double max_before_ = kNaN;
+  double previous_ = kNaN;
 };
 
 struct BatchOptions {
@@ -112,7 +113,7 @@ struct CampaignIdentity {
 /// and the detectors it runs.
 struct RunTruth {
   int failure_line = 0;
-  double failure_time = std::numeric_limits<double>::quiet_NaN();
+  double failure_time = kNaN;
   std::string failure_mode;
   double duration = 0.0;
   int num_lines = 0;

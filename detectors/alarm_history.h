@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/types.h"
 #include "detectors/detector.h"
 
 namespace moorsim::detectors {
@@ -56,7 +57,7 @@ class AlarmHistory {
   std::vector<AlarmEvent> events_;
   bool alarm_ = false;
   int hypothesis_ = 0;
-  double time_ = std::numeric_limits<double>::quiet_NaN();
+  double time_ = kNaN;
 };
 
 /// A spell during which a detector judged a sensor faulty: from `since` [s] to `until`

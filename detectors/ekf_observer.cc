@@ -11,6 +11,7 @@
 #include <Eigen/Cholesky>
 
 #include "core/error.h"
+#include "core/types.h"
 #include "detectors/observer_support.h"
 #include "detectors/sensor_monitor.h"
 
@@ -508,7 +509,7 @@ void ObserverBank::UpdateTensionEvidence(const HypothesisEkf& intact,
   cells.measured = *observation.tensions;
   // A line the intact model does not hold (its points reach no anchor or no fairlead) has
   // no expectation: NaN, which the detectors skip.
-  constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  constexpr double kNone = kNaN;
   cells.expected.setConstant(lines, kNone);
   const Vec3 pose = intact.pose();
   intact_mooring_.UpperTensions(pose, cells.expected);

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/types.h"
 
 namespace moorsim::detectors {
 
@@ -263,7 +264,7 @@ const Observation& SensorMonitor::Screen(const Observation& observation,
       Cell& cell = cells_[static_cast<std::size_t>(k)];
       const SensorId id{.kind = SensorId::Kind::kCell, .line = int(k) + 1};
       if (cell.readings.Frozen(readings(k), options_.frozen_samples)) {
-        (*screened_.tensions)(k) = std::numeric_limits<double>::quiet_NaN();
+        (*screened_.tensions)(k) = kNaN;
         findings_.push_back({.sensor = id, .symptom = SensorSymptom::kFrozen});
       }
       CheckCell(cell, (*screened_.tensions)(k), dt);

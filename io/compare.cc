@@ -18,6 +18,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "core/types.h"
 #include "io/csv_table.h"
 #include "io/hdf5_reader.h"
 
@@ -25,7 +26,6 @@ namespace moorsim::output {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// An integer of any 64-bit type, signed or not, kept exactly (a double holds 2^53 at most;
 /// seeds use all 64 bits).

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/types.h"
 #include "mooring_fem/seabed.h"
 
 namespace moorsim::scenarios {
@@ -39,7 +40,7 @@ std::vector<std::string> Fields(const std::string& line) {
 
 // A field as a number; an empty one is a hole (NaN). Throws for text.
 double Value(const std::string& field, const std::string& where) {
-  if (field.empty()) return std::numeric_limits<double>::quiet_NaN();
+  if (field.empty()) return kNaN;
   double value = 0.0;
   const char* end = field.data() + field.size();
   const auto [ptr, ec] = std::from_chars(field.data(), end, value);

@@ -4,6 +4,7 @@
 #include <span>
 #include <string>
 
+#include "core/types.h"
 #include "detectors/registry.h"
 #include "simulation/output_layout.h"
 
@@ -47,7 +48,6 @@ DetectionTables::DetectionTables(output::Hdf5File& file, const Detection* detect
 void DetectionTables::Append(output::Hdf5File& file, const std::optional<Vec3>& bias,
                              const std::optional<Vec3>& wave_motion,
                              const std::vector<detectors::Verdict>& verdicts) const {
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   if (bias_) {
     AppendRow(file, *bias_, bias.value_or(Vec3::Constant(kNaN)));
     AppendRow(file, *wave_motion_, wave_motion.value_or(Vec3::Constant(kNaN)));

@@ -1,5 +1,6 @@
 #include "simulation/pose_stream.h"
 
+#include "core/types.h"
 #include "simulation/output_layout.h"
 
 #include <algorithm>
@@ -174,7 +175,7 @@ bool CsvPoseStream::Take(const std::string& line, detectors::Observation* observ
   const auto number = [&](int c, bool may_be_empty) {
     const std::string& cell = cells[c];
     if (cell.empty()) {
-      if (may_be_empty) return std::numeric_limits<double>::quiet_NaN();
+      if (may_be_empty) return kNaN;
       throw InputError(where + ": column '" + header_[c] + "': empty (required in every row)");
     }
     char* end = nullptr;

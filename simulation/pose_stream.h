@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "core/types.h"
 #include "detectors/detector.h"
 #include "scenarios/scenario.h"
 
@@ -49,7 +50,7 @@ class StreamChecks {
 
  private:
   double max_gap_;
-  double last_time_ = std::numeric_limits<double>::quiet_NaN();
+  double last_time_ = kNaN;
   std::array<double, 3> last_valid_ = {0.0, 0.0, 0.0};
 };
 

@@ -23,6 +23,7 @@
 #include "core/coupled_system.h"
 #include "core/integrator.h"
 #include "core/sample_clock.h"
+#include "core/types.h"
 #include "detectors/detector.h"
 #include "mooring_fem/mooring_attachment.h"
 #include "mooring_fem/mooring_system.h"
@@ -51,7 +52,7 @@ struct Sample {
   Vec6 pose_low_frequency = Vec6::Zero();  ///< eta of the integrated low-frequency model
   Vec6 velocity = Vec6::Zero();            ///< nu (body), low-frequency
   /// The latest measurement x, y, psi (NaN until a channel has delivered one).
-  Vec3 pose_measured = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  Vec3 pose_measured = Vec3::Constant(kNaN);
   /// Tension cells' latest readings [N] (empty without tension cells).
   std::vector<double> tension_measured;
   std::vector<double> fairlead_tension;  ///< per line [N]
@@ -210,7 +211,7 @@ class Simulation {
   double last_sensor_time_ = -1.0;
   double last_tension_time_ = -1.0;
   bool failure_pending_ = false;
-  Vec3 last_measurement_ = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  Vec3 last_measurement_ = Vec3::Constant(kNaN);
   Vec3 tau_command_ = Vec3::Zero();
   std::optional<Vec3> thrust_override_;
 };

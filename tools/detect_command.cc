@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/types.h"
 #include "core/version.h"
 #include "detectors/registry.h"
 #include "io/directory_lock.h"
@@ -54,7 +55,6 @@ struct DetectOptions {
   bool quiet = false;
 };
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// How much of a live monitor's detect.h5 and alarms.csv a kill may lose at most [s].
 constexpr double kDefaultFlushInterval = 10.0;
 

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/types.h"
 #include "core/version.h"
 #include "detectors/registry.h"
 #include "mooring_fem/catenary.h"
@@ -107,7 +108,7 @@ int RunStatic(const StaticOptions& o) {
       r.catenary_tension =
           lp.lower_point < 0 && lp.upper_point < 0
               ? mooring_fem::CatenaryFairleadTension(lp, positions[i], mooring.seabed().surface)
-              : std::numeric_limits<double>::quiet_NaN();
+              : kNaN;
     }
   }
 

@@ -183,7 +183,7 @@ class ChannelFaults {
  private:
   struct Held {
     SensorFault fault;
-    double value = std::numeric_limits<double>::quiet_NaN();  // a stuck channel's reading
+    double value = kNaN;  // a stuck channel's reading
   };
   std::vector<Held> faults_;
 };

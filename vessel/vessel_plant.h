@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "core/coupled_system.h"
+#include "core/types.h"
 #include "vessel/rigid_body.h"
 #include "vessel/thrusters.h"
 #include "vessel/turret.h"
@@ -136,12 +137,12 @@ class VesselPlant final : public BodyPlant {
   const SeaResponse* sea_ = nullptr;
   std::vector<const EnvironmentLoad*> loads_;
   // The last sea evaluation (every attachment point and the body asks at the same t).
-  double sea_t_ = std::numeric_limits<double>::quiet_NaN();
+  double sea_t_ = kNaN;
   Vec3 sea_pose_ = Vec3::Zero();
   double static_vertical_load_ = 0.0;
   // R(Theta) and its derivatives at the last angles asked for: every attachment point asks
   // twice per right-hand side (motion, load) at the same angles.
-  Vec3 rotation_angles_ = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  Vec3 rotation_angles_ = Vec3::Constant(kNaN);
   Mat3 rotation_ = Mat3::Identity();
   Mat3 rotation_derivatives_[3];
   Vec6 xi_ = Vec6::Zero(), xi_dot_ = Vec6::Zero(), drift_ = Vec6::Zero();

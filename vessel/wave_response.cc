@@ -11,6 +11,7 @@
 #include "core/angles.h"
 #include "core/error.h"
 #include "core/sincos.h"
+#include "core/types.h"
 #include "vessel/checks.h"
 
 namespace moorsim::vessel {
@@ -225,7 +226,7 @@ void WaveResponse::Evaluate(double t, double x, double y, double psi, Vec6* xi, 
                             Vec6* drift) const {
   if (!std::isfinite(t) || !std::isfinite(x) || !std::isfinite(y) || !std::isfinite(psi)) {
     // No exception on the RHS path: NaN tells the ODE adapter to cut the step.
-    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double nan = kNaN;
     for (Vec6* out : {xi, xi_dot, drift}) {
       if (out != nullptr) out->setConstant(nan);
     }
@@ -265,7 +266,7 @@ Vec6 WaveResponse::MeanDrift(double psi) const {
   // The time average of |z₊|² − |z₋|² keeps only the i = k terms: Σ_i a_i² D_ij.
   Vec6 mean = Vec6::Zero();
   if (!std::isfinite(psi)) {
-    mean.setConstant(std::numeric_limits<double>::quiet_NaN());
+    mean.setConstant(kNaN);
     return mean;
   }
   const int n = heading_cells_;
