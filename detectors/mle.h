@@ -36,17 +36,17 @@ struct MleOptions {
   /// lambda in (0, 1]; memory about 1 / (1 - lambda) samples. TAPM thesis section 4.6.3 uses
   /// 0.999; on the coupled thesis plant (waves, current, the thesis's PI, a mixing observer
   /// bank) that memory of ~1000 s holds the intact model's lead from before a break for
-  /// 200-300 s after it (all eight lines detected only after 180 s, seeds 1-2), while 0.99
-  /// alarmed within 86 s on every line with no false alarm in 2 x 3600 s of no failure
-  /// (benchmarks/README.md, "Detection on the coupled plant").
+  /// 200-300 s after it (no line is named sooner than 180 s after its break, in two wave
+  /// realisations), while 0.99 alarms within 86 s on every line with no false alarm in
+  /// 2 x 3600 s of no failure (benchmarks/README.md).
   double forgetting_factor = 0.99;
   /// [s] How long a failure hypothesis must have been the argmin; >= 0. 10 s is 1.4 peak
   /// wave periods of the seed sea state (7 s).
   double hold = 10.0;
   /// [nats] Required lead of the failure hypothesis over the intact one, J_0 - J_k; >= 0.
   /// 5 nats is a likelihood ratio of e^5 = 150 to 1 over the forgetting memory. With
-  /// lambda = 0.99 on the thesis plant: 0 nats gave 36 false alarms in the runs above,
-  /// 5 none; 10 delayed the last detection to 144 s.
+  /// lambda = 0.99 on the thesis plant: 0 nats gives 36 false alarms in the runs above,
+  /// 5 none; 10 delays the last detection to 144 s.
   double margin = 5.0;
 };
 

@@ -2,7 +2,7 @@
 // `detectors:` list can name, with its factory, its numeric parameters (default, valid
 // range, unit, meaning) and a one-line description. The same table gives MakeDetector()'s
 // lookup and checks, DetectorTypes(), the "known: ..." lists of the error messages and the
-// --help text (STYLE.md: registries as tables).
+// --help text, so that none of them can name a detector or a parameter the others lack.
 //
 // Adding a detector: its own file(s) with a Detector subclass, plus one row in the table in
 // registry.cc (name, factory, parameter list, description, and the statistic campaigns

@@ -412,7 +412,8 @@ struct ControllerEntry {
   ControllerFactory make;
 };
 
-// The registry, sorted by name (STYLE.md: registries as tables).
+// The registry, sorted by name for MakeController()'s binary search: the one table that the
+// lookup, ControllerTypes() and the error's list of known types all read.
 constexpr std::array<ControllerEntry, 3> kControllers = {{
     {"none",
      [](const ControllerSpec& spec, double dt) -> std::unique_ptr<PositionController> {
