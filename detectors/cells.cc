@@ -96,9 +96,15 @@ const Verdict& Cells::Step(const Evidence& evidence) {
       }
       line.low_since = t;
       line.bias_before = bias_history_.front();
+      line.low_samples = 0;
+      line.settled_max = -std::numeric_limits<double>::infinity();
     }
     line.low = low;
     if (!low) line.confirmed = line.agreeing = false;
+    // Once the window holds only readings from the low spell: its highest mean so far.
+    if (low && ++line.low_samples > options_.window) {
+      line.settled_max = std::max(line.settled_max, mean);
+    }
     if (!low || t - line.low_since < options_.hold || h >= hypotheses_) continue;
     const OtherCells others = ReadOtherCells(cells, k);
     if (!others.explained) {
@@ -123,7 +129,10 @@ const Verdict& Cells::Step(const Evidence& evidence) {
                                            options_.confirm_floor);
       if (shows && !line.agreeing) line.agree_since = t;
       line.agreeing = shows;
-      agrees = shows && t - line.agree_since >= options_.confirm_hold;
+      // A cell that still reads more than half: the reading must be falling still.
+      const bool falling = options_.anchor_fall <= 0.0 || mean <= 0.5 ||
+                           line.settled_max - mean >= options_.anchor_fall;
+      agrees = shows && falling && t - line.agree_since >= options_.confirm_hold;
       if (!agrees && pose_trusted_ &&
           t - std::max(line.low_since, trusted_since_) >= options_.confirm_time) {
         line.faulty = true;  // the vessel never felt it: the cell, not the line

@@ -30,6 +30,15 @@
 //    seconds on end (a wander crosses the line and falls back). A cell that reads low for
 //    `confirm_time` seconds without the pose agreeing is declared faulty and ignored until
 //    it reads within drop / 2 of its expectation again; cell_faults() counts them.
+//  - A cell that still reads more than half its expectation (anchor_fall > 0): a parted
+//    line whose cell reads that much let go at its anchor, and its chain, dragged as the
+//    vessel drifts off, keeps unloading while the intact model expects ever more of it at
+//    the new pose; a faulty cell on a line that holds (a gain or step error) reads a steady
+//    share of what the model expects wherever the vessel goes, and a wave-drift group can
+//    move the bias as far as the confirmation asks. So such a cell is confirmed only while
+//    its fbar_k is anchor_fall below its highest since the window held only readings of the
+//    low spell. On the seed mooring at Hs 6 m an anchor release's fbar falls from 0.72 to
+//    0.60 within 40 s, a gain or step fault's stays within 0.03 of its level.
 //
 // Where lines meet at free points (TensionEvidence::expected_if_parted) a parted line
 // changes its network's other cells too: a bridle's anchor line parting slackens both
@@ -73,6 +82,9 @@ struct CellsOptions {
   /// [s] How long the bias must keep showing the lost load before it confirms, >= 0
   /// (0: the first sample that shows it).
   double confirm_hold = 0.0;
+  /// A cell still reading more than half its expectation is confirmed only while its
+  /// ratio's mean is this much below its highest of the low spell, >= 0 (0: off).
+  double anchor_fall = 0.0;
   /// [s] A cell must have read true this long before it reads low (a fall, not a drift);
   /// >= 0, 0 = any.
   double fall_time = 30.0;
@@ -117,6 +129,8 @@ class Cells final : public Detector {
     bool confirmed = false;           // the pose agreed during this low spell
     bool agreeing = false;            // the bias shows the lost load now
     double agree_since = 0.0;
+    int low_samples = 0;       // samples since the low began
+    double settled_max = 0.0;  // the highest mean of a window all from the low spell
     bool faulty = false;
   };
 

@@ -45,12 +45,17 @@
 namespace moorsim::detectors {
 
 struct FusedOptions {
-  /// The cells test's options, but a low cell waits only 60 s for the pose: in a seaway the
-  /// intact filter's bias wanders by the confirmation's 1.5 MN within minutes, and the
-  /// shorter wait gives a faulty cell fewer chances of a false confirmation. A real
-  /// parting shows in the bias within a minute; a line whose cell was judged faulty is
-  /// then the pose's to name, and the cell is cleared again.
-  CellsOptions cells{.confirm_time = 60.0};
+  /// The cells test's options, with three changes against a faulty cell that a wave-drift
+  /// group seems to confirm (in a seaway the intact filter's bias wanders by the
+  /// confirmation's 1.5 MN within minutes):
+  ///  - a low cell waits only 60 s for the pose, so a faulty cell has fewer chances of a
+  ///    false confirmation. A real parting shows in the bias within a minute; a line whose
+  ///    cell was judged faulty is then the pose's to name, and the cell is cleared again;
+  ///  - a cell that reads nothing (a dead cell, or a break at the fairlead) needs the bias
+  ///    to show 60 % of the line's horizontal load, not half: a break's shift grows to the
+  ///    whole load, a wander seldom reaches 60 % of it;
+  ///  - a cell still reading more than half must be falling still (anchor_fall, cells.h).
+  CellsOptions cells{.confirm_fraction = 0.6, .confirm_time = 60.0, .anchor_fall = 0.05};
   DeficitOptions pose;
   /// The check of the pose against the cells (detectors/pose_agreement.h).
   PoseAgreementOptions agreement;

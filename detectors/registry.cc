@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/types.h"
 #include "detectors/cells.h"
 #include "detectors/deficit.h"
 #include "detectors/dht.h"
@@ -50,33 +51,34 @@ constexpr ParameterRange kCount{1.0, 10000.0, false, false, true};  // [1, 10000
 constexpr ParameterRange kDelay{0.0, 10000.0, false, false, true};  // [0, 10000]
 constexpr ParameterRange kSwitch{0.0, 1.0, false, false, true};     // 0 or 1
 
-// The cells test's parameters; the fused detector takes the same with its own confirm_time.
-constexpr std::array<DetectorParameter, 9> CellsParameters(double confirm_time) {
+// The cells test's parameters; the fused detector takes the same with its own defaults.
+constexpr std::array<DetectorParameter, 10> CellsParameters(const CellsOptions& d) {
   return {{
+      {"anchor_fall", d.anchor_fall, "", kNonNegative, "",
+       "a cell reading over half its expectation confirms only while its mean ratio is this much "
+       "below its highest of the low spell (0: off)"},
       {"confirm", 1.0, "", kSwitch, "",
        "1: the intact filter's bias must show the lost load before the alarm; 0: cells alone"},
-      {"confirm_floor", CellsOptions{}.confirm_floor, "", kNonNegative, "N",
+      {"confirm_floor", d.confirm_floor, "", kNonNegative, "N",
        "least bias shift toward the lost line that confirms"},
-      {"confirm_fraction", CellsOptions{}.confirm_fraction, "", kNonNegative, "",
+      {"confirm_fraction", d.confirm_fraction, "", kNonNegative, "",
        "share of the horizontal load the cell says is lost that the bias must show"},
-      {"confirm_hold", CellsOptions{}.confirm_hold, "", kNonNegative, "s",
+      {"confirm_hold", d.confirm_hold, "", kNonNegative, "s",
        "how long the bias must keep showing the lost load before it confirms"},
-      {"confirm_time", confirm_time, "", kPositive, "s",
+      {"confirm_time", d.confirm_time, "", kPositive, "s",
        "how long a low cell waits for the pose before it is declared faulty"},
-      {"drop", CellsOptions{}.drop, "", kProbability, "",
+      {"drop", d.drop, "", kProbability, "",
        "fraction of its expected reading a cell must lose to read low"},
-      {"fall_time", CellsOptions{}.fall_time, "", kNonNegative, "s",
+      {"fall_time", d.fall_time, "", kNonNegative, "s",
        "a low cell counts only if it read true this long before (a fall, not a drift; 0: off)"},
-      {"hold", CellsOptions{}.hold, "", kNonNegative, "s",
-       "time a cell must read low before the alarm"},
-      {"window", CellsOptions{}.window, "", kCount, "samples",
+      {"hold", d.hold, "", kNonNegative, "s", "time a cell must read low before the alarm"},
+      {"window", d.window, "", kCount, "samples",
        "samples in the moving mean of reading / expected"},
   }};
 }
-constexpr std::array<DetectorParameter, 9> kCellsParameters =
-    CellsParameters(CellsOptions{}.confirm_time);
-constexpr std::array<DetectorParameter, 9> kFusedParameters =
-    CellsParameters(FusedOptions{}.cells.confirm_time);
+constexpr std::array<DetectorParameter, 10> kCellsParameters = CellsParameters(CellsOptions{});
+constexpr std::array<DetectorParameter, 10> kFusedParameters =
+    CellsParameters(FusedOptions{}.cells);
 
 constexpr std::array<DetectorParameter, 20> kDeficitParameters = {{
     {"baseline_time", DeficitOptions{}.baseline_time, "", kPositive, "s",
@@ -163,6 +165,7 @@ constexpr std::array<DetectorParameter, 3> kMleParameters = {{
 
 CellsOptions ReadCellsOptions(const DetectorParameters& p) {
   CellsOptions options;
+  options.anchor_fall = p.Get("anchor_fall");
   options.confirm = p.Get("confirm") != 0.0;
   options.confirm_floor = p.Get("confirm_floor");
   options.confirm_fraction = p.Get("confirm_fraction");
@@ -251,17 +254,17 @@ constexpr double kGlrThresholds[] = {10, 12,  15,  18,  22,  27,  33,  39,  47, 
 
 // DHT: the largest posterior of a failure hypothesis, max_k>=1 h_k.
 double DhtStatistic(std::span<const double> score) {
-  if (score.size() < 2) return std::numeric_limits<double>::quiet_NaN();
+  if (score.size() < 2) return kNaN;
   return *std::max_element(score.begin() + 1, score.end());
 }
 // MLE: the best failure hypothesis's lead over intact, max_k>=1 (J_0 - J_k).
 double MleStatistic(std::span<const double> score) {
-  if (score.size() < 2) return std::numeric_limits<double>::quiet_NaN();
+  if (score.size() < 2) return kNaN;
   return score[0] - *std::min_element(score.begin() + 1, score.end());
 }
 // GLR: the mean-change statistic g, score[0].
 double GlrStatistic(std::span<const double> score) {
-  if (score.size() < 2) return std::numeric_limits<double>::quiet_NaN();
+  if (score.size() < 2) return kNaN;
   return score[0];
 }
 
