@@ -19,8 +19,10 @@ int main(int argc, char** argv) {
     std::cerr << "moorsim: " << e.what() << "\n";
     return 2;
   }
+  // Named "moorsim" in every usage line, whatever path the program was started by.
   CLI::App app{std::string("moorsim ") + moorsim::kVersion +
-               " - turret-moored FPSO mooring simulator (lumped-mass FEM lines on CVODE)"};
+                   " - turret-moored FPSO mooring simulator (lumped-mass FEM lines on CVODE)",
+               "moorsim"};
   app.require_subcommand(1);
   app.set_version_flag("--version", moorsim::kVersion);
   // In registration order, which is also the order of the help listing.
