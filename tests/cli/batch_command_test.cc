@@ -321,8 +321,8 @@ std::pair<double, double> Wilson(int k, int n) {
 // most kFalseAlarms false alarms in the 6 intact hours, with an alarm on at most 1 % of
 // their time.
 // kFalseAlarms comes from the rates measured over 100 intact hours per sea state on the
-// long campaign (detection_long.yaml): 0.03 per hour in the thesis sea and 0.25 per hour at
-// Hs 4 m, 0.84 expected in these 3 + 3 hours; more than 3 has a Poisson probability of 1 %,
+// long campaign (training/detection_long.yaml): 0.03 per hour in the thesis sea and 0.25 per
+// hour at Hs 4 m, 0.84 expected in these 3 + 3 hours; more than 3 has a Poisson probability of 1 %,
 // so a detector as good as the measured one fails this test by chance about once in 100
 // campaigns, and one whose rate at Hs 4 m is five times the measured one about every second
 // time.

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <set>
 #include <string>
+#include <utility>
 
 #include "core/error.h"
 
@@ -566,25 +567,30 @@ TEST(Campaign, NormalDrawOfASmallWindowHasTheTruncatedLawsMean) {
 namespace moorsim::scenarios {
 namespace {
 
-// Every campaign of the library reads, names its base scenario in the library and expands
-// into runs (each run's draws made): a campaign file edited or generated wrong fails here,
-// not in the middle of a batch.
+// Every campaign of the library (scenarios/campaigns/, and the training campaigns in its
+// training/ folder) reads, names its base scenario in the library and expands into runs
+// (each run's draws made): a campaign file edited, moved or generated wrong fails here, not
+// in the middle of a batch.
 TEST(Campaign, EveryLibraryCampaignReadsAndExpands) {
-  const std::filesystem::path dir =
+  const std::filesystem::path root =
       std::filesystem::path(MOORSIM_SOURCE_DIR) / "scenarios/campaigns";
-  int campaigns = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    if (entry.path().extension() != ".yaml") continue;
-    SCOPED_TRACE(entry.path().string());
-    const Campaign campaign = LoadCampaign(entry.path().string());
-    EXPECT_TRUE(std::filesystem::exists(campaign.scenario_path)) << campaign.scenario_path;
-    ASSERT_GT(campaign.NumRuns(), 0);
-    for (std::int64_t i = 0; i < campaign.NumRuns(); ++i) {
-      EXPECT_FALSE(MakeCampaignRun(campaign, i).overrides.empty());
+  // The least number of campaigns each folder holds, so that a folder read empty fails.
+  for (const auto& [folder, least] : {std::pair{root, 8}, std::pair{root / "training", 10}}) {
+    SCOPED_TRACE(folder.string());
+    int campaigns = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+      if (entry.path().extension() != ".yaml") continue;
+      SCOPED_TRACE(entry.path().string());
+      const Campaign campaign = LoadCampaign(entry.path().string());
+      EXPECT_TRUE(std::filesystem::exists(campaign.scenario_path)) << campaign.scenario_path;
+      ASSERT_GT(campaign.NumRuns(), 0);
+      for (std::int64_t i = 0; i < campaign.NumRuns(); ++i) {
+        EXPECT_FALSE(MakeCampaignRun(campaign, i).overrides.empty());
+      }
+      ++campaigns;
     }
-    ++campaigns;
+    EXPECT_GE(campaigns, least);
   }
-  EXPECT_GE(campaigns, 10);
 }
 
 }  // namespace

@@ -92,7 +92,7 @@ TEST(SensorFaults, ACellJudgedFaultyIsReportedAsASensorNotALine) {
   // Line 6's cell dies at 300 s on an intact mooring. The cells test waits confirm_time
   // (180 s) for the vessel to feel the lost load; it does not, so the cell is named faulty,
   // not line 6. (On this seed; across seeds it names the line in some runs:
-  // scenarios/campaigns/sensor_faults_baseline.yaml measures how often.)
+  // scenarios/campaigns/training/sensor_faults_baseline.yaml measures how often.)
   scenarios::Scenario scenario = scenarios::LoadScenario(
       MOORSIM_SOURCE_DIR "/scenarios/library/thesis_no_failure_current.yaml",
       {"sensors.tension_cells={rate_hz: 1, noise: {std_dev: 1.0e4}, faults: [{line: 6, mode: "
@@ -117,9 +117,9 @@ TEST(SensorFaults, ACellJudgedFaultyIsReportedAsASensorNotALine) {
 
 TEST(SensorFaults, TheFusedDetectorNamesAGnssJumpAndNoLine) {
   // The receiver jumps 2.5 m north at 300 s on an intact mooring. Without the sensor checks
-  // the force-deficit test reads the jump as a lost line (scenarios/campaigns/
-  // sensor_faults_baseline.yaml: 5 of 8 runs); the fused detector, which turns the checks
-  // on, names the jump within seconds and no line.
+  // the force-deficit test reads the jump as a lost line (scenarios/campaigns/training/
+  // sensor_faults_baseline.yaml: 5 of 8 runs); the fused detector, which turns the checks on,
+  // names the jump within seconds and no line.
   const auto run = [](const std::string& detectors) {
     scenarios::Scenario scenario = scenarios::LoadScenario(
         MOORSIM_SOURCE_DIR "/scenarios/library/thesis_no_failure_current.yaml",

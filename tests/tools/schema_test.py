@@ -83,14 +83,18 @@ def errors_of(validator, document):
     return sorted(validator.iter_errors(document), key=lambda e: list(e.path))
 
 
-for folder, name in (("library", "moorsim.schema.json"), ("campaigns", "moorsim-campaign.schema.json")):
+# The training campaigns sit one folder further down: their modeline reaches one further up.
+for folder, name in (("library", "moorsim.schema.json"),
+                     ("campaigns", "moorsim-campaign.schema.json"),
+                     ("campaigns/training", "moorsim-campaign.schema.json")):
     directory = os.path.join(SOURCE, "scenarios", folder)
+    up = "../" * (folder.count("/") + 1)
     files = sorted(f for f in os.listdir(directory) if f.endswith(".yaml"))
     check(len(files) > 0, f"scenarios/{folder} holds YAML files")
     for file in files:
         with open(os.path.join(directory, file), encoding="utf-8") as f:
             text = f.read()
-        check(text.startswith(f"# yaml-language-server: $schema=../{name}\n"),
+        check(text.startswith(f"# yaml-language-server: $schema={up}{name}\n"),
               f"scenarios/{folder}/{file} starts with the modeline for {name}")
         found = errors_of(schemas[name], load_yaml(text))
         check(not found, f"scenarios/{folder}/{file} validates against {name}: "

@@ -9,7 +9,7 @@ import re
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-CELLS = (ROOT / "scenarios/campaigns/detection_cells_training.yaml").read_text()
+CELLS = (ROOT / "scenarios/campaigns/training/detection_cells_training.yaml").read_text()
 # The turret-forward set-up of the cells campaigns: its mooring and turret keys.
 SETUP = [l for l in CELLS.splitlines()
          if l.startswith('  "mooring.lines[') or l.startswith("  vessel.turret.")]
@@ -176,9 +176,11 @@ COMMON = """# Every sensor fault the simulator models, on every sensor, against 
 """
 
 TRAINING = COMMON + """# The training campaign: the checks' and the fused detector's settings were chosen on it;
-# sensor_faults.yaml is its held-out twin.
+# scenarios/campaigns/sensor_faults.yaml is its held-out twin. Results: benchmarks/README.md,
+# "Sensor faults: checks on the sensors and the fused detector".
 #
-#   moorsim batch scenarios/campaigns/sensor_faults_training.yaml --out out/sensor_faults_training
+#   moorsim batch scenarios/campaigns/training/sensor_faults_training.yaml --out out/sensor_faults_training
+#   python3 tools/report.py out/sensor_faults_training
 """
 HELD_OUT = COMMON + """# The held-out campaign: its own seed, nothing chosen on it; the results in the README and
 # benchmarks/README.md are its. sensor_faults_training.yaml is its training twin.
@@ -252,8 +254,11 @@ if __name__ == "__main__":
         sys.exit(0)
     schema = "# yaml-language-server: $schema=../moorsim-campaign.schema.json\n"
     out = ROOT / "scenarios/campaigns"
-    (out / "sensor_faults_training.yaml").write_text(
-        schema + campaign("sensor_faults_training", 3601, TRAINING))
+    # The training campaign sits one folder down, in training/: its paths reach one further.
+    (out / "training" / "sensor_faults_training.yaml").write_text(
+        schema.replace("../", "../../")
+        + campaign("sensor_faults_training", 3601, TRAINING).replace(
+            "scenario: ../library/", "scenario: ../../library/"))
     (out / "sensor_faults.yaml").write_text(schema + campaign("sensor_faults", 3602, HELD_OUT))
     (out / "sensor_faults_intact.yaml").write_text(
         schema + intact_campaign("sensor_faults_intact", 3603, INTACT, 150))
