@@ -23,6 +23,9 @@ PYTHONPATH="$prefix/$site${PYTHONPATH:+:$PYTHONPATH}" /usr/bin/python3 -c \
   "import moorsim; print('installed under $prefix: moorsim', moorsim.__version__, '(import moorsim)')"
 
 mkdir -p out
+# Afresh each time (a minute or two): a directory left by an older version of the campaign
+# files would be refused, as `moorsim batch` refuses to mix two campaigns' rows.
+rm -rf out/thesis_detection_small
 ./build/release/tools/moorsim batch scenarios/campaigns/thesis_detection_small.yaml \
   --out out/thesis_detection_small
 /usr/bin/python3 tools/report.py out/thesis_detection_small
