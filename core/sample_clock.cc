@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "core/integrator.h"
 
 namespace moorsim {
@@ -25,20 +26,14 @@ double InstantTolerance(double t, double rate) {
   return kInstantToleranceIntervals / rate + kInstantToleranceUlps * std::abs(t);
 }
 
-std::string Format(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
 }  // namespace
 
 SampleClock::SampleClock(double rate, std::string_view key_path) : rate_(rate) {
   if (!std::isfinite(rate)) {
-    throw InputError(std::string(key_path) + ": " + Format(rate) + " must be finite");
+    throw InputError(std::string(key_path) + ": " + FormatNumber(rate) + " must be finite");
   }
   if (rate <= 0.0) {
-    throw InputError(std::string(key_path) + ": " + Format(rate) + " must be > 0");
+    throw InputError(std::string(key_path) + ": " + FormatNumber(rate) + " must be > 0");
   }
 }
 

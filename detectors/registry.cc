@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "core/types.h"
 #include "detectors/cells.h"
 #include "detectors/deficit.h"
@@ -31,12 +32,6 @@ constexpr ParameterRange kUpToOne{0.0, 1.0, true, false, false};             // 
 constexpr ParameterRange kNonNegative{0.0, kInfinity, false, false, false};  // >= 0
 constexpr ParameterRange kPositive{0.0, kInfinity, true, false, false};      // > 0
 constexpr ParameterRange kWindow{2.0, 10000.0, false, false, true};          // [2, 10000]
-
-std::string FormatNumber(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
 
 // Each detector's parameters, sorted by name; the defaults are the options structs',
 // except the GLR's threshold and hold: GlrOptions' library default is the white-residual

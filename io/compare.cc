@@ -6,7 +6,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -18,6 +17,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "core/types.h"
 #include "io/csv_table.h"
 #include "io/hdf5_reader.h"
@@ -64,12 +64,6 @@ struct Outputs {
 };
 
 std::string Quoted(const std::string& text) { return "'" + text + "'"; }
-
-std::string FormatValue(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.10g", value);
-  return buffer;
-}
 
 std::string Shape(const std::vector<std::size_t>& dims) {
   if (dims.empty()) return "scalar";
@@ -371,7 +365,7 @@ std::string ElementName(const Outputs& outputs, const std::string& name, const C
   if (channel.dims.empty()) return "";
   std::string text = "row " + std::to_string(row);
   if (const std::optional<double> t = RowTime(outputs, name, channel, row)) {
-    text += " (t = " + FormatValue(*t) + " s)";
+    text += " (t = " + FormatNumber(*t) + " s)";
   }
   if (channel.dims.size() > 1) {
     text += ", column " + std::to_string(column);
@@ -460,10 +454,10 @@ std::optional<ChannelDifference> CompareChannel(const Outputs& outputs, const st
       values_text = "a " + a.integers[i].ToString() + ", b " + b.integers[i].ToString() +
                     " (compared exactly)";
     } else if (std::isnan(x) || std::isnan(y)) {
-      values_text = "a " + FormatValue(x) + ", b " + FormatValue(y) + " (NaN in one only)";
+      values_text = "a " + FormatNumber(x) + ", b " + FormatNumber(y) + " (NaN in one only)";
     } else {
-      values_text = "a " + FormatValue(x) + ", b " + FormatValue(y) + ", |a-b| " +
-                    FormatValue(difference) + " > allowed " + FormatValue(allowed);
+      values_text = "a " + FormatNumber(x) + ", b " + FormatNumber(y) + ", |a-b| " +
+                    FormatNumber(difference) + " > allowed " + FormatNumber(allowed);
     }
   }
   if (!worst) return std::nullopt;

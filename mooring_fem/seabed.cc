@@ -3,20 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <sstream>
 
 #include "core/error.h"
+#include "core/format.h"
 
 namespace moorsim::mooring_fem {
 
 namespace {
-
-// A number as the stream writes it (six significant digits).
-std::string Text(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
 
 constexpr double kMaxSlope = 89.0 * std::numbers::pi / 180.0;
 
@@ -58,8 +51,8 @@ std::string AxisProblem(const std::vector<double>& a, const char* name, int* ind
       return std::string(name) + "[" + std::to_string(i + 1) + "] is not a number";
     }
     if (i > 0 && !(a[i] > a[i - 1])) {
-      return std::string(name) + " = " + Text(a[i]) + " m does not follow " + name + " = " +
-             Text(a[i - 1]) + " m (the axis must increase)";
+      return std::string(name) + " = " + FormatNumber(a[i]) + " m does not follow " + name + " = " +
+             FormatNumber(a[i - 1]) + " m (the axis must increase)";
     }
   }
   *index = -1;
@@ -85,10 +78,11 @@ std::string DepthGridProblem(const DepthGrid& grid, int* row) {
     at = static_cast<int>(i);
     for (std::size_t j = 0; j < grid.y.size(); ++j) {
       const double d = grid.depth[i * grid.y.size() + j];
-      const std::string where = " at x = " + Text(grid.x[i]) + " m, y = " + Text(grid.y[j]) + " m";
+      const std::string where =
+          " at x = " + FormatNumber(grid.x[i]) + " m, y = " + FormatNumber(grid.y[j]) + " m";
       if (!std::isfinite(d)) return "no depth" + where + " (a hole in the grid)";
       if (!(d > 0.0)) {
-        return "depth " + Text(d) + " m" + where +
+        return "depth " + FormatNumber(d) + " m" + where +
                " is not below the water surface (z points down)";
       }
     }
@@ -111,7 +105,7 @@ SeabedSurface::SeabedSurface(const Seabed& seabed, double depth) : depth_(depth)
   }
   if (!(seabed.slope >= 0.0 && seabed.slope <= kMaxSlope) ||
       !std::isfinite(seabed.slope_direction)) {
-    throw InputError("seabed: slope " + Text(seabed.slope * 180.0 / std::numbers::pi) +
+    throw InputError("seabed: slope " + FormatNumber(seabed.slope * 180.0 / std::numbers::pi) +
                      " deg must be in [0, 89] with a finite direction");
   }
   if (seabed.slope == 0.0) return;

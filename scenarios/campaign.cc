@@ -15,6 +15,7 @@
 
 #include "core/angles.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "core/random.h"
 #include "scenarios/strict_yaml.h"
 
@@ -179,10 +180,12 @@ std::vector<std::string> ExpandRange(const Reader& r) {
   const double from = r.Required<double>("from");
   const double to = r.Required<double>("to");
   const double step = r.Required<double>("step");
-  if (!(to >= from)) r.Child("to").Fail(Number(to) + " must be >= from (" + Number(from) + ")");
+  if (!(to >= from))
+    r.Child("to").Fail(FormatNumber(to) + " must be >= from (" + FormatNumber(from) + ")");
   const double count = std::floor((to - from) / step * (1.0 + 1e-12) + 1e-9) + 1.0;
   if (count > static_cast<double>(kMaxValuesPerFactor)) {
-    r.Fail("gives " + Number(count) + " values, more than " + std::to_string(kMaxValuesPerFactor));
+    r.Fail("gives " + FormatNumber(count) + " values, more than " +
+           std::to_string(kMaxValuesPerFactor));
   }
   std::vector<std::string> values;
   for (int i = 0; i < static_cast<int>(count); ++i) {
@@ -198,7 +201,8 @@ void ReadInterval(const Reader& r, const std::string& shape, CampaignFactor& f) 
   if (bounds.size() != 2) r.Fail(r.Text() + " must be " + shape);
   f.low = bounds[0].As<double>();
   f.high = bounds[1].As<double>();
-  if (!(f.high > f.low)) bounds[1].Fail(Number(f.high) + " must be > low (" + Number(f.low) + ")");
+  if (!(f.high > f.low))
+    bounds[1].Fail(FormatNumber(f.high) + " must be > low (" + FormatNumber(f.low) + ")");
 }
 
 CampaignFactor ParseFactor(const Reader& r, const YAML::Node& node) {
@@ -265,7 +269,7 @@ CampaignFactor ParseFactor(const Reader& r, const YAML::Node& node) {
     }
     if (const std::optional<Reader> scale = r.Find("scale")) {
       f.scale = scale->As<double>();
-      if (!std::isfinite(f.scale)) scale->Fail(Number(f.scale) + " must be a finite number");
+      if (!std::isfinite(f.scale)) scale->Fail(FormatNumber(f.scale) + " must be a finite number");
     }
   } else if (const std::optional<Reader> uniform = r.Find("uniform")) {
     f.kind = CampaignFactor::Kind::kUniform;
@@ -281,7 +285,7 @@ CampaignFactor ParseFactor(const Reader& r, const YAML::Node& node) {
     const double low = f.min.value_or(-std::numeric_limits<double>::infinity());
     const double high = f.max.value_or(std::numeric_limits<double>::infinity());
     if (!(high > low))
-      normal.Child("max").Fail(Number(high) + " must be > min (" + Number(low) + ")");
+      normal.Child("max").Fail(FormatNumber(high) + " must be > min (" + FormatNumber(low) + ")");
     // Rejection sampling must end: the window has to hold a fair share of the mass.
     if (std::max(low - f.mean, f.mean - high) > 3.0 * f.std_dev) {
       normal.Fail("[min, max] lies more than 3 standard deviations from the mean");
@@ -529,10 +533,10 @@ CampaignRun MakeCampaignRun(const Campaign& campaign, std::int64_t index) {
           campaign.seed, "campaign run " + std::to_string(index) + " factor " + f.key);
       switch (f.kind) {
         case CampaignFactor::Kind::kUniform:
-          value = Number(Draw(f, stream));
+          value = FormatNumber(Draw(f, stream));
           break;
         case CampaignFactor::Kind::kNormal:
-          value = Number(DrawNormal(f, stream));
+          value = FormatNumber(DrawNormal(f, stream));
           break;
         case CampaignFactor::Kind::kChoice: {
           const auto n = f.values.size();
@@ -546,7 +550,7 @@ CampaignRun MakeCampaignRun(const Campaign& campaign, std::int64_t index) {
           if (f.function == CampaignFactor::Function::kSin) x = std::sin(x * kDegree);
           x = f.scale * x + (f.high > f.low ? Draw(f, stream) : f.low);
           if (f.modulo > 0.0) x -= f.modulo * std::floor(x / f.modulo + 0.5);
-          value = Number(x);
+          value = FormatNumber(x);
           break;
         }
         case CampaignFactor::Kind::kValues:

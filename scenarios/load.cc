@@ -19,6 +19,7 @@
 
 #include "core/angles.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "mooring_fem/catenary.h"
 #include "mooring_fem/seabed.h"
 #include "scenarios/convert.h"
@@ -103,10 +104,11 @@ LineType ParseLineType(const Reader& r) {
       const mooring_fem::StrainTension before =
           type.tension_strain.empty() ? mooring_fem::StrainTension{} : type.tension_strain.back();
       if (!(p.strain > before.strain && p.tension > before.tension)) {
-        point.Fail("strain " + Number(p.strain) + " and tension " + WithUnit(p.tension, "N") +
+        point.Fail("strain " + FormatNumber(p.strain) + " and tension " + WithUnit(p.tension, "N") +
                    " must both exceed the point before's (" +
-                   (k == 0 ? std::string("0 and 0 N")
-                           : Number(before.strain) + " and " + WithUnit(before.tension, "N")) +
+                   (k == 0
+                        ? std::string("0 and 0 N")
+                        : FormatNumber(before.strain) + " and " + WithUnit(before.tension, "N")) +
                    ")");
       }
       type.tension_strain.push_back(p);
@@ -634,8 +636,8 @@ class Checker {
   void Between(const std::string& path, double value, double low, double high,
                std::string_view unit, std::string_view why = {}) const {
     if (!(value >= low && value <= high)) {
-      Fail(path, WithUnit(value, unit) + " must be in [" + Number(low) + ", " + Number(high) + "]" +
-                     Why(why));
+      Fail(path, WithUnit(value, unit) + " must be in [" + FormatNumber(low) + ", " +
+                     FormatNumber(high) + "]" + Why(why));
     }
   }
 
@@ -712,7 +714,7 @@ void CheckLineType(const Checker& check, const LineType& type, const std::string
   }
   if (type.axial_damping && type.axial_damping_ratio) {
     check.Fail(path + ".axial_damping_ratio",
-               Number(*type.axial_damping_ratio) + " cannot be combined with axial_damping " +
+               FormatNumber(*type.axial_damping_ratio) + " cannot be combined with axial_damping " +
                    WithUnit(*type.axial_damping, "N s") + "; give one of them");
   }
 }
@@ -1025,7 +1027,7 @@ void CheckTurret(const Checker& check, const Scenario& scenario) {
       if (lines[i].upper_point >= 0) continue;  // not at the vessel
       if (!(std::abs(f.x()) <= half_length && std::abs(f.y()) <= half_beam)) {
         check.Fail(LinePath(lines[i], i) + ".fairlead",
-                   "(" + Number(f.x()) + ", " + Number(f.y()) +
+                   "(" + FormatNumber(f.x()) + ", " + FormatNumber(f.y()) +
                        ") m is off the hull: |x| must be <= hull.length / 2 = " +
                        WithUnit(half_length, "m") +
                        " and |y| <= hull.beam / 2 = " + WithUnit(half_beam, "m"));
@@ -1067,9 +1069,9 @@ void CheckTurret(const Checker& check, const Scenario& scenario) {
 void CheckHull(const Checker& check, const HullSpec& h) {
   const double box = h.length * h.beam * h.draught;
   if (!(h.displaced_volume <= box)) {
-    check.Fail("vessel.hull.displaced_volume", WithUnit(h.displaced_volume, "m^3") +
-                                                   " must be <= length x beam x draught = " +
-                                                   Number(box) + " m^3 (a block coefficient <= 1)");
+    check.Fail("vessel.hull.displaced_volume",
+               WithUnit(h.displaced_volume, "m^3") + " must be <= length x beam x draught = " +
+                   FormatNumber(box) + " m^3 (a block coefficient <= 1)");
   }
 }
 
@@ -1220,7 +1222,7 @@ void CheckSimulation(const Checker& check, const SimulationSpec& s) {
     check.Fail("simulation.output_rate_hz",
                WithUnit(s.output_rate, "Hz") + " for simulation.duration " +
                    WithUnit(s.duration, "s") + " would write " + Significant(rows, 4) +
-                   " rows (at most " + Number(kMaxOutputRows) + ")");
+                   " rows (at most " + FormatNumber(kMaxOutputRows) + ")");
   }
 }
 

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "core/version.h"
 #include "scenarios/load.h"
 #include "scenarios/schema.h"
@@ -23,8 +24,6 @@
 
 namespace moorsim::scenarios {
 namespace {
-
-using strict_yaml::Number;
 
 constexpr std::size_t kMaxFileBytes = 4 << 20;
 
@@ -261,8 +260,8 @@ std::string PointName(const Point& p) { return Text("point_" + p.id); }
 std::string Vector(double x, double y, double z) {
   // MoorDyn (z up, y to port) to moorsim (z down, y to starboard).
   std::string text = "[";
-  text.append(Number(x)).append(", ").append(Number(y == 0.0 ? 0.0 : -y));
-  return text.append(", ").append(Number(z == 0.0 ? 0.0 : -z)).append("]");
+  text.append(FormatNumber(x)).append(", ").append(FormatNumber(y == 0.0 ? 0.0 : -y));
+  return text.append(", ").append(FormatNumber(z == 0.0 ? 0.0 : -z)).append("]");
 }
 
 // MoorDyn's bathymetry file (SeafloorFile): the counts nx and ny, the nx x coordinates,
@@ -315,18 +314,18 @@ std::string SeafloorGrid(const std::string& path, int line, const std::string& n
        << ", y reversed (MoorDyn's y points to port), heights made depths";
   if (shift_x != 0.0 || shift_y != 0.0) grid << ", moved with the model";
   grid << "\nx\\y";
-  for (std::size_t j = ny; j-- > 0;) grid << ", " << Number(-(ys[j] - shift_y) + 0.0);
+  for (std::size_t j = ny; j-- > 0;) grid << ", " << FormatNumber(-(ys[j] - shift_y) + 0.0);
   grid << "\n";
   for (std::size_t i = 0; i < nx; ++i) {
-    grid << Number(xs[i] - shift_x);
+    grid << FormatNumber(xs[i] - shift_x);
     for (std::size_t j = ny; j-- > 0;) {
       const double* p = rows + 3 * (i * ny + j);
       if (p[0] != xs[i] || p[1] != ys[j]) {
-        throw bad("point " + std::to_string(i * ny + j + 1) + " is at (" + Number(p[0]) + ", " +
-                  Number(p[1]) + ") where the axes put (" + Number(xs[i]) + ", " + Number(ys[j]) +
-                  ")");
+        throw bad("point " + std::to_string(i * ny + j + 1) + " is at (" + FormatNumber(p[0]) +
+                  ", " + FormatNumber(p[1]) + ") where the axes put (" + FormatNumber(xs[i]) +
+                  ", " + FormatNumber(ys[j]) + ")");
       }
-      grid << ", " << Number(-p[2] + 0.0);
+      grid << ", " << FormatNumber(-p[2] + 0.0);
     }
     grid << "\n";
   }
@@ -360,9 +359,9 @@ std::vector<std::pair<double, double>> StiffnessTable(const std::string& path, i
     if (points.empty() && *strain == 0.0 && *tension == 0.0) continue;
     const std::pair<double, double> before = points.empty() ? std::pair(0.0, 0.0) : points.back();
     if (!(*strain > before.first && *tension > before.second)) {
-      throw InputError(at + "strain " + Number(*strain) + " and tension " + Number(*tension) +
-                       " N must both exceed the row before's (" + Number(before.first) + " and " +
-                       Number(before.second) + " N)");
+      throw InputError(at + "strain " + FormatNumber(*strain) + " and tension " +
+                       FormatNumber(*tension) + " N must both exceed the row before's (" +
+                       FormatNumber(before.first) + " and " + FormatNumber(before.second) + " N)");
     }
     points.emplace_back(*strain, *tension);
   }
@@ -506,7 +505,7 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
             t.static_damping = ba_s;
             t.ba = ba_d;
             if (ba_d > 0.0) {
-              warn(row.line, "line type " + t.name + ": BA_D " + Number(ba_d) +
+              warn(row.line, "line type " + t.name + ": BA_D " + FormatNumber(ba_d) +
                                  " damps the whole segment's stretch (moorsim's axial "
                                  "damping), not MoorDyn's dynamic spring alone");
             }
@@ -825,7 +824,7 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
        "# which MoorDyn lines and points it is made of.\n";
   if (shift_x != 0.0 || shift_y != 0.0) {
     y << "# The vessel points lie far from MoorDyn's origin: every point is moved by ("
-      << Number(-shift_x + 0.0) << ", " << Number(-shift_y + 0.0)
+      << FormatNumber(-shift_x + 0.0) << ", " << FormatNumber(-shift_y + 0.0)
       << ") m in MoorDyn's x and y, so that their centre is the vessel's reference point.\n";
   }
   if (!settings.empty()) {
@@ -841,9 +840,9 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
   const auto rho = option("wtrdnsty");
   auto gravity = option("g");
   if (!gravity) gravity = option("gravity");
-  y << "  water: {density: " << Number(rho ? rho->first : 1025.0)
-    << ", gravity: " << Number(gravity ? gravity->first : 9.81)
-    << ", depth: " << Number(depth->first) << "}  # WtrDpth (line " << depth->second << ")";
+  y << "  water: {density: " << FormatNumber(rho ? rho->first : 1025.0)
+    << ", gravity: " << FormatNumber(gravity ? gravity->first : 9.81)
+    << ", depth: " << FormatNumber(depth->first) << "}  # WtrDpth (line " << depth->second << ")";
   y << (rho ? ", WtrDnsty (line " + std::to_string(rho->second) + ")"
             : ", MoorDyn's default density");
   y << (gravity ? ", g (line " + std::to_string(gravity->second) + ")"
@@ -851,8 +850,8 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
     << "\n";
   const auto kbot = option("kbot");
   const auto cbot = option("cbot");
-  y << "  seabed: {stiffness: " << Number(kbot ? kbot->first : 3.0e6)
-    << ", damping: " << Number(cbot ? cbot->first : 3.0e5);
+  y << "  seabed: {stiffness: " << FormatNumber(kbot ? kbot->first : 3.0e6)
+    << ", damping: " << FormatNumber(cbot ? cbot->first : 3.0e5);
   if (!out.files.empty()) y << ", grid: " << Text(out.files.front().first);
   y << "}  # kBot and cBot" << (kbot || cbot ? "" : " (MoorDyn's defaults)")
     << ", per unit of contact area";
@@ -862,49 +861,51 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
   y << "  line_types:\n";
   for (const MdLineType& t : types) {
     y << "    - name: " << Text(t.name) << "  # LINE TYPES, line " << t.line << "\n";
-    y << "      diameter: " << Number(t.diameter) << "\n";
-    y << "      mass_per_length: " << Number(t.mass) << "\n";
+    y << "      diameter: " << FormatNumber(t.diameter) << "\n";
+    y << "      mass_per_length: " << FormatNumber(t.mass) << "\n";
     if (t.ea_curve.empty()) {
-      y << "      axial_stiffness: " << Number(t.ea) << "\n";
+      y << "      axial_stiffness: " << FormatNumber(t.ea) << "\n";
     } else {
       y << "      tension_strain:  # EA table " << t.ea_table
         << " (MoorDyn joins its points by straight lines, moorsim by a monotone cubic)\n";
       for (const auto& [strain, tension] : t.ea_curve) {
-        y << "        - {strain: " << Number(strain) << ", tension: " << Number(tension) << "}\n";
+        y << "        - {strain: " << FormatNumber(strain) << ", tension: " << FormatNumber(tension)
+          << "}\n";
       }
     }
     if (t.dynamic_ea > 0.0) {
       // MoorDyn's static spring, in series with EA_D: EA_D EA_s / (EA_D - EA_s).
       const double creep_spring = t.dynamic_ea * t.ea / (t.dynamic_ea - t.ea);
       if (t.dynamic_ea_slope > 0.0) {
-        y << "      dynamic_axial_stiffness: " << Number(t.dynamic_ea) << "  # EA_s|EA_Dc|EA_D_Lm "
-          << Number(t.ea) << "|" << Number(t.dynamic_ea) << "|" << Number(t.dynamic_ea_slope)
-          << "\n";
-        y << "      dynamic_axial_stiffness_slope: " << Number(t.dynamic_ea_slope)
+        y << "      dynamic_axial_stiffness: " << FormatNumber(t.dynamic_ea)
+          << "  # EA_s|EA_Dc|EA_D_Lm " << FormatNumber(t.ea) << "|" << FormatNumber(t.dynamic_ea)
+          << "|" << FormatNumber(t.dynamic_ea_slope) << "\n";
+        y << "      dynamic_axial_stiffness_slope: " << FormatNumber(t.dynamic_ea_slope)
           << "  # EA_D_Lm: EA_D = EA_Dc + EA_D_Lm x the mean load\n";
       } else {
-        y << "      dynamic_axial_stiffness: " << Number(t.dynamic_ea) << "  # EA_s|EA_D "
-          << Number(t.ea) << "|" << Number(t.dynamic_ea) << "\n";
+        y << "      dynamic_axial_stiffness: " << FormatNumber(t.dynamic_ea) << "  # EA_s|EA_D "
+          << FormatNumber(t.ea) << "|" << FormatNumber(t.dynamic_ea) << "\n";
       }
-      y << "      creep_time: " << Number(t.static_damping / creep_spring)
-        << "  # BA_s / (EA_D EA_s / (EA_D - EA_s)): the static damping " << Number(t.static_damping)
-        << " N s over the static spring " << Number(creep_spring) << " N\n";
-      y << "      axial_damping: " << Number(t.ba) << "  # BA_D [N s]\n";
+      y << "      creep_time: " << FormatNumber(t.static_damping / creep_spring)
+        << "  # BA_s / (EA_D EA_s / (EA_D - EA_s)): the static damping "
+        << FormatNumber(t.static_damping) << " N s over the static spring "
+        << FormatNumber(creep_spring) << " N\n";
+      y << "      axial_damping: " << FormatNumber(t.ba) << "  # BA_D [N s]\n";
     } else if (t.ba < 0.0) {
-      y << "      axial_damping_ratio: " << Number(-t.ba) << "  # BA/-zeta " << Number(t.ba)
-        << "\n";
+      y << "      axial_damping_ratio: " << FormatNumber(-t.ba) << "  # BA/-zeta "
+        << FormatNumber(t.ba) << "\n";
     } else {
-      y << "      axial_damping: " << Number(t.ba) << "  # BA [N s]\n";
+      y << "      axial_damping: " << FormatNumber(t.ba) << "  # BA [N s]\n";
     }
-    y << "      drag_normal: " << Number(t.cd) << "\n";
-    y << "      drag_tangential: " << Number(t.cdax * std::numbers::pi) << "  # CdAx "
-      << Number(t.cdax) << " x pi (MoorDyn applies it to pi d, moorsim to d)\n";
-    y << "      added_mass_normal: " << Number(t.ca) << "\n";
-    if (t.caax != 0.0) y << "      added_mass_tangential: " << Number(t.caax) << "  # CaAx\n";
+    y << "      drag_normal: " << FormatNumber(t.cd) << "\n";
+    y << "      drag_tangential: " << FormatNumber(t.cdax * std::numbers::pi) << "  # CdAx "
+      << FormatNumber(t.cdax) << " x pi (MoorDyn applies it to pi d, moorsim to d)\n";
+    y << "      added_mass_normal: " << FormatNumber(t.ca) << "\n";
+    if (t.caax != 0.0) y << "      added_mass_tangential: " << FormatNumber(t.caax) << "  # CaAx\n";
     if (friction) {
-      y << "      friction_axial: " << Number(friction->first) << "  # FrictionCoefficient (line "
-        << friction->second << ")\n";
-      y << "      friction_lateral: " << Number(friction->first) << "\n";
+      y << "      friction_axial: " << FormatNumber(friction->first)
+        << "  # FrictionCoefficient (line " << friction->second << ")\n";
+      y << "      friction_lateral: " << FormatNumber(friction->first) << "\n";
     }
   }
   bool any_point = false;
@@ -914,9 +915,9 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
     if (!any_point) y << "  points:\n";
     any_point = true;
     y << "    - {name: " << PointName(p) << ", position: " << Vector(p.x, p.y, p.z)
-      << ", mass: " << Number(p.mass) << ", volume: " << Number(p.volume)
-      << ", added_mass: " << Number(p.ca) << ", drag_area: " << Number(p.cda) << "}  # point "
-      << p.id << " (line " << p.line << ")\n";
+      << ", mass: " << FormatNumber(p.mass) << ", volume: " << FormatNumber(p.volume)
+      << ", added_mass: " << FormatNumber(p.ca) << ", drag_area: " << FormatNumber(p.cda)
+      << "}  # point " << p.id << " (line " << p.line << ")\n";
   }
   y << "  lines:\n";
   int id = 0;
@@ -947,14 +948,15 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
     const MdLine& only = lines[chain.lines.front()];
     if (chain.lines.size() == 1 && only.segments >= 2) {
       y << "      type: " << Text(only.type) << "\n";
-      y << "      length: " << Number(only.length) << "\n";
+      y << "      length: " << FormatNumber(only.length) << "\n";
       y << "      segments: " << only.segments << "\n";
       continue;
     }
     y << "      sections:\n";
     for (const std::size_t k : chain.lines) {
-      y << "        - {type: " << Text(lines[k].type) << ", length: " << Number(lines[k].length)
-        << ", segments: " << lines[k].segments << "}  # MoorDyn line " << lines[k].id << "\n";
+      y << "        - {type: " << Text(lines[k].type)
+        << ", length: " << FormatNumber(lines[k].length) << ", segments: " << lines[k].segments
+        << "}  # MoorDyn line " << lines[k].id << "\n";
     }
     bool any_body = false;
     for (std::size_t k = 0; k < chain.joints.size(); ++k) {
@@ -962,9 +964,9 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
       if (p.mass == 0.0 && p.volume == 0.0 && p.cda == 0.0) continue;
       if (!any_body) y << "      bodies:\n";
       any_body = true;
-      y << "        - {joint: " << k + 1 << ", mass: " << Number(p.mass)
-        << ", volume: " << Number(p.volume) << ", added_mass: " << Number(p.ca)
-        << ", drag_area: " << Number(p.cda) << "}  # point " << p.id << " (line " << p.line
+      y << "        - {joint: " << k + 1 << ", mass: " << FormatNumber(p.mass)
+        << ", volume: " << FormatNumber(p.volume) << ", added_mass: " << FormatNumber(p.ca)
+        << ", drag_area: " << FormatNumber(p.cda) << "}  # point " << p.id << " (line " << p.line
         << ")\n";
     }
   }

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/format.h"
 #include "scenarios/scenario.h"
 #include "scenarios/strict_yaml.h"
 
@@ -22,7 +23,7 @@ namespace {
 // ---------------------------------------------------------------------------------------
 // Defaults: JSON text of a spec struct's member, so the schema shows what the loader uses.
 
-std::string Json(double value) { return strict_yaml::Number(value); }
+std::string Json(double value) { return FormatNumber(value); }
 std::string Json(int value) { return std::to_string(value); }
 std::string Json(std::uint64_t value) { return std::to_string(value); }
 std::string Json(bool value) { return value ? "true" : "false"; }
@@ -1360,8 +1361,7 @@ std::string RangeText(const Key& key) {
   }
   if (!key.minimum && !key.maximum) return "";
   const auto number = [&](double v) {
-    return key.kind == Kind::kInteger ? std::to_string(static_cast<long long>(v))
-                                      : strict_yaml::Number(v);
+    return key.kind == Kind::kInteger ? std::to_string(static_cast<long long>(v)) : FormatNumber(v);
   };
   std::string text = key.minimum ? (key.minimum->exclusive ? "(" : "[") + number(key.minimum->value)
                                  : std::string("(-inf");

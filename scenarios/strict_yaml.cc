@@ -13,18 +13,12 @@
 #include <tuple>
 
 #include "core/error.h"
+#include "core/format.h"
 
 namespace moorsim::scenarios::strict_yaml {
 
 // ---------------------------------------------------------------------------------------
 // Message building, shared by the parser and Validate().
-
-// Shortest text that reads back as the same double ("-0.08", "1800", "2.5e-05").
-std::string Number(double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, result.ptr);
-}
 
 std::string Fixed(double value, int decimals) {
   char buffer[64];
@@ -41,7 +35,7 @@ std::string Significant(double value, int digits) {
 }
 
 std::string WithUnit(double value, std::string_view unit) {
-  return unit.empty() ? Number(value) : Number(value) + " " + std::string(unit);
+  return unit.empty() ? FormatNumber(value) : FormatNumber(value) + " " + std::string(unit);
 }
 
 std::string JoinSorted(std::vector<std::string> words) {
@@ -544,15 +538,15 @@ void Reader::CheckRange(double value) const {
   }
   const std::string shown = WithUnit(value, key_->unit);
   if (key_->interval && low && high) {
-    Fail(shown + " must be in " + (low->exclusive ? "(" : "[") + Number(low->value) + ", " +
-         Number(high->value) + (high->exclusive ? ")" : "]") +
+    Fail(shown + " must be in " + (low->exclusive ? "(" : "[") + FormatNumber(low->value) + ", " +
+         FormatNumber(high->value) + (high->exclusive ? ")" : "]") +
          why(high->why.empty() ? low->why : high->why));
   }
   if (below) {
-    Fail(shown + " must be " + (low->exclusive ? "> " : ">= ") + Number(low->value) +
+    Fail(shown + " must be " + (low->exclusive ? "> " : ">= ") + FormatNumber(low->value) +
          why(low->why));
   }
-  Fail(shown + " must be " + (high->exclusive ? "< " : "<= ") + Number(high->value) +
+  Fail(shown + " must be " + (high->exclusive ? "< " : "<= ") + FormatNumber(high->value) +
        why(high->why));
 }
 

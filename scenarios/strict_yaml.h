@@ -25,13 +25,11 @@ namespace moorsim::scenarios::strict_yaml {
 
 // Message building.
 
-/// Shortest text that reads back as the same double ("-0.08", "1800", "2.5e-05").
-std::string Number(double value);
 /// Fixed-point with `decimals` decimals.
 std::string Fixed(double value, int decimals);
 /// `digits` significant digits.
 std::string Significant(double value, int digits);
-/// Number(value) followed by the unit, if any.
+/// FormatNumber(value) followed by the unit, if any.
 std::string WithUnit(double value, std::string_view unit);
 /// The words sorted and joined by ", " ("none" for no words).
 std::string JoinSorted(std::vector<std::string> words);

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "mooring_fem/catenary.h"
 #include "mooring_fem/mooring_system.h"
 #include "mooring_fem/parameters.h"
@@ -100,13 +101,14 @@ mooring_fem::SectionProperties SeedLine(double depth, double length) {
   return mooring_fem::MakeLineProperties(spec, line).sections.front();
 }
 
-/// Shortest text that reads back as the same double ("2250", "14.142135623730951"), large
-/// numbers in scientific notation ("2.28785e+08").
+/// A value in the written file: FormatNumber's shortest text that reads back as the same
+/// double ("2250", "14.142135623730951"), large numbers in scientific notation
+/// ("2.28785e+08").
 std::string Number(double value) {
+  if (!(std::abs(value) >= 1e6)) return FormatNumber(value);
   char buffer[64];
-  const auto result = std::abs(value) >= 1e6 ? std::to_chars(buffer, buffer + sizeof buffer, value,
-                                                             std::chars_format::scientific)
-                                             : std::to_chars(buffer, buffer + sizeof buffer, value);
+  const auto result =
+      std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::scientific);
   return std::string(buffer, result.ptr);
 }
 

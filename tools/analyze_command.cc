@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "core/version.h"
 #include "detectors/distinguishability.h"
 #include "detectors/hypothesis_bank.h"

@@ -55,7 +55,4 @@ inline constexpr const char* kScenarioOutNote =
 /// Registers `moorsim import`.
 Command AddImportCommand(CLI::App& app);
 
-/// "12.5" -> "12.5", 1e10 -> "1e+10": the shortest form that reads back the same.
-std::string FormatNumber(double value);
-
 }  // namespace moorsim::cli

@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "core/types.h"
 #include "core/version.h"
 #include "detectors/registry.h"

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -88,24 +87,6 @@ int ParseInteger(const std::string& flag, const std::string& text, int min, int 
                      ".." + std::to_string(max));
   }
   return static_cast<int>(value);
-}
-
-std::string FormatNumber(double value) {
-  // The shortest text of any precision that reads back the same: 120 as "120", not the
-  // "1.2e+02" that two digits give; 1e9 as "1e+09".
-  std::string best;
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::ostringstream trial;
-    trial.precision(digits);
-    trial << value;
-    const std::string text = trial.str();
-    if (std::stod(text) == value && (best.empty() || text.size() < best.size())) best = text;
-  }
-  if (!best.empty()) return best;
-  std::ostringstream out;
-  out.precision(17);
-  out << value;
-  return out.str();
 }
 
 void CheckScenarioOut(const std::string& path, bool force) {

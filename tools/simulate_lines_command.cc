@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "core/version.h"
 #include "io/text_file.h"
 #include "mooring_fem/line_simulation.h"

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "core/types.h"
 #include "core/version.h"
 #include "detectors/registry.h"

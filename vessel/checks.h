@@ -7,9 +7,6 @@
 
 namespace moorsim::vessel::internal {
 
-/// The value as the default ostream shows it (6 significant digits).
-std::string FormatValue(double value);
-
 /// Throws InputError "<field>: <value>[ <unit>] <constraint>".
 [[noreturn]] void ThrowBadValue(std::string_view field, double value, std::string_view unit,
                                 std::string_view constraint);

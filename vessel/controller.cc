@@ -4,11 +4,11 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 
 #include "core/angles.h"
 #include "core/error.h"
+#include "core/format.h"
 
 namespace moorsim::vessel {
 
@@ -32,14 +32,8 @@ Vec3 BodyToNed(const Vec3& v, double psi) {
   return Vec3(c * v.x() - s * v.y(), s * v.x() + c * v.y(), v.z());
 }
 
-std::string Number(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", value);
-  return buffer;
-}
-
 void Require(bool ok, const std::string& field, double value, const char* rule) {
-  if (!ok) throw InputError(field + " = " + Number(value) + ": " + rule);
+  if (!ok) throw InputError(field + " = " + FormatNumber(value) + ": " + rule);
 }
 
 std::string Indexed(const std::string& field, int i) {

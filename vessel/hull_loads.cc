@@ -10,6 +10,7 @@
 
 #include "core/angles.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "vessel/checks.h"
 
 namespace moorsim::vessel {
@@ -122,7 +123,7 @@ void ValidateTable(const WindCoefficientTable& table) {
     }
     if (i > 0 && !(table.angle[i] > table.angle[i - 1])) {
       ThrowBadValue("wind.coefficients.angle" + row, table.angle[i], "rad",
-                    "must be > the previous angle " + internal::FormatValue(table.angle[i - 1]) +
+                    "must be > the previous angle " + FormatNumber(table.angle[i - 1]) +
                         " rad (strictly increasing)");
     }
     if (!std::isfinite(table.surge[i])) {
@@ -452,7 +453,7 @@ WindGust::WindGust(const WindGustOptions& options, RandomStream& stream)
   if (!(options.frequency_max > options.frequency_min) || !std::isfinite(options.frequency_max)) {
     ThrowBadValue("wind.gust.frequency_max", options.frequency_max, "Hz",
                   "must be finite and > wind.gust.frequency_min = " +
-                      internal::FormatValue(options.frequency_min) + " Hz");
+                      FormatNumber(options.frequency_min) + " Hz");
   }
   mean_speed_ = spectrum_.MeanSpeedAtHeight();
   frequency_min_ = options.frequency_min;

@@ -12,7 +12,6 @@
 #include <functional>
 #include <numbers>
 #include <optional>
-#include <sstream>
 #include <string_view>
 #include <system_error>
 #include <type_traits>
@@ -20,6 +19,7 @@
 
 #include "core/angles.h"
 #include "core/error.h"
+#include "core/format.h"
 
 namespace moorsim::vessel {
 namespace {
@@ -34,12 +34,6 @@ constexpr double kHeadingTolerance = 1e-6;  // degrees
 // a fraction of sqrt(|M_ii M_jj|), above which the hull is taken to be asymmetric. WAMIT
 // writes no such entries for a symmetric body (it solves the two symmetry classes apart).
 constexpr double kSymmetryTolerance = 1e-6;
-
-std::string FormatNumber(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
 
 bool IsRotation(int mode) { return mode >= 3; }           // 0-based: 3, 4, 5 are roll, pitch, yaw
 bool IsAntisymmetric(int mode) { return mode % 2 == 1; }  // 0-based sway, roll, yaw

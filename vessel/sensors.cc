@@ -11,6 +11,7 @@
 
 #include "core/angles.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "vessel/checks.h"
 
 namespace moorsim::vessel {
@@ -59,7 +60,7 @@ const ChannelNoise& ValidatedTensionNoise(int lines, const ChannelNoise& noise) 
 void RequireNotSampled(std::int64_t k, std::int64_t next_index, std::string_view instrument,
                        double t) {
   if (k < next_index) {
-    throw std::logic_error(std::string(instrument) + ": instant t = " + internal::FormatValue(t) +
+    throw std::logic_error(std::string(instrument) + ": instant t = " + FormatNumber(t) +
                            " s was already sampled or lies before the last sample");
   }
 }

@@ -10,6 +10,7 @@
 
 #include "core/angles.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "core/sincos.h"
 #include "core/types.h"
 #include "vessel/checks.h"
@@ -30,12 +31,11 @@ void CheckOptions(const WaveResponseOptions& options) {
   // The relative slack lets 45 * pi / 180 through whichever way it was rounded.
   if (!std::isfinite(step) || step < kMinHeadingStep * (1.0 - 1e-12) ||
       step > kMaxHeadingStep * (1.0 + 1e-12)) {
-    throw InputError("WaveResponseOptions.heading_step = " + internal::FormatValue(step) +
-                     " rad (" + internal::FormatValue(step / kDegree) +
-                     " deg): must be finite and in [0.1, 45] deg");
+    throw InputError("WaveResponseOptions.heading_step = " + FormatNumber(step) + " rad (" +
+                     FormatNumber(step / kDegree) + " deg): must be finite and in [0.1, 45] deg");
   }
   if (!std::isfinite(options.gravity) || !(options.gravity > 0.0)) {
-    throw InputError("WaveResponseOptions.gravity = " + internal::FormatValue(options.gravity) +
+    throw InputError("WaveResponseOptions.gravity = " + FormatNumber(options.gravity) +
                      " m/s^2: must be finite and > 0");
   }
 }

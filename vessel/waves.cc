@@ -9,6 +9,7 @@
 
 #include "core/angles.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "vessel/checks.h"
 
 namespace moorsim::vessel {
@@ -95,9 +96,8 @@ double SpectralMoment(const WaveSpectrum& spectrum, int order, double omega_min,
                   "must be > 0 for a negative order " + std::to_string(order));
   }
   if (!(omega_max > omega_min) || !std::isfinite(omega_max)) {
-    ThrowBadValue(
-        "spectral moment omega_max", omega_max, "rad/s",
-        "must be finite and > omega_min = " + internal::FormatValue(omega_min) + " rad/s");
+    ThrowBadValue("spectral moment omega_max", omega_max, "rad/s",
+                  "must be finite and > omega_min = " + FormatNumber(omega_min) + " rad/s");
   }
   if (intervals < 2) {
     ThrowBadValue("spectral moment intervals", intervals, "", "must be >= 2");
@@ -193,9 +193,8 @@ WaveRealisation::WaveRealisation(const WaveSpectrum& spectrum,
     ThrowBadValue("waves.omega_min", omega_min_, "rad/s", "must be > 0 and finite");
   }
   if (!(omega_max_ > omega_min_) || !std::isfinite(omega_max_)) {
-    ThrowBadValue(
-        "waves.omega_max", omega_max_, "rad/s",
-        "must be finite and > waves.omega_min = " + internal::FormatValue(omega_min_) + " rad/s");
+    ThrowBadValue("waves.omega_max", omega_max_, "rad/s",
+                  "must be finite and > waves.omega_min = " + FormatNumber(omega_min_) + " rad/s");
   }
   std::optional<CosineSpreading> spreading;
   if (options.spreading_exponent) {

@@ -35,8 +35,9 @@ TEST_F(CompareCommand, ExitsZeroWithinToleranceAndOneOutside) {
   CliResult r = Compare({a_, b_});
   EXPECT_EQ(r.exit_code, 1) << r.Describe();
   EXPECT_EQ(r.out,
-            "/vessel/pose_true: row 2 (t = 2 s), column 0 (x): a 20.05, b 20, |a-b| 0.05 > "
-            "allowed 2e-08 (1 of 30 values differ)\n1 of 3 channels differ\n");
+            "/vessel/pose_true: row 2 (t = 2 s), column 0 (x): a 20.05, b 20, |a-b| "
+            "0.05000000000000071 > allowed 2e-08 (1 of 30 values differ)\n1 of 3 channels "
+            "differ\n");
   EXPECT_EQ(r.err, "");
 
   r = Compare({a_, b_, "--atol", "/vessel/pose_true/x=0.06"});

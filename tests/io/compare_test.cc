@@ -95,8 +95,8 @@ TEST_F(CompareTest, AFloatPassesWithinAtolPlusRtolTimesTheReference) {
   EXPECT_NEAR(d.difference, 0.05, 1e-12);
   EXPECT_DOUBLE_EQ(d.allowed, 20.0 * 1e-9);  // the default: rtol 1e-9, atol 0
   EXPECT_EQ(d.detail,
-            "row 2 (t = 2 s), column 0 (x): a 20.05, b 20, |a-b| 0.05 > allowed 2e-08 "
-            "(1 of 30 values differ)");
+            "row 2 (t = 2 s), column 0 (x): a 20.05, b 20, |a-b| 0.05000000000000071 > allowed "
+            "2e-08 (1 of 30 values differ)");
   EXPECT_EQ(Printed(strict), "/vessel/pose_true: " + d.detail + "\n1 of 3 channels differ\n");
 
   EXPECT_TRUE(Run(a, SyntheticRun(), Tolerances({"0.06"})).differences.empty());

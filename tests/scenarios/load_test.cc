@@ -15,6 +15,7 @@
 
 #include "bad_input_cases.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "scenarios/strict_yaml.h"
 
 namespace moorsim::scenarios {
@@ -607,9 +608,8 @@ TEST(ScenarioText, BuoyantSectionsHangBetweenHeavierOnes) {
     t.replace(t.find(alone), alone.size(),
               "      anchor: [0, 1950, 1000]\n      fairlead: [0, 20, 12]\n"
               "      sections:\n        - {type: chain, length: " +
-                  strict_yaml::Number(chain_length) +
-                  ", segments: 10}\n        - {type: wire, length: " +
-                  strict_yaml::Number(wire_length) + ", segments: 20}\n");
+                  FormatNumber(chain_length) + ", segments: 10}\n        - {type: wire, length: " +
+                  FormatNumber(wire_length) + ", segments: 20}\n");
     return t;
   };
   const Scenario s = ParseScenario(composite(700.0, 1550.0), "test.yaml");

@@ -556,7 +556,7 @@ TEST(WindGustTest, RejectsBadOptions) {
   ExpectInputError(with([](WindGustOptions& o) { o.frequency_min = 0.0; }),
                    {"wind.gust.frequency_min", "0"});
   ExpectInputError(with([](WindGustOptions& o) { o.frequency_max = 1e-4; }),
-                   {"wind.gust.frequency_max", "0.0001"});
+                   {"wind.gust.frequency_max", "1e-04"});
   ExpectInputError(with([](WindGustOptions& o) { o.frequency_max = INFINITY; }),
                    {"wind.gust.frequency_max", "inf"});
   ExpectInputError([] { NpdWindSpectrum spectrum(std::nan(""), 10.0); },
