@@ -226,9 +226,8 @@ void WaveResponse::Evaluate(double t, double x, double y, double psi, Vec6* xi, 
                             Vec6* drift) const {
   if (!std::isfinite(t) || !std::isfinite(x) || !std::isfinite(y) || !std::isfinite(psi)) {
     // No exception on the RHS path: NaN tells the ODE adapter to cut the step.
-    const double nan = kNaN;
     for (Vec6* out : {xi, xi_dot, drift}) {
-      if (out != nullptr) out->setConstant(nan);
+      if (out != nullptr) out->setConstant(kNaN);
     }
     return;
   }
