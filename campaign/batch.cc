@@ -21,6 +21,7 @@
 #include "core/sha256.h"
 #include "core/version.h"
 #include "detectors/plugin_detector.h"
+#include "io/csv_table.h"
 #include "io/directory_lock.h"
 #include "io/hdf5_file.h"
 #include "scenarios/load.h"
@@ -125,21 +126,14 @@ class Progress {
 // ---------------------------------------------------------------------------------------
 // The tables.
 
-std::string CsvField(const std::string& text) {
-  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (const char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return quoted + "\"";
-}
-
 std::string CsvValue(const nlohmann::json& j) {
   if (j.is_null()) return "";
-  if (j.is_string()) return CsvField(j.get<std::string>());
+  if (j.is_string()) return output::CsvField(j.get<std::string>());
   if (j.is_number_unsigned()) return std::to_string(j.get<std::uint64_t>());
   if (j.is_number_integer()) return std::to_string(j.get<std::int64_t>());
   if (j.is_number()) return Shortest(j.get<double>());
   if (j.is_boolean()) return j.get<bool>() ? "true" : "false";
-  return CsvField(j.dump());
+  return output::CsvField(j.dump());
 }
 
 bool ParsesAsNumber(const std::string& text, double& value) {
@@ -240,7 +234,7 @@ void WriteCsv(const std::filesystem::path& path, const std::vector<Column>& colu
   std::string text;
   for (std::size_t i = 0; i < columns.size(); ++i) {
     if (i > 0) text += ',';
-    text += CsvField(columns[i].name);
+    text += output::CsvField(columns[i].name);
   }
   text += "\n";
   for (const nlohmann::json& row : rows) {

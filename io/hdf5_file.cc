@@ -43,41 +43,7 @@ void PrepareHdf5() {
 
 namespace {
 
-/// Owns one HDF5 identifier and closes it with the matching H5?close call.
-class Handle {
- public:
-  using Closer = herr_t (*)(hid_t);
-
-  Handle() = default;
-  Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
-  Handle(Handle&& other) noexcept
-      : id_(std::exchange(other.id_, H5I_INVALID_HID)), closer_(other.closer_) {}
-  Handle& operator=(Handle&& other) noexcept {
-    if (this != &other) {
-      Close();
-      id_ = std::exchange(other.id_, H5I_INVALID_HID);
-      closer_ = other.closer_;
-    }
-    return *this;
-  }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  ~Handle() { Close(); }
-
-  hid_t get() const { return id_; }
-
-  /// Closes the identifier now; returns the close call's status (0 if nothing was open).
-  herr_t Close() {
-    if (id_ < 0) return 0;
-    const herr_t status = closer_(id_);
-    id_ = H5I_INVALID_HID;
-    return status;
-  }
-
- private:
-  hid_t id_ = H5I_INVALID_HID;
-  Closer closer_ = nullptr;
-};
+using internal::Handle;
 
 /// The outermost and innermost messages of the thread's HDF5 error stack (the innermost
 /// one carries the useful detail, e.g. the errno text of a failed open or write) on one

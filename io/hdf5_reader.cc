@@ -27,20 +27,7 @@ namespace moorsim::output {
 
 namespace {
 
-// Closes an HDF5 handle with `close` when it leaves scope.
-class Handle {
- public:
-  Handle(hid_t id, herr_t (*close)(hid_t)) : id(id), close_(close) {}
-  ~Handle() {
-    if (id >= 0) close_(id);
-  }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  const hid_t id;
-
- private:
-  herr_t (*close_)(hid_t);
-};
+using internal::Handle;
 
 // The attribute `name` of `object_path` and its type; throws "<where>: missing".
 class Attribute {
@@ -50,8 +37,8 @@ class Attribute {
       : attribute(
             H5Aopen_by_name(file, object_path.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT),
             H5Aclose),
-        type(attribute.id >= 0 ? H5Aget_type(attribute.id) : -1, H5Tclose) {
-    if (attribute.id < 0) throw InputError(where + ": missing");
+        type(attribute.get() >= 0 ? H5Aget_type(attribute.get()) : -1, H5Tclose) {
+    if (attribute.get() < 0) throw InputError(where + ": missing");
   }
   Handle attribute;
   Handle type;
@@ -250,20 +237,20 @@ std::string Hdf5Reader::StringAttribute(const std::string& object_path,
   const std::string where = path_ + ": " + object_path + " attribute '" + name + "'";
   const Attribute a(static_cast<hid_t>(file_), object_path, name, where);
   const Handle& attribute = a.attribute;
-  if (H5Tget_class(a.type.id) != H5T_STRING) throw InputError(where + ": not a string");
-  if (H5Tis_variable_str(a.type.id) <= 0) {
-    const Handle memory{FixedStringMemoryType(a.type.id), H5Tclose};
-    std::vector<char> text(std::max<std::size_t>(H5Tget_size(a.type.id), 1));
-    if (H5Aread(attribute.id, memory.id, text.data()) < 0) {
+  if (H5Tget_class(a.type.get()) != H5T_STRING) throw InputError(where + ": not a string");
+  if (H5Tis_variable_str(a.type.get()) <= 0) {
+    const Handle memory{FixedStringMemoryType(a.type.get()), H5Tclose};
+    std::vector<char> text(std::max<std::size_t>(H5Tget_size(a.type.get()), 1));
+    if (H5Aread(attribute.get(), memory.get(), text.data()) < 0) {
       throw InputError(where + ": unreadable");
     }
     return FixedStringValue(text.data(), text.size());
   }
   Handle memory{H5Tcopy(H5T_C_S1), H5Tclose};
-  H5Tset_size(memory.id, H5T_VARIABLE);
-  H5Tset_cset(memory.id, H5T_CSET_UTF8);
+  H5Tset_size(memory.get(), H5T_VARIABLE);
+  H5Tset_cset(memory.get(), H5T_CSET_UTF8);
   char* text = nullptr;
-  if (H5Aread(attribute.id, memory.id, &text) < 0) throw InputError(where + ": unreadable");
+  if (H5Aread(attribute.get(), memory.get(), &text) < 0) throw InputError(where + ": unreadable");
   std::string value = text == nullptr ? std::string() : std::string(text);
   H5free_memory(text);
   return value;
@@ -273,14 +260,14 @@ double Hdf5Reader::NumberAttribute(const std::string& object_path, const std::st
   const std::string where = path_ + ": " + object_path + " attribute '" + name + "'";
   const Attribute a(static_cast<hid_t>(file_), object_path, name, where);
   const Handle& attribute = a.attribute;
-  const H5T_class_t kind = H5Tget_class(a.type.id);
+  const H5T_class_t kind = H5Tget_class(a.type.get());
   if (kind != H5T_FLOAT && kind != H5T_INTEGER) throw InputError(where + ": not a number");
-  const Handle space{H5Aget_space(attribute.id), H5Sclose};
-  if (space.id < 0 || H5Sget_simple_extent_npoints(space.id) != 1) {
+  const Handle space{H5Aget_space(attribute.get()), H5Sclose};
+  if (space.get() < 0 || H5Sget_simple_extent_npoints(space.get()) != 1) {
     throw InputError(where + ": not one number");
   }
   double value = 0.0;
-  if (H5Aread(attribute.id, H5T_NATIVE_DOUBLE, &value) < 0) {
+  if (H5Aread(attribute.get(), H5T_NATIVE_DOUBLE, &value) < 0) {
     throw InputError(where + ": unreadable");
   }
   return value;
@@ -299,21 +286,21 @@ class Dataset {
  public:
   Dataset(const Hdf5Reader& reader, hid_t file, const std::string& path)
       : dataset(reader.Has(path) ? H5Dopen2(file, path.c_str(), H5P_DEFAULT) : -1, H5Dclose),
-        type(dataset.id >= 0 ? H5Dget_type(dataset.id) : -1, H5Tclose),
-        space(dataset.id >= 0 ? H5Dget_space(dataset.id) : -1, H5Sclose),
+        type(dataset.get() >= 0 ? H5Dget_type(dataset.get()) : -1, H5Tclose),
+        space(dataset.get() >= 0 ? H5Dget_space(dataset.get()) : -1, H5Sclose),
         where_(reader.path() + ": " + path) {
     if (!reader.Has(path)) throw InputError(where_ + ": missing");
-    if (dataset.id < 0) throw InputError(where_ + ": not a dataset");
-    const int rank = H5Sget_simple_extent_ndims(space.id);
+    if (dataset.get() < 0) throw InputError(where_ + ": not a dataset");
+    const int rank = H5Sget_simple_extent_ndims(space.get());
     if (rank < 0) throw InputError(where_ + ": unreadable dataspace");
     dims.resize(static_cast<std::size_t>(rank));
-    if (rank > 0 && H5Sget_simple_extent_dims(space.id, dims.data(), nullptr) < 0) {
+    if (rank > 0 && H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr) < 0) {
       throw InputError(where_ + ": unreadable dataspace");
     }
     // Deflate packs at most 1032 bytes into one: a dataset beyond that (a damaged
     // dimension) is refused before its memory is asked for. Elements are read as at most
     // 8 bytes or as stored.
-    const std::uintmax_t element = std::max<std::size_t>(H5Tget_size(type.id), 1);
+    const std::uintmax_t element = std::max<std::size_t>(H5Tget_size(type.get()), 1);
     const std::uintmax_t most = 1032 * std::max<std::uintmax_t>(reader.file_bytes(), 1) / element;
     for (const hsize_t d : dims) {
       if (d != 0 && count_ > most / d) {
@@ -329,7 +316,7 @@ class Dataset {
   std::size_t Count() const { return count_; }
 
   bool Numeric() const {
-    const H5T_class_t kind = H5Tget_class(type.id);
+    const H5T_class_t kind = H5Tget_class(type.get());
     return kind == H5T_FLOAT || kind == H5T_INTEGER;
   }
 
@@ -337,11 +324,11 @@ class Dataset {
   /// every chunk the dimensions need is there once, at its own place, within the file. A
   /// damaged index otherwise reads as fill values (zeros) or as another chunk's rows.
   void CheckChunkIndex(std::uintmax_t file_bytes) const {
-    const Handle creation{H5Dget_create_plist(dataset.id), H5Pclose};
-    if (creation.id < 0 || H5Pget_layout(creation.id) != H5D_CHUNKED || count_ == 0) return;
+    const Handle creation{H5Dget_create_plist(dataset.get()), H5Pclose};
+    if (creation.get() < 0 || H5Pget_layout(creation.get()) != H5D_CHUNKED || count_ == 0) return;
     const int rank = static_cast<int>(dims.size());
     std::vector<hsize_t> chunk(dims.size());
-    if (H5Pget_chunk(creation.id, rank, chunk.data()) != rank) {
+    if (H5Pget_chunk(creation.get(), rank, chunk.data()) != rank) {
       throw InputError(where_ + ": unreadable chunk layout (damaged)");
     }
     std::uintmax_t expected = 1;
@@ -350,7 +337,7 @@ class Dataset {
       expected *= (dims[k] + chunk[k] - 1) / chunk[k];
     }
     hsize_t chunks = 0;
-    if (H5Dget_num_chunks(dataset.id, space.id, &chunks) < 0 || chunks != expected) {
+    if (H5Dget_num_chunks(dataset.get(), space.get(), &chunks) < 0 || chunks != expected) {
       throw InputError(where_ + ": " + std::to_string(chunks) + " chunks where its " +
                        std::to_string(expected) + " are needed (damaged)");
     }
@@ -360,8 +347,8 @@ class Dataset {
       unsigned filter_mask = 0;
       haddr_t address = 0;
       hsize_t size = 0;
-      bool good = H5Dget_chunk_info(dataset.id, space.id, i, offset.data(), &filter_mask, &address,
-                                    &size) >= 0 &&
+      bool good = H5Dget_chunk_info(dataset.get(), space.get(), i, offset.data(), &filter_mask,
+                                    &address, &size) >= 0 &&
                   size > 0 && address + size <= file_bytes;
       for (std::size_t k = 0; good && k < dims.size(); ++k) {
         good = offset[k] % chunk[k] == 0 && offset[k] < dims[k];
@@ -374,7 +361,8 @@ class Dataset {
 
   /// Reads every element converted to `memory_type` into `out` (Count() elements).
   void Read(hid_t memory_type, void* out) const {
-    if (Count() > 0 && H5Dread(dataset.id, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out) < 0) {
+    if (Count() > 0 &&
+        H5Dread(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out) < 0) {
       throw InputError(where_ + ": unreadable (damaged, or a filter this HDF5 lacks)");
     }
   }
@@ -433,26 +421,26 @@ std::vector<std::uint64_t> Hdf5Reader::ReadUnsignedIntegers(const std::string& d
 std::vector<std::string> Hdf5Reader::ReadStrings(const std::string& dataset_path) const {
   const std::string where = path_ + ": " + dataset_path;
   const Dataset d(*this, static_cast<hid_t>(file_), dataset_path);
-  if (H5Tget_class(d.type.id) != H5T_STRING) throw InputError(where + ": not a string dataset");
+  if (H5Tget_class(d.type.get()) != H5T_STRING) throw InputError(where + ": not a string dataset");
   const std::size_t n = d.Count();
   std::vector<std::string> values;
   values.reserve(n);
-  if (H5Tis_variable_str(d.type.id) > 0) {
+  if (H5Tis_variable_str(d.type.get()) > 0) {
     const Handle memory{H5Tcopy(H5T_C_S1), H5Tclose};
-    H5Tset_size(memory.id, H5T_VARIABLE);
-    H5Tset_cset(memory.id, H5Tget_cset(d.type.id));
+    H5Tset_size(memory.get(), H5T_VARIABLE);
+    H5Tset_cset(memory.get(), H5Tget_cset(d.type.get()));
     std::vector<char*> texts(n, nullptr);
-    d.Read(memory.id, texts.data());
+    d.Read(memory.get(), texts.data());
     for (char* text : texts) {
       values.emplace_back(text == nullptr ? "" : text);
       H5free_memory(text);
     }
     return values;
   }
-  const std::size_t size = H5Tget_size(d.type.id);
+  const std::size_t size = H5Tget_size(d.type.get());
   std::vector<char> buffer(n * size);
-  const Handle memory{FixedStringMemoryType(d.type.id), H5Tclose};
-  d.Read(memory.id, buffer.data());
+  const Handle memory{FixedStringMemoryType(d.type.get()), H5Tclose};
+  d.Read(memory.get(), buffer.data());
   for (std::size_t i = 0; i < n; ++i) values.push_back(FixedStringValue(&buffer[i * size], size));
   return values;
 }
@@ -472,20 +460,20 @@ std::vector<DatasetInfo> Hdf5Reader::ListDatasets() const {
   std::vector<DatasetInfo> datasets;
   for (const auto& [name, hard] : links) {
     const Handle object{H5Oopen(static_cast<hid_t>(file_), name.c_str(), H5P_DEFAULT), H5Oclose};
-    if (object.id < 0 && hard)
+    if (object.get() < 0 && hard)
       throw InputError(path_ + ": " + name + ": damaged (cannot be opened)");
-    if (object.id < 0 || H5Iget_type(object.id) != H5I_DATASET) continue;
+    if (object.get() < 0 || H5Iget_type(object.get()) != H5I_DATASET) continue;
     const Dataset d(*this, static_cast<hid_t>(file_), name);
     DatasetInfo info;
     info.path = name;
     info.dims.assign(d.dims.begin(), d.dims.end());
-    switch (H5Tget_class(d.type.id)) {
+    switch (H5Tget_class(d.type.get())) {
       case H5T_FLOAT:
         info.element = ElementClass::kFloat;
         break;
       case H5T_INTEGER:
-        info.element = H5Tget_sign(d.type.id) == H5T_SGN_NONE ? ElementClass::kUnsignedInteger
-                                                              : ElementClass::kSignedInteger;
+        info.element = H5Tget_sign(d.type.get()) == H5T_SGN_NONE ? ElementClass::kUnsignedInteger
+                                                                 : ElementClass::kSignedInteger;
         break;
       case H5T_STRING:
         info.element = ElementClass::kString;

@@ -28,16 +28,6 @@ std::string Trim(const std::string& text) {
   return text.substr(begin, end - begin + 1);
 }
 
-std::vector<std::string> SplitCells(const std::string& line) {
-  std::vector<std::string> cells;
-  for (std::size_t begin = 0;;) {
-    const std::size_t comma = line.find(',', begin);
-    cells.push_back(Trim(line.substr(begin, comma == std::string::npos ? comma : comma - begin)));
-    if (comma == std::string::npos) return cells;
-    begin = comma + 1;
-  }
-}
-
 std::string Shortest(double value) {
   std::ostringstream out;
   out << value;
@@ -149,7 +139,9 @@ bool CsvPoseStream::Take(const std::string& line, detectors::Observation* observ
   const std::string trimmed =
       Trim(line_number_ == 1 ? std::string(output::WithoutByteOrderMark(line)) : line);
   if (trimmed.empty() || trimmed[0] == '#') return false;
-  const std::vector<std::string> cells = SplitCells(trimmed);
+  std::vector<std::string> cells =
+      output::SplitCsvRecord(trimmed, name_ + ":" + std::to_string(line_number_));
+  for (std::string& cell : cells) cell = Trim(cell);
   for (std::size_t c = 0; c < cells.size(); ++c) {
     if (cells[c].find('\0') == std::string::npos) continue;
     throw InputError(name_ + ":" + std::to_string(line_number_) + ": " +

@@ -26,6 +26,7 @@
 #include "core/types.h"
 #include "core/version.h"
 #include "detectors/registry.h"
+#include "io/csv_table.h"
 #include "io/directory_lock.h"
 #include "io/hdf5_file.h"
 #include "io/hdf5_reader.h"
@@ -176,7 +177,7 @@ nlohmann::ordered_json EventJson(const simulation::DetectorRecord& record,
 
 std::string CsvCell(const nlohmann::ordered_json& value) {
   if (value.is_null()) return "";
-  if (value.is_string()) return value.get<std::string>();
+  if (value.is_string()) return output::CsvField(value.get<std::string>());
   if (value.is_number_integer()) return std::to_string(value.get<long long>());
   return FormatNumber(value.get<double>());
 }

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "io/hdf5_library.h"
 
 namespace moorsim::output {
 namespace {
@@ -35,20 +36,7 @@ namespace {
 using ::testing::HasSubstr;
 
 /// Owns an identifier of the reading side.
-class Id {
- public:
-  Id(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
-  Id(const Id&) = delete;
-  Id& operator=(const Id&) = delete;
-  ~Id() {
-    if (id_ >= 0) close_(id_);
-  }
-  hid_t get() const { return id_; }
-
- private:
-  hid_t id_;
-  herr_t (*close_)(hid_t);
-};
+using Id = internal::Handle;
 
 /// A file in a directory of this test process (ctest runs tests in parallel, and the
 /// release and sanitizer builds may run at once), removed when the test ends.
