@@ -633,7 +633,7 @@ RunTruth TruthOf(const scenarios::Scenario& s) {
   if (s.failure.line > 0) {
     t.failure_line = s.failure.line;
     t.failure_time = s.failure.time;
-    t.failure_mode = s.failure.mode;
+    t.failure_mode = ChoiceName(s.failure.mode);
   }
   t.duration = s.simulation.duration;
   t.num_lines = static_cast<int>(s.mooring.lines.size());

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/choice.h"
 #include "core/ode_system.h"
 
 namespace moorsim {
@@ -29,6 +30,11 @@ struct IntegratorOptions {
   LinearSolver linear_solver = LinearSolver::kBlock;
   long max_steps_per_call = 200000;
 };
+
+inline constexpr std::string_view kLinearSolverNames[] = {"block", "klu"};
+constexpr ChoiceInfo ChoicesOf(IntegratorOptions::LinearSolver) {
+  return {"linear solver", kLinearSolverNames};
+}
 
 /// Integrator counters, summed over every CVODE instance of a run (a topology change
 /// creates a new one).

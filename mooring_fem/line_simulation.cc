@@ -195,8 +195,7 @@ IntegratorOptions MakeIntegratorOptions(const SolverSettings& solver,
   o.stability_limit_detection = solver.stability_limit_detection;
   o.max_step = solver.max_step;
   o.max_steps_per_call = solver.max_steps;
-  o.linear_solver = solver.linear_solver == "klu" ? IntegratorOptions::LinearSolver::kKlu
-                                                  : IntegratorOptions::LinearSolver::kBlock;
+  o.linear_solver = solver.linear_solver;
   for (char kind : mooring.StateKinds()) {
     // Positions and creep stretches [m] in metres, velocities in m/s.
     o.atol.push_back(kind == 'v' ? solver.atol_velocity : solver.atol_position);

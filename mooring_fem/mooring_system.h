@@ -178,8 +178,6 @@ struct NodeMass {
   Vec3 Solve(const Vec3& F) const;
 };
 
-enum class FailureMode { kFairlead, kNode, kAnchor };
-
 /// A line parts at its fairlead, at an internal node (1..n-1, counted from the anchor), or
 /// its anchor lets go.
 struct LineFailure {

@@ -10,10 +10,17 @@
 #include <string>
 #include <vector>
 
+#include "core/integrator.h"
 #include "core/types.h"
 #include "mooring_fem/axial_curve.h"
 
 namespace moorsim::mooring_fem {
+
+/// A line parts at its fairlead, at an internal node, or its anchor lets go.
+enum class FailureMode { kFairlead, kNode, kAnchor };
+
+inline constexpr std::string_view kFailureModeNames[] = {"fairlead", "node", "anchor"};
+constexpr ChoiceInfo ChoicesOf(FailureMode) { return {"failure mode", kFailureModeNames}; }
 
 struct Water {
   double density = 1025.0;  ///< [kg/m^3]
@@ -181,10 +188,10 @@ struct SolverSettings {
   /// Steps CVODE may take between two stops (events, output instants) before it gives up
   /// with CV_TOO_MUCH_WORK: a run that crawls fails in seconds instead of hours.
   int max_steps = 200000;
-  /// The Newton systems' linear solver: "block" (the lines' block-tridiagonal structure with
-  /// the vessel as a dense border, core/block_solver.h) or "klu" (general sparse LU, the same
+  /// The Newton systems' linear solver: block (the lines' block-tridiagonal structure with
+  /// the vessel as a dense border, core/block_solver.h) or klu (general sparse LU, the same
   /// solutions to rounding; kept for comparison).
-  std::string linear_solver = "block";
+  IntegratorOptions::LinearSolver linear_solver = IntegratorOptions::LinearSolver::kBlock;
 };
 
 }  // namespace moorsim::mooring_fem

@@ -23,6 +23,7 @@
 
 #include <vector>
 
+#include "core/choice.h"
 #include "core/types.h"
 
 namespace moorsim::mooring_fem {
@@ -39,6 +40,9 @@ enum class WaveStretching {
   kWheeler,  ///< the profiles stretched between the seabed and the instantaneous surface
   kNone,     ///< linear theory to the mean surface, held constant up to the crest
 };
+
+inline constexpr std::string_view kWaveStretchingNames[] = {"wheeler", "none"};
+constexpr ChoiceInfo ChoicesOf(WaveStretching) { return {"stretching rule", kWaveStretchingNames}; }
 
 /// The water's motion at a point: velocity and acceleration (Earth NED) and, if asked,
 /// their gradients d/dr (columns: x, y, z).

@@ -174,16 +174,15 @@ class Lines {
     Ready();
     mooring_fem::LineFailure f;
     f.line = Index(line);
-    if (where == "fairlead") {
-      f.mode = mooring_fem::FailureMode::kFairlead;
-    } else if (where == "anchor") {
-      f.mode = mooring_fem::FailureMode::kAnchor;
-    } else if (where == "node") {
-      if (!node) throw py::value_error("part(where='node') needs node=K");
-      f.mode = mooring_fem::FailureMode::kNode;
-      f.node = *node;
-    } else {
+    const std::optional<mooring_fem::FailureMode> mode =
+        ParseChoice<mooring_fem::FailureMode>(where);
+    if (!mode) {
       throw py::value_error("where must be 'fairlead', 'node' or 'anchor', not '" + where + "'");
+    }
+    f.mode = *mode;
+    if (f.mode == mooring_fem::FailureMode::kNode) {
+      if (!node) throw py::value_error("part(where='node') needs node=K");
+      f.node = *node;
     }
     lines_->Part(f);
   }

@@ -263,9 +263,8 @@ CampaignFactor ParseFactor(const Reader& r, const YAML::Node& node) {
       f.modulo = modulo->As<double>();  // > 0 (the schema)
     }
     if (const std::optional<Reader> function = r.Find("function")) {
-      // cos or sin (the schema's choices) of the followed value in degrees.
-      f.function = function->As<std::string>() == "cos" ? CampaignFactor::Function::kCos
-                                                        : CampaignFactor::Function::kSin;
+      // cos or sin of the followed value in degrees.
+      f.function = function->As<CampaignFactor::Function>();
     }
     if (const std::optional<Reader> scale = r.Find("scale")) {
       f.scale = scale->As<double>();
@@ -342,7 +341,7 @@ CampaignBlock ParseBlock(const Reader& r, const YAML::Node& node) {
     }
   }
   if (const std::optional<Reader> combine = r.Find("combine")) {
-    b.zip = combine->As<std::string>() == "zip";  // or grid (the schema's choices)
+    b.zip = combine->As<CampaignBlock::Combine>() == CampaignBlock::Combine::kZip;
   }
   const Reader seeds = r.Child("seeds");
   if (seeds.IsMap()) {

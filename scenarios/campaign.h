@@ -62,18 +62,21 @@ struct CampaignFactor {
   /// distribution, the distribution function is inverted within it.
   std::optional<double> min, max;
   /// kFollows: v, the value of `follows` (an earlier factor of the block, numeric), made
-  /// scale * function(v) (function: none, or cos / sin of v in degrees), plus `low`, or a
+  /// scale * function(v) (function: unset, or cos / sin of v in degrees), plus `low`, or a
   /// uniform draw in [low, high) when high > low; reduced to [-modulo / 2, modulo / 2) when
   /// modulo > 0.
-  enum class Function { kNone, kCos, kSin };
+  enum class Function { kCos, kSin };
   std::string follows;
-  Function function = Function::kNone;
+  std::optional<Function> function;
   double scale = 1.0;
   double modulo = 0.0;
   SourceMark mark;  ///< the factor's list entry
 };
 
 struct CampaignBlock {
+  /// grid: every combination of the factors' values, the first factor slowest; zip: the
+  /// i-th value of each.
+  enum class Combine { kGrid, kZip };
   std::string name;
   std::vector<std::string> set;  ///< "key.path=value", in the order written
   std::vector<CampaignFactor> factors;
@@ -86,6 +89,11 @@ struct CampaignBlock {
   std::int64_t Points() const;
   std::int64_t SeedsPerPoint() const;
 };
+
+inline constexpr std::string_view kFunctionNames[] = {"cos", "sin"};
+constexpr ChoiceInfo ChoicesOf(CampaignFactor::Function) { return {"function", kFunctionNames}; }
+inline constexpr std::string_view kCombineNames[] = {"grid", "zip"};
+constexpr ChoiceInfo ChoicesOf(CampaignBlock::Combine) { return {"combination", kCombineNames}; }
 
 struct Campaign {
   std::string name;

@@ -466,7 +466,7 @@ void ParseFaults(const Reader& r, FaultTarget target, std::vector<SensorsSpec::F
   r.ForEachItem([&](const Reader& item, std::size_t) {
     item.CheckKeys();
     SensorsSpec::Fault fault;
-    fault.mode = item.Required<std::string>("mode");
+    fault.mode = item.Required<vessel::SensorFault::Mode>("mode");
     fault.time = item.Required<double>("time");
     fault.end = item.Maybe<double>("end");
     item.Optional("offset", fault.offset);
@@ -552,7 +552,7 @@ void ParseDetection(const Reader& r, Scenario& scenario) {
   r.Optional("measurement_variance", d.measurement_variance);
   d.switch_rate = r.Maybe<double>("switch_rate");
   d.sensor_checks = r.Maybe<bool>("sensor_checks");
-  if (d.sensor_checks.value_or(false) && d.observer == "passive") {
+  if (d.sensor_checks.value_or(false) && d.observer == simulation::ObserverType::kPassive) {
     r.Child("sensor_checks")
         .Fail("the passive observers make no sensor checks (they need observer: ekf)");
   }
@@ -886,7 +886,7 @@ void CheckLinesAtInitialPose(const Checker& check, const Scenario& scenario) {
   const Vec3 centre(turret.x, turret.y, 0.0);
   std::string where = "at x " + WithUnit(pose.x(), "m") + ", y " + WithUnit(pose.y(), "m") +
                       ", heading " + Significant(pose.z() / kDegree, 10) + " deg";
-  if (turret.bearing != "locked" && turret.initial_heading) {
+  if (turret.bearing != vessel::TurretBearing::kLocked && turret.initial_heading) {
     where += ", turret heading " + Significant(*turret.initial_heading / kDegree, 10) + " deg";
   }
   const std::vector<LineSpec>& lines = scenario.mooring.lines;
@@ -1012,13 +1012,13 @@ void CheckTurret(const Checker& check, const Scenario& scenario) {
   if (!scenario.vessel) return;
   const VesselSpec& v = *scenario.vessel;
   const TurretSpec& t = v.turret;
-  if (t.initial_heading && t.bearing == "locked") {
+  if (t.initial_heading && t.bearing == vessel::TurretBearing::kLocked) {
     check.Fail("vessel.turret.initial_heading_deg",
                "a locked turret turns with the hull: give bearing free or friction, or leave "
                "initial_heading_deg out");
   }
   const double half_length = 0.5 * v.hull.length, half_beam = 0.5 * v.hull.beam;
-  if (t.bearing == "locked" && !t.radius) {
+  if (t.bearing == vessel::TurretBearing::kLocked && !t.radius) {
     // No turret that turns: the fairleads are points of the hull (a spread mooring may have
     // them at the bow and the stern), each within its waterplane rectangle L x B.
     const std::vector<LineSpec>& lines = scenario.mooring.lines;
@@ -1142,20 +1142,20 @@ void CheckFaults(const Checker& check, const Scenario& scenario,
     }
     // Each size belongs to one mode; a size that leaves the sensor as it is (its neutral
     // value, the default) is one not given.
-    const FaultModeName* own = FindFaultMode(f.mode);
-    for (const FaultModeName& m : FaultModeNames()) {
-      if (&m != own && m.size != nullptr && f.*m.size != m.neutral) {
-        check.Fail(
-            path + "." + std::string(vessel::SensorFaultSizeKey(m.mode)),
-            "only applies to mode '" + std::string(m.name) + "' (the mode is '" + f.mode + "')");
+    const FaultModeSize& own = FaultModeSizeOf(f.mode);
+    for (const FaultModeSize& m : FaultModeSizes()) {
+      if (&m != &own && m.size != nullptr && f.*m.size != m.neutral) {
+        check.Fail(path + "." + std::string(vessel::SensorFaultSizeKey(m.mode)),
+                   "only applies to mode '" + std::string(ChoiceName(m.mode)) + "' (the mode is '" +
+                       std::string(ChoiceName(f.mode)) + "')");
       }
     }
-    if (own != nullptr && own->size != nullptr && f.*own->size == own->neutral) {
-      std::string need(own->need);
+    if (own.size != nullptr && f.*own.size == own.neutral) {
+      std::string need(own.need);
       if (const std::size_t at = need.find("{unit}"); at != std::string::npos) {
         need.replace(at, 6, unit);
       }
-      check.Fail(path + "." + std::string(vessel::SensorFaultSizeKey(own->mode)), need);
+      check.Fail(path + "." + std::string(vessel::SensorFaultSizeKey(own.mode)), need);
     }
   }
 }
@@ -1178,11 +1178,12 @@ void CheckFailure(const Checker& check, const Scenario& scenario) {
                                    WithUnit(scenario.simulation.duration, "s") + ")");
   }
   const bool node_given = scenario.marks.contains("failure.node");
-  if (f.mode != "node" && (node_given || f.arc_length)) {
-    check.Fail(node_given ? "failure.node" : "failure.arc_length",
-               "only applies to mode 'node' (the mode is '" + f.mode + "')");
+  if (f.mode != mooring_fem::FailureMode::kNode && (node_given || f.arc_length)) {
+    check.Fail(
+        node_given ? "failure.node" : "failure.arc_length",
+        "only applies to mode 'node' (the mode is '" + std::string(ChoiceName(f.mode)) + "')");
   }
-  if (f.mode == "node") {
+  if (f.mode == mooring_fem::FailureMode::kNode) {
     if (node_given == f.arc_length.has_value()) {
       check.Fail("failure.mode", "mode 'node' needs exactly one of node or arc_length");
     }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <numbers>
 
@@ -44,13 +45,12 @@ vessel::PoseSensorSpec ToPoseSensorSpec(const SensorsSpec& s) {
 }
 
 vessel::SensorFault ToSensorFault(const SensorsSpec::Fault& f) {
-  const FaultModeName* mode = FindFaultMode(f.mode);
-  if (mode == nullptr) throw InputError("sensor fault mode '" + f.mode + "': not a mode");
+  const FaultModeSize& mode = FaultModeSizeOf(f.mode);
   vessel::SensorFault fault;
-  fault.mode = mode->mode;
+  fault.mode = f.mode;
   fault.from = f.time;
   fault.until = f.end.value_or(std::numeric_limits<double>::infinity());
-  if (mode->size != nullptr) fault.size = f.*mode->size;
+  if (mode.size != nullptr) fault.size = f.*mode.size;
   return fault;
 }
 
@@ -58,8 +58,12 @@ std::vector<simulation::PoseFault> ToPoseFaults(const SensorsSpec& s) {
   std::vector<simulation::PoseFault> faults;
   for (const SensorsSpec::Fault& f : s.gnss_faults) {
     // The receiver (both channels) or one of its channels.
-    if (f.channel != "east") faults.push_back({vessel::PoseChannel::kNorth, ToSensorFault(f)});
-    if (f.channel != "north") faults.push_back({vessel::PoseChannel::kEast, ToSensorFault(f)});
+    if (f.channel != GnssFaultChannel::kEast) {
+      faults.push_back({vessel::PoseChannel::kNorth, ToSensorFault(f)});
+    }
+    if (f.channel != GnssFaultChannel::kNorth) {
+      faults.push_back({vessel::PoseChannel::kEast, ToSensorFault(f)});
+    }
   }
   for (const SensorsSpec::Fault& f : s.gyro_faults) {
     faults.push_back({vessel::PoseChannel::kHeading, ToSensorFault(f)});
@@ -99,7 +103,7 @@ std::vector<vessel::ThrusterSpec> ToThrusters(const VesselSpec& v) {
 vessel::TurretParameters ToTurretParameters(const Scenario& scenario) {
   const TurretSpec& t = scenario.vessel->turret;
   vessel::TurretParameters p;
-  p.bearing = vessel::ParseTurretBearing(t.bearing);
+  p.bearing = t.bearing;
   p.x = t.x;
   p.y = t.y;
   p.inertia = t.inertia;
@@ -137,12 +141,8 @@ std::optional<simulation::FailureEvent> ToFailure(const Scenario& scenario) {
   event.time = f.time;
   mooring_fem::LineFailure& failure = event.failure;
   failure.line = f.line - 1;
-  if (f.mode == "fairlead") {
-    failure.mode = mooring_fem::FailureMode::kFairlead;
-  } else if (f.mode == "anchor") {
-    failure.mode = mooring_fem::FailureMode::kAnchor;
-  } else {
-    failure.mode = mooring_fem::FailureMode::kNode;
+  failure.mode = f.mode;
+  if (f.mode == mooring_fem::FailureMode::kNode) {
     const LineSpec& line = scenario.mooring.lines[failure.line];
     failure.node = f.arc_length ? line.NodeNearest(*f.arc_length) : f.node;
     failure.node = std::clamp(failure.node, 1, line.Segments() - 1);
@@ -168,26 +168,30 @@ std::string DetectionIdentity(const Scenario& s) {
 
 }  // namespace
 
-std::span<const FaultModeName> FaultModeNames() {
+std::span<const FaultModeSize> FaultModeSizes() {
   using Mode = vessel::SensorFault::Mode;
   using F = SensorsSpec::Fault;
-  static constexpr FaultModeName kModes[] = {
-      {"dead", Mode::kDead, nullptr, 0.0, ""},
-      {"degraded", Mode::kDegraded, &F::factor, 1.0,
-       "a degraded sensor needs its noise factor (> 1)"},
-      {"drift", Mode::kDrift, &F::rate, 0.0, "a drift needs a nonzero rate [{unit}/s]"},
-      {"gain", Mode::kGain, &F::gain, 1.0, "a gain error needs its gain (> 0, not 1)"},
-      {"step", Mode::kStep, &F::offset, 0.0, "a step needs a nonzero offset [{unit}]"},
-      {"stuck", Mode::kStuck, nullptr, 0.0, ""},
+  static constexpr FaultModeSize kModes[] = {
+      {Mode::kStep, &F::offset, 0.0, "a step needs a nonzero offset [{unit}]"},
+      {Mode::kStuck, nullptr, 0.0, ""},
+      {Mode::kDegraded, &F::factor, 1.0, "a degraded sensor needs its noise factor (> 1)"},
+      {Mode::kDrift, &F::rate, 0.0, "a drift needs a nonzero rate [{unit}/s]"},
+      {Mode::kDead, nullptr, 0.0, ""},
+      {Mode::kGain, &F::gain, 1.0, "a gain error needs its gain (> 0, not 1)"},
   };
+  // One row per mode, at the mode's place.
+  static_assert(std::size(kModes) == ChoiceNames<Mode>().size());
+  static_assert([] {
+    for (std::size_t i = 0; i < std::size(kModes); ++i) {
+      if (static_cast<std::size_t>(kModes[i].mode) != i) return false;
+    }
+    return true;
+  }());
   return kModes;
 }
 
-const FaultModeName* FindFaultMode(std::string_view name) {
-  for (const FaultModeName& m : FaultModeNames()) {
-    if (m.name == name) return &m;
-  }
-  return nullptr;
+const FaultModeSize& FaultModeSizeOf(vessel::SensorFault::Mode mode) {
+  return FaultModeSizes()[static_cast<std::size_t>(mode)];
 }
 
 vessel::HullGeometry ToHullGeometry(const VesselSpec& spec, double water_density) {
@@ -229,8 +233,7 @@ simulation::SeaModel ToSeaModel(const WavesSpec& spec, double gravity) {
   sea.realisation.components = spec.components;
   sea.realisation.gravity = gravity;
   if (spec.on_lines) {
-    sea.on_lines = spec.stretching == "none" ? mooring_fem::WaveStretching::kNone
-                                             : mooring_fem::WaveStretching::kWheeler;
+    sea.on_lines = spec.stretching;
   }
   return sea;
 }
@@ -242,8 +245,7 @@ simulation::DetectionSetup ToDetectionSetup(const Scenario& scenario) {
         {.type = e.type, .label = e.label, .parameters = e.parameters, .plugin = e.plugin});
   }
   const DetectionSpec& d = scenario.detection;
-  setup.observer =
-      d.observer == "passive" ? simulation::ObserverType::kPassive : simulation::ObserverType::kEkf;
+  setup.observer = d.observer;
   setup.training_seed = d.training_seed;
   setup.bank.include_pairs = d.pairs;
   const Vec3 initial = scenario.vessel ? scenario.vessel->initial_pose : Vec3::Zero();
@@ -251,7 +253,7 @@ simulation::DetectionSetup ToDetectionSetup(const Scenario& scenario) {
   // A turret on its bearing keeps the absolute heading it starts at (the lines hold it):
   // its initial heading, by default the vessel's (angle 0 to the hull).
   const TurretSpec turret = scenario.vessel ? scenario.vessel->turret : TurretSpec{};
-  if (turret.bearing != "locked") {
+  if (turret.bearing != vessel::TurretBearing::kLocked) {
     setup.bank.turret = detectors::TurretModel{Eigen::Vector2d(turret.x, turret.y),
                                                turret.initial_heading.value_or(initial.z())};
   }

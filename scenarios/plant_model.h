@@ -13,21 +13,20 @@
 
 namespace moorsim::scenarios {
 
-/// A sensor fault's mode as a scenario names it ("step", ...): the vessel's mode, the field
-/// of SensorsSpec::Fault that holds its size (null for stuck and dead; its key is
-/// vessel::SensorFaultSizeKey), the size that would leave the sensor as it is, and what the
-/// loader says when that size is missing ("{unit}": the sensor's unit).
-struct FaultModeName {
-  std::string_view name;
+/// What a sensor fault's mode takes from a scenario: the field of SensorsSpec::Fault that
+/// holds its size (null for stuck and dead; its key is vessel::SensorFaultSizeKey), the
+/// size that would leave the sensor as it is, and what the loader says when that size is
+/// missing ("{unit}": the sensor's unit).
+struct FaultModeSize {
   vessel::SensorFault::Mode mode;
   double SensorsSpec::Fault::*size;
   double neutral;
   std::string_view need;
 };
-/// Every mode, sorted by name; the schema's choice list names the same.
-std::span<const FaultModeName> FaultModeNames();
-/// The row of `name`, or null for an unknown one.
-const FaultModeName* FindFaultMode(std::string_view name);
+/// Every mode's row, in the order of the modes.
+std::span<const FaultModeSize> FaultModeSizes();
+/// The row of `mode`.
+const FaultModeSize& FaultModeSizeOf(vessel::SensorFault::Mode mode);
 
 /// The plant of a scenario with a vessel section. Throws InputError (naming the file) for
 /// a scenario without one.

@@ -12,6 +12,10 @@
 #include "core/angles.h"
 #include "core/types.h"
 #include "mooring_fem/parameters.h"
+#include "mooring_fem/wave_kinematics.h"
+#include "simulation/observer_type.h"
+#include "vessel/sensors.h"
+#include "vessel/turret.h"
 
 namespace moorsim::scenarios {
 
@@ -131,8 +135,8 @@ struct WindageSpec {
 /// fairleads (mooring.lines[].fairlead) are body points at turret angle 0. Defaults: locked
 /// at the reference point, as the TAPM thesis's model.
 struct TurretSpec {
-  std::string bearing = "locked";  ///< locked, free or friction
-  double x = 0.0, y = 0.0;         ///< turret centre, body frame [m]
+  vessel::TurretBearing bearing = vessel::TurretBearing::kLocked;
+  double x = 0.0, y = 0.0;  ///< turret centre, body frame [m]
   /// [m]; every fairlead lies within it. Unset = the fairleads' largest horizontal distance
   /// from the turret centre.
   std::optional<double> radius;
@@ -169,7 +173,7 @@ struct VesselSpec {
   /// bearing given its own initial heading starts at that heading, so at it minus the
   /// hull's; otherwise 0 (the fairleads where the hull puts them).
   double InitialTurretAngle() const {
-    if (turret.bearing == "locked" || !turret.initial_heading) return 0.0;
+    if (turret.bearing == vessel::TurretBearing::kLocked || !turret.initial_heading) return 0.0;
     return WrapAngle(*turret.initial_heading - initial_pose.z());
   }
 };
@@ -185,7 +189,8 @@ struct WavesSpec {
   /// The lines see the waves' water velocity and acceleration (finite-depth Airy,
   /// mooring_fem/wave_kinematics.h) in their drag and inertia; off: only the hull does.
   bool on_lines = false;
-  std::string stretching = "wheeler";  ///< above the mean surface: "wheeler" or "none"
+  /// Above the mean surface: Wheeler stretching or none.
+  mooring_fem::WaveStretching stretching = mooring_fem::WaveStretching::kWheeler;
 };
 
 struct WindSpec {
@@ -224,6 +229,14 @@ struct ControllerSpec {
   std::optional<HeadingLoop> heading;
 };
 
+/// The GNSS channels a fault of the receiver takes: both (the receiver), north or east.
+enum class GnssFaultChannel { kBoth, kNorth, kEast };
+
+inline constexpr std::string_view kGnssFaultChannelNames[] = {"both", "north", "east"};
+constexpr ChoiceInfo ChoicesOf(GnssFaultChannel) {
+  return {"GNSS channel", kGnssFaultChannelNames};
+}
+
 struct ChannelNoiseSpec {
   double std_dev = 0.0;             ///< white noise [m or rad]
   double bias_walk = 0.0;           ///< [m/sqrt(s) or rad/sqrt(s)]
@@ -253,15 +266,15 @@ struct SensorsSpec {
   /// [u/s] x (t - time)), "dead" (GNSS, gyro: no reading; a cell reads its noise about
   /// zero), "gain" (reads `gain` x the true value).
   struct Fault {
-    std::string mode;
+    vessel::SensorFault::Mode mode = vessel::SensorFault::Mode::kStep;
     double time = 0.0;
     std::optional<double> end;
     double offset = 0.0;
     double rate = 0.0;
     double factor = 1.0;
     double gain = 1.0;
-    int line = 0;                  ///< tension cells: the line, 1-based
-    std::string channel = "both";  ///< gnss: both, north or east
+    int line = 0;                                        ///< tension cells: the line, 1-based
+    GnssFaultChannel channel = GnssFaultChannel::kBoth;  ///< gnss: the channel that goes wrong
   };
   std::vector<Fault> gnss_faults;
   std::vector<Fault> gyro_faults;
@@ -269,9 +282,9 @@ struct SensorsSpec {
 };
 
 struct FailureSpec {
-  int line = 0;                      ///< 1-based; 0 = no failure
-  double time = 0.0;                 ///< [s]
-  std::string mode = "fairlead";     ///< fairlead, node, anchor
+  int line = 0;       ///< 1-based; 0 = no failure
+  double time = 0.0;  ///< [s]
+  mooring_fem::FailureMode mode = mooring_fem::FailureMode::kFairlead;
   int node = 0;                      ///< for mode node: node index from the anchor (1..n-1)
   std::optional<double> arc_length;  ///< for mode node: unstretched length from the anchor [m]
 };
@@ -291,7 +304,7 @@ struct DetectorEntry {
 struct DetectionSpec {
   /// Per-hypothesis observer: "ekf" (an EKF each, mixed by switch_rate) or "passive" (the
   /// TAPM thesis's passive observer with a covariance from training runs; never mixed).
-  std::string observer = "ekf";
+  simulation::ObserverType observer = simulation::ObserverType::kEkf;
   /// Seed of the passive observers' training runs (streams "training.*"). A property of the
   /// detector's set-up, like a vessel's once-trained covariances, not of the run: every run
   /// of a scenario, whatever its simulation.seed, uses the same trained covariances.

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/format.h"
+#include "scenarios/campaign.h"
 #include "scenarios/scenario.h"
 #include "scenarios/strict_yaml.h"
 
@@ -28,6 +29,10 @@ std::string Json(int value) { return std::to_string(value); }
 std::string Json(std::uint64_t value) { return std::to_string(value); }
 std::string Json(bool value) { return value ? "true" : "false"; }
 std::string Json(const std::string& value) { return nlohmann::json(value).dump(); }
+template <Choice E>
+std::string Json(E value) {
+  return Json(std::string(ChoiceName(value)));
+}
 std::string Json(const Vec3& v) {
   return "[" + Json(v.x()) + ", " + Json(v.y()) + ", " + Json(v.z()) + "]";
 }
@@ -420,8 +425,6 @@ constexpr Block kMooring{"The mooring: water, seabed, line types and lines.", kM
 // ---------------------------------------------------------------------------------------
 // solver
 
-constexpr std::string_view kLinearSolvers[] = {"block", "klu"};
-
 constexpr Key kSolverKeys[] = {
     WithDefault(Positive("atol_position", "m", 1.0, "Absolute tolerance of positions."),
                 MOORSIM_DEFAULT(SolverSpec{}.atol_position)),
@@ -431,8 +434,8 @@ constexpr Key kSolverKeys[] = {
                  .kind = Kind::kString,
                  .description = "Newton solver: block (the mooring's block structure) or klu "
                                 "(general sparse LU).",
-                 .choices = kLinearSolvers,
-                 .choice_noun = "linear solver"},
+                 .choices = ChoiceNames<IntegratorOptions::LinearSolver>(),
+                 .choice_noun = ChoiceNoun<IntegratorOptions::LinearSolver>()},
                 MOORSIM_DEFAULT(SolverSpec{}.linear_solver)),
     WithDefault({.name = "max_order",
                  .kind = Kind::kInteger,
@@ -593,14 +596,12 @@ constexpr Key kWindageKeys[] = {
 constexpr Block kWindage{"Areas above water for the wind load; omitted = the seed FPSO's.",
                          kWindageKeys};
 
-constexpr std::string_view kBearings[] = {"free", "friction", "locked"};
-
 constexpr Key kTurretKeys[] = {
     WithDefault({.name = "bearing",
                  .kind = Kind::kString,
                  .description = "locked (fixed to the hull), free, or friction.",
-                 .choices = kBearings,
-                 .choice_noun = "turret bearing"},
+                 .choices = ChoiceNames<vessel::TurretBearing>(),
+                 .choice_noun = ChoiceNoun<vessel::TurretBearing>()},
                 MOORSIM_DEFAULT(TurretSpec{}.bearing)),
     Positive("bearing_radius", "m", kMaxBodyCoordinate,
              "friction: lever arm of the friction force; omitted = radius."),
@@ -668,8 +669,6 @@ constexpr Block kVessel{"The 6-DOF vessel.", kVesselKeys};
 // ---------------------------------------------------------------------------------------
 // environment
 
-constexpr std::string_view kStretchings[] = {"none", "wheeler"};
-
 constexpr Key kWavesKeys[] = {
     WithDefault({.name = "components",
                  .kind = Kind::kInteger,
@@ -699,8 +698,8 @@ constexpr Key kWavesKeys[] = {
                  .description = "The lines' wave kinematics under a crest: wheeler (stretched "
                                 "between the seabed and the instantaneous surface) or none "
                                 "(linear theory held constant above the mean surface).",
-                 .choices = kStretchings,
-                 .choice_noun = "stretching rule"},
+                 .choices = ChoiceNames<mooring_fem::WaveStretching>(),
+                 .choice_noun = ChoiceNoun<mooring_fem::WaveStretching>()},
                 MOORSIM_DEFAULT(WavesSpec{}.stretching)),
     {.name = "tp",
      .unit = "s",
@@ -833,9 +832,6 @@ constexpr Block kHeadingNoise{"Errors of the heading channel.", kHeadingNoiseKey
 constexpr Block kTensionNoise{"Errors of every load cell.", kTensionNoiseKeys};
 
 // A sensor's faults (`faults:` of gnss, gyro and tension_cells), in the sensor's unit.
-constexpr std::string_view kFaultModes[] = {"dead", "degraded", "drift", "gain", "step", "stuck"};
-constexpr std::string_view kGnssChannels[] = {"both", "east", "north"};
-
 struct FaultUnits {
   std::string_view unit;       // m, rad, N
   std::string_view rate_unit;  // m/s, rad/s, N/s
@@ -866,8 +862,8 @@ constexpr Key FaultMode() {
               "(noise x factor), drift (adds rate x time), dead (no reading; a load "
               "cell reads its noise about zero), gain (reads gain x the truth).",
           .required = true,
-          .choices = kFaultModes,
-          .choice_noun = "sensor fault"};
+          .choices = ChoiceNames<vessel::SensorFault::Mode>(),
+          .choice_noun = ChoiceNoun<vessel::SensorFault::Mode>()};
 }
 constexpr Key FaultOffset(const FaultUnits& u) {
   return {.name = "offset",
@@ -897,8 +893,8 @@ constexpr Key kGnssFaultKeys[] = {
     WithDefault({.name = "channel",
                  .kind = Kind::kString,
                  .description = "The channel that goes wrong: both (the receiver), north or east.",
-                 .choices = kGnssChannels,
-                 .choice_noun = "GNSS channel"},
+                 .choices = ChoiceNames<GnssFaultChannel>(),
+                 .choice_noun = ChoiceNoun<GnssFaultChannel>()},
                 MOORSIM_DEFAULT(SensorsSpec::Fault{}.channel)),
     FaultEnd(),
     FaultFactor(),
@@ -974,8 +970,6 @@ constexpr Block kSensors{"The sensors the detectors read.", kSensorsKeys};
 // ---------------------------------------------------------------------------------------
 // failure, detection, detectors, simulation
 
-constexpr std::string_view kFailureModes[] = {"anchor", "fairlead", "node"};
-
 constexpr Key kFailureKeys[] = {
     {.name = "arc_length",
      .unit = "m",
@@ -987,8 +981,8 @@ constexpr Key kFailureKeys[] = {
     WithDefault({.name = "mode",
                  .kind = Kind::kString,
                  .description = "Where the line parts: fairlead, node or anchor.",
-                 .choices = kFailureModes,
-                 .choice_noun = "failure mode"},
+                 .choices = ChoiceNames<mooring_fem::FailureMode>(),
+                 .choice_noun = ChoiceNoun<mooring_fem::FailureMode>()},
                 MOORSIM_DEFAULT(FailureSpec{}.mode)),
     {.name = "node",
      .kind = Kind::kInteger,
@@ -997,8 +991,6 @@ constexpr Key kFailureKeys[] = {
     Required(NonNegative("time", "s", kMaxTime, "When it parts; before the end of the run.")),
 };
 constexpr Block kFailure{"A line that parts; omitted = no failure.", kFailureKeys};
-
-constexpr std::string_view kObservers[] = {"ekf", "passive"};
 
 constexpr Key ModelVector(std::string_view name, std::string_view unit,
                           std::string_view description, Bound minimum, double maximum) {
@@ -1032,8 +1024,8 @@ constexpr Key kDetectionKeys[] = {
     WithDefault({.name = "observer",
                  .kind = Kind::kString,
                  .description = "ekf (one EKF per hypothesis) or passive (trained).",
-                 .choices = kObservers,
-                 .choice_noun = "observer"},
+                 .choices = ChoiceNames<simulation::ObserverType>(),
+                 .choice_noun = ChoiceNoun<simulation::ObserverType>()},
                 MOORSIM_DEFAULT(DetectionSpec{}.observer)),
     WithDefault({.name = "pairs",
                  .kind = Kind::kBoolean,
@@ -1125,8 +1117,6 @@ constexpr Key kNormalKeys[] = {
 };
 constexpr Block kNormal{"A normal draw per run, optionally within [min, max].", kNormalKeys};
 
-constexpr std::string_view kFunctions[] = {"cos", "sin"};
-
 constexpr Key kFactorKeys[] = {
     {.name = "add",
      .kind = Kind::kValue,
@@ -1142,8 +1132,8 @@ constexpr Key kFactorKeys[] = {
     {.name = "function",
      .kind = Kind::kString,
      .description = "follows: cos or sin of the followed value in degrees, before adding.",
-     .choices = kFunctions,
-     .choice_noun = "function"},
+     .choices = ChoiceNames<CampaignFactor::Function>(),
+     .choice_noun = ChoiceNoun<CampaignFactor::Function>()},
     {.name = "key",
      .kind = Kind::kString,
      .description = "The scenario key path to vary.",
@@ -1177,15 +1167,13 @@ constexpr Key kSeedRangeKeys[] = {
 };
 constexpr Block kSeedRange{"These seeds, from `from` to `to`.", kSeedRangeKeys};
 
-constexpr std::string_view kCombines[] = {"grid", "zip"};
-
 constexpr Key kCampaignBlockKeys[] = {
     {.name = "combine",
      .kind = Kind::kString,
      .description = "grid (every combination, the first factor slowest) or zip (the i-th "
                     "value of each).",
-     .choices = kCombines,
-     .choice_noun = "combination"},
+     .choices = ChoiceNames<CampaignBlock::Combine>(),
+     .choice_noun = ChoiceNoun<CampaignBlock::Combine>()},
     {.name = "factors",
      .kind = Kind::kList,
      .description = "The keys varied in this block.",

@@ -601,6 +601,10 @@ bool Reader::As<bool>() const {
 
 template <>
 std::string Reader::As<std::string>() const {
+  return PlainText();
+}
+
+std::string Reader::PlainText() const {
   CheckUntagged("the plain text");
   if (!node_.IsScalar()) Fail(Describe(node_) + " must be a string");
   CheckChoice(node_.Scalar());

@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/choice.h"
 #include "core/error.h"
 #include "core/types.h"
 #include "scenarios/scenario.h"
@@ -256,8 +257,16 @@ class Reader {
     return context_->Attempt(std::forward<Body>(body));
   }
 
+  /// The value as a T: a number, a flag, a text, a vector, or a configuration choice (an
+  /// enum with a table of names, core/choice.h) parsed from its name.
   template <class T>
-  T As() const;
+  T As() const {
+    static_assert(Choice<T>, "Reader::As: no conversion to this type");
+    const std::string name = PlainText();
+    if (const std::optional<T> value = ParseChoice<T>(name)) return *value;
+    Fail("unknown " + std::string(ChoiceNoun<T>()) + " '" + name + "' (known: " + ChoiceList<T>() +
+         ")");
+  }
 
   /// Rejects an explicit tag on this value (`!!str 5`, `!foo`, `! 5`); `plain` says what
   /// to write instead ("the plain number", "true or false", ...).
@@ -322,6 +331,8 @@ class Reader {
     return value;
   }
 
+  // The value as text (As<std::string>), checked against the schema's choices.
+  std::string PlainText() const;
   // The schema's range and choices for a value of the key this reader is under.
   void CheckRange(double value) const;
   void CheckChoice(const std::string& value) const;

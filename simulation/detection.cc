@@ -236,7 +236,7 @@ nlohmann::json FailureSummary(const scenarios::Scenario& scenario) {
   if (scenario.failure.line == 0) return nullptr;
   return {{"line", scenario.failure.line},
           {"time", scenario.failure.time},
-          {"mode", scenario.failure.mode}};
+          {"mode", ChoiceName(scenario.failure.mode)}};
 }
 
 nlohmann::json DetectorsSummary(const scenarios::Scenario& scenario, const Detection& detection,

@@ -18,6 +18,7 @@
 #include "mooring_fem/mooring_system.h"
 #include "mooring_fem/parameters.h"
 #include "mooring_fem/wave_kinematics.h"
+#include "simulation/observer_type.h"
 #include "vessel/controller.h"
 #include "vessel/fpso_model.h"
 #include "vessel/hull_loads.h"
@@ -82,12 +83,6 @@ struct ControllerModel {
 struct FailureEvent {
   double time = 0.0;
   mooring_fem::LineFailure failure;
-};
-
-/// Which observer each hypothesis of the bank runs.
-enum class ObserverType {
-  kEkf,      ///< an EKF each, mixed by ObserverBankOptions::switch_rate
-  kPassive,  ///< the TAPM thesis's passive observer, covariance from training runs
 };
 
 /// The detection: its detectors (in the order their verdicts are reported), the hypothesis

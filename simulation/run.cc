@@ -53,8 +53,9 @@ class RunWriter {
     file_.SetAttribute("/", "failure_line", static_cast<std::int64_t>(scenario.failure.line));
     file_.SetAttribute("/", "failure_time",
                        scenario.failure.line > 0 ? scenario.failure.time : kNaN);
-    file_.SetAttribute("/", "failure_mode",
-                       scenario.failure.line > 0 ? scenario.failure.mode : std::string());
+    file_.SetAttribute(
+        "/", "failure_mode",
+        scenario.failure.line > 0 ? std::string(ChoiceName(scenario.failure.mode)) : std::string());
     time_ = layout::Create(file_, layout::kTime);
     pose_true_ = layout::Create(file_, layout::kPoseTrue);
     pose_lf_ = layout::Create(file_, layout::kPoseLowFrequency);

@@ -99,13 +99,13 @@ int Analyze(const AnalyzeOptions& o) {
                                 .kd = spec.pi.kd,
                                 .derivative_filter_time = spec.pi.derivative_filter_time,
                                 .filtered_error = spec.pi.filtered_error};
-  } else if (scenario.vessel->turret.bearing != "locked") {
+  } else if (scenario.vessel->turret.bearing != vessel::TurretBearing::kLocked) {
     // Each model must hold its pose (Hassani et al. 2018, Theorem 2's stationary filters);
     // on its bearing the turret leaves the heading to the controller, and the analysis
     // models the pi controller only.
     throw InputError(scenario.source_path + ": controller.type: '" + controller.type +
                      "': with the turret on its bearing (vessel.turret.bearing '" +
-                     scenario.vessel->turret.bearing +
+                     std::string(ChoiceName(scenario.vessel->turret.bearing)) +
                      "') the controller holds the heading, and analyze models only the 'pi' "
                      "controller");
   }
@@ -121,8 +121,9 @@ int Analyze(const AnalyzeOptions& o) {
   // independent. Say so when the scenario's detectors would see something else.
   std::vector<std::string> notes;
   const double switch_rate = models.observer_bank.switch_rate;
-  if (scenario.detection.observer != "ekf") {
-    notes.push_back("the scenario's observers are '" + scenario.detection.observer +
+  if (scenario.detection.observer != simulation::ObserverType::kEkf) {
+    notes.push_back("the scenario's observers are '" +
+                    std::string(ChoiceName(scenario.detection.observer)) +
                     "'; this is the EKF bank's analysis");
   }
   if (switch_rate > 0.0) {

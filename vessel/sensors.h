@@ -51,6 +51,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/choice.h"
 #include "core/random.h"
 #include "core/sample_clock.h"
 #include "core/types.h"
@@ -136,6 +137,12 @@ struct SensorFault {
   double until = std::numeric_limits<double>::infinity();
   double size = 0.0;
 };
+
+inline constexpr std::string_view kSensorFaultModeNames[] = {"step",  "stuck", "degraded",
+                                                             "drift", "dead",  "gain"};
+constexpr ChoiceInfo ChoicesOf(SensorFault::Mode) {
+  return {"sensor fault", kSensorFaultModeNames};
+}
 
 /// The scenario's name of a mode's size: "offset" (step), "rate" (drift), "factor"
 /// (degraded), "gain" (gain); "size" for the modes without one.

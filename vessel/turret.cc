@@ -14,26 +14,6 @@ constexpr double kForceSmoothing = 1.0;
 
 }  // namespace
 
-TurretBearing ParseTurretBearing(std::string_view name) {
-  if (name == "locked") return TurretBearing::kLocked;
-  if (name == "free") return TurretBearing::kFree;
-  if (name == "friction") return TurretBearing::kFriction;
-  throw InputError("unknown turret bearing '" + std::string(name) +
-                   "' (known: free, friction, locked)");
-}
-
-std::string_view TurretBearingName(TurretBearing bearing) {
-  switch (bearing) {
-    case TurretBearing::kLocked:
-      return "locked";
-    case TurretBearing::kFree:
-      return "free";
-    case TurretBearing::kFriction:
-      return "friction";
-  }
-  return "locked";
-}
-
 double BearingMoment(const TurretParameters& turret, double rate, const Vec3& F, double* d_rate,
                      Vec3* d_force) {
   if (d_rate != nullptr) *d_rate = 0.0;

@@ -26,15 +26,15 @@
 #include <string>
 #include <string_view>
 
+#include "core/choice.h"
 #include "core/types.h"
 
 namespace moorsim::vessel {
 
 enum class TurretBearing { kLocked, kFree, kFriction };
 
-/// "locked", "free" or "friction"; throws moorsim::InputError otherwise.
-TurretBearing ParseTurretBearing(std::string_view name);
-std::string_view TurretBearingName(TurretBearing bearing);
+inline constexpr std::string_view kTurretBearingNames[] = {"locked", "free", "friction"};
+constexpr ChoiceInfo ChoicesOf(TurretBearing) { return {"turret bearing", kTurretBearingNames}; }
 
 struct TurretParameters {
   TurretBearing bearing = TurretBearing::kLocked;

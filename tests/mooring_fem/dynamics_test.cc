@@ -156,8 +156,9 @@ TEST(LineDynamics, FailureOfADetachedEndIsRejected) {
 }
 
 // Fairlead tensions of line 1 every 0.5 s under the turret motion.
-std::vector<double> SurgeTensions(double tolerance_scale, double duration,
-                                  const std::string& linear_solver = "block") {
+std::vector<double> SurgeTensions(
+    double tolerance_scale, double duration,
+    IntegratorOptions::LinearSolver linear_solver = IntegratorOptions::LinearSolver::kBlock) {
   testing::SeedCase s = SeedScenario(20);
   ScaleTolerances(s.solver, tolerance_scale);
   s.solver.linear_solver = linear_solver;
@@ -191,8 +192,8 @@ TEST(LineDynamics, BlockSolverAndKluGiveTheSameMotion) {
   // step sequence at the level of its error estimates: with tolerances 1000x tighter than
   // the defaults the runs agree within 10 N on ~6 MN (measured 5 N; the same run with
   // tolerances another 10x tighter moves by 44 N, the default tolerances' error is ~5 kN).
-  const std::vector<double> block = SurgeTensions(1e-3, 30.0, "block");
-  const std::vector<double> klu = SurgeTensions(1e-3, 30.0, "klu");
+  const std::vector<double> block = SurgeTensions(1e-3, 30.0);
+  const std::vector<double> klu = SurgeTensions(1e-3, 30.0, IntegratorOptions::LinearSolver::kKlu);
   ASSERT_EQ(block.size(), klu.size());
   for (std::size_t i = 0; i < klu.size(); ++i) EXPECT_NEAR(block[i], klu[i], 10.0) << i;
 }

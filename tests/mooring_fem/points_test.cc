@@ -245,7 +245,7 @@ TEST(FreePoints, ABridleRunsOnTheBlockSolverAsOnKlu) {
   motion.components[PrescribedMotion::kSurge] = {{3.0, 40.0}};
   SolverSettings block;
   SolverSettings klu;
-  klu.linear_solver = "klu";
+  klu.linear_solver = IntegratorOptions::LinearSolver::kKlu;
   LineSimulation a(spec, block, motion);
   LineSimulation b(spec, klu, motion);
   a.AdvanceTo(30.0);

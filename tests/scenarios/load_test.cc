@@ -151,7 +151,7 @@ TEST(ParseScenario, ReadsEveryKeyOfTheBaseText) {
   EXPECT_EQ(s.solver.max_order, 4);
   EXPECT_FALSE(s.solver.stability_limit_detection);
   EXPECT_EQ(s.solver.max_step, 0.5);
-  EXPECT_EQ(s.solver.linear_solver, "klu");
+  EXPECT_EQ(s.solver.linear_solver, IntegratorOptions::LinearSolver::kKlu);
   EXPECT_EQ(s.detection.training_seed, 3u);
 }
 
@@ -577,7 +577,7 @@ TEST(SpreadMooring, FairleadsAnywhereOnTheHullButNotOffIt) {
   text = Edit(text, "- id: 1", "fairlead: [20, 0, 12]", "fairlead: [95, 15, 12]");
   text = Edit(text, "- id: 3", "fairlead: [-20, 0, 12]", "fairlead: [-95, -15, 12]");
   const Scenario s = ParseScenario(text, "test.yaml");
-  EXPECT_EQ(s.vessel->turret.bearing, "locked");
+  EXPECT_EQ(s.vessel->turret.bearing, vessel::TurretBearing::kLocked);
   EXPECT_EQ(s.mooring.lines[0].fairlead_body.x(), 95.0);
   text = Edit(text, "- id: 1", "fairlead: [95, 15, 12]", "fairlead: [105, 15, 12]");
   EXPECT_EQ(ErrorOf(text), "test.yaml:" + PositionOf(text, "- id: 1", "[105") +

@@ -198,7 +198,8 @@ TEST_P(FreeTurretHeadingAcceptance, StaysWithinItsBandForAnHour) {
   const scenarios::Scenario scenario = scenarios::LoadScenario(
       std::string(MOORSIM_SOURCE_DIR "/scenarios/library/") + GetParam() + ".yaml",
       {"simulation.duration=3600"});
-  ASSERT_EQ(scenario.vessel->turret.bearing, "free");  // the library's own set-up
+  ASSERT_EQ(scenario.vessel->turret.bearing,
+            vessel::TurretBearing::kFree);  // the library's own set-up
   Simulation sim(scenario, scenario.simulation.seed);
   const double setpoint = scenario.controller.setpoint->z();
   double worst = 0.0;

@@ -74,12 +74,12 @@ TEST(MomentAboutTurret, IsTheLoadsMomentAboutTheTurretCentre) {
   EXPECT_NEAR(MomentAboutTurret(t, tau), (r - c).cross(F).z(), 1e-6);
 }
 
-TEST(TurretBearing, NamesRoundTripAndUnknownIsAnInputError) {
+TEST(TurretBearing, NamesRoundTripAndUnknownIsNone) {
   for (const TurretBearing b :
        {TurretBearing::kLocked, TurretBearing::kFree, TurretBearing::kFriction}) {
-    EXPECT_EQ(ParseTurretBearing(TurretBearingName(b)), b);
+    EXPECT_EQ(ParseChoice<TurretBearing>(ChoiceName(b)), b);
   }
-  EXPECT_THROW(ParseTurretBearing("sliding"), InputError);
+  EXPECT_EQ(ParseChoice<TurretBearing>("sliding"), std::nullopt);
 }
 
 }  // namespace
