@@ -21,8 +21,8 @@ namespace {
 using internal::CheckScalar;
 using internal::CheckVector;
 using internal::kLogTwoPi;
-using internal::Rotation;
 using internal::WrapAngle;
+using internal::YawRotation;
 
 /// exp(A) by scaling and squaring with a truncated Taylor series: A is scaled by 2^-k so
 /// its 1-norm is below 1/2, where 20 terms are exact to rounding. Construction-time and
@@ -108,7 +108,7 @@ HypothesisEkf::LfState HypothesisEkf::LowFrequencyDerivative(const LfState& x, c
   const Vec3 nu = x.segment<3>(6);
   const double c = std::cos(eta.z());
   const double s = std::sin(eta.z());
-  const Mat3 R = Rotation(c, s);
+  const Mat3 R = YawRotation(c, s);
   Mat3 J_load_eta;
   const Vec3 load_earth = mooring_.Load(eta, A != nullptr ? &J_load_eta : nullptr) + b;
   LfState xdot;

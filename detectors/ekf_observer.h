@@ -84,10 +84,10 @@
 
 #include <Eigen/Core>
 
+#include "core/observer_state.h"
 #include "core/types.h"
 #include "detectors/detector.h"
 #include "detectors/hypothesis_bank.h"
-#include "detectors/observer_state.h"
 
 namespace moorsim::detectors {
 

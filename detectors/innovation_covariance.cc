@@ -15,8 +15,8 @@ namespace moorsim::detectors {
 namespace {
 
 using internal::MooringDampingFor;
-using internal::Rotation;
 using internal::ThrowField;
+using internal::YawRotation;
 
 /// exp(A t) of the wave filter A = [0 1; -w0^2 -2 lambda w0] in closed form: with
 /// a = -lambda w0 and B = A - a I, B^2 = delta I, delta = w0^2 (lambda^2 - 1), so
@@ -129,7 +129,7 @@ Mat3 InnovationCovarianceEstimator::Covariance() const {
 // HypothesisModelSimulator
 
 Vec3 HoldingThrust(const QuasiStaticMooring& mooring, const Vec3& pose) {
-  const Mat3 R = Rotation(std::cos(pose.z()), std::sin(pose.z()));
+  const Mat3 R = YawRotation(std::cos(pose.z()), std::sin(pose.z()));
   return -(R.transpose() * mooring.Load(pose));
 }
 
@@ -205,7 +205,7 @@ void HypothesisModelSimulator::Advance(double dt, const Vec3& tau) {
   auto derivative = [&](const Lf& x, const Vec3& b) {
     const Vec3 eta = x.head<3>();
     const Vec3 nu = x.tail<3>();
-    const Mat3 R = Rotation(std::cos(eta.z()), std::sin(eta.z()));
+    const Mat3 R = YawRotation(std::cos(eta.z()), std::sin(eta.z()));
     Lf d;
     d.head<3>() = R * nu;
     d.tail<3>() = mass_inverse_ * (-damping_ * nu + R.transpose() * (mooring_.Load(eta) + b) + tau);

@@ -10,12 +10,6 @@
 
 namespace moorsim::detectors::internal {
 
-Mat3 Rotation(double c, double s) {
-  Mat3 r;
-  r << c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0;
-  return r;
-}
-
 void ThrowField(std::string_view field, double value, std::string_view rule) {
   std::ostringstream out;
   out.precision(10);

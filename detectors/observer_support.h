@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "core/angles.h"
+#include "core/observer_state.h"
 #include "core/types.h"
 #include "detectors/detector.h"
 #include "detectors/hypothesis_bank.h"
@@ -18,9 +19,7 @@ inline constexpr double kLogTwoPi = 1.8378770664093453;  // log(2 pi)
 
 using ::moorsim::WrapAngle;  // (-pi, pi]
 
-/// Yaw rotation R(psi) of a [force, force, moment] vector (the moment is unchanged), from
-/// c = cos psi and s = sin psi.
-Mat3 Rotation(double c, double s);
+using ::moorsim::YawRotation;  // core/observer_state.h
 
 /// Throws moorsim::InputError "<field> = <value>: <rule>" (value to 10 digits).
 [[noreturn]] void ThrowField(std::string_view field, double value, std::string_view rule);

@@ -1,7 +1,6 @@
 #include "vessel/controller.h"
 
 #include <Eigen/Cholesky>
-#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -21,15 +20,11 @@ double WrapToPi(double angle) {
   return a;
 }
 
-// R(psi)^T v and R(psi) v for the horizontal-plane rotation (Fossen 2011 section 2.2,
-// the yaw-only case of R(Theta)).
+// R(psi)^T v for the horizontal-plane rotation (Fossen 2011 section 2.2, the yaw-only case
+// of R(Theta)).
 Vec3 NedToBody(const Vec3& v, double psi) {
   const double c = std::cos(psi), s = std::sin(psi);
   return Vec3(c * v.x() + s * v.y(), -s * v.x() + c * v.y(), v.z());
-}
-Vec3 BodyToNed(const Vec3& v, double psi) {
-  const double c = std::cos(psi), s = std::sin(psi);
-  return Vec3(c * v.x() - s * v.y(), s * v.x() + c * v.y(), v.z());
 }
 
 void Require(bool ok, const std::string& field, double value, const char* rule) {
@@ -196,9 +191,22 @@ Vec3 PiController::EstimatedBias() const { return Vec3::Constant(std::nan("")); 
 
 // ---------------------------------------------------------------------------------------
 
-PassiveObserver::PassiveObserver(const ManoeuvringModel& model,
-                                 const PassiveObserverOptions& options, double dt)
-    : dt_(dt) {
+namespace {
+
+// The observer options as ValidatePassiveObserver's messages name them.
+constexpr PassiveObserverKeys kObserverKeys{.prefix = "controller.observer_pid.observer.",
+                                            .first_index = 0,
+                                            .wave_frequency = {"wave_peak_frequency"},
+                                            .wave_damping = {"wave_damping", false},
+                                            .notch_damping = {"notch_damping", false},
+                                            .cutoff_ratio = {"cutoff_ratio", false},
+                                            .velocity_gain = {"k4_per_mass"},
+                                            .bias_gain = {"k3_ratio", false},
+                                            .bias_gain_is_ratio = true};
+
+// The observer of PassiveObserver's comment, after the checks of dt and the model.
+PassiveNonlinearObserver MakeObserver(const ManoeuvringModel& model,
+                                      const PassiveObserverOptions& options, double dt) {
   const std::string prefix = "controller.observer_pid.";
   Require(std::isfinite(dt) && dt > 0.0, "controller.sample_time", dt, "must be finite and > 0 s");
   RequireFinite(model.mass, prefix + "model.mass");
@@ -209,146 +217,39 @@ PassiveObserver::PassiveObserver(const ManoeuvringModel& model,
   if (Eigen::LLT<Mat3>(mass_symmetric).info() != Eigen::Success) {
     throw InputError(prefix + "model.mass: must be positive definite");
   }
-  mass_inverse_ = model.mass.inverse();
-  damping_ = model.damping;
-  stiffness_ = model.mooring_stiffness;
-
-  const std::string o = prefix + "observer.";
-  RequirePositive(options.wave_peak_frequency, o + "wave_peak_frequency");
-  Require(std::isfinite(options.notch_damping) && options.notch_damping > 0.0, o + "notch_damping",
-          options.notch_damping, "must be finite and > 0");
-  Require(std::isfinite(options.wave_damping) && options.wave_damping >= 0.0 &&
-              options.wave_damping < options.notch_damping,
-          o + "wave_damping", options.wave_damping,
-          "must be >= 0 and < notch_damping (the notch needs zeta_n > lambda)");
-  Require(std::isfinite(options.cutoff_ratio) && options.cutoff_ratio > 1.0, o + "cutoff_ratio",
-          options.cutoff_ratio, "must be > 1 (passivity: omega_c > omega_0)");
-  RequirePositive(options.k4_per_mass, o + "k4_per_mass");
-  RequirePositive(options.bias_time_constant, o + "bias_time_constant");
-  Require(std::isfinite(options.k3_ratio) && options.k3_ratio > 0.0, o + "k3_ratio",
-          options.k3_ratio, "must be finite and > 0");
-  for (int i = 0; i < 3; ++i) {
-    // Fossen & Strand (1999): 1/T_i < K3_i / K4_i < omega_0i < omega_ci.
-    Require(options.k3_ratio > 1.0 / options.bias_time_constant[i], o + "k3_ratio",
-            options.k3_ratio, "must be > 1 / bias_time_constant (passivity)");
-    Require(options.k3_ratio < options.wave_peak_frequency[i], o + "k3_ratio", options.k3_ratio,
-            "must be < wave_peak_frequency (passivity)");
-  }
-  Require(std::isfinite(options.max_substep) && options.max_substep > 0.0, o + "max_substep",
-          options.max_substep, "must be finite and > 0 s");
-
-  const double notch = options.notch_damping - options.wave_damping;
-  omega0_ = options.wave_peak_frequency;
-  wave_damping_ = options.wave_damping;
-  k2_ = options.cutoff_ratio * omega0_;
-  k1_position_ = Vec3::Constant(-2.0 * notch * options.cutoff_ratio);  // -2 (z - l) wc / w0
-  k1_velocity_ = 2.0 * notch * omega0_;
-  k4_ = model.mass.diagonal().cwiseProduct(options.k4_per_mass);
-  k3_ = options.k3_ratio * k4_;
-  bias_rate_ = options.bias_time_constant.cwiseInverse();
-  wave_filter_ = options.wave_filter;
-  substeps_ = std::max(1, static_cast<int>(std::ceil(dt / options.max_substep - 1e-9)));
-  Reset(Vec3::Zero());
+  PassiveNonlinearObserverOptions observer;
+  observer.wave_frequency = options.wave_peak_frequency;
+  observer.wave_damping = Vec3::Constant(options.wave_damping);
+  observer.notch_damping = Vec3::Constant(options.notch_damping);
+  observer.cutoff_ratio = Vec3::Constant(options.cutoff_ratio);
+  observer.bias_time_constant = options.bias_time_constant;
+  observer.velocity_gain = options.k4_per_mass;
+  observer.bias_gain = options.k3_ratio * options.k4_per_mass;
+  observer.mass_scaled_gains = true;
+  observer.wave_filter = options.wave_filter;
+  observer.hold = PassiveNonlinearObserverOptions::Hold::kFirstOrder;
+  observer.start = PassiveNonlinearObserverOptions::Start::kEachChannel;
+  observer.max_substep = options.max_substep;
+  // G about the neutral pose eta = 0: the heading's distance from it, wrapped.
+  auto linear_mooring = [stiffness = model.mooring_stiffness](const Vec3& eta) {
+    Vec3 from_neutral = eta;
+    from_neutral.z() = WrapToPi(eta.z());
+    return Vec3(-stiffness * from_neutral);
+  };
+  return PassiveNonlinearObserver(observer, model.mass, model.damping, linear_mooring,
+                                  kObserverKeys);
 }
 
-void PassiveObserver::Reset(const Vec3& eta_initial) {
-  x_.setZero();
-  x_.segment<3>(6) = eta_initial;
-  x_(8) = WrapToPi(eta_initial[2]);
-  y_previous_ = y_current_ = x_.segment<3>(6);
-  seen_ = fresh_ = previous_fresh_ = {false, false, false};
-  started_ = false;
-}
+}  // namespace
 
-PassiveObserver::State PassiveObserver::Derivative(const State& x, const Vec3& y,
-                                                   const Vec3& tau) const {
-  const Vec3 xi_position = x.segment<3>(0);
-  const Vec3 xi_velocity = x.segment<3>(3);  // Cw xi: the wave-frequency motion
-  const Vec3 eta = x.segment<3>(6);
-  const Vec3 bias = x.segment<3>(9);
-  const Vec3 nu = x.segment<3>(12);
-
-  Vec3 y_tilde = y - eta - (wave_filter_ ? xi_velocity : Vec3::Zero());
-  y_tilde[2] = WrapToPi(y_tilde[2]);
-  for (int i = 0; i < 3; ++i) {
-    if (!fresh_[static_cast<std::size_t>(i)]) y_tilde[i] = 0.0;  // open-loop on this channel
-  }
-  // R(psi_hat), not R(y_psi): see the class comment (wave-frequency yaw rectification).
-  const double psi = eta[2];
-
-  State x_dot;
-  if (wave_filter_) {
-    x_dot.segment<3>(0) = xi_velocity + k1_position_.cwiseProduct(y_tilde);
-    x_dot.segment<3>(3) = -omega0_.cwiseAbs2().cwiseProduct(xi_position) -
-                          2.0 * wave_damping_ * omega0_.cwiseProduct(xi_velocity) +
-                          k1_velocity_.cwiseProduct(y_tilde);
-  } else {
-    x_dot.segment<3>(0).setZero();
-    x_dot.segment<3>(3).setZero();
-  }
-  x_dot.segment<3>(6) = BodyToNed(nu, psi) + k2_.cwiseProduct(y_tilde);
-  x_dot.segment<3>(9) = -bias_rate_.cwiseProduct(bias) + k3_.cwiseProduct(y_tilde);
-  Vec3 eta_from_neutral = eta;
-  eta_from_neutral[2] = WrapToPi(eta[2]);
-  const Vec3 force_ned = -stiffness_ * eta_from_neutral + bias + k4_.cwiseProduct(y_tilde);
-  x_dot.segment<3>(12) = mass_inverse_ * (-damping_ * nu + NedToBody(force_ned, psi) + tau);
-  return x_dot;
-}
+PassiveObserver::PassiveObserver(const ManoeuvringModel& model,
+                                 const PassiveObserverOptions& options, double dt)
+    : observer_(MakeObserver(model, options, dt)), dt_(dt) {}
 
 void PassiveObserver::Update(const PoseMeasurementInput& measurement, const Vec3& tau) {
-  Vec3 y_new = y_current_;
-  for (int i = 0; i < 3; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    fresh_[k] = Fresh(measurement, i);
-    if (fresh_[k]) y_new[i] = i == 2 ? WrapToPi(measurement.pose[i]) : measurement.pose[i];
-  }
-  if (started_) {
-    y_previous_ = y_current_;
-    y_current_ = y_new;
-    // First-order hold between the two samples where both are valid, else the new one.
-    Vec3 y_step = y_current_ - y_previous_;
-    y_step[2] = WrapToPi(y_step[2]);
-    for (int i = 0; i < 3; ++i) {
-      const auto k = static_cast<std::size_t>(i);
-      if (!(fresh_[k] && previous_fresh_[k])) y_step[i] = 0.0;
-    }
-    const Vec3 y_start = y_current_ - y_step;
-    const double h = dt_ / substeps_;
-    for (int n = 0; n < substeps_; ++n) {
-      const double s0 = static_cast<double>(n) / substeps_;
-      const double s_mid = (n + 0.5) / substeps_;
-      const double s1 = static_cast<double>(n + 1) / substeps_;
-      const Vec3 y0 = y_start + s0 * y_step;
-      const Vec3 y_mid = y_start + s_mid * y_step;
-      const Vec3 y1 = y_start + s1 * y_step;
-      const State k1 = Derivative(x_, y0, tau);
-      const State k2 = Derivative(x_ + 0.5 * h * k1, y_mid, tau);
-      const State k3 = Derivative(x_ + 0.5 * h * k2, y_mid, tau);
-      const State k4 = Derivative(x_ + h * k3, y1, tau);
-      x_ += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-    }
-  } else {
-    y_previous_ = y_current_ = y_new;
-    started_ = true;
-  }
-  // A channel's first valid sample replaces the initial guess.
-  for (int i = 0; i < 3; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    if (fresh_[k] && !seen_[k]) {
-      x_(6 + i) = y_new[i];
-      x_(i) = x_(3 + i) = 0.0;
-      seen_[k] = true;
-    }
-  }
-  x_(8) = WrapToPi(x_(8));
-  previous_fresh_ = fresh_;
-}
-
-Vec3 PassiveObserver::eta_hat() const { return x_.segment<3>(6); }
-Vec3 PassiveObserver::nu_hat() const { return x_.segment<3>(12); }
-Vec3 PassiveObserver::bias() const { return x_.segment<3>(9); }
-Vec3 PassiveObserver::wave_motion() const {
-  return wave_filter_ ? Vec3(x_.segment<3>(3)) : Vec3::Zero();
+  std::array<bool, 3> fresh{};
+  for (int i = 0; i < 3; ++i) fresh[static_cast<std::size_t>(i)] = Fresh(measurement, i);
+  observer_.Update(dt_, tau, measurement.pose, fresh);
 }
 
 // ---------------------------------------------------------------------------------------

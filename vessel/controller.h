@@ -28,6 +28,7 @@
 
 #include <Eigen/Core>
 
+#include "core/passive_observer.h"
 #include "core/types.h"
 #include "vessel/vessel_model.h"
 
@@ -191,13 +192,14 @@ struct PassiveObserverOptions {
   /// omega_c / omega_0 [-], the cut-off of the position low-pass K2 = diag(omega_c)
   /// (TAPM thesis section 4.5 after Fossen 2011: 1.2255; must be > 1).
   double cutoff_ratio = 1.2255;
-  /// K4 per unit mass [1/s^2]: K4 = diag(M) k4 [N/m, N/m, N m/rad]. TAPM thesis eq. 4.8 (from
-  /// Fossen 2011 example 11.6, as the thesis cites it) gives (0.1, 0.1, 0.01), values for a
-  /// mass-normalised model: applied unscaled to SI masses they would move a 1e8 kg vessel's
-  /// velocity estimate by 1e-9 m/s^2 per metre of error and the bias would never converge.
-  /// Scaling K3 and K4 alike keeps K3/K4, and with it the passivity conditions.
+  /// K4 per unit mass [1/s^2], an acceleration per metre (per rad) of innovation: the
+  /// force-level gain is M_e K4 = R M R^T K4, diag(M) k4_per_mass [N/m, N/m, N m/rad] at
+  /// heading 0 for a diagonal M. TAPM thesis eq. 4.8 (from Fossen 2011 example 11.6, as the
+  /// thesis cites it) gives (0.1, 0.1, 0.01), values for a mass-normalised model: applied
+  /// unscaled to SI masses they would move a 1e8 kg vessel's velocity estimate by 1e-9 m/s^2
+  /// per metre of error and the bias would never converge (core/passive_observer.h).
   Vec3 k4_per_mass = Vec3(0.1, 0.1, 0.01);
-  /// K3 = k3_ratio K4 [N/(m s), N m/(rad s)] (TAPM thesis eq. 4.7: 0.1). Passivity needs
+  /// K3 = k3_ratio K4 [1/s^3] (TAPM thesis eq. 4.7: 0.1). Passivity needs
   /// 1/T < K3/K4 < omega_0 < omega_c per DOF (Fossen & Strand 1999).
   double k3_ratio = 0.1;
   Vec3 bias_time_constant = Vec3::Constant(1000.0);  ///< T [s] (TAPM thesis: 1000 s)
@@ -212,36 +214,20 @@ struct PassiveObserverOptions {
 };
 
 /// The passive nonlinear observer of Fossen & Strand (1999), Fossen 2011 section 11.4.1, as
-/// in TAPM thesis eq. 3.19, with the linearised mooring in the model:
-///   y_tilde = y - eta_hat - Cw xi_hat             (heading part wrapped)
-///   xi_hat'  = Aw xi_hat + K1(omega_0) y_tilde     Aw = [0 I; -Omega^2 -2 Lambda Omega]
-///   eta_hat' = R nu_hat + K2 y_tilde
-///   b_hat'   = -T^-1 b_hat + K3 y_tilde
-///   M nu_hat' = -D nu_hat - R^T G eta_hat + R^T b_hat + tau + R^T K4 y_tilde
-/// with K1 = [diag(-2 (zeta_n - lambda) omega_c / omega_0); diag(2 omega_0 (zeta_n -
-/// lambda))] and K2 = diag(omega_c): from y to eta_hat this is a notch at omega_0 (depth
-/// lambda / zeta_n = 0.1) in series with a first-order low-pass at omega_c, 7.7 % of the
-/// wave motion left at omega_0 (Fossen 2011 section 11.4.1). The thesis's appendix A.4
-/// puts zeta_n in Aw; this follows Fossen and MSS (lambda in Aw).
-///
-/// R = R(psi_hat), the observer's own low-frequency heading. Fossen & Strand use the
-/// measured heading R(y_psi), assuming the wave-frequency yaw is small; but that yaw then
-/// multiplies the wave-frequency part of the injected force and rectifies into a bias
-/// error: 5 % of the load at 1 deg of 7 s yaw in the tests, 0.4 % with R(psi_hat).
+/// in TAPM thesis eq. 3.19: PassiveNonlinearObserver (core/passive_observer.h: equations,
+/// gains and their units, the notch, the bias's leak, discretisation) on the controller's
+/// model, with the linearised mooring as its load, g(eta) = -G eta (heading wrapped), the
+/// mass-scaled gains K4 = k4_per_mass and K3 = k3_ratio K4, the measurement interpolated
+/// between samples (first-order hold) and RK4 substeps of at most max_substep.
 ///
 /// The bias b_hat is an Earth-frame force (it enters as R^T b_hat), so a constant NED load
-/// shows up as a constant b_hat at any heading. Because of the leak -T^-1 b_hat, a constant
-/// load d is read as d / (1 + (D_ii K2_i + K4_i) / (T_i K3_i)): 1.2 %, 1.1 % and 6.5 % low
-/// in surge, sway and yaw for the seed FPSO with the default gains. Unmodelled mooring
-/// force (G = 0, or a broken line) is read as bias as well.
+/// shows up as a constant b_hat at any heading, read low by the bias's leak: 1.2 %, 1.1 %
+/// and 6.1 % in surge, sway and yaw for the seed FPSO with the default gains. Unmodelled
+/// mooring force (G = 0, or a broken line) is read as bias as well.
 ///
-/// Discretisation: between samples y is the straight line between the last two samples
-/// (first-order hold; a zero-order hold would shift the 7 s wave by half a sample, 26 deg
-/// at 1 Hz), tau is held, and the ODE is integrated by RK4 in equal substeps of at most
-/// `max_substep`. A missing channel gets no injection (its y_tilde is 0): the model runs
-/// open-loop on it, its wave state decays, and when the channel returns the correction
-/// resumes from the last value. The first valid value of a channel resets eta_hat on
-/// that channel to it.
+/// A missing channel gets no injection (its y_tilde is 0): the model runs open-loop on it,
+/// its wave state decays, and when the channel returns the correction resumes from the
+/// last value. The first valid value of a channel resets eta_hat on that channel to it.
 class PassiveObserver {
  public:
   /// Throws moorsim::InputError on a non-positive-definite mass, non-finite matrices, or
@@ -249,37 +235,28 @@ class PassiveObserver {
   PassiveObserver(const ManoeuvringModel& model, const PassiveObserverOptions& options, double dt);
 
   /// Forgets everything; eta_hat = `eta_initial` until each channel's first valid sample.
-  void Reset(const Vec3& eta_initial);
+  void Reset(const Vec3& eta_initial) { observer_.Reset(eta_initial); }
   /// Advances the estimate by dt to the sample `measurement`, with the body-frame thrust
   /// `tau` [N, N, N m] that acted since the previous sample. The first call after Reset()
   /// only initialises.
   void Update(const PoseMeasurementInput& measurement, const Vec3& tau);
 
-  Vec3 eta_hat() const;      ///< [m, m, rad] NED, psi in (-pi, pi]
-  Vec3 nu_hat() const;       ///< [m/s, m/s, rad/s] body
-  Vec3 bias() const;         ///< [N, N, N m] NED
-  Vec3 wave_motion() const;  ///< Cw xi_hat [m, m, rad]
+  /// [m, m, rad] NED, psi in (-pi, pi]
+  Vec3 eta_hat() const { return observer_.state().segment<3>(PassiveNonlinearObserver::kPose); }
+  /// [m/s, m/s, rad/s] body
+  Vec3 nu_hat() const { return observer_.state().segment<3>(PassiveNonlinearObserver::kVelocity); }
+  /// [N, N, N m] NED
+  Vec3 bias() const { return observer_.state().segment<3>(PassiveNonlinearObserver::kBias); }
+  /// Cw xi_hat [m, m, rad]
+  Vec3 wave_motion() const {
+    return observer_.state().segment<3>(PassiveNonlinearObserver::kWave + 3);
+  }
   /// Whether the last sample's channel i was valid (it was injected).
-  bool fresh(int i) const { return fresh_[static_cast<std::size_t>(i)]; }
+  bool fresh(int i) const { return observer_.valid()[static_cast<std::size_t>(i)]; }
 
  private:
-  using State = Eigen::Matrix<double, 15, 1>;  // [xi(6), eta(3), b(3), nu(3)]
-  // x' for the measurement y (interpolated) and the body thrust tau.
-  State Derivative(const State& x, const Vec3& y, const Vec3& tau) const;
-
-  Mat3 mass_inverse_, damping_, stiffness_;
-  Vec3 omega0_, k1_position_, k1_velocity_, k2_, k3_, k4_, bias_rate_;
-  double wave_damping_ = 0.1;
-  bool wave_filter_ = true;
+  PassiveNonlinearObserver observer_;
   double dt_ = 1.0;
-  int substeps_ = 1;
-
-  State x_ = State::Zero();
-  Vec3 y_previous_ = Vec3::Zero(), y_current_ = Vec3::Zero();
-  std::array<bool, 3> seen_ = {false, false, false};
-  std::array<bool, 3> fresh_ = {false, false, false};
-  std::array<bool, 3> previous_fresh_ = {false, false, false};
-  bool started_ = false;
 };
 
 // ---------------------------------------------------------------------------------------

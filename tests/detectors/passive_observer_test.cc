@@ -170,7 +170,7 @@ TEST(PassiveObserverConvergenceTest, NoiseFreeOwnModelFromAWrongStart) {
   }
 }
 
-// The literal SI reading of K3, K4 (file comment of passive_observer.h) does not estimate
+// The literal SI reading of K3, K4 (file comment of core/passive_observer.h) does not estimate
 // the bias: after the same 2000 s its bias estimate is still ~0 (error 100 % of the bias),
 // and the open-loop velocity model leaves the position estimate 0.1 m off (up to 0.8 m
 // in the first minutes).
