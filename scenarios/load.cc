@@ -430,7 +430,7 @@ void ParseEnvironment(const Reader& r, Scenario& scenario) {
 void ParseController(const Reader& r, Scenario& scenario) {
   r.CheckKeys();
   ControllerSpec& c = scenario.controller;
-  c.type = r.Required<std::string>("type");
+  c.type = r.Required<vessel::ControllerType>("type");
   r.Optional("rate_hz", c.rate);
   if (std::optional<Reader> p = r.Find("setpoint")) {
     p->CheckKeys();

@@ -14,6 +14,7 @@
 #include "mooring_fem/parameters.h"
 #include "mooring_fem/wave_kinematics.h"
 #include "simulation/observer_type.h"
+#include "vessel/controller.h"
 #include "vessel/sensors.h"
 #include "vessel/turret.h"
 
@@ -210,8 +211,8 @@ struct EnvironmentSpec {
 };
 
 struct ControllerSpec {
-  std::string type = "none";  ///< none, pi, observer_pid
-  double rate = 1.0;          ///< sample rate [Hz]
+  vessel::ControllerType type = vessel::ControllerType::kNone;
+  double rate = 1.0;  ///< sample rate [Hz]
   /// Setpoint x, y [m], heading [rad]; unset = the initial pose.
   std::optional<Vec3> setpoint;
   Vec3 kp = Vec3(1e5, 1e6, 1e3);  ///< pi: [N/m, N/m, N m/rad]

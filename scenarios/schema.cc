@@ -742,8 +742,6 @@ constexpr Block kEnvironment{"Waves, wind and current.", kEnvironmentKeys};
 // ---------------------------------------------------------------------------------------
 // controller
 
-constexpr std::string_view kControllerTypes[] = {"none", "observer_pid", "pi"};
-
 constexpr Key kHeadingLoopKeys[] = {
     Required(Positive("damping_ratio", "", 10.0, "Damping ratio of the heading loop.")),
     Required(Positive("natural_period", "s", 10000.0, "Natural period of the heading loop.")),
@@ -788,8 +786,8 @@ constexpr Key kControllerKeys[] = {
      .kind = Kind::kString,
      .description = "none, pi or observer_pid.",
      .required = true,
-     .choices = kControllerTypes,
-     .choice_noun = "controller"},
+     .choices = ChoiceNames<vessel::ControllerType>(),
+     .choice_noun = ChoiceNoun<vessel::ControllerType>()},
 };
 constexpr Block kController{"The position-mooring controller.", kControllerKeys};
 

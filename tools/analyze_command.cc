@@ -83,7 +83,7 @@ int Analyze(const AnalyzeOptions& o) {
   options.sample_interval = 1.0 / scenario.sensors.gnss_rate;
   const Vec3& pose = models.bank.reference_pose;
   const scenarios::ControllerSpec& controller = scenario.controller;
-  if (controller.type == "pi") {
+  if (controller.type == vessel::ControllerType::kPi) {
     // The analysis closes the controller the run has, sampled with the observations.
     if (std::abs(controller.rate - scenario.sensors.gnss_rate) >
         1e-12 * scenario.sensors.gnss_rate) {
@@ -103,7 +103,8 @@ int Analyze(const AnalyzeOptions& o) {
     // Each model must hold its pose (Hassani et al. 2018, Theorem 2's stationary filters);
     // on its bearing the turret leaves the heading to the controller, and the analysis
     // models the pi controller only.
-    throw InputError(scenario.source_path + ": controller.type: '" + controller.type +
+    throw InputError(scenario.source_path + ": controller.type: '" +
+                     std::string(ChoiceName(controller.type)) +
                      "': with the turret on its bearing (vessel.turret.bearing '" +
                      std::string(ChoiceName(scenario.vessel->turret.bearing)) +
                      "') the controller holds the heading, and analyze models only the 'pi' "

@@ -13,13 +13,6 @@ namespace moorsim::vessel {
 
 namespace {
 
-// Angle in (-pi, pi].
-double WrapToPi(double angle) {
-  double a = std::remainder(angle, 2.0 * kPi);  // [-pi, pi]
-  if (a <= -kPi) a += 2.0 * kPi;
-  return a;
-}
-
 // R(psi)^T v for the horizontal-plane rotation (Fossen 2011 section 2.2, the yaw-only case
 // of R(Theta)).
 Vec3 NedToBody(const Vec3& v, double psi) {
@@ -96,7 +89,7 @@ void PositionController::SetSetpoint(const Vec3& eta_d) {
     Require(std::isfinite(eta_d[i]), Indexed("controller.setpoint", i), eta_d[i], "must be finite");
   }
   setpoint_ = eta_d;
-  setpoint_[2] = WrapToPi(eta_d[2]);
+  setpoint_[2] = WrapAngle(eta_d[2]);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -121,7 +114,7 @@ Vec3 PiController::Update(const PoseMeasurementInput& measurement) {
     const auto k = static_cast<std::size_t>(i);
     fresh[k] = Fresh(measurement, i);
     if (fresh[k]) {
-      held_pose_[i] = i == 2 ? WrapToPi(measurement.pose[i]) : measurement.pose[i];
+      held_pose_[i] = i == 2 ? WrapAngle(measurement.pose[i]) : measurement.pose[i];
       seen_[k] = true;
     } else if (!seen_[k]) {
       held_pose_[i] = setpoint_[i];  // nothing known yet: no action on this channel
@@ -135,10 +128,10 @@ Vec3 PiController::Update(const PoseMeasurementInput& measurement) {
     started_ = true;
   } else {
     Vec3 step = held_pose_ - filtered_pose_;
-    step[2] = WrapToPi(step[2]);
+    step[2] = WrapAngle(step[2]);
     step *= filter_gain_;
     filtered_pose_ += step;
-    filtered_pose_[2] = WrapToPi(filtered_pose_[2]);
+    filtered_pose_[2] = WrapAngle(filtered_pose_[2]);
     rate = step / dt_;
   }
 
@@ -147,7 +140,7 @@ Vec3 PiController::Update(const PoseMeasurementInput& measurement) {
     if (options_.filtered_error[static_cast<std::size_t>(i)])
       error[i] = filtered_pose_[i] - setpoint_[i];
   }
-  error[2] = WrapToPi(error[2]);
+  error[2] = WrapAngle(error[2]);
   for (int i = 0; i < 3; ++i) {
     if (!fresh[static_cast<std::size_t>(i)]) continue;  // no integration on held data
     integral_[i] += dt_ * error[i];
@@ -233,7 +226,7 @@ PassiveNonlinearObserver MakeObserver(const ManoeuvringModel& model,
   // G about the neutral pose eta = 0: the heading's distance from it, wrapped.
   auto linear_mooring = [stiffness = model.mooring_stiffness](const Vec3& eta) {
     Vec3 from_neutral = eta;
-    from_neutral.z() = WrapToPi(eta.z());
+    from_neutral.z() = WrapAngle(eta.z());
     return Vec3(-stiffness * from_neutral);
   };
   return PassiveNonlinearObserver(observer, model.mass, model.damping, linear_mooring,
@@ -279,7 +272,7 @@ Vec3 ObserverPidController::Update(const PoseMeasurementInput& measurement) {
   observer_.Update(measurement, tau_held_);
   const Vec3 eta = observer_.eta_hat();
   Vec3 error = eta - setpoint_;
-  error[2] = WrapToPi(error[2]);
+  error[2] = WrapAngle(error[2]);
   for (int i = 0; i < 3; ++i) {
     if (!observer_.fresh(i)) continue;
     integral_[i] += dt_ * error[i];
@@ -298,60 +291,16 @@ Vec3 IdleController::EstimatedBias() const { return Vec3::Constant(std::nan(""))
 
 // ---------------------------------------------------------------------------------------
 
-namespace {
-
-using ControllerFactory = std::unique_ptr<PositionController> (*)(const ControllerSpec&, double);
-
-struct ControllerEntry {
-  std::string_view name;
-  ControllerFactory make;
-};
-
-// The registry, sorted by name for MakeController()'s binary search: the one table that the
-// lookup, ControllerTypes() and the error's list of known types all read.
-constexpr std::array<ControllerEntry, 3> kControllers = {{
-    {"none",
-     [](const ControllerSpec& spec, double dt) -> std::unique_ptr<PositionController> {
-       return std::make_unique<IdleController>(spec.setpoint, dt);
-     }},
-    {"observer_pid",
-     [](const ControllerSpec& spec, double dt) -> std::unique_ptr<PositionController> {
-       return std::make_unique<ObserverPidController>(spec.observer_pid, spec.setpoint, dt);
-     }},
-    {"pi",
-     [](const ControllerSpec& spec, double dt) -> std::unique_ptr<PositionController> {
-       return std::make_unique<PiController>(spec.pi, spec.setpoint, dt);
-     }},
-}};
-
-static_assert(std::is_sorted(kControllers.begin(), kControllers.end(),
-                             [](const ControllerEntry& a, const ControllerEntry& b) {
-                               return a.name < b.name;
-                             }),
-              "kControllers must be sorted by name");
-
-}  // namespace
-
-std::vector<std::string_view> ControllerTypes() {
-  std::vector<std::string_view> names;
-  for (const ControllerEntry& entry : kControllers) names.push_back(entry.name);
-  return names;
-}
-
 std::unique_ptr<PositionController> MakeController(const ControllerSpec& spec, double dt) {
-  const auto it = std::lower_bound(
-      kControllers.begin(), kControllers.end(), spec.type,
-      [](const ControllerEntry& entry, const std::string& name) { return entry.name < name; });
-  if (it == kControllers.end() || it->name != spec.type) {
-    std::string known;
-    for (const ControllerEntry& entry : kControllers) {
-      if (!known.empty()) known += ", ";
-      known += entry.name;
-    }
-    throw InputError("controller.type: unknown controller type '" + spec.type +
-                     "' (known: " + known + ")");
+  switch (spec.type) {
+    case ControllerType::kNone:
+      return std::make_unique<IdleController>(spec.setpoint, dt);
+    case ControllerType::kObserverPid:
+      return std::make_unique<ObserverPidController>(spec.observer_pid, spec.setpoint, dt);
+    case ControllerType::kPi:
+      return std::make_unique<PiController>(spec.pi, spec.setpoint, dt);
   }
-  return it->make(spec, dt);
+  throw ContractError("MakeController: a controller type without a controller");
 }
 
 ControllerSpec WithHeadingLoop(ControllerSpec spec, const HeadingLoopTuning& tuning,

@@ -28,6 +28,7 @@
 
 #include <Eigen/Core>
 
+#include "core/choice.h"
 #include "core/passive_observer.h"
 #include "core/types.h"
 #include "vessel/vessel_model.h"
@@ -65,6 +66,12 @@ struct ManoeuvringModel {
 /// turret). The yaw term is only meaningful near heading 0, the lines' neutral heading.
 ManoeuvringModel SeedManoeuvringModel();
 
+/// The controllers MakeController builds: zero thrust, the TAPM thesis's PI, or the
+/// nonlinear PID on the passive observer's estimates.
+enum class ControllerType { kNone, kObserverPid, kPi };
+inline constexpr std::string_view kControllerTypeNames[] = {"none", "observer_pid", "pi"};
+constexpr ChoiceInfo ChoicesOf(ControllerType) { return {"controller", kControllerTypeNames}; }
+
 /// A discrete horizontal-plane position controller.
 class PositionController {
  public:
@@ -75,7 +82,7 @@ class PositionController {
   /// call. Never returns a non-finite value for finite parameters; allocates nothing.
   virtual Vec3 Update(const PoseMeasurementInput& measurement) = 0;
 
-  /// The controller's type name as in MakeController ("none", "pi", "observer_pid").
+  /// The controller's type name ("none", "pi", "observer_pid").
   virtual std::string_view name() const = 0;
 
   /// Internal estimates for logging: low-frequency pose eta_hat [m, m, rad] (NED), velocity
@@ -159,7 +166,7 @@ class PiController final : public PositionController {
   PiController(const PiControllerOptions& options, const Vec3& eta_d, double dt);
 
   Vec3 Update(const PoseMeasurementInput& measurement) override;
-  std::string_view name() const override { return "pi"; }
+  std::string_view name() const override { return ChoiceName(ControllerType::kPi); }
   Vec3 EstimatedPose() const override;
   Vec3 EstimatedVelocity() const override;
   Vec3 EstimatedBias() const override;
@@ -295,7 +302,7 @@ class ObserverPidController final : public PositionController {
   ObserverPidController(const ObserverPidOptions& options, const Vec3& eta_d, double dt);
 
   Vec3 Update(const PoseMeasurementInput& measurement) override;
-  std::string_view name() const override { return "observer_pid"; }
+  std::string_view name() const override { return ChoiceName(ControllerType::kObserverPid); }
   Vec3 EstimatedPose() const override { return observer_.eta_hat(); }
   Vec3 EstimatedVelocity() const override { return observer_.nu_hat(); }
   Vec3 EstimatedBias() const override { return observer_.bias(); }
@@ -325,7 +332,7 @@ class IdleController final : public PositionController {
   IdleController(const Vec3& eta_d, double dt) : PositionController(eta_d, dt) {}
 
   Vec3 Update(const PoseMeasurementInput&) override { return Vec3::Zero(); }
-  std::string_view name() const override { return "none"; }
+  std::string_view name() const override { return ChoiceName(ControllerType::kNone); }
   Vec3 EstimatedPose() const override;
   Vec3 EstimatedVelocity() const override;
   Vec3 EstimatedBias() const override;
@@ -337,7 +344,7 @@ class IdleController final : public PositionController {
 /// What the scenario's `controller:` section becomes. Only the options block of `type`
 /// is used.
 struct ControllerSpec {
-  std::string type = "pi";       ///< a name from ControllerTypes()
+  ControllerType type = ControllerType::kPi;
   Vec3 setpoint = Vec3::Zero();  ///< eta_d [m, m, rad], NED
   PiControllerOptions pi;
   ObserverPidOptions observer_pid;
@@ -357,12 +364,8 @@ struct HeadingLoopTuning {
 ControllerSpec WithHeadingLoop(ControllerSpec spec, const HeadingLoopTuning& tuning,
                                const VesselModel& vessel);
 
-/// Builds the controller named by spec.type with sample time dt [s]. Throws
-/// moorsim::InputError for an unknown type ("unknown controller type 'pd' (known: none,
-/// observer_pid, pi)"), dt <= 0, or bad options.
+/// Builds the controller of spec.type with sample time dt [s]. Throws moorsim::InputError
+/// for dt <= 0 or bad options.
 std::unique_ptr<PositionController> MakeController(const ControllerSpec& spec, double dt);
-
-/// The known type names, sorted (for --help and messages).
-std::vector<std::string_view> ControllerTypes();
 
 }  // namespace moorsim::vessel

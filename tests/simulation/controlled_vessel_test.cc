@@ -46,7 +46,7 @@ TEST(ControlledVesselSlow, PiRemovesTheOffsetOfAConstantLoad) {
 }
 
 TEST(ControlledVessel, EveryControllerTypeTheLoaderAcceptsBuilds) {
-  for (std::string_view type : vessel::ControllerTypes()) {
+  for (std::string_view type : ChoiceNames<vessel::ControllerType>()) {
     const std::string yaml = "controller: {type: " + std::string(type) + "}\n";
     Simulation sim(testing::SeedVesselScenario(yaml), 1);
     sim.AdvanceTo(2.0);

@@ -73,7 +73,7 @@ PlantModel PlantInCode(const mooring_fem::MooringParameters& mooring) {
   cells.noise.std_dev = 1.0e4;
   cells.faults.push_back(
       {.line = 2, .fault = {.mode = vessel::SensorFault::Mode::kStuck, .from = 20.0}});
-  m.controller.spec.type = "pi";
+  m.controller.spec.type = vessel::ControllerType::kPi;
   m.controller.spec.pi.kp = Vec3(1e5, 1e6, 1e3);
   m.controller.spec.pi.ki = Vec3(1e3, 1e3, 1e2);
   m.controller.heading = vessel::HeadingLoopTuning{.natural_period = 200, .damping_ratio = 0.8};

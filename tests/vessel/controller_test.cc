@@ -184,9 +184,10 @@ TEST(PiController, SettlesAtTheSetpointUnderAConstantNedLoad) {
 TEST(PositionControllers, DisplacedNorthGetsASouthwardForceAtAnyHeading) {
   for (const double psi_deg : {0.0, 45.0, 90.0, 179.0, -90.0, -135.0}) {
     const double psi = psi_deg * kDegree;
-    for (const std::string type : {"pi", "observer_pid"}) {
+    for (const ControllerType t : {ControllerType::kPi, ControllerType::kObserverPid}) {
+      const std::string_view type = ChoiceName(t);
       ControllerSpec spec;
-      spec.type = type;
+      spec.type = t;
       spec.setpoint = Vec3(0.0, 0.0, psi);
       const auto controller = MakeController(spec, 1.0);
       PoseMeasurementInput m;
@@ -212,9 +213,10 @@ TEST(PositionControllers, HeadingErrorWrapsAcrossPlusMinus180Degrees) {
   // Setpoint 179 deg, measured -179 deg = 181 deg: the vessel is 2 deg past the setpoint
   // (clockwise), so the moment must be small and turn it back: negative N, |N| = the yaw
   // gains times 2 deg, not times 358 deg.
-  for (const std::string type : {"pi", "observer_pid"}) {
+  for (const ControllerType t : {ControllerType::kPi, ControllerType::kObserverPid}) {
+    const std::string_view type = ChoiceName(t);
     ControllerSpec spec;
-    spec.type = type;
+    spec.type = t;
     spec.setpoint = Vec3(0.0, 0.0, 179 * kDegree);
     const auto controller = MakeController(spec, 1.0);
     PoseMeasurementInput m;
@@ -505,16 +507,17 @@ TEST(ObserverPidController, SettlesWithTheWaveMotionFilteredOutOfTheCommand) {
 
 // --- (7) construction by name and bad options -------------------------------------------
 
-TEST(MakeController, BuildsEveryKnownTypeByName) {
-  const std::vector<std::string_view> types = ControllerTypes();
-  // scenarios/load.cc lists the same names for the loader's check.
+TEST(MakeController, BuildsEveryTypeUnderItsName) {
+  const std::span<const std::string_view> types = ChoiceNames<ControllerType>();
   ASSERT_EQ(types.size(), 3u);
   EXPECT_EQ(types[0], "none");
   EXPECT_EQ(types[1], "observer_pid");
   EXPECT_EQ(types[2], "pi");
-  for (const std::string_view type : types) {
+  for (const ControllerType t :
+       {ControllerType::kNone, ControllerType::kObserverPid, ControllerType::kPi}) {
+    const std::string_view type = ChoiceName(t);
     ControllerSpec spec;
-    spec.type = std::string(type);
+    spec.type = t;
     const auto controller = MakeController(spec, 0.5);
     EXPECT_EQ(controller->name(), type);
     EXPECT_DOUBLE_EQ(controller->sample_time(), 0.5);
@@ -537,13 +540,8 @@ std::string InputErrorOf(F make) {
   return "";
 }
 
-TEST(MakeController, RejectsUnknownTypesAndBadOptions) {
+TEST(MakeController, RejectsBadOptions) {
   ControllerSpec spec;
-  spec.type = "pd";
-  EXPECT_EQ(InputErrorOf([&] { MakeController(spec, 1.0); }),
-            "controller.type: unknown controller type 'pd' (known: none, observer_pid, pi)");
-
-  spec = ControllerSpec{};
   spec.pi.kp.y() = -5.0;
   EXPECT_EQ(InputErrorOf([&] { MakeController(spec, 1.0); }),
             "controller.pi.kp[1] = -5: must be finite and >= 0");
@@ -556,7 +554,7 @@ TEST(MakeController, RejectsUnknownTypesAndBadOptions) {
             "controller.sample_time = 0: must be finite and > 0 s");
 
   spec = ControllerSpec{};
-  spec.type = "observer_pid";
+  spec.type = ControllerType::kObserverPid;
   spec.observer_pid.natural_frequency = -0.05;
   EXPECT_EQ(InputErrorOf([&] { MakeController(spec, 1.0); }),
             "controller.observer_pid.natural_frequency = -0.05: must be finite and > 0 rad/s");
