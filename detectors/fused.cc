@@ -115,7 +115,7 @@ Verdict Fused::Update(const Evidence& evidence) {
   }
   if (pose_disagrees) {
     verdict_.faulty_sensors.push_back(
-        {.sensor = {.kind = SensorId::Kind::kPose}, .symptom = SensorSymptom::kDisagrees});
+        {.sensor = {.kind = agreement_.culprit()}, .symptom = SensorSymptom::kDisagrees});
   }
   for (const SensorFinding& f : cells.faulty_sensors) {
     // Rule 5: the named line's cell, declared faulty before the pose confirmed it.

@@ -12,8 +12,9 @@
 //  - the cells judge the pose (detectors/pose_agreement.h): a GNSS or gyro error of a few
 //    metres or a tenth of a radian, too small or too slow for the sensor checks, puts the
 //    turret where every cell disagrees with its expectation in one pattern ("pose
-//    disagrees"). It judges while every cell reads true and no line is named; from then on
-//    its judgement stands.
+//    disagrees", or "GNSS disagrees" where the pattern's direction can only be the GNSS's).
+//    It judges while every cell reads true and no line is named; from then on its judgement
+//    stands.
 //
 // The verdict, at every sample:
 //  1. A cell that reads low and that the pose confirms (the cells test's rule) names its

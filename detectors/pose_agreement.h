@@ -24,6 +24,16 @@
 // quarter of it for eight lines around the turret). The lines must pull from at least three
 // sides: the fit needs cells whose directions span the plane (at least `min_cells` cells,
 // and the smaller eigenvalue of sum u_k u_k^T at least a quarter of their number).
+//
+// Which of the two is wrong: the filter places the point where the lines pull (the turret)
+// from the GNSS position and the heading, at the lever r from the vessel's reference point.
+// A heading error d_psi moves it by d_psi r rotated a quarter turn: across r, never along
+// it. So a pose judged wrong by an error with a part along r of at least half its size
+// (60 degrees or less from r) is the GNSS's; so is any, where the lines pull at the reference
+// point. Across r, the GNSS and the gyro make the same pattern, and the verdict names the
+// pose. The lever is read from the lines' loads at the filter's pose: each line's yaw moment
+// is r x F_k (fitted over the cells that count). The sensor named is settled when the pose
+// is judged wrong, and stands with the judgement.
 #pragma once
 
 #include <vector>
@@ -57,6 +67,9 @@ class PoseAgreement {
   bool Update(const Evidence& evidence, const std::vector<bool>& counts);
 
   bool disagrees() const { return disagrees_; }
+  /// While the pose disagrees: SensorId::Kind::kGnss where the pattern shows the GNSS
+  /// wrong, else kPose (the GNSS or the gyro).
+  SensorId::Kind culprit() const { return culprit_; }
   /// The latest fit's amplitude |a| (0 before the first fit).
   double amplitude() const { return amplitude_; }
 
@@ -68,6 +81,7 @@ class PoseAgreement {
   double amplitude_ = 0.0;
   double beyond_since_ = 0.0;
   bool beyond_ = false, disagrees_ = false;
+  SensorId::Kind culprit_ = SensorId::Kind::kPose;
 };
 
 }  // namespace moorsim::detectors

@@ -68,6 +68,8 @@ void SensorMonitor::Reset() {
     s.before.setZero();
     s.before_in_gate = false;
     s.noisy = false;
+    s.jump.setZero();
+    s.jump_time = -std::numeric_limits<double>::infinity();
   }
   cells_.clear();
   noise_scale_ = Vec3::Ones();
@@ -206,6 +208,8 @@ void SensorMonitor::CheckPoseSensor(PoseSensor& sensor, const HypothesisEvidence
   for (const Eigen::Vector2d& p : sensor.pending) agree = agree && nis(p - mean) <= options_.agree;
   if (agree) {
     for (int r = 0; r < n; ++r) channels_[static_cast<std::size_t>(a + r)].offset += mean(r);
+    sensor.jump = mean;
+    sensor.jump_time = t_;
     sensor.pending.clear();
     sensor.before = Eigen::Vector2d::Zero();
     sensor.before_in_gate = false;
@@ -289,17 +293,33 @@ const Observation& SensorMonitor::Screen(const Observation& observation,
       const Channel& c = channels_[static_cast<std::size_t>(i)];
       is_frozen = is_frozen || frozen[i];
       silent = silent && c.missing >= options_.frozen_samples;
-      jumped = jumped || c.offset * c.offset > options_.gate * std::max(rated_(i), c.level.usual);
       if (c.level.Warm(options_)) {
         ratio = std::max(ratio, c.level.recent / c.level.usual);
         fast_ratio = std::max(fast_ratio, c.fast / c.level.usual);
       }
     }
     // Noisy by either level; trusted again once both are below half their ratios.
+    const bool was_noisy = s.noisy;
     s.noisy = NoiseLevel::Judge(ratio, options_.noisy_ratio, s.noisy) ||
               NoiseLevel::Judge(fast_ratio, options_.fast_ratio, s.noisy);
+    if (s.noisy && !was_noisy && t_ - s.jump_time <= 2.0 * options_.fast_time) {
+      // A jump just before the noise was named, no larger than the noise: the noise's first
+      // samples, which happened to agree. Its re-anchoring is taken back.
+      double nis = 0.0;
+      for (int r = 0; r < s.count; ++r) {
+        const Channel& c = channels_[static_cast<std::size_t>(s.first + r)];
+        nis += s.jump(r) * s.jump(r) / std::max(c.level.recent, c.fast);
+      }
+      if (nis <= options_.gate) {
+        for (int r = 0; r < s.count; ++r) {
+          channels_[static_cast<std::size_t>(s.first + r)].offset -= s.jump(r);
+        }
+      }
+      s.jump_time = -std::numeric_limits<double>::infinity();
+    }
     for (int i = s.first; i < s.first + s.count; ++i) {
       const Channel& c = channels_[static_cast<std::size_t>(i)];
+      jumped = jumped || c.offset * c.offset > options_.gate * std::max(rated_(i), c.level.usual);
       const double excess = std::max(c.level.recent, c.fast) - c.level.usual;
       noise_scale_(i) = s.noisy ? 1.0 + std::max(0.0, excess) / rated_(i) : 1.0;
     }

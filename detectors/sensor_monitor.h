@@ -26,7 +26,9 @@
 //    noisier sensor's onset, learned at once so the noise is named before it moves the observers.
 //    The sensor stays judged "jump" while its offset is beyond the gate of its rated noise; a jump
 //    back clears it. A vessel cannot move metres between two samples a second apart, a position
-//    reference can.
+//    reference can. A much noisier sensor's first samples can happen to agree: a jump judged
+//    within twice `fast_time` before the sensor is judged noisy, and within the gate of the
+//    noise it then shows, was that noise, and its re-anchoring is taken back.
 //  - Noisy: each channel's squared innovations averaged over `noise_time` (recent) and over
 //    `baseline_time` (usual, learned while the recent level stays within half the ratio). Recent
 //    beyond `noisy_ratio` times usual, the sensor is judged noisy, and the observers take the
@@ -51,6 +53,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <vector>
 
 #include "detectors/detector.h"
@@ -119,6 +122,8 @@ class SensorMonitor {
     Eigen::Vector2d before = Eigen::Vector2d::Zero();  // the innovation before them
     bool before_in_gate = false;                       // ... and it was within the gate
     bool noisy = false;
+    Eigen::Vector2d jump = Eigen::Vector2d::Zero();  // the latest jump's re-anchoring step
+    double jump_time = -std::numeric_limits<double>::infinity();  // ... and when judged
   };
   void CheckPoseSensor(PoseSensor& sensor, const HypothesisEvidence& predicted, double dt);
   void LearnNoise(int channel, double innovation, double gate_variance, double dt);

@@ -7,9 +7,10 @@
 // named a jump and re-anchored, so the filter's pose does not follow it, and its end clears
 // the finding; five times the noise is named noisy and weighted less, within seconds of its
 // onset, ten times the noise from its first withheld samples, while a motion the filter did
-// not predict is not; a lone outlier is withheld and
-// named nothing; a frozen cell is named and withheld; a noisy cell is named, and a parted
-// line's cell is not.
+// not predict is not; a noisier sensor's first samples that happen to agree are re-anchored
+// as a jump, and taken back once the noise is named; a lone outlier is withheld and named
+// nothing; a frozen cell is named and withheld; a noisy cell is named, and a parted line's
+// cell is not.
 #include "detectors/sensor_monitor.h"
 
 #include <gtest/gtest.h>
@@ -232,6 +233,32 @@ TEST(SensorMonitor, AMuchNoisierSensorIsNamedFromItsFirstWithheldRun) {
     ASSERT_TRUE(named.has_value()) << "seed " << seed;
     // 1-8 s; taking the run's samples only once they are back in the gate, 1-16 s.
     EXPECT_LE(*named - 600, 10.0) << "seed " << seed;
+  }
+}
+
+TEST(SensorMonitor, ANoisierSensorsFirstSamplesThatHappenToAgreeAreNoJump) {
+  // A receiver turns 9.4 times noisier, and its first three samples happen to lie together,
+  // 2 m north of the vessel: they pass for a jump and are re-anchored. Once the noise is
+  // named, seconds later, the re-anchoring is taken back, so the filter is not left 2 m off.
+  for (std::uint64_t seed : {41, 42, 43}) {
+    Screened s;
+    Stream stream(seed);
+    Feed(s, stream, 0, 600, kNoFault, [] { return false; });
+    for (double t = 600; t < 603; t += 1.0) {
+      Observation obs = stream.Next(t);
+      obs.pose.x() += 2.0;
+      s.Take(obs);
+    }
+    EXPECT_TRUE(s.Judged(SensorId::Kind::kGnss, SensorSymptom::kJump)) << "seed " << seed;
+    const std::optional<double> named = Feed(
+        s, stream, 603, 120, kNoFault,
+        [&] { return s.Judged(SensorId::Kind::kGnss, SensorSymptom::kNoisy); }, nullptr, 9.4);
+    ASSERT_TRUE(named.has_value()) << "seed " << seed;
+    EXPECT_LE(*named - 603, 10.0) << "seed " << seed;
+    EXPECT_FALSE(s.Judged(SensorId::Kind::kGnss, SensorSymptom::kJump)) << "seed " << seed;
+    // The filter follows the vessel, within the noisy sensor's reach (0.66 m a sample).
+    EXPECT_NEAR(s.filter.pose().x() + s.filter.wave_motion().x(), Stream::Truth(722).x(), 1.0)
+        << "seed " << seed;
   }
 }
 
