@@ -18,20 +18,20 @@
 namespace moorsim {
 namespace {
 
-using Options = PassiveNonlinearObserverOptions;
-using State = PassiveNonlinearObserver::State;
-constexpr std::array<bool, 3> kAll = {true, true, true};
+using ObserverOptions = PassiveNonlinearObserverOptions;
+using ObserverStateVector = PassiveNonlinearObserver::State;
+constexpr std::array<bool, 3> kEveryChannelValid = {true, true, true};
 
 // The seed FPSO's low-frequency mass and damping (M_RB + A(0); D_ii = M_ii / (50, 100, 20 s)).
-const Vec3 kMass(1.0835e8, 1.6484e8, 4.378e11);
-Mat3 Mass() { return kMass.asDiagonal(); }
-Mat3 Damping() { return kMass.cwiseQuotient(Vec3(50.0, 100.0, 20.0)).asDiagonal(); }
+const Vec3 kSeedMass(1.0835e8, 1.6484e8, 4.378e11);
+Mat3 SeedMass() { return kSeedMass.asDiagonal(); }
+Mat3 SeedDamping() { return kSeedMass.cwiseQuotient(Vec3(50.0, 100.0, 20.0)).asDiagonal(); }
 
 PassiveNonlinearObserver::MooringLoad NoMooring() {
   return [](const Vec3&) { return Vec3::Zero().eval(); };
 }
 
-std::string MessageOf(const Options& options, const PassiveObserverKeys& keys) {
+std::string ValidationMessageOf(const ObserverOptions& options, const PassiveObserverKeys& keys) {
   try {
     ValidatePassiveObserver(options, keys);
   } catch (const InputError& e) {
@@ -52,48 +52,51 @@ TEST(PassiveObserverOptionsTest, MessagesNameTheCallersKeys) {
                                    .velocity_gain = {"k4_per_mass"},
                                    .bias_gain = {"k3_ratio", false},
                                    .bias_gain_is_ratio = true};
-  EXPECT_EQ(MessageOf({}, per_dof), "no error");
-  Options options;
+  EXPECT_EQ(ValidationMessageOf({}, per_dof), "no error");
+  ObserverOptions options;
   options.velocity_gain.z() = -1.0;
-  EXPECT_EQ(MessageOf(options, per_dof), "passive.velocity_gain[3] = -1: must be finite and > 0");
-  EXPECT_EQ(MessageOf(options, scalar),
+  EXPECT_EQ(ValidationMessageOf(options, per_dof),
+            "passive.velocity_gain[3] = -1: must be finite and > 0");
+  EXPECT_EQ(ValidationMessageOf(options, scalar),
             "controller.observer.k4_per_mass[2] = -1: must be finite and > 0");
   options = {};
   options.cutoff_ratio.setConstant(0.9);
-  EXPECT_EQ(MessageOf(options, per_dof),
+  EXPECT_EQ(ValidationMessageOf(options, per_dof),
             "passive.cutoff_ratio[1] = 0.9: must be > 1 (passivity: omega_c > omega_0)");
-  EXPECT_EQ(MessageOf(options, scalar),
+  EXPECT_EQ(ValidationMessageOf(options, scalar),
             "controller.observer.cutoff_ratio = 0.9: must be > 1 (passivity: omega_c > omega_0)");
   options = {};
   options.bias_gain = 2.0 * options.velocity_gain;  // K3/K4 = 2 1/s > w0
-  EXPECT_EQ(MessageOf(options, per_dof),
+  EXPECT_EQ(ValidationMessageOf(options, per_dof),
             "passive.bias_gain[1] = 0.2: bias_gain / velocity_gain = 2 1/s must be < "
             "wave_frequency (passivity)");
-  EXPECT_EQ(MessageOf(options, scalar),
+  EXPECT_EQ(ValidationMessageOf(options, scalar),
             "controller.observer.k3_ratio = 2: must be < wave_peak_frequency (passivity)");
   options = {};
   options.bias_gain = options.velocity_gain / 2048.0;  // K3/K4 below 1/T
-  EXPECT_EQ(MessageOf(options, scalar),
+  EXPECT_EQ(ValidationMessageOf(options, scalar),
             "controller.observer.k3_ratio = 0.00048828125: must be > 1 / bias_time_constant "
             "(passivity)");
   options = {};
   options.notch_damping.y() = 0.05;  // below lambda
-  EXPECT_EQ(MessageOf(options, per_dof),
+  EXPECT_EQ(ValidationMessageOf(options, per_dof),
             "passive.notch_damping[2] = 0.05: must be > wave_damping (the notch needs zeta_n > "
             "lambda)");
   options = {};
   options.wave_damping.setZero();  // an undamped wave model is allowed
   options.max_substep = std::nan("");
-  EXPECT_EQ(MessageOf(options, per_dof), "passive.max_substep = nan: must be finite and > 0 s");
-  EXPECT_THROW(PassiveNonlinearObserver(options, Mass(), Damping(), NoMooring()), InputError);
-  EXPECT_THROW(PassiveNonlinearObserver({}, Mat3::Zero(), Damping(), NoMooring()), InputError);
+  EXPECT_EQ(ValidationMessageOf(options, per_dof),
+            "passive.max_substep = nan: must be finite and > 0 s");
+  EXPECT_THROW(PassiveNonlinearObserver(options, SeedMass(), SeedDamping(), NoMooring()),
+               InputError);
+  EXPECT_THROW(PassiveNonlinearObserver({}, Mat3::Zero(), SeedDamping(), NoMooring()), InputError);
 }
 
 // The wave/position loop (Fossen 2011 section 11.4.1) is (s^2 + 2 zeta_n w0 s + w0^2)(s + w_c)
 // (the detection observers' tests check the TAPM thesis's numbers); without the wave model
 // K1 = 0.
 TEST(PassiveObserverGainsTest, NotchAndCutoffAndNoWaveModel) {
-  Options options;
+  ObserverOptions options;
   options.wave_frequency = Vec3(0.6, 0.9, 1.2);
   options.notch_damping = Vec3(1.0, 0.8, 0.5);
   const PassiveObserverGains gains = ComputePassiveObserverGains(options);
@@ -121,11 +124,12 @@ TEST(PassiveObserverGainsTest, NotchAndCutoffAndNoWaveModel) {
 TEST(PassiveObserverBiasTest, ReadsAnUnmodelledLoadAsTheLeakyClosedForm) {
   Vec3 shortfall = Vec3::Zero();
   for (const Vec3& d : {Vec3(4e5, -3e5, 0.0), Vec3(0.0, 0.0, 2e7)}) {
-    PassiveNonlinearObserver observer({}, Mass(), Damping(), NoMooring());
+    PassiveNonlinearObserver observer({}, SeedMass(), SeedDamping(), NoMooring());
     const Vec3 tau = -d;
-    for (int k = 0; k <= 4000; ++k) observer.Update(1.0, tau, Vec3(1.0, 2.0, 0.0), kAll);
+    for (int k = 0; k <= 4000; ++k)
+      observer.Update(1.0, tau, Vec3(1.0, 2.0, 0.0), kEveryChannelValid);
     const PassiveObserverGains& g = observer.gains();
-    const Vec3 leak = (Damping().diagonal().cwiseProduct(g.k2).cwiseQuotient(kMass) + g.k4)
+    const Vec3 leak = (SeedDamping().diagonal().cwiseProduct(g.k2).cwiseQuotient(kSeedMass) + g.k4)
                           .cwiseQuotient(observer.options().bias_time_constant.cwiseProduct(g.k3));
     const Vec3 bias = observer.state().segment<3>(PassiveNonlinearObserver::kBias);
     for (int i = 0; i < 3; ++i) {
@@ -141,25 +145,25 @@ TEST(PassiveObserverBiasTest, ReadsAnUnmodelledLoadAsTheLeakyClosedForm) {
 // At heading 0 with a diagonal M, M_e K4 = diag(M) K4: the mass-scaled gains are the
 // force-level gains diag(M) K4, diag(M) K3 taken literally, to rounding.
 TEST(PassiveObserverGainsTest, MassScaledEqualLiteralForceGainsAtHeadingZero) {
-  Options literal;
+  ObserverOptions literal;
   literal.mass_scaled_gains = false;
-  literal.velocity_gain = kMass.cwiseProduct(literal.velocity_gain);
-  literal.bias_gain = kMass.cwiseProduct(literal.bias_gain);
+  literal.velocity_gain = kSeedMass.cwiseProduct(literal.velocity_gain);
+  literal.bias_gain = kSeedMass.cwiseProduct(literal.bias_gain);
   const auto load = [](const Vec3& eta) { return Vec3(-8e4 * eta.x(), -8e4 * eta.y(), 0.0); };
-  const PassiveNonlinearObserver scaled({}, Mass(), Damping(), load);
-  const PassiveNonlinearObserver literal_force(literal, Mass(), Damping(), load);
-  State x;
+  const PassiveNonlinearObserver scaled({}, SeedMass(), SeedDamping(), load);
+  const PassiveNonlinearObserver literal_force(literal, SeedMass(), SeedDamping(), load);
+  ObserverStateVector x;
   x << 0.1, -0.2, 0.01, 0.3, 0.1, -0.02, 1.0, -2.0, 0.0, 3e5, -1e5, 2e7, 0.05, -0.02, 1e-4;
   const Vec3 y(1.4, -1.7, 0.03), tau(1e5, 2e5, -3e7);
-  const State a = scaled.Derivative(x, y, kAll, tau);
-  const State b = literal_force.Derivative(x, y, kAll, tau);
-  for (int j = 0; j < State::RowsAtCompileTime; ++j) {
+  const ObserverStateVector a = scaled.Derivative(x, y, kEveryChannelValid, tau);
+  const ObserverStateVector b = literal_force.Derivative(x, y, kEveryChannelValid, tau);
+  for (int j = 0; j < ObserverStateVector::RowsAtCompileTime; ++j) {
     EXPECT_NEAR(a(j), b(j), 1e-12 * (std::abs(a(j)) + 1e-9)) << j;
   }
 }
 
-Options WithHold(Options::Hold hold, Options::Start start) {
-  Options options;
+ObserverOptions WithHold(ObserverOptions::Hold hold, ObserverOptions::Start start) {
+  ObserverOptions options;
   options.hold = hold;
   options.start = start;
   return options;
@@ -174,13 +178,15 @@ TEST(PassiveObserverHoldTest, ModesAgreeOnAHeldInputBitForBit) {
     return Vec3(-8e4 * eta.x(), -8e4 * eta.y(), -5e8 * WrapAngle(eta.z()));
   };
   PassiveNonlinearObserver detection(
-      WithHold(Options::Hold::kZeroOrder, Options::Start::kAllChannels), Mass(), Damping(), load);
+      WithHold(ObserverOptions::Hold::kZeroOrder, ObserverOptions::Start::kAllChannels), SeedMass(),
+      SeedDamping(), load);
   PassiveNonlinearObserver controller(
-      WithHold(Options::Hold::kFirstOrder, Options::Start::kEachChannel), Mass(), Damping(), load);
+      WithHold(ObserverOptions::Hold::kFirstOrder, ObserverOptions::Start::kEachChannel),
+      SeedMass(), SeedDamping(), load);
   const Vec3 tau(2e5, -1e5, 3e7), y(1.5, -0.5, 0.02);
   for (int k = 0; k < 400; ++k) {
-    detection.Update(1.0, tau, y, kAll);
-    controller.Update(1.0, tau, y, kAll);
+    detection.Update(1.0, tau, y, kEveryChannelValid);
+    controller.Update(1.0, tau, y, kEveryChannelValid);
     ASSERT_EQ(detection.state(), controller.state()) << "t " << k;
   }
   EXPECT_GT(detection.state().segment<3>(PassiveNonlinearObserver::kBias).norm(), 1e4);
@@ -193,18 +199,19 @@ TEST(PassiveObserverHoldTest, ModesAgreeOnAHeldInputBitForBit) {
 // pose estimate lags by between half a sample and a sample of the ramp (5-10 cm in x).
 TEST(PassiveObserverHoldTest, FirstOrderHoldFollowsARampThatTheZeroOrderHoldLags) {
   const Vec3 v(0.1, -0.05, 0.002);  // [m/s, m/s, rad/s]
-  const auto run = [&](Options::Hold hold, double dt) {
-    Options options;
+  const auto run = [&](ObserverOptions::Hold hold, double dt) {
+    ObserverOptions options;
     options.hold = hold;
     options.max_substep = 0.1;
-    PassiveNonlinearObserver observer(options, Mass(), Damping(), NoMooring());
+    PassiveNonlinearObserver observer(options, SeedMass(), SeedDamping(), NoMooring());
     const int samples = static_cast<int>(std::lround(600.0 / dt));
-    for (int k = 0; k <= samples; ++k) observer.Update(dt, Vec3::Zero(), v * (k * dt), kAll);
+    for (int k = 0; k <= samples; ++k)
+      observer.Update(dt, Vec3::Zero(), v * (k * dt), kEveryChannelValid);
     return Vec3(observer.state().segment<3>(PassiveNonlinearObserver::kPose));
   };
-  const Vec3 reference = run(Options::Hold::kFirstOrder, 0.1);
-  const Vec3 first_error = run(Options::Hold::kFirstOrder, 1.0) - reference;
-  const Vec3 zero_error = run(Options::Hold::kZeroOrder, 1.0) - reference;
+  const Vec3 reference = run(ObserverOptions::Hold::kFirstOrder, 0.1);
+  const Vec3 first_error = run(ObserverOptions::Hold::kFirstOrder, 1.0) - reference;
+  const Vec3 zero_error = run(ObserverOptions::Hold::kZeroOrder, 1.0) - reference;
   const Vec3 lag = -zero_error.cwiseQuotient(v);  // [s]
   std::printf("ramp: first-order hold off by %.2e m, zero-order hold by %.2e m in x (%.3f s)\n",
               first_error.x(), zero_error.x(), lag.x());
@@ -218,18 +225,19 @@ TEST(PassiveObserverHoldTest, FirstOrderHoldFollowsARampThatTheZeroOrderHoldLags
 // Start::kAllChannels waits for a complete sample; Start::kEachChannel keeps the guess on a
 // channel until its first valid sample and then takes the sample.
 TEST(PassiveObserverStartTest, AllChannelsOrEachChannel) {
-  PassiveNonlinearObserver all({}, Mass(), Damping(), NoMooring());
+  PassiveNonlinearObserver all({}, SeedMass(), SeedDamping(), NoMooring());
   all.Update(1.0, Vec3::Zero(), Vec3(1.0, 2.0, 0.0), {true, false, true});
   EXPECT_FALSE(all.started());
-  EXPECT_EQ(all.state(), State::Zero());
-  all.Update(1.0, Vec3::Zero(), Vec3(1.0, 2.0, 0.5 + kTwoPi), kAll);
+  EXPECT_EQ(all.state(), ObserverStateVector::Zero());
+  all.Update(1.0, Vec3::Zero(), Vec3(1.0, 2.0, 0.5 + kTwoPi), kEveryChannelValid);
   EXPECT_TRUE(all.started());
   EXPECT_EQ(all.state().segment<3>(PassiveNonlinearObserver::kPose).head<2>(),
             Eigen::Vector2d(1.0, 2.0));
   EXPECT_NEAR(all.state()(PassiveNonlinearObserver::kPose + 2), 0.5, 1e-12);  // wrapped
 
-  PassiveNonlinearObserver each(WithHold(Options::Hold::kFirstOrder, Options::Start::kEachChannel),
-                                Mass(), Damping(), NoMooring());
+  PassiveNonlinearObserver each(
+      WithHold(ObserverOptions::Hold::kFirstOrder, ObserverOptions::Start::kEachChannel),
+      SeedMass(), SeedDamping(), NoMooring());
   each.Reset(Vec3(5.0, 6.0, 0.5));
   each.Update(1.0, Vec3::Zero(), Vec3(1.0, std::nan(""), 0.2), {true, false, true});
   EXPECT_TRUE(each.started());
@@ -239,7 +247,7 @@ TEST(PassiveObserverStartTest, AllChannelsOrEachChannel) {
     each.Update(1.0, Vec3::Zero(), Vec3(1.0, std::nan(""), 0.2), {true, false, true});
   }
   EXPECT_NEAR(each.state()(PassiveNonlinearObserver::kPose + 1), 6.0, 1e-9);  // open loop, at rest
-  each.Update(1.0, Vec3::Zero(), Vec3(1.0, 7.0, 0.2), kAll);
+  each.Update(1.0, Vec3::Zero(), Vec3(1.0, 7.0, 0.2), kEveryChannelValid);
   EXPECT_EQ(each.state()(PassiveNonlinearObserver::kPose + 1), 7.0);
   EXPECT_TRUE(each.state().allFinite());
 }
