@@ -56,16 +56,7 @@ moorsim::mooring_fem::MooringParameters SeedSpec(int lines, int segments, bool c
       moorsim::scenarios::ToMooringParameters(SeedScenario().mooring);
   if (static_cast<int>(spec.lines.size()) > lines) spec.lines.resize(lines);
   if (composite) {
-    moorsim::mooring_fem::LineType rope = spec.line_types.front();
-    rope.name = "polyester";
-    rope.diameter = 0.2;
-    rope.mass_per_length = 40.0;
-    rope.axial_stiffness = 2.0e8;
-    rope.drag_normal = 1.2;
-    rope.drag_tangential = 0.008;
-    rope.added_mass_normal = 1.0;
-    rope.friction_axial = rope.friction_lateral = 0.0;
-    spec.line_types.push_back(rope);
+    spec.line_types.push_back(moorsim::mooring_fem::PolyesterRope());
   }
   for (auto& line : spec.lines) {
     if (!composite) {

@@ -115,6 +115,40 @@ struct LineType {
   double friction_lateral = 0.0;       ///< seabed Coulomb coefficient across the line [-]
 };
 
+/// The seed chain of the library scenarios, "chain_seed" (Ren & Skjetne 2016), with the
+/// seabed friction of chain on clay in the style of DNV-RP-E301 (the papers' seabed is
+/// frictionless): 80 mm, 275 kg/m, EA 2.288e8 N.
+inline LineType SeedChain() {
+  LineType chain;
+  chain.name = "chain_seed";
+  chain.diameter = 0.08;
+  chain.mass_per_length = 275.0;
+  chain.axial_stiffness = 2.28785e8;
+  chain.axial_damping_ratio = 0.5;
+  chain.drag_normal = 0.3;
+  chain.drag_tangential = 1.0;
+  chain.added_mass_normal = 1.5;
+  chain.friction_axial = 0.5;
+  chain.friction_lateral = 1.0;
+  return chain;
+}
+
+/// A generic polyester rope of 200 mm, "polyester" (the library's composite case): neutral
+/// enough to hang between chains, linear-elastic at the slope of a rope in its working
+/// range.
+inline LineType PolyesterRope() {
+  LineType rope;
+  rope.name = "polyester";
+  rope.diameter = 0.2;
+  rope.mass_per_length = 40.0;
+  rope.axial_stiffness = 2.0e8;
+  rope.axial_damping_ratio = 0.5;
+  rope.drag_normal = 1.2;
+  rope.drag_tangential = 0.008;
+  rope.added_mass_normal = 1.0;
+  return rope;
+}
+
 /// A body on a line where two of its sections meet: a clump weight (heavier than the water
 /// it displaces) or a buoy (lighter). It adds to the joint node its mass, its weight in
 /// water, an isotropic added mass and an isotropic quadratic drag.

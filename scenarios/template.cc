@@ -33,38 +33,6 @@ namespace {
 constexpr double kMaxDepth = 12000.0;   // the loader's range: the deepest ocean is 11 km
 constexpr double kMaxLength = 20000.0;  // the loader's range for a line's length
 
-/// The seed chain of the library scenarios (Ren & Skjetne 2016; the seabed friction typical
-/// chain-on-clay values in the style of DNV-RP-E301).
-mooring_fem::LineType SeedChain() {
-  mooring_fem::LineType chain;
-  chain.name = "chain_seed";
-  chain.diameter = 0.08;
-  chain.mass_per_length = 275.0;
-  chain.axial_stiffness = 2.28785e8;
-  chain.axial_damping_ratio = 0.5;
-  chain.drag_normal = 0.3;
-  chain.drag_tangential = 1.0;
-  chain.added_mass_normal = 1.5;
-  chain.friction_axial = 0.5;
-  chain.friction_lateral = 1.0;
-  return chain;
-}
-
-/// A generic polyester rope of 200 mm (the library's composite case): neutral enough to
-/// hang between chains, linear-elastic at the slope of a rope in its working range.
-mooring_fem::LineType PolyesterRope() {
-  mooring_fem::LineType rope;
-  rope.name = "polyester";
-  rope.diameter = 0.2;
-  rope.mass_per_length = 40.0;
-  rope.axial_stiffness = 2.0e8;
-  rope.axial_damping_ratio = 0.5;
-  rope.drag_normal = 1.2;
-  rope.drag_tangential = 0.008;
-  rope.added_mass_normal = 1.0;
-  return rope;
-}
-
 /// A template section's segments: as given, or one per 40 m (at least 2).
 int SegmentsOf(const TemplateSection& section) {
   return section.segments > 0 ? section.segments
@@ -76,7 +44,7 @@ mooring_fem::MooringParameters CompositeSpec(double depth,
                                              const std::vector<TemplateSection>& sections) {
   mooring_fem::MooringParameters spec;
   spec.water.depth = depth;  // sea water and gravity: the Water defaults
-  spec.line_types = {SeedChain(), PolyesterRope()};
+  spec.line_types = {mooring_fem::SeedChain(), mooring_fem::PolyesterRope()};
   mooring_fem::LineParameters line;
   line.id = 1;
   for (const TemplateSection& section : sections) {
@@ -95,7 +63,7 @@ mooring_fem::MooringParameters CompositeSpec(double depth,
 mooring_fem::SectionProperties SeedLine(double depth, double length) {
   mooring_fem::MooringParameters spec;
   spec.water.depth = depth;  // sea water and gravity: the Water defaults
-  spec.line_types = {SeedChain()};
+  spec.line_types = {mooring_fem::SeedChain()};
   const auto line = mooring_fem::LineParameters::Uniform(1, spec.line_types.front().name, length, 1,
                                                          Vec3::Zero(), Vec3::Zero());
   return mooring_fem::MakeLineProperties(spec, line).sections.front();
@@ -500,7 +468,7 @@ std::string WriteTemplate(const TemplateRequest& request, const TemplateLayout& 
     << request.kind << "_" << n << "_lines\n\n";
 
   const mooring_fem::Water water;  // sea water
-  const mooring_fem::LineType chain = SeedChain();
+  const mooring_fem::LineType chain = mooring_fem::SeedChain();
   const mooring_fem::SectionProperties seed = SeedLine(request.depth, 1000.0);
   // "      key: value" with its comment from column 37, as in the library files.
   const auto field = [&y](const std::string& key, const std::string& value,
@@ -543,7 +511,7 @@ std::string WriteTemplate(const TemplateRequest& request, const TemplateLayout& 
     field("friction_lateral", Number(chain.friction_lateral), "");
   }
   if (uses_rope) {
-    const mooring_fem::LineType rope = PolyesterRope();
+    const mooring_fem::LineType rope = mooring_fem::PolyesterRope();
     const mooring_fem::Water sea;
     const double displaced = sea.density * std::numbers::pi / 4.0 * rope.diameter * rope.diameter;
     y << "    # A generic 200 mm polyester rope, linear-elastic at its working slope (give its\n"

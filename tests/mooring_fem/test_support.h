@@ -17,17 +17,8 @@ namespace moorsim::mooring_fem::testing {
 
 /// The seed chain (Ren & Skjetne 2016) as a line type named "chain", with seabed friction.
 inline LineType ChainType() {
-  LineType t;
+  LineType t = SeedChain();
   t.name = "chain";
-  t.diameter = 0.08;
-  t.mass_per_length = 275.0;
-  t.axial_stiffness = 2.28785e8;
-  t.axial_damping_ratio = 0.5;
-  t.drag_normal = 0.3;
-  t.drag_tangential = 1.0;
-  t.added_mass_normal = 1.5;
-  t.friction_axial = 0.5;
-  t.friction_lateral = 1.0;
   return t;
 }
 
