@@ -303,17 +303,11 @@ const Observation& SensorMonitor::Screen(const Observation& observation,
     s.noisy = NoiseLevel::Judge(ratio, options_.noisy_ratio, s.noisy) ||
               NoiseLevel::Judge(fast_ratio, options_.fast_ratio, s.noisy);
     if (s.noisy && !was_noisy && t_ - s.jump_time <= 2.0 * options_.fast_time) {
-      // A jump just before the noise was named, no larger than the noise: the noise's first
-      // samples, which happened to agree. Its re-anchoring is taken back.
-      double nis = 0.0;
+      // A jump judged in the seconds before the noise was: the jump test assumes the noise
+      // the gate was set for, and its agreeing samples were the noise's first ones. Its
+      // re-anchoring is taken back.
       for (int r = 0; r < s.count; ++r) {
-        const Channel& c = channels_[static_cast<std::size_t>(s.first + r)];
-        nis += s.jump(r) * s.jump(r) / std::max(c.level.recent, c.fast);
-      }
-      if (nis <= options_.gate) {
-        for (int r = 0; r < s.count; ++r) {
-          channels_[static_cast<std::size_t>(s.first + r)].offset -= s.jump(r);
-        }
+        channels_[static_cast<std::size_t>(s.first + r)].offset -= s.jump(r);
       }
       s.jump_time = -std::numeric_limits<double>::infinity();
     }

@@ -27,8 +27,8 @@
 //    The sensor stays judged "jump" while its offset is beyond the gate of its rated noise; a jump
 //    back clears it. A vessel cannot move metres between two samples a second apart, a position
 //    reference can. A much noisier sensor's first samples can happen to agree: a jump judged
-//    within twice `fast_time` before the sensor is judged noisy, and within the gate of the
-//    noise it then shows, was that noise, and its re-anchoring is taken back.
+//    within twice `fast_time` before the sensor is judged noisy was that noise (the jump test
+//    assumes the noise the gate was set for), and its re-anchoring is taken back.
 //  - Noisy: each channel's squared innovations averaged over `noise_time` (recent) and over
 //    `baseline_time` (usual, learned while the recent level stays within half the ratio). Recent
 //    beyond `noisy_ratio` times usual, the sensor is judged noisy, and the observers take the

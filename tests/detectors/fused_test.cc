@@ -332,9 +332,10 @@ TEST(Fused, ACellReadingTrueOutweighsAPoseThatSaysItsLineParted) {
 }
 
 TEST(Fused, APoseTheCellsShowWrongIsNamedAndALowCellThenDecidesAlone) {
-  // From 300 s the pose is 6 m off (a gyro 0.1 rad off, say, that its own checks miss):
-  // every cell reads 0.6 % per metre of it off its expectation, in the pattern of a
-  // misplaced turret. Line 2 parts at 700 s, and the bias shows nothing of it.
+  // From 300 s the pose is 6 m off (a GNSS drift that its own checks miss): every cell reads
+  // 0.6 % per metre of it off its expectation, in the pattern of a misplaced turret. The
+  // lines here pull at the vessel's reference point, where no heading error moves them, so
+  // the pattern names the GNSS. Line 2 parts at 700 s, and the bias shows nothing of it.
   Story story;
   story.cells = [](double t, VecX& cells) {
     if (t < 300) return;
@@ -343,11 +344,11 @@ TEST(Fused, APoseTheCellsShowWrongIsNamedAndALowCellThenDecidesAlone) {
       cells(k) *= 1.0 - 0.006 * (3.0 * pull.x() + 5.2 * pull.y());
     }
   };
-  const SensorId pose{.kind = SensorId::Kind::kPose};
+  const SensorId gnss{.kind = SensorId::Kind::kGnss};
   Fused fused;
   const Outcome intact = RunStory(fused, story, 1500);
   EXPECT_FALSE(intact.alarm.has_value());
-  EXPECT_TRUE(Lists(intact.last, pose, SensorSymptom::kDisagrees));
+  EXPECT_TRUE(Lists(intact.last, gnss, SensorSymptom::kDisagrees));
   story.parted = 2;
   story.part_time = 700;
   story.error_time = 700;
