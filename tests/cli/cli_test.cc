@@ -204,14 +204,16 @@ INSTANTIATE_TEST_SUITE_P(Loader, CliBadScenario,
 
 // Every input rule of the loader (the cases of tests/scenarios/bad_input_cases.h, each a
 // one-spot edit of a valid scenario) through the real binary: exit code 2 and exactly the
-// loader's one line, prefixed by the program name.
-class CliEveryLoaderRule
+// loader's one line, prefixed by the program name. Slow: 230 runs of the program, two
+// minutes of CPU under the sanitizers, where the loader's rules run in process
+// (BadScenario) and the program's path from loader to message in CliBadScenario.
+class CliEveryLoaderRuleSlow
     : public ::testing::TestWithParam<::moorsim::scenarios::test_cases::BadInput> {
  protected:
   TempDirectory dir_{::testing::TempDir()};
 };
 
-TEST_P(CliEveryLoaderRule, ValidateExitsWithCode2AndTheLoadersMessage) {
+TEST_P(CliEveryLoaderRuleSlow, ValidateExitsWithCode2AndTheLoadersMessage) {
   using namespace scenarios::test_cases;
   const BadInput& c = GetParam();
   const std::string text = Edit(kBase, c.after, c.old_text, c.new_text);
@@ -229,10 +231,10 @@ std::string RuleName(
   return info.param.name;
 }
 
-INSTANTIATE_TEST_SUITE_P(Parse, CliEveryLoaderRule,
+INSTANTIATE_TEST_SUITE_P(Parse, CliEveryLoaderRuleSlow,
                          ::testing::ValuesIn(::moorsim::scenarios::test_cases::kParseErrors),
                          RuleName);
-INSTANTIATE_TEST_SUITE_P(Validate, CliEveryLoaderRule,
+INSTANTIATE_TEST_SUITE_P(Validate, CliEveryLoaderRuleSlow,
                          ::testing::ValuesIn(::moorsim::scenarios::test_cases::kValidationErrors),
                          RuleName);
 

@@ -7,9 +7,8 @@
 # run whole campaigns, all but the threads-equal-one-thread one; the report's Python checks;
 # the MPI batch): they take many minutes of CPU under the sanitizers and repeat code paths
 # the shorter tests run there; the release pass runs them.
-# The asan preset compiles in unity batches of 8 files (no precompiled headers there): 5 min
-# 10 s instead of 6 min 32 s on 2 cores. The release build, with its precompiled headers,
-# gains nothing from unity batches (392 s against 390 s) and keeps one file per object.
+# What keeps it within CI's time (Ninja, the optimisation levels, unity batches, the sanitizer
+# pass's shards): docs/development.md.
 #   tools/dev/test.sh           everything
 #   tools/dev/test.sh --fast    release build and tests only
 set -euo pipefail
