@@ -14,15 +14,12 @@
 // added to the enum and its table is known everywhere at once.
 #pragma once
 
-#include <algorithm>
 #include <concepts>
 #include <cstddef>
 #include <optional>
 #include <span>
-#include <string>
 #include <string_view>
 #include <type_traits>
-#include <vector>
 
 namespace moorsim {
 
@@ -64,19 +61,6 @@ constexpr std::optional<E> ParseChoice(std::string_view name) {
     if (names[i] == name) return static_cast<E>(i);
   }
   return std::nullopt;
-}
-
-/// "a, b, c": the names of E in alphabetical order, as messages list them ("known: ...").
-template <Choice E>
-std::string ChoiceList() {
-  std::vector<std::string_view> names(ChoiceNames<E>().begin(), ChoiceNames<E>().end());
-  std::sort(names.begin(), names.end());
-  std::string text;
-  for (std::string_view name : names) {
-    if (!text.empty()) text += ", ";
-    text += name;
-  }
-  return text;
 }
 
 }  // namespace moorsim

@@ -12,6 +12,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -264,8 +265,9 @@ class Reader {
     static_assert(Choice<T>, "Reader::As: no conversion to this type");
     const std::string name = PlainText();
     if (const std::optional<T> value = ParseChoice<T>(name)) return *value;
-    Fail("unknown " + std::string(ChoiceNoun<T>()) + " '" + name + "' (known: " + ChoiceList<T>() +
-         ")");
+    const std::span<const std::string_view> known = ChoiceNames<T>();
+    Fail("unknown " + std::string(ChoiceNoun<T>()) + " '" + name +
+         "' (known: " + JoinSorted({known.begin(), known.end()}) + ")");
   }
 
   /// Rejects an explicit tag on this value (`!!str 5`, `!foo`, `! 5`); `plain` says what
