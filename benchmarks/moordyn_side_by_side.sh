@@ -206,6 +206,9 @@ echo "MoorDyn ${md_version:-2} ($prefix), moorsim $("$moorsim" --version 2>/dev/
 echo "$(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); timed runs pinned to core $cpu, median of $runs" >&2
 declare -A best_ms best_md
 rows=()
+# The same rows for plotting (benchmarks/plot_moordyn_side_by_side.py, with KEEP=1).
+echo "model,program,setting,wall_s,rms_vs_moorsim_ref_pct,rms_vs_moordyn_ref_pct,csv" >results.csv
+result() { (IFS=,; echo "$*") >>results.csv; }  # MODEL PROGRAM SETTING WALL MS MD CSV
 for model in seed composite; do
   write_moordyn "$model" RK2 0.002 "$model.txt"
   "$moorsim" import moordyn "$model.txt" --out "$model.yaml" >/dev/null
@@ -215,8 +218,11 @@ for model in seed composite; do
   read -r s d c <<<"$md_reference"
   md_ref_wall=$(run_moordyn "$model" "$s" "$d" "$c" "$md_ref")
   [[ -s $md_ref ]] || { echo "MoorDyn reference failed: $(cat "${md_ref%.csv}.err")" >&2; exit 1; }
-  rows+=("| $model | moorsim | reference: rtol 1e-7 (tolerance scale $ms_reference) | $ms_ref_wall (1 run) | - | $(compare "$md_ref" "$ms_ref") |")
-  rows+=("| $model | MoorDyn | reference: $s, dtM $d s, coupling $c s | $md_ref_wall (1 run) | $(compare "$ms_ref" "$md_ref") | - |")
+  ms_vs_md=$(compare "$md_ref" "$ms_ref") md_vs_ms=$(compare "$ms_ref" "$md_ref")
+  rows+=("| $model | moorsim | reference: rtol 1e-7 (tolerance scale $ms_reference) | $ms_ref_wall (1 run) | - | $ms_vs_md |")
+  rows+=("| $model | MoorDyn | reference: $s, dtM $d s, coupling $c s | $md_ref_wall (1 run) | $md_vs_ms | - |")
+  result "$model" moorsim reference "$ms_ref_wall" 0 "$ms_vs_md" "$ms_ref"
+  result "$model" MoorDyn reference "$md_ref_wall" "$md_vs_ms" 0 "$md_ref"
   best_ms[$model]="" best_md[$model]=""
   for scale in $ms_settings; do
     echo "$model: moorsim tolerance scale $scale ..." >&2
@@ -227,6 +233,7 @@ for model in seed composite; do
     rtol=$(awk -v s="$scale" 'BEGIN { printf "%g", 1e-4 * s }')
     label="rtol $rtol"; [[ $scale == 1 ]] && label="default (rtol 1e-4, atol 1e-3)"
     rows+=("| $model | moorsim | $label | $wall | $own | $other |")
+    result "$model" moorsim "rtol $rtol" "$wall" "$own" "$other" "$out"
     if awk -v e="$own" 'BEGIN { exit !(e <= 1.0) }'; then
       if [[ -z ${best_ms[$model]} ]] ||
          awk -v a="$wall" -v b="${best_ms[$model]##*|}" 'BEGIN { exit !(a < b) }'; then
@@ -250,6 +257,7 @@ for model in seed composite; do
     wall=$(printf '%s\n' "${walls[@]}" | median)
     own=$(compare "$md_ref" "$out") other=$(compare "$ms_ref" "$out")
     rows+=("| $model | MoorDyn | $label | $wall | $other | $own |")
+    result "$model" MoorDyn "$s dtM $(printf '%.3g' "$d") s" "$wall" "$other" "$own" "$out"
     if awk -v e="$own" 'BEGIN { exit !(e <= 1.0) }'; then
       if [[ -z ${best_md[$model]} ]] ||
          awk -v a="$wall" -v b="${best_md[$model]##*|}" 'BEGIN { exit !(a < b) }'; then

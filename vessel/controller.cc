@@ -8,16 +8,15 @@
 #include "core/angles.h"
 #include "core/error.h"
 #include "core/format.h"
+#include "core/observer_state.h"
 
 namespace moorsim::vessel {
 
 namespace {
 
-// R(psi)^T v for the horizontal-plane rotation (Fossen 2011 section 2.2, the yaw-only case
-// of R(Theta)).
+// R(psi)^T v: a [force, force, moment] vector from NED into body axes.
 Vec3 NedToBody(const Vec3& v, double psi) {
-  const double c = std::cos(psi), s = std::sin(psi);
-  return Vec3(c * v.x() + s * v.y(), -s * v.x() + c * v.y(), v.z());
+  return YawRotation(std::cos(psi), std::sin(psi)).transpose() * v;
 }
 
 void Require(bool ok, const std::string& field, double value, const char* rule) {
