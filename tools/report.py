@@ -689,6 +689,22 @@ def delay_text(s: dict) -> str:
     return f"{s['median']:.4g} / {s['p95']:.4g} / {s['max']:.4g} s (n = {s['n']})"
 
 
+def print_summary(rep: dict) -> None:
+    """The headline numbers per detector on standard output, for a terminal without a browser."""
+    if not rep["detectors"]:
+        return
+    rows = [["detector", "detected", "isolated (the right line)", "delay median / p95 / max",
+             "false alarms, intact runs"]]
+    for label, r in rep["detectors"].items():
+        intact = r["false_alarms_per_hour"].get("intact")
+        rows.append([label, rate_text(r["detection"]), rate_text(r["isolation"]),
+                     delay_text(r["delay"]), poisson_text(intact) if intact else "– (no intact run)"])
+    widths = [max(len(row[i]) for row in rows) for i in range(len(rows[0]))]
+    print("rates: k/n of the failure runs with a 95 % Wilson interval; the report has the rest")
+    for row in rows:
+        print("  ".join(cell.ljust(width) for cell, width in zip(row, widths)).rstrip())
+
+
 def image(name: str | None, alt: str) -> str:
     return f'<img src="{html.escape(name)}" alt="{html.escape(alt)}">\n' if name else ""
 
@@ -998,6 +1014,7 @@ def main(argv: list[str]) -> int:
     print(f"wrote {out_dir / 'report.json'}")
     plt.rcParams.update({"figure.max_open_warning": 0})
     write_html(Page(plt, out_dir, campaign, rep))
+    print_summary(rep)
     plt.close("all")
     return 0
 

@@ -182,6 +182,12 @@ def check(directory: Path) -> list[str]:
                 expect(f"{label} {b} false alarms",
                        entry.get("false_alarms_per_hour", {}).get("count"), count)
 
+        # The summary on standard output: one row per detector with its isolation k/n.
+        row = [r for r in done.stdout.splitlines() if r.split(" ", 1)[0] == label]
+        if n and not (len(row) == 1 and f"({len(isolated)}/{n})" in row[0]):
+            errors.append(f"{label}: no summary row with isolation ({len(isolated)}/{n}) in "
+                          f"report.py's output")
+
         delays = sorted(float(col["delay"][i]) for i in detected)
         median = None
         if delays:
