@@ -862,15 +862,21 @@ void MooringSystem::NodeForce(const Chain& c, int k, Vec3* F_out, NodeMass* M_ou
   }
 }
 
+inline const NodeShare& MooringSystem::ShareAt(const Chain& c, int k, NodeShare* end) const {
+  const bool has_below = k > 0;
+  const bool has_above = k < c.segments;
+  if (has_below && has_above) return shares_[c.line][c.first_node + k];
+  *end = ShareOf(lines_[c.line], c.first_node + k, has_below, has_above);
+  return *end;
+}
+
 template <bool kWaves>
 void MooringSystem::NodeForceIn(const Chain& c, int k, Vec3* F_out, NodeMass* M_out) const {
   const LineProperties& lp = lines_[c.line];
   const bool has_below = k > 0;
   const bool has_above = k < c.segments;
-  NodeShare end;  // a chain's end node: computed here; the others' are kept
-  const NodeShare& share = has_below && has_above
-                               ? shares_[c.line][c.first_node + k]
-                               : (end = ShareOf(lp, c.first_node + k, has_below, has_above));
+  NodeShare end;
+  const NodeShare& share = ShareAt(c, k, &end);
   const Vec3& r = pos_[k];
   const Vec3& v = vel_[k];
   Vec3 u = v - current_.VelocityAt(r.z());
@@ -943,10 +949,8 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, Node
   }
   const bool has_below = k > 0;
   const bool has_above = k < c.segments;
-  NodeShare end;  // a chain's end node: computed here; the others' are kept
-  const NodeShare& share = has_below && has_above
-                               ? shares_[c.line][c.first_node + k]
-                               : (end = ShareOf(lp, c.first_node + k, has_below, has_above));
+  NodeShare end;
+  const NodeShare& share = ShareAt(c, k, &end);
   const Vec3& r = pos_[k];
   const Vec3& v = vel_[k];
   std::optional<WaterMotion> water;

@@ -361,6 +361,9 @@ class MooringSystem {
   /// extra).
   template <bool kWaves>
   void NodeForceIn(const Chain& chain, int k, Vec3* F, NodeMass* M) const;
+  /// Node k's share of its line: kept for an inner node, computed into *end for a chain's
+  /// end node (it lacks the segment beyond it).
+  const NodeShare& ShareAt(const Chain& chain, int k, NodeShare* end) const;
   /// Adds the node's force derivatives; needs the node's acceleration for d(M a)/dr.
   void NodeForceJacobian(const Chain& chain, int k, const Vec3& accel, NodeJacobian* J) const;
 
