@@ -1,5 +1,5 @@
 // Every detector on synthetic evidence whose truth is known, and the battery every
-// registered detector type runs through (STYLE.md: one battery per plugin family; a new
+// registered detector type runs through (one battery per plugin family: a new
 // detector joins it by its registry row alone).
 //
 // The synthetic bank: 9 hypotheses (0 intact, 1-8 single-line failures) whose models differ

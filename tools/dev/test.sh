@@ -31,6 +31,15 @@ if grep -q 'not included in the "nav"' <<<"$guide"; then
   exit 1
 fi
 
+# What users read (documents, comments, scenario files) speaks of moorsim, not of how its
+# work is organised: no issue numbers, numbered rounds, internal guides or machine paths.
+process='\b[Ii]ssues? #?[0-9]+\b|\b([Ff]irst|[Ss]econd|[Tt]hird|[Ff]ourth|[Ff]ifth|[Ss]ixth|[Ss]eventh|[Ee]ighth|[Nn]inth|[Tt]enth|[a-z]+teenth|[Tt]went[a-z-]+|[0-9]+(st|nd|rd|th)) rounds?\b|\b[Rr]ounds? [0-9]+\b|STYLE\.md|DESIGN\.md|\bseed 00[0-9]|/work/|\.\./shared'
+if found=$(git grep -n -I -E "$process" -- . ':!tools/dev/test.sh'); then
+  echo "$found"
+  echo "wording: the lines above speak of the project's process, not of moorsim"
+  exit 1
+fi
+
 echo "== release build and tests ($SECONDS s)"
 cmake --preset release >/dev/null
 # The test executables and the program only: the benchmarks build with tools/main.sh.
