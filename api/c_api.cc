@@ -3,6 +3,7 @@
 // codes and the calling thread's message, and never lets an exception cross into C.
 #include "moorsim/moorsim.h"
 
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <exception>
@@ -12,19 +13,27 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "core/version.h"
 #include "mooring_fem/coupled_lines.h"
 #include "scenarios/load.h"
 #include "simulation/lines_coupling.h"
 #include "simulation/stepped_plant.h"
 
+// An interrupt request (moorsim_*_interrupt): set from any thread or a signal handler,
+// taken by the call that honours it.
+static_assert(std::atomic<bool>::is_always_lock_free,
+              "an interrupt request is set from signal handlers");
+
 struct moorsim_lines {
   moorsim::scenarios::Scenario scenario;
   std::unique_ptr<moorsim::mooring_fem::CoupledLines> lines;
+  std::atomic<bool> interrupt{false};
 };
 
 struct moorsim_plant {
   std::unique_ptr<moorsim::simulation::SteppedPlant> plant;
+  std::atomic<bool> interrupt{false};
 };
 
 namespace {
@@ -56,6 +65,9 @@ int Guard(const char* function, Body&& body) {
   } catch (const moorsim::SolverError& e) {
     last_error = std::string(function) + ": " + e.what();
     return MOORSIM_ERROR_SOLVER;
+  } catch (const moorsim::Interrupted& e) {
+    last_error = std::string(function) + ": " + e.what() + " (on request)";
+    return MOORSIM_ERROR_INTERRUPTED;
   } catch (const moorsim::ContractError& e) {
     last_error = std::string(function) + ": " + e.what();
     return MOORSIM_ERROR_INTERNAL;
@@ -142,6 +154,11 @@ const moorsim::simulation::SteppedPlant& Plant(const moorsim_plant* handle) {
 
 void Copy(const double* from, int n, double* to) { std::copy(from, from + n, to); }
 
+// The plant's interrupt request, taken when it is honoured.
+std::function<bool()> InterruptOf(moorsim_plant* plant) {
+  return [plant] { return plant->interrupt.exchange(false); };
+}
+
 }  // namespace
 
 extern "C" {
@@ -219,12 +236,18 @@ int moorsim_lines_step(moorsim_lines* lines, const double* x, const double* xd, 
     Require(t != nullptr, "t is NULL");
     Require(dt != nullptr, "dt is NULL");
     // The caller's clock may have summed its steps in another order: a relative 1e-9.
-    Require(
-        std::abs(*t - l.time()) <= 1e-9 * std::max(1.0, std::abs(l.time())),
-        "t = " + std::to_string(*t) + " s but the lines are at " + std::to_string(l.time()) + " s");
-    WriteLoad(l.Step(pose, velocity, *dt), f);
+    Require(std::abs(*t - l.time()) <= 1e-9 * std::max(1.0, std::abs(l.time())),
+            "t = " + moorsim::FormatNumber(*t) + " s but the lines are at " +
+                moorsim::FormatNumber(l.time()) + " s");
+    WriteLoad(l.Step(pose, velocity, *dt, [lines] { return lines->interrupt.exchange(false); }), f);
     *t = l.time();
   });
+}
+
+int moorsim_lines_interrupt(moorsim_lines* lines) {
+  if (lines == nullptr) return MOORSIM_ERROR_USAGE;
+  lines->interrupt.store(true);
+  return MOORSIM_OK;
 }
 
 int moorsim_lines_body_load(moorsim_lines* lines, double* f) {
@@ -377,7 +400,13 @@ int moorsim_plant_time(const moorsim_plant* plant, double* t) {
 }
 
 int moorsim_plant_advance_to(moorsim_plant* plant, double t) {
-  return Guard("moorsim_plant_advance_to", [&] { Plant(plant).AdvanceTo(t); });
+  return Guard("moorsim_plant_advance_to", [&] { Plant(plant).AdvanceTo(t, InterruptOf(plant)); });
+}
+
+int moorsim_plant_interrupt(moorsim_plant* plant) {
+  if (plant == nullptr) return MOORSIM_ERROR_USAGE;
+  plant->interrupt.store(true);
+  return MOORSIM_OK;
 }
 
 int moorsim_plant_set_thrust(moorsim_plant* plant, const double* command) {
@@ -477,7 +506,7 @@ int moorsim_plant_restore(moorsim_plant* plant, const void* buffer, size_t size)
   return Guard("moorsim_plant_restore", [&] {
     auto& p = Plant(plant);
     Require(buffer != nullptr, "the buffer is NULL");
-    p.Restore({static_cast<const std::uint8_t*>(buffer), size});
+    p.Restore({static_cast<const std::uint8_t*>(buffer), size}, InterruptOf(plant));
   });
 }
 

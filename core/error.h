@@ -57,6 +57,13 @@ class SolverError : public Error {
   using Error::Error;
 };
 
+/// A long call stopped on request (Ctrl-C, an API's interrupt) before it was done; the
+/// message names the time reached. What the call leaves behind its own documentation says.
+class Interrupted : public Error {
+ public:
+  using Error::Error;
+};
+
 /// A broken programming contract (wrong sizes, a call out of order): a bug, reported as a
 /// failed run rather than an abort.
 class ContractError : public Error {

@@ -13,10 +13,12 @@
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
+#include <utility>
 
 #include "core/block_solver.h"
 #include "core/error.h"
 #include "core/fast_kernels.h"
+#include "core/format.h"
 
 namespace moorsim {
 
@@ -191,6 +193,8 @@ struct Integrator::Impl {
   void* cvode = nullptr;
   // Why the last RHS/Jacobian call failed, reported after CVode() returns.
   std::string callback_error;
+  std::function<bool()> interrupt;  // Integrator::SetInterruptCheck
+  bool interrupted = false;
 
   ~Impl() {
     if (cvode) CVodeFree(&cvode);
@@ -219,6 +223,10 @@ struct Integrator::Impl {
   static int Rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
     auto* self = static_cast<Impl*>(user_data);
     const ScopedSeconds clock(self->rhs_seconds);
+    if (self->interrupt && self->interrupt()) {
+      self->interrupted = true;
+      return -1;  // unrecoverable: CVode() returns at once
+    }
     return Guarded(self, [&] {
       self->system->Derivatives(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
       const double* d = N_VGetArrayPointer(ydot);
@@ -397,6 +405,7 @@ void Integrator::AdvanceTo(double t_out) {
   if (t_out <= t_) return;
   Impl& m = *impl_;
   m.callback_error.clear();
+  m.interrupted = false;
   sunrealtype t_reached = t_;
   Impl* const previous = Impl::active;
   Impl::active = &m;
@@ -405,6 +414,9 @@ void Integrator::AdvanceTo(double t_out) {
   if (flag < 0) {
     sunrealtype t_now = t_;
     if (CVodeGetCurrentTime(m.cvode, &t_now) < 0) t_now = t_;
+    if (m.interrupted) {
+      throw Interrupted("interrupted at t = " + FormatNumber(t_now) + " s");
+    }
     std::ostringstream msg;
     // CVodeGetReturnFlagName returns a malloc'd string that the caller frees.
     char* flag_name = CVodeGetReturnFlagName(flag);
@@ -415,6 +427,10 @@ void Integrator::AdvanceTo(double t_out) {
     throw SolverError(msg.str());
   }
   t_ = t_reached;
+}
+
+void Integrator::SetInterruptCheck(std::function<bool()> check) {
+  impl_->interrupt = std::move(check);
 }
 
 const double* Integrator::state() const { return N_VGetArrayPointer(impl_->y); }

@@ -3,6 +3,7 @@
 // Jacobian supplied by an OdeSystem.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -72,6 +73,10 @@ class Integrator {
   void AdvanceTo(double t_out);
   /// CVODE will not step beyond this time (used for events such as a line failure).
   void SetStopTime(double t_stop);
+  /// Asked at every right-hand-side evaluation from now on (empty: never): once it returns
+  /// true, AdvanceTo() stops and throws moorsim::Interrupted; the integrator must then be
+  /// restarted before it is used again. It must be cheap (read a flag, look at a clock).
+  void SetInterruptCheck(std::function<bool()> check);
   /// Starts over at (t0, x0), as a new Integrator of the same system and options would
   /// (the same steps, bit for bit), keeping this one's memory and the linear solver's
   /// symbolic work: microseconds instead of the new solver's set-up. The system's state

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "core/sha256.h"
 #include "core/state_bytes.h"
 
@@ -148,7 +149,15 @@ Vec6 CoupledLines::Init(const BodyDofs& pose, const BodyDofs& velocity, double t
   x_.assign(mooring_.StateSize(), 0.0);
   std::vector<Vec3> fairleads;
   for (const PointKinematics& f : FairleadsNow()) fairleads.push_back(f.position);
-  mooring_.CatenaryState(fairleads, x_.data());
+  try {
+    mooring_.CatenaryState(fairleads, x_.data());
+  } catch (const InputError&) {
+    throw;
+  } catch (const Error& e) {  // a line that cannot hang between its anchor and the fairlead
+    throw InputError("the body at x, y, z = " + FormatNumber(pose[0]) + ", " +
+                     FormatNumber(pose[1]) + ", " + FormatNumber(pose[2]) +
+                     " m puts a fairlead where its line cannot hang: " + e.what());
+  }
   mooring_.SettleStatic(fairleads, x_.data());
   StartIntegrator();
   initialized_ = true;
@@ -165,25 +174,31 @@ void CoupledLines::StartIntegrator() {
   topology_changed_ = false;
 }
 
-Vec6 CoupledLines::Step(const BodyDofs& pose, const BodyDofs& velocity, double dt) {
+Vec6 CoupledLines::Step(const BodyDofs& pose, const BodyDofs& velocity, double dt,
+                        const std::function<bool()>& interrupt) {
   CheckInitialized("a step");
   CheckFinite(pose, "pose");
   CheckFinite(velocity, "velocity");
-  if (!(dt > 0.0) || !std::isfinite(dt)) {
-    throw InputError("time step " + std::to_string(dt) + " s must be a finite number > 0");
+  if (!(dt >= kMinStep && dt <= kMaxStep)) {
+    throw InputError("time step " + FormatNumber(dt) + " s must be a number from " +
+                     FormatNumber(kMinStep) + " to " + FormatNumber(kMaxStep) +
+                     " s (step again to go further)");
   }
   const double t1 = t_ + dt;
   if (!(t1 > t_)) {
-    throw InputError("time step " + std::to_string(dt) + " s is lost in the time " +
-                     std::to_string(t_) + " s");
+    throw InputError("time step " + FormatNumber(dt) + " s is lost in the time " +
+                     FormatNumber(t_) + " s");
   }
   const BodyDofs q0 = path_->pose(), dq0 = path_->velocity();
   path_->Extend(t1, pose, velocity);
   try {
     integrator_->SetStopTime(t1);
+    integrator_->SetInterruptCheck(interrupt);
     integrator_->AdvanceTo(t1);
+    integrator_->SetInterruptCheck({});
   } catch (const Error&) {
     // Back to the state before the step, with an integrator that can go on from it.
+    integrator_->SetInterruptCheck({});
     path_->Hold(t_, q0, dq0);
     StartIntegrator();
     throw;

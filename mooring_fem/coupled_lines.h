@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -45,15 +46,23 @@ class CoupledLines {
   /// Puts the body at `pose` moving with `velocity` at time `t0` and the lines at their
   /// static equilibrium for that pose; returns the lines' load on the body (LoadOnBody).
   /// May be called again to start over (intact lines). Throws moorsim::Error if the static
-  /// solve fails, moorsim::InputError for values that are not finite.
+  /// solve fails, moorsim::InputError for values that are not finite or a pose that puts a
+  /// fairlead where its line cannot hang (beyond its reach, below its anchor).
   Vec6 Init(const BodyDofs& pose, const BodyDofs& velocity, double t0 = 0.0);
+
+  /// The shortest and the longest step [s]: shorter ones are lost in the integrator's
+  /// arithmetic, longer ones are no coupling step (and would run for minutes unasked).
+  static constexpr double kMinStep = 1e-9;
+  static constexpr double kMaxStep = 86400.0;
 
   /// Integrates the lines over [time(), time() + dt] with the body's path ending at `pose`
   /// and `velocity`, and returns their load on the body there. Throws moorsim::SolverError
-  /// (the time and the CVODE flag) if the integrator fails; the state is then the one
-  /// before the step. Throws moorsim::InputError for dt <= 0 or values that are not finite,
-  /// ContractError before Init().
-  Vec6 Step(const BodyDofs& pose, const BodyDofs& velocity, double dt);
+  /// (the time and the CVODE flag) if the integrator fails, and moorsim::Interrupted once
+  /// `interrupt` (asked as the integrator evaluates the lines, empty: never) returns true;
+  /// the state is then the one before the step. Throws moorsim::InputError for a dt outside
+  /// [kMinStep, kMaxStep] or values that are not finite, ContractError before Init().
+  Vec6 Step(const BodyDofs& pose, const BodyDofs& velocity, double dt,
+            const std::function<bool()>& interrupt = {});
 
   /// The lines' load on the body at the current state: force [N] and moment about the
   /// reference point [N m], both in Earth axes (north, east, down).

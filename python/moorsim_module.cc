@@ -9,8 +9,10 @@
 #include <pybind11/stl.h>
 
 #include <atomic>
+#include <chrono>
 #include <csignal>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -81,37 +83,79 @@ std::span<const std::uint8_t> StateOf(const py::bytes& state) {
   return {reinterpret_cast<const std::uint8_t*>(view.data()), view.size()};
 }
 
-// Asked between output rows of long calls (from any thread): Ctrl-C in Python stops them
-// there. Only the main thread sees signals; the first stop is kept for every later ask.
+// Ctrl-C for long calls that run without the GIL. Asked from any thread, as often as a
+// call likes (it looks at a clock, and at Python's signals at most every 20 ms); only the
+// main thread sees signals. The first stop is kept for every later ask.
 class PythonStop {
  public:
+  bool operator()() {
+    if (signal_.load() != 0) return true;
+    const auto now = std::chrono::steady_clock::now().time_since_epoch().count();
+    auto last = asked_.load();
+    if (now - last < kEvery && now >= last) return false;
+    if (!asked_.compare_exchange_strong(last, now)) return signal_.load() != 0;
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) signal_ = SIGINT;
+    return signal_.load() != 0;
+  }
+  // As the run and campaign requests ask: the signal, 0 for none.
   std::function<int()> Function() {
-    return [this] {
-      if (const int s = signal_.load()) return s;
-      py::gil_scoped_acquire gil;
-      if (PyErr_CheckSignals() != 0) signal_ = SIGINT;
-      return signal_.load();
-    };
+    return [this] { return (*this)() ? signal_.load() : 0; };
   }
   bool stopped() const { return signal_.load() != 0; }
 
  private:
+  static constexpr std::chrono::steady_clock::rep kEvery =
+      std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::milliseconds(20))
+          .count();
   std::atomic<int> signal_{0};
+  std::atomic<std::chrono::steady_clock::rep> asked_{0};
 };
 
-// Runs `call` without the GIL, with `stop_requested` (the call's stop hook) set to Ctrl-C;
-// an interrupted call raises the KeyboardInterrupt.
+// Runs `call(stop)` without the GIL, `stop` answering Ctrl-C; an interrupted call raises
+// the KeyboardInterrupt (whatever the call threw on its way out).
 template <typename Call>
-auto Interruptible(std::function<int()>& stop_requested, Call call) {
+auto Interruptibly(Call call) {
   PythonStop stop;
-  stop_requested = stop.Function();
-  std::optional<decltype(call())> result;
-  {
+  std::optional<decltype(call(stop))> result;
+  try {
     py::gil_scoped_release release;
-    result.emplace(call());
+    result.emplace(call(stop));
+  } catch (const Error&) {
+    if (!stop.stopped()) throw;
   }
   if (stop.stopped()) throw py::error_already_set();
   return std::move(*result);
+}
+
+// The same for calls that take a stop hook as a request's `stop_requested`.
+template <typename Call>
+auto Interruptible(std::function<int()>& stop_requested, Call call) {
+  return Interruptibly([&](PythonStop& stop) {
+    stop_requested = stop.Function();
+    return call();
+  });
+}
+
+// An integer argument in [low, high], or a TypeError (not an integer) or ValueError (out of
+// range; IndexError for an index) naming it: pybind's own refusal of a Python int too large
+// for a C++ one would name no argument.
+template <typename Int>
+Int IntegerArgument(const py::handle& value, const char* name, Int low, Int high,
+                    bool index = false) {
+  if (!PyLong_Check(value.ptr()) || PyBool_Check(value.ptr())) {
+    throw py::type_error(std::string(name) + " must be an integer, not " +
+                         std::string(py::str(py::type::handle_of(value).attr("__name__"))));
+  }
+  const py::int_ number = py::reinterpret_borrow<py::int_>(value);
+  const bool in_range = number >= py::int_(low) && number <= py::int_(high);
+  if (!in_range) {
+    const std::string range = std::to_string(low) + ".." + std::to_string(high);
+    const std::string given = std::string(name) + " " + std::string(py::repr(value));
+    if (index) throw py::index_error(given + " is not one of the " + name + "s " + range);
+    throw py::value_error(given + " is not in " + range);
+  }
+  return number.cast<Int>();
 }
 
 // The lines of a scenario for a coupling (mooring_fem/coupled_lines.h).
@@ -122,7 +166,7 @@ class Lines {
 
   int num_lines() const { return lines_->num_lines(); }
   double time() const { return lines_->time(); }
-  int node_count(int line) const { return lines_->num_nodes(Index(line)); }
+  int node_count(const py::handle& line) const { return lines_->num_nodes(Index(line)); }
 
   Array Init(const Array& x, const Array& xd) {
     const auto pose = Dofs(x, "x"), velocity = Dofs(xd, "xd");
@@ -131,12 +175,9 @@ class Lines {
   Array Step(const Array& x, const Array& xd, double dt) {
     Ready();
     const auto pose = Dofs(x, "x"), velocity = Dofs(xd, "xd");
-    Vec6 load;
-    {
-      py::gil_scoped_release release;
-      load = lines_->Step(pose, velocity, dt);
-    }
-    return Vector<6>(load);
+    return Vector<6>(Interruptibly([&](PythonStop& stop) {
+      return lines_->Step(pose, velocity, dt, [&stop] { return stop(); });
+    }));
   }
   Array BodyLoad() {
     Ready();
@@ -159,18 +200,18 @@ class Lines {
     Ready();
     return Vector(lines_->AnchorTensions());
   }
-  Array SegmentTensions(int line) {
+  Array SegmentTensions(const py::handle& line) {
     Ready();
     return Vector(lines_->SegmentTensions(Index(line)));
   }
-  Array NodePositions(int line) {
+  Array NodePositions(const py::handle& line) {
     Ready();
     std::vector<double> v;
     for (const Vec3& p : lines_->NodePositions(Index(line)))
       v.insert(v.end(), p.data(), p.data() + 3);
     return Matrix(v, v.size() / 3, 3);
   }
-  void Part(int line, const std::string& where, std::optional<int> node) {
+  void Part(const py::handle& line, const std::string& where, const py::object& node) {
     Ready();
     mooring_fem::LineFailure f;
     f.line = Index(line);
@@ -181,8 +222,9 @@ class Lines {
     }
     f.mode = *mode;
     if (f.mode == mooring_fem::FailureMode::kNode) {
-      if (!node) throw py::value_error("part(where='node') needs node=K");
-      f.node = *node;
+      if (node.is_none()) throw py::value_error("part(where='node') needs node=K");
+      const int last = lines_->num_nodes(f.line) - 2;
+      f.node = IntegerArgument<int>(node, "node", 1, std::max(last, 1), true);
     }
     lines_->Part(f);
   }
@@ -199,12 +241,8 @@ class Lines {
       throw std::runtime_error("the lines are not initialised (call init first)");
     }
   }
-  int Index(int line) const {
-    if (line < 1 || line > num_lines()) {
-      throw py::index_error("line " + std::to_string(line) + " is not one of the lines 1.." +
-                            std::to_string(num_lines()));
-    }
-    return line - 1;
+  int Index(const py::handle& line) const {
+    return IntegerArgument<int>(line, "line", 1, num_lines(), true) - 1;
   }
   scenarios::Scenario scenario_;
   std::unique_ptr<mooring_fem::CoupledLines> lines_;
@@ -238,8 +276,10 @@ class Plant {
   double time() const { return plant_.time(); }
   int num_lines() const { return plant_.num_lines(); }
   void AdvanceTo(double t) {
-    py::gil_scoped_release release;
-    plant_.AdvanceTo(t);
+    Interruptibly([&](PythonStop& stop) {
+      plant_.AdvanceTo(t, [&stop] { return stop(); });
+      return 0;
+    });
   }
   py::dict Record() {
     const simulation::Sample& s = plant_.Now();
@@ -274,8 +314,10 @@ class Plant {
   }
   void Restore(const py::bytes& state) {
     const std::span<const std::uint8_t> bytes = StateOf(state);
-    py::gil_scoped_release release;
-    plant_.Restore(bytes);
+    Interruptibly([&](PythonStop& stop) {
+      plant_.Restore(bytes, [&stop] { return stop(); });
+      return 0;
+    });
   }
 
  private:
@@ -334,14 +376,15 @@ py::dict Detect(const std::string& scenario_path, const std::vector<std::string>
   };
   check_rows(pose, 3, "pose");
   if (thrust) check_rows(*thrust, 3, "thrust");
-  if (tensions) check_rows(*tensions, 0, "tensions");
+  // One reading per line, as `moorsim detect` takes them: a cell for every line or none.
+  if (tensions) check_rows(*tensions, scenario.mooring.lines.size(), "tensions");
   const std::unique_ptr<simulation::Detection> detection = simulation::MakeDetection(scenario);
   const std::size_t detectors = detection->records().size();
   const std::size_t hypotheses = static_cast<std::size_t>(detection->num_hypotheses());
   std::vector<std::vector<double>> alarm(detectors), decision(detectors), score(detectors);
-  {
-    py::gil_scoped_release release;
+  Interruptibly([&](PythonStop& stop) {
     for (std::size_t k = 0; k < n; ++k) {
+      if (k % 256 == 0 && stop()) throw Interrupted("interrupted");
       detectors::Observation o;
       o.t = time.data()[k];
       for (int i = 0; i < 3; ++i) {
@@ -362,7 +405,8 @@ py::dict Detect(const std::string& scenario_path, const std::vector<std::string>
         score[j].insert(score[j].end(), v.score.begin(), v.score.end());
       }
     }
-  }
+    return 0;
+  });
   py::dict by_label;
   for (std::size_t j = 0; j < detectors; ++j) {
     const std::size_t width = n > 0 ? score[j].size() / n : hypotheses;
@@ -426,7 +470,14 @@ PYBIND11_MODULE(_moorsim, m) {
       .def("restore", &Lines::Restore, "state"_a);
 
   py::class_<Plant>(m, "Plant")
-      .def(py::init<const std::string&, std::uint64_t, const std::vector<std::string>&>(),
+      .def(py::init([](const std::string& scenario, const py::handle& seed,
+                       const std::vector<std::string>& overrides) {
+             return std::make_unique<Plant>(
+                 scenario,
+                 IntegerArgument<std::uint64_t>(seed, "seed", 0,
+                                                std::numeric_limits<std::uint64_t>::max()),
+                 overrides);
+           }),
            "scenario"_a, "seed"_a, "overrides"_a = std::vector<std::string>{})
       .def_property_readonly("time", &Plant::time)
       .def_property_readonly("num_lines", &Plant::num_lines)

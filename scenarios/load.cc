@@ -234,6 +234,9 @@ LineSpec ParseLine(const Reader& r, int entry, int default_segments,
     line.sections.push_back({item.Required<std::string>("type"), item.Required<double>("length"),
                              item.Required<int>("segments")});
   });
+  if (line.sections.empty()) {
+    sections->Fail("lists no section: a line needs one or more (or type, length and segments)");
+  }
   if (const std::optional<Reader> bodies = r.Find("bodies")) {
     line.joints.assign(line.sections.size() - 1, {});
     std::vector<bool> taken(line.joints.size(), false);

@@ -53,12 +53,7 @@ std::string Text(const std::string& text) {
     return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
   });
   if (plain && !ToNumber(text)) return text;
-  std::string quoted = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') quoted += '\\';
-    quoted += c;
-  }
-  return quoted + "\"";
+  return strict_yaml::DoubleQuoted(text);
 }
 
 struct Row {
@@ -299,13 +294,17 @@ std::string SeafloorGrid(const std::string& path, int line, const std::string& n
       numbers[0] != std::floor(numbers[0]) || numbers[1] != std::floor(numbers[1])) {
     throw bad("it must start with the point counts nx and ny (2 or more each)");
   }
+  // The counts as read (a double: 2^63 or 1e300 are no size), and the numbers they need,
+  // also a double, so that no product wraps around.
+  const double need = 2.0 + numbers[0] + numbers[1] + 3.0 * numbers[0] * numbers[1];
+  if (static_cast<double>(numbers.size()) != need) {
+    throw bad("holds " + std::to_string(numbers.size()) + " numbers where " +
+              FormatNumber(numbers[0]) + " x " + FormatNumber(numbers[1]) + " points need " +
+              FormatNumber(need));
+  }
+  // The file's numbers are few (its size is bounded), so the counts fit a size_t now.
   const std::size_t nx = static_cast<std::size_t>(numbers[0]);
   const std::size_t ny = static_cast<std::size_t>(numbers[1]);
-  if (numbers.size() != 2 + nx + ny + 3 * nx * ny) {
-    throw bad("holds " + std::to_string(numbers.size()) + " numbers where " + std::to_string(nx) +
-              " x " + std::to_string(ny) + " points need " +
-              std::to_string(2 + nx + ny + 3 * nx * ny));
-  }
   const double* xs = numbers.data() + 2;
   const double* ys = xs + nx;
   const double* rows = ys + ny;
@@ -369,6 +368,105 @@ std::vector<std::pair<double, double>> StiffnessTable(const std::string& path, i
   return points;
 }
 
+// Where the values of the written scenario come from in the MoorDyn file. Each is marked as
+// it is written (its offset in the text), so that what the loader says of the scenario,
+// which the user does not see, is said of the MoorDyn file's line and field instead.
+class Origins {
+ public:
+  explicit Origins(std::ostringstream& text) : text_(text) {}
+
+  // Records that what is written next comes from `field` of line `line` (0: of no line,
+  // a default) of the MoorDyn file; returns "" to be written in its place.
+  const char* operator()(int line, std::string field) {
+    marks_.push_back({static_cast<std::size_t>(text_.tellp()), line, std::move(field)});
+    return "";
+  }
+
+  // The loader's refusal of the scenario `yaml`, read as `name` ("<name>:L:C: key: what",
+  // one per line), with each line located at its value's origin in the MoorDyn file `path`:
+  // "<path>:<line>: <field>: what (the scenario's key)".
+  std::string Relocate(const std::string& refused, const std::string& name, const std::string& path,
+                       const std::string& yaml) const {
+    // Each mark's line and column in the text.
+    std::vector<std::pair<int, int>> at;
+    int line = 1;
+    std::size_t line_start = 0, scanned = 0;
+    for (const Mark& m : marks_) {
+      for (; scanned < m.offset && scanned < yaml.size(); ++scanned) {
+        if (yaml[scanned] == '\n') {
+          ++line;
+          line_start = scanned + 1;
+        }
+      }
+      at.emplace_back(line, static_cast<int>(m.offset - line_start) + 1);
+    }
+    // One message per line, each starting with `name` (which may hold a newline itself).
+    std::vector<std::size_t> starts;
+    for (std::size_t k = 0; k < refused.size(); k = refused.find('\n', k) + 1) {
+      if (refused.compare(k, name.size() + 1, name + ":") == 0 || k == 0) starts.push_back(k);
+      if (refused.find('\n', k) == std::string::npos) break;
+    }
+    std::string out;
+    for (std::size_t i = 0; i < starts.size(); ++i) {
+      const std::size_t end = i + 1 < starts.size() ? starts[i + 1] - 1 : refused.size();
+      if (!out.empty()) out += "\n";
+      out += RelocateOne(refused.substr(starts[i], end - starts[i]), name, path, at);
+    }
+    return out;
+  }
+
+ private:
+  struct Mark {
+    std::size_t offset;
+    int line;
+    std::string field;
+  };
+
+  std::string RelocateOne(const std::string& message, const std::string& name,
+                          const std::string& path,
+                          const std::vector<std::pair<int, int>>& at) const {
+    const std::string refused = "the imported model is one moorsim refuses: ";
+    if (message.rfind(name + ":", 0) != 0) return path + ": " + refused + message;
+    // "L:C: key: what" (or ": what" with no position).
+    std::string rest = message.substr(name.size() + 1);
+    int line = 0, column = 0;
+    const auto [after_line, line_error] =
+        std::from_chars(rest.data(), rest.data() + rest.size(), line);
+    if (line_error == std::errc() && *after_line == ':') {
+      const char* from = after_line + 1;
+      const auto [after_column, column_error] =
+          std::from_chars(from, rest.data() + rest.size(), column);
+      if (column_error == std::errc()) rest.erase(0, after_column - rest.data());
+    }
+    if (rest.rfind(": ", 0) == 0) rest.erase(0, 2);
+    // The scenario's key path, kept after the message for whoever reads the scenario.
+    std::string key;
+    const std::size_t colon = rest.find(": ");
+    if (colon != std::string::npos &&
+        std::all_of(rest.begin(), rest.begin() + static_cast<std::ptrdiff_t>(colon), [](char c) {
+          return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '[' ||
+                 c == ']';
+        })) {
+      key = rest.substr(0, colon);
+      rest.erase(0, colon + 2);
+    }
+    const std::string in_scenario = key.empty() ? "" : " (the scenario's " + key + ")";
+    // The last mark at or before the message's position.
+    const Mark* origin = nullptr;
+    for (std::size_t k = 0; k < marks_.size(); ++k) {
+      if (at[k] <= std::pair(line, std::max(column, 1))) origin = &marks_[k];
+    }
+    if (line == 0 || origin == nullptr || origin->line == 0) {
+      return path + ": " + refused + rest + in_scenario;
+    }
+    return path + ":" + std::to_string(origin->line) + ": " + origin->field + ": " + rest +
+           in_scenario;
+  }
+
+  std::ostringstream& text_;
+  std::vector<Mark> marks_;
+};
+
 }  // namespace
 
 MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
@@ -389,8 +487,10 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
   std::optional<std::pair<std::string, int>> seafloor;    // SeafloorFile: its path, line
   std::string title;
   bool any_table = false;
+  std::map<Kind, int> section_line;  // the first of each kind
   for (const Section& section : sections) {
     const Kind kind = KindOf(section.title);
+    section_line.emplace(kind, section.line);
     if (kind == Kind::kTitle) {
       if (!section.rows.empty()) {
         std::string first;
@@ -632,6 +732,21 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
   if (!any_table) {
     problems.Add(1, "no LINE TYPES, POINTS or LINES tables (not a MoorDyn input file?)");
   }
+  // A name given twice would leave one of its rows unused (MoorDyn too keys them by name).
+  const auto once = [&](const auto& rows, const char* noun, const auto& name_of) {
+    std::map<std::string, int> first;
+    for (const auto& row : rows) {
+      const auto [it, fresh] = first.emplace(name_of(row), row.line);
+      if (!fresh) {
+        problems.Add(row.line, std::string(noun) + " " + it->first +
+                                   " is given twice (first on line " + std::to_string(it->second) +
+                                   ")");
+      }
+    }
+  };
+  once(types, "line type", [](const MdLineType& t) { return t.name; });
+  once(points, "point", [](const Point& p) { return p.id; });
+  once(lines, "line", [](const MdLine& l) { return l.id; });
   problems.ThrowIfAny();
 
   // The topology: every line's points, then each chain from a fixed point to the vessel.
@@ -812,9 +927,10 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
 
   // The scenario.
   std::ostringstream y;
+  Origins from(y);
   y << "# yaml-language-server: $schema=moorsim.schema.json\n";
-  y << "# Imported from the MoorDyn input file " << path << " by `" << command << "` (moorsim "
-    << moorsim::kVersion << ").\n";
+  y << "# Imported from the MoorDyn input file " << strict_yaml::OneLine(path) << " by `"
+    << strict_yaml::OneLine(command) << "` (moorsim " << moorsim::kVersion << ").\n";
   if (!title.empty()) y << "# Its title: " << title << "\n";
   y << "# Frames: MoorDyn's z points up from the still water level and its y to port; here z\n"
        "# points down and y to starboard, so (x, y, z) there is (x, -y, -z) here. Fixed points\n"
@@ -833,16 +949,19 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
     for (const std::string& s : settings) y << " " << s << ";";
     y << "\n";
   }
-  for (const std::string& w : out.warnings) y << "# Left out: " << w << "\n";
+  for (const std::string& w : out.warnings) y << "# Left out: " << strict_yaml::OneLine(w) << "\n";
   const std::string stem = std::filesystem::path(path).stem().string();
   y << "name: " << Text(stem) << "\n";
   y << "mooring:\n";
   const auto rho = option("wtrdnsty");
   auto gravity = option("g");
   if (!gravity) gravity = option("gravity");
-  y << "  water: {density: " << FormatNumber(rho ? rho->first : 1025.0)
-    << ", gravity: " << FormatNumber(gravity ? gravity->first : 9.81)
-    << ", depth: " << FormatNumber(depth->first) << "}  # WtrDpth (line " << depth->second << ")";
+  y << "  water: {" << from(rho ? rho->second : 0, "option WtrDnsty")
+    << "density: " << FormatNumber(rho ? rho->first : 1025.0) << ", "
+    << from(gravity ? gravity->second : 0, "option g")
+    << "gravity: " << FormatNumber(gravity ? gravity->first : 9.81) << ", "
+    << from(depth->second, "option WtrDpth") << "depth: " << FormatNumber(depth->first)
+    << "}  # WtrDpth (line " << depth->second << ")";
   y << (rho ? ", WtrDnsty (line " + std::to_string(rho->second) + ")"
             : ", MoorDyn's default density");
   y << (gravity ? ", g (line " + std::to_string(gravity->second) + ")"
@@ -850,23 +969,31 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
     << "\n";
   const auto kbot = option("kbot");
   const auto cbot = option("cbot");
-  y << "  seabed: {stiffness: " << FormatNumber(kbot ? kbot->first : 3.0e6)
-    << ", damping: " << FormatNumber(cbot ? cbot->first : 3.0e5);
-  if (!out.files.empty()) y << ", grid: " << Text(out.files.front().first);
+  y << "  seabed: {" << from(kbot ? kbot->second : 0, "option kBot")
+    << "stiffness: " << FormatNumber(kbot ? kbot->first : 3.0e6) << ", "
+    << from(cbot ? cbot->second : 0, "option cBot")
+    << "damping: " << FormatNumber(cbot ? cbot->first : 3.0e5);
+  if (!out.files.empty()) {
+    y << ", " << from(seafloor->second, "option SeafloorFile " + seafloor->first)
+      << "grid: " << Text(out.files.front().first);
+  }
   y << "}  # kBot and cBot" << (kbot || cbot ? "" : " (MoorDyn's defaults)")
     << ", per unit of contact area";
   if (seafloor) y << "; SeafloorFile (line " << seafloor->second << ") as a depth grid";
   y << "\n";
   const auto friction = option("frictioncoefficient");
-  y << "  line_types:\n";
+  y << from(section_line[Kind::kLineTypes], "LINE TYPES") << "  line_types:\n";
   for (const MdLineType& t : types) {
-    y << "    - name: " << Text(t.name) << "  # LINE TYPES, line " << t.line << "\n";
-    y << "      diameter: " << FormatNumber(t.diameter) << "\n";
-    y << "      mass_per_length: " << FormatNumber(t.mass) << "\n";
+    const std::string of = "line type " + t.name + ", ";
+    y << from(t.line, "line type " + t.name) << "    - name: " << Text(t.name)
+      << "  # LINE TYPES, line " << t.line << "\n";
+    y << from(t.line, of + "Diam") << "      diameter: " << FormatNumber(t.diameter) << "\n";
+    y << from(t.line, of + "Mass/m") << "      mass_per_length: " << FormatNumber(t.mass) << "\n";
+    y << from(t.line, of + "EA");
     if (t.ea_curve.empty()) {
       y << "      axial_stiffness: " << FormatNumber(t.ea) << "\n";
     } else {
-      y << "      tension_strain:  # EA table " << t.ea_table
+      y << "      tension_strain:  # EA table " << strict_yaml::OneLine(t.ea_table)
         << " (MoorDyn joins its points by straight lines, moorsim by a monotone cubic)\n";
       for (const auto& [strain, tension] : t.ea_curve) {
         y << "        - {strain: " << FormatNumber(strain) << ", tension: " << FormatNumber(tension)
@@ -886,24 +1013,31 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
         y << "      dynamic_axial_stiffness: " << FormatNumber(t.dynamic_ea) << "  # EA_s|EA_D "
           << FormatNumber(t.ea) << "|" << FormatNumber(t.dynamic_ea) << "\n";
       }
-      y << "      creep_time: " << FormatNumber(t.static_damping / creep_spring)
+      y << from(t.line, of + "BA")
+        << "      creep_time: " << FormatNumber(t.static_damping / creep_spring)
         << "  # BA_s / (EA_D EA_s / (EA_D - EA_s)): the static damping "
         << FormatNumber(t.static_damping) << " N s over the static spring "
         << FormatNumber(creep_spring) << " N\n";
       y << "      axial_damping: " << FormatNumber(t.ba) << "  # BA_D [N s]\n";
     } else if (t.ba < 0.0) {
-      y << "      axial_damping_ratio: " << FormatNumber(-t.ba) << "  # BA/-zeta "
-        << FormatNumber(t.ba) << "\n";
+      y << from(t.line, of + "BA/-zeta") << "      axial_damping_ratio: " << FormatNumber(-t.ba)
+        << "  # BA/-zeta " << FormatNumber(t.ba) << "\n";
     } else {
-      y << "      axial_damping: " << FormatNumber(t.ba) << "  # BA [N s]\n";
+      y << from(t.line, of + "BA") << "      axial_damping: " << FormatNumber(t.ba)
+        << "  # BA [N s]\n";
     }
-    y << "      drag_normal: " << FormatNumber(t.cd) << "\n";
-    y << "      drag_tangential: " << FormatNumber(t.cdax * std::numbers::pi) << "  # CdAx "
+    y << from(t.line, of + "Cd") << "      drag_normal: " << FormatNumber(t.cd) << "\n";
+    y << from(t.line, of + "CdAx")
+      << "      drag_tangential: " << FormatNumber(t.cdax * std::numbers::pi) << "  # CdAx "
       << FormatNumber(t.cdax) << " x pi (MoorDyn applies it to pi d, moorsim to d)\n";
-    y << "      added_mass_normal: " << FormatNumber(t.ca) << "\n";
-    if (t.caax != 0.0) y << "      added_mass_tangential: " << FormatNumber(t.caax) << "  # CaAx\n";
+    y << from(t.line, of + "Ca") << "      added_mass_normal: " << FormatNumber(t.ca) << "\n";
+    if (t.caax != 0.0) {
+      y << from(t.line, of + "CaAx") << "      added_mass_tangential: " << FormatNumber(t.caax)
+        << "  # CaAx\n";
+    }
     if (friction) {
-      y << "      friction_axial: " << FormatNumber(friction->first)
+      y << from(friction->second, "option FrictionCoefficient")
+        << "      friction_axial: " << FormatNumber(friction->first)
         << "  # FrictionCoefficient (line " << friction->second << ")\n";
       y << "      friction_lateral: " << FormatNumber(friction->first) << "\n";
     }
@@ -912,19 +1046,29 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
   for (std::size_t k = 0; k < points.size(); ++k) {
     const Point& p = points[k];
     if (p.kind != PointKind::kFree || !junction[k]) continue;
-    if (!any_point) y << "  points:\n";
+    if (!any_point) y << from(section_line[Kind::kPoints], "POINTS") << "  points:\n";
     any_point = true;
-    y << "    - {name: " << PointName(p) << ", position: " << Vector(p.x, p.y, p.z)
-      << ", mass: " << FormatNumber(p.mass) << ", volume: " << FormatNumber(p.volume)
-      << ", added_mass: " << FormatNumber(p.ca) << ", drag_area: " << FormatNumber(p.cda)
-      << "}  # point " << p.id << " (line " << p.line << ")\n";
+    const std::string of = "point " + p.id + ", ";
+    y << "    - {" << from(p.line, "point " + p.id) << "name: " << PointName(p) << ", "
+      << from(p.line, of + "X Y Z") << "position: " << Vector(p.x, p.y, p.z) << ", "
+      << from(p.line, of + "Mass") << "mass: " << FormatNumber(p.mass) << ", "
+      << from(p.line, of + "Volume") << "volume: " << FormatNumber(p.volume) << ", "
+      << from(p.line, of + "Ca") << "added_mass: " << FormatNumber(p.ca) << ", "
+      << from(p.line, of + "CdA") << "drag_area: " << FormatNumber(p.cda) << "}  # point " << p.id
+      << " (line " << p.line << ")\n";
   }
-  y << "  lines:\n";
+  y << from(section_line[Kind::kLines], "LINES") << "  lines:\n";
   int id = 0;
   for (const Chain& chain : chains) {
     const Point& anchor = points[chain.lower];
     const Point& fairlead = points[chain.upper];
-    y << "    - id: " << ++id << "  # MoorDyn line";
+    const MdLine& first = lines[chain.lines.front()];
+    std::string which = "line" + std::string(chain.lines.size() > 1 ? "s " : " ");
+    for (std::size_t k = 0; k < chain.lines.size(); ++k) {
+      which += (k ? ", " : "") + lines[chain.lines[k]].id;
+    }
+    which += " (point " + anchor.id + " to " + fairlead.id + ")";
+    y << from(first.line, which) << "    - id: " << ++id << "  # MoorDyn line";
     y << (chain.lines.size() > 1 ? "s " : " ");
     for (std::size_t k = 0; k < chain.lines.size(); ++k) {
       y << (k ? ", " : "") << lines[chain.lines[k]].id;
@@ -933,41 +1077,51 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
     for (const std::size_t j : chain.joints) y << " -> " << points[j].id;
     y << " -> " << fairlead.id << "\n";
     if (anchor.kind == PointKind::kFixed) {
-      y << "      anchor: " << Vector(anchor.x, anchor.y, anchor.z);
+      y << from(anchor.line, "point " + anchor.id + ", X Y Z")
+        << "      anchor: " << Vector(anchor.x, anchor.y, anchor.z);
     } else {
-      y << "      from: " << PointName(anchor);
+      y << from(anchor.line, "point " + anchor.id) << "      from: " << PointName(anchor);
     }
     y << "  # point " << anchor.id << " (line " << anchor.line << ")\n";
     if (fairlead.kind == PointKind::kVessel) {
-      y << "      fairlead: " << Vector(fairlead.x, fairlead.y, fairlead.z);
+      y << from(fairlead.line, "point " + fairlead.id + ", X Y Z")
+        << "      fairlead: " << Vector(fairlead.x, fairlead.y, fairlead.z);
     } else {
-      y << "      to: " << PointName(fairlead);
+      y << from(fairlead.line, "point " + fairlead.id) << "      to: " << PointName(fairlead);
     }
     y << "  # point " << fairlead.id << " (line " << fairlead.line << ")\n";
     // A chain written from the fairlead down is reversed: sections go from the anchor up.
     const MdLine& only = lines[chain.lines.front()];
     if (chain.lines.size() == 1 && only.segments >= 2) {
-      y << "      type: " << Text(only.type) << "\n";
-      y << "      length: " << FormatNumber(only.length) << "\n";
-      y << "      segments: " << only.segments << "\n";
+      const std::string of = "line " + only.id + ", ";
+      y << from(only.line, of + "LineType") << "      type: " << Text(only.type) << "\n";
+      y << from(only.line, of + "UnstrLen") << "      length: " << FormatNumber(only.length)
+        << "\n";
+      y << from(only.line, of + "NumSegs") << "      segments: " << only.segments << "\n";
       continue;
     }
-    y << "      sections:\n";
+    y << from(first.line, which) << "      sections:\n";
     for (const std::size_t k : chain.lines) {
-      y << "        - {type: " << Text(lines[k].type)
-        << ", length: " << FormatNumber(lines[k].length) << ", segments: " << lines[k].segments
+      const std::string of = "line " + lines[k].id + ", ";
+      y << "        - {" << from(lines[k].line, of + "LineType") << "type: " << Text(lines[k].type)
+        << ", " << from(lines[k].line, of + "UnstrLen")
+        << "length: " << FormatNumber(lines[k].length) << ", "
+        << from(lines[k].line, of + "NumSegs") << "segments: " << lines[k].segments
         << "}  # MoorDyn line " << lines[k].id << "\n";
     }
     bool any_body = false;
     for (std::size_t k = 0; k < chain.joints.size(); ++k) {
       const Point& p = points[chain.joints[k]];
       if (p.mass == 0.0 && p.volume == 0.0 && p.cda == 0.0) continue;
-      if (!any_body) y << "      bodies:\n";
+      if (!any_body) y << from(first.line, which) << "      bodies:\n";
       any_body = true;
-      y << "        - {joint: " << k + 1 << ", mass: " << FormatNumber(p.mass)
-        << ", volume: " << FormatNumber(p.volume) << ", added_mass: " << FormatNumber(p.ca)
-        << ", drag_area: " << FormatNumber(p.cda) << "}  # point " << p.id << " (line " << p.line
-        << ")\n";
+      const std::string of = "point " + p.id + ", ";
+      y << "        - {" << from(p.line, "point " + p.id) << "joint: " << k + 1 << ", "
+        << from(p.line, of + "Mass") << "mass: " << FormatNumber(p.mass) << ", "
+        << from(p.line, of + "Volume") << "volume: " << FormatNumber(p.volume) << ", "
+        << from(p.line, of + "Ca") << "added_mass: " << FormatNumber(p.ca) << ", "
+        << from(p.line, of + "CdA") << "drag_area: " << FormatNumber(p.cda) << "}  # point " << p.id
+        << " (line " << p.line << ")\n";
     }
   }
   out.yaml = y.str();
@@ -987,25 +1141,26 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
     }
   }
   std::string refused;
+  const std::string scenario_name =
+      (folder.empty() ? std::filesystem::path(stem) : std::filesystem::path(folder) / stem)
+          .string() +
+      ".yaml";
   try {
-    ParseScenario(out.yaml, folder.empty()
-                                ? stem + ".yaml"
-                                : (std::filesystem::path(folder) / stem).string() + ".yaml");
+    ParseScenario(out.yaml, scenario_name);
   } catch (const InputError& e) {
     refused = e.what();
-    for (std::size_t at;
-         !folder.empty() && (at = refused.find(folder + "/")) != std::string::npos;) {
-      refused.erase(at, folder.size() + 1);
-    }
   }
   if (!folder.empty()) {
     std::error_code ignored;
     std::filesystem::remove_all(folder, ignored);
   }
-  if (!refused.empty()) {
-    throw InputError(path + ": the imported model is one moorsim refuses: " + refused);
+  if (refused.empty()) return out;
+  // Said of the MoorDyn file: the scenario's lines are not the user's.
+  std::string message = from.Relocate(refused, scenario_name, path, out.yaml);
+  for (std::size_t at; !folder.empty() && (at = message.find(folder + "/")) != std::string::npos;) {
+    message.erase(at, folder.size() + 1);
   }
-  return out;
+  throw InputError(message);
 }
 
 }  // namespace moorsim::scenarios

@@ -35,6 +35,12 @@ std::string Significant(double value, int digits);
 std::string WithUnit(double value, std::string_view unit);
 /// The words sorted and joined by ", " ("none" for no words).
 std::string JoinSorted(std::vector<std::string> words);
+/// `text` as a YAML double-quoted scalar that reads back as exactly `text`: quotes and
+/// backslashes escaped, and so are control characters (a newline in a folder's name would
+/// otherwise be folded into a space).
+std::string DoubleQuoted(std::string_view text);
+/// `text` for a YAML comment: line breaks written as \n and \r, so that it stays one line.
+std::string OneLine(std::string_view text);
 /// Throws InputError "<file>:<line>:<col>: <path>: <what>" (no line:col for an empty mark,
 /// no path for an empty one).
 [[noreturn]] void ThrowAt(const std::string& file, SourceMark mark, const std::string& path,

@@ -13,6 +13,7 @@
 #include "mooring_fem/catenary.h"
 #include "mooring_fem/mooring_system.h"
 #include "mooring_fem/parameters.h"
+#include "scenarios/strict_yaml.h"
 
 namespace moorsim::scenarios {
 
@@ -450,7 +451,7 @@ std::string WriteTemplate(const TemplateRequest& request, const TemplateLayout& 
        "#\n"
        "# A starting scenario to edit, written by\n"
        "#   "
-    << command
+    << strict_yaml::OneLine(command)
     << "\n"
        "# The seed FPSO (docs/design.md section 9), "
     << (turret ? "turret-moored" : "spread-moored") << ", on " << n << " identical "

@@ -235,16 +235,23 @@ const char* StatusName(RunStatus status) {
 }
 
 void WriteFileAtomically(const std::filesystem::path& path, const std::string& text) {
-  const std::filesystem::path partial = output::PartialPath(path);
-  // Messages name `path`; the partial file is removed only once this call has created it.
-  output::TextFile file(partial, path);
+  WriteFilesAtomically({{path, text}});
+}
+
+void WriteFilesAtomically(const std::vector<std::pair<std::filesystem::path, std::string>>& files) {
+  std::size_t written = 0;  // partial files this call has created
   try {
-    file.Write(text);
-    file.Sync();
-    file.Close();
-    output::PublishPartial(path);
+    for (const auto& [path, text] : files) {
+      // Messages name `path`; a partial file is removed only once this call has created it.
+      output::TextFile file(output::PartialPath(path), path);
+      ++written;
+      file.Write(text);
+      file.Sync();
+      file.Close();
+    }
+    for (const auto& [path, text] : files) output::PublishPartial(path);
   } catch (const Error&) {
-    RemoveQuietly(partial);
+    for (std::size_t k = 0; k < written; ++k) RemoveQuietly(output::PartialPath(files[k].first));
     throw;
   }
 }

@@ -26,6 +26,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -95,6 +96,10 @@ RunResult RunScenario(const RunRequest& request) noexcept;
 /// the close, then renames it into place. Throws moorsim::Error naming the file and the
 /// system's reason; the partial file is removed on failure.
 void WriteFileAtomically(const std::filesystem::path& path, const std::string& text);
+/// The same for files that belong together (a scenario and the files it names): each is
+/// written whole to its partial file before any is renamed, so that a failure (a full disk)
+/// leaves none of them new and no partial file behind.
+void WriteFilesAtomically(const std::vector<std::pair<std::filesystem::path, std::string>>& files);
 
 /// Makes SIGINT and SIGTERM set a flag that StopSignal() returns, instead of killing the
 /// process; a second signal of the same kind kills as usual.

@@ -12,6 +12,7 @@
 
 #include "core/angles.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "core/random.h"
 #include "core/sample_clock.h"
 #include "detectors/dht.h"
@@ -472,17 +473,20 @@ void Simulation::DiscreteEvents() {
   }
 }
 
-void Simulation::AdvanceTo(double t) {
+void Simulation::AdvanceTo(double t, const std::function<bool()>& interrupt) {
   const auto start = std::chrono::steady_clock::now();
   AdvanceThroughEvents(
       t, [this]() -> Integrator& { return *integrator_; },
       [this](double) { return NextEventTime(); },
-      [this](double now) {
+      [this, t, &interrupt](double now) {
         if (now > t_) {
           t_ = now;
           std::copy(integrator_->state(), integrator_->state() + x_.size(), x_.begin());
         }
         DiscreteEvents();
+        if (interrupt && t_ < t && interrupt()) {
+          throw Interrupted("interrupted at t = " + FormatNumber(t_) + " s");
+        }
       });
   integrator_seconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -14,6 +14,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -127,8 +128,11 @@ class Simulation {
   ~Simulation();
 
   /// Integrates to t, acting on every discrete event on the way. Throws SolverError (with t
-  /// and the CVODE flag) if the integrator fails.
-  void AdvanceTo(double t);
+  /// and the CVODE flag) if the integrator fails. `interrupt` (empty: never) is asked after
+  /// each event: once it returns true, the simulation stops there, at an instant it would
+  /// have stopped at anyway (so going on from it changes nothing), and throws
+  /// moorsim::Interrupted.
+  void AdvanceTo(double t, const std::function<bool()>& interrupt = {});
 
   /// A constant load on the hull in Earth axes (X north, Y east [N], moment about z [N m]),
   /// for verification runs (static offset, decay tests). Replaces the previous one.

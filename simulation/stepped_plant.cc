@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "core/sha256.h"
 #include "core/state_bytes.h"
 
@@ -39,11 +40,19 @@ SteppedPlant::SteppedPlant(const scenarios::Scenario& scenario, std::uint64_t se
       fingerprint_(PlantFingerprint(scenario, seed)),
       simulation_(Start(scenario_, seed_)) {}
 
-void SteppedPlant::Apply(const Input& input) {
+void SteppedPlant::Apply(const Input& input, const std::function<bool()>& interrupt) {
+  now_.reset();
   switch (input.kind) {
-    case Input::kAdvance:
-      simulation_->AdvanceTo(input.values[0]);
+    case Input::kAdvance: {
+      const double from = time();
+      try {
+        simulation_->AdvanceTo(input.values[0], interrupt);
+      } catch (const Interrupted&) {
+        if (time() > from) inputs_.push_back({Input::kAdvance, {time(), 0.0, 0.0}});
+        throw;
+      }
       break;
+    }
     case Input::kThrust:
       simulation_->SetThrustCommand(Vec3(input.values[0], input.values[1], input.values[2]));
       break;
@@ -54,18 +63,24 @@ void SteppedPlant::Apply(const Input& input) {
       simulation_->SetExternalLoad(Vec3(input.values[0], input.values[1], input.values[2]));
       break;
   }
-  now_.reset();
+  inputs_.push_back(input);
 }
 
-void SteppedPlant::AdvanceTo(double t) {
-  if (!std::isfinite(t) || t < time()) {
-    throw InputError("time " + std::to_string(t) + " s is behind the plant's " +
-                     std::to_string(time()) + " s (or not a number)");
+void SteppedPlant::AdvanceTo(double t, const std::function<bool()>& interrupt) {
+  if (!std::isfinite(t)) throw InputError("time " + FormatNumber(t) + " s is not a number");
+  if (t < time()) {
+    throw InputError("time " + FormatNumber(t) + " s is behind the plant's " +
+                     FormatNumber(time()) + " s");
+  }
+  if (t - time() > kMaxAdvance) {
+    throw InputError("time " + FormatNumber(t) + " s lies " + FormatNumber(t - time()) +
+                     " s ahead of the plant's " + FormatNumber(time()) +
+                     " s: one advance spans "
+                     "at most " +
+                     FormatNumber(kMaxAdvance) + " s (advance again to go further)");
   }
   if (t == time()) return;
-  const Input input{Input::kAdvance, {t, 0.0, 0.0}};
-  Apply(input);
-  inputs_.push_back(input);
+  Apply({Input::kAdvance, {t, 0.0, 0.0}}, interrupt);
 }
 
 void SteppedPlant::SetThrustCommand(const std::optional<Vec3>& command) {
@@ -75,14 +90,12 @@ void SteppedPlant::SetThrustCommand(const std::optional<Vec3>& command) {
     input = {Input::kThrust, {(*command)(0), (*command)(1), (*command)(2)}};
   }
   Apply(input);
-  inputs_.push_back(input);
 }
 
 void SteppedPlant::SetExternalLoad(const Vec3& load) {
   if (!load.allFinite()) throw InputError("the external load is not finite");
   const Input input{Input::kLoad, {load(0), load(1), load(2)}};
   Apply(input);
-  inputs_.push_back(input);
 }
 
 const Sample& SteppedPlant::Now() {
@@ -101,7 +114,8 @@ std::vector<std::uint8_t> SteppedPlant::Save() const {
   return w.Take();
 }
 
-void SteppedPlant::Restore(std::span<const std::uint8_t> bytes) {
+void SteppedPlant::Restore(std::span<const std::uint8_t> bytes,
+                           const std::function<bool()>& interrupt) {
   StateReader r(bytes, "plant state");
   r.SetFingerprintMeaning("its scenario, overrides or seed differ");
   r.CheckHeader(kTag, kFormat, fingerprint_);
@@ -120,22 +134,21 @@ void SteppedPlant::Restore(std::span<const std::uint8_t> bytes) {
   const bool continues = inputs.size() >= inputs_.size() &&
                          std::equal(inputs_.begin(), inputs_.end(), inputs.begin(), same);
   if (continues) {  // each input logged as it is applied: a failure leaves the plant there
-    for (std::size_t i = inputs_.size(); i < inputs.size(); ++i) {
-      Apply(inputs[i]);
-      inputs_.push_back(inputs[i]);
-    }
+    for (std::size_t i = inputs_.size(); i < inputs.size(); ++i) Apply(inputs[i], interrupt);
     return;
   }
   auto rebuilt = Start(scenario_, seed_);
   std::swap(rebuilt, simulation_);  // the old plant kept until the replay succeeds
+  std::vector<Input> kept;
+  std::swap(kept, inputs_);
   try {
-    for (const Input& input : inputs) Apply(input);
+    for (const Input& input : inputs) Apply(input, interrupt);
   } catch (...) {
     std::swap(rebuilt, simulation_);
+    std::swap(kept, inputs_);
     now_.reset();
     throw;
   }
-  inputs_ = std::move(inputs);
 }
 
 }  // namespace moorsim::simulation

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -31,9 +32,15 @@ class SteppedPlant {
 
   double time() const { return simulation_->time(); }
   int num_lines() const { return simulation_->num_lines(); }
+  /// The longest span one AdvanceTo() may cover [s]: a day (longer is a loop of calls).
+  static constexpr double kMaxAdvance = 86400.0;
+
   /// Integrates to t (nothing for t = time()). Throws InputError for a t that is not
-  /// finite or behind, SolverError as Simulation::AdvanceTo.
-  void AdvanceTo(double t);
+  /// finite, is behind or lies more than kMaxAdvance ahead, SolverError as
+  /// Simulation::AdvanceTo. Once `interrupt` (asked after every event, empty: never)
+  /// returns true, stops there and throws Interrupted: the plant is then at that instant,
+  /// and saving it or going on from it is as if it had been asked to go there.
+  void AdvanceTo(double t, const std::function<bool()>& interrupt = {});
   /// The caller's thrust command X, Y, N (body frame) from now on; nullopt: the controller.
   void SetThrustCommand(const std::optional<Vec3>& command);
   /// A steady load on the hull, Earth axes (X north, Y east [N], moment about z [N m]).
@@ -45,14 +52,19 @@ class SteppedPlant {
   std::vector<std::uint8_t> Save() const;
   /// Returns to a saved state. Throws InputError for bytes that are not a moorsim plant
   /// state or are from another scenario, seed or version; the plant is then as it was.
-  void Restore(std::span<const std::uint8_t> bytes);
+  /// `interrupt` as for AdvanceTo(): a restore that replays the saved plant's inputs from
+  /// its start leaves the plant as it was; one that continues the current plant leaves it
+  /// where the replay stopped.
+  void Restore(std::span<const std::uint8_t> bytes, const std::function<bool()>& interrupt = {});
 
  private:
   struct Input {
     enum Kind : std::int64_t { kAdvance, kThrust, kController, kLoad } kind;
     double values[3];
   };
-  void Apply(const Input& input);
+  // Applies `input` and logs it (an advance that was interrupted: as the advance to where it
+  // stopped, which is what the plant did).
+  void Apply(const Input& input, const std::function<bool()>& interrupt = {});
 
   scenarios::Scenario scenario_;
   std::uint64_t seed_;

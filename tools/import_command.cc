@@ -6,6 +6,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/error.h"
 #include "scenarios/moordyn.h"
@@ -44,14 +46,17 @@ int RunImport(const ImportOptions& o) {
     return 0;
   }
   const std::filesystem::path folder = std::filesystem::path(*o.out).parent_path();
+  // The scenario and the files it names are written together or not at all.
+  std::vector<std::pair<std::filesystem::path, std::string>> files;
   for (const auto& [name, contents] : imported.files) {
     const std::string beside = (folder / name).string();
     if (!o.force && std::filesystem::exists(beside)) {
       throw InputError("--out: " + beside + " exists (give --force to replace it)");
     }
-    simulation::WriteFileAtomically(beside, contents);
+    files.emplace_back(beside, contents);
   }
-  simulation::WriteFileAtomically(*o.out, imported.yaml);
+  files.emplace_back(*o.out, imported.yaml);
+  simulation::WriteFilesAtomically(files);
   std::printf("%s: %d line%s from %s\n", o.out->c_str(), imported.lines,
               imported.lines == 1 ? "" : "s", file.c_str());
   return 0;

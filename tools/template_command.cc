@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "scenarios/load.h"
+#include "scenarios/strict_yaml.h"
 #include "scenarios/template.h"
 #include "simulation/run.h"
 #include "tools/commands.h"
@@ -34,16 +35,6 @@ struct TemplateOptions {
 
 /// The seed FPSO's WAMIT data in the source tree (the data are not installed).
 const char* const kSeedHydrodynamics = MOORSIM_SEED_HYDRODYNAMICS;
-
-/// A YAML double-quoted scalar: a path may hold ": ", " #" or a leading "*" or "&".
-std::string Quoted(const std::string& text) {
-  std::string quoted = "\"";
-  for (char c : text) {
-    if (c == '"' || c == '\\') quoted += '\\';
-    quoted += c;
-  }
-  return quoted + "\"";
-}
 
 int RunTemplate(const TemplateOptions& o) {
   scenarios::TemplateRequest request;
@@ -103,7 +94,8 @@ int RunTemplate(const TemplateOptions& o) {
                        "data/fpso_wamit/fpso in moorsim's source tree)");
     }
   }
-  request.hydrodynamics = Quoted(absolute);
+  // Quoted: a path may hold ": ", " #", a leading "*" or "&", or a line break.
+  request.hydrodynamics = scenarios::strict_yaml::DoubleQuoted(absolute);
   if (o.hydrodynamics) command += " --hydrodynamics " + *o.hydrodynamics;
 
   std::string source_name = "template.yaml";

@@ -41,14 +41,15 @@
 extern "C" {
 #endif
 
-#define MOORSIM_API_VERSION 1
+#define MOORSIM_API_VERSION 2
 
 /* Return codes. */
 #define MOORSIM_OK 0
-#define MOORSIM_ERROR_USAGE 1    /* null handle or pointer, wrong length, call out of order */
-#define MOORSIM_ERROR_INPUT 2    /* a scenario, value or saved state that cannot be used */
-#define MOORSIM_ERROR_SOLVER 3   /* the integrator or the static solve failed */
-#define MOORSIM_ERROR_INTERNAL 4 /* a defect in moorsim: please report it with the message */
+#define MOORSIM_ERROR_USAGE 1       /* null handle or pointer, wrong length, call out of order */
+#define MOORSIM_ERROR_INPUT 2       /* a scenario, value or saved state that cannot be used */
+#define MOORSIM_ERROR_SOLVER 3      /* the integrator or the static solve failed */
+#define MOORSIM_ERROR_INTERNAL 4    /* a defect in moorsim: please report it with the message */
+#define MOORSIM_ERROR_INTERRUPTED 5 /* stopped by moorsim_lines_interrupt/_plant_interrupt */
 
 /* Where a line parts (moorsim_lines_part). */
 #define MOORSIM_PART_FAIRLEAD 0
@@ -88,10 +89,19 @@ int moorsim_lines_time(const moorsim_lines* lines, double* t);
 int moorsim_lines_init(moorsim_lines* lines, const double* x, const double* xd);
 /* Integrates the lines from *t to *t + *dt with the body arriving at x[6] moving at xd[6],
  * writes their load on the body to f[6] (force [N] and moment about the reference point
- * [N m], Earth axes) and advances *t. *t must be the lines' time (moorsim_lines_time). On
- * a solver error the lines stay at the time and state before the call. */
+ * [N m], Earth axes) and advances *t. *t must be the lines' time (moorsim_lines_time) and
+ * *dt from MOORSIM_MIN_STEP to MOORSIM_MAX_STEP (MOORSIM_ERROR_INPUT otherwise). On a
+ * solver error or an interruption the lines stay at the time and state before the call. */
 int moorsim_lines_step(moorsim_lines* lines, const double* x, const double* xd, double* f,
                        double* t, double* dt);
+#define MOORSIM_MIN_STEP 1e-9    /* [s] */
+#define MOORSIM_MAX_STEP 86400.0 /* [s]: a day; step again to go further */
+/* Asks a moorsim_lines_step running on `lines` (in another thread, or the thread this is
+ * called from a signal handler of) to stop: it returns MOORSIM_ERROR_INTERRUPTED soon after,
+ * the lines as they were before it. A request made while no step runs stops the next one
+ * before it moves. The one function that may be called from a signal handler or another
+ * thread while the instance is in use; it sets no message. MOORSIM_ERROR_USAGE for NULL. */
+int moorsim_lines_interrupt(moorsim_lines* lines);
 /* The lines' load on the body now, as step writes it. */
 int moorsim_lines_body_load(moorsim_lines* lines, double* f);
 
@@ -140,9 +150,19 @@ void moorsim_plant_destroy(moorsim_plant* plant);
 
 int moorsim_plant_line_count(const moorsim_plant* plant, int* count);
 int moorsim_plant_time(const moorsim_plant* plant, double* t);
-/* Integrates to time t [s] (not behind the plant's; its own time does nothing), acting on
- * every sensor sample, controller instant and scheduled failure on the way. */
+/* Integrates to time t [s] (not behind the plant's; its own time does nothing; at most
+ * MOORSIM_MAX_ADVANCE ahead of it, MOORSIM_ERROR_INPUT otherwise), acting on every sensor
+ * sample, controller instant and scheduled failure on the way. */
 int moorsim_plant_advance_to(moorsim_plant* plant, double t);
+#define MOORSIM_MAX_ADVANCE 86400.0 /* [s]: a day; advance again to go further */
+/* Asks a moorsim_plant_advance_to or moorsim_plant_restore running on `plant` (in another
+ * thread, or from a signal handler) to stop at the plant's next sensor sample, controller
+ * instant or failure: it returns MOORSIM_ERROR_INTERRUPTED with the plant there (as if it
+ * had been asked to advance to that time; an interrupted restore that would have rebuilt
+ * the plant leaves it as it was). A request made while no call runs stops the next one
+ * before it moves. Safe from a signal handler or another thread; it sets no message.
+ * MOORSIM_ERROR_USAGE for NULL. */
+int moorsim_plant_interrupt(moorsim_plant* plant);
 /* From now on, the thrust command X, Y [N], N [N m] (body frame, command[3]) at every
  * controller instant instead of the controller's; NULL gives it back to the controller.
  * The allocation and the thrusters' dynamics act on it as on the controller's. */

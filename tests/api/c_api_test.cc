@@ -311,9 +311,12 @@ TEST(CApi, MisuseIsAnErrorCodeWithAMessageNeverACrash) {
                  "not a finite number");
   EXPECT_REFUSED(moorsim_lines_step(h, x, xd, nullptr, &t, &dt), MOORSIM_ERROR_USAGE, "f is NULL");
   double zero = 0.0, negative = -0.1, infinite = INFINITY;
-  EXPECT_REFUSED(moorsim_lines_step(h, x, xd, f, &t, &zero), MOORSIM_ERROR_INPUT, "> 0");
-  EXPECT_REFUSED(moorsim_lines_step(h, x, xd, f, &t, &negative), MOORSIM_ERROR_INPUT, "> 0");
-  EXPECT_REFUSED(moorsim_lines_step(h, x, xd, f, &t, &infinite), MOORSIM_ERROR_INPUT, "> 0");
+  EXPECT_REFUSED(moorsim_lines_step(h, x, xd, f, &t, &zero), MOORSIM_ERROR_INPUT,
+                 "must be a number from 1e-09 to 86400 s");
+  EXPECT_REFUSED(moorsim_lines_step(h, x, xd, f, &t, &negative), MOORSIM_ERROR_INPUT,
+                 "must be a number from 1e-09 to 86400 s");
+  EXPECT_REFUSED(moorsim_lines_step(h, x, xd, f, &t, &infinite), MOORSIM_ERROR_INPUT,
+                 "must be a number from 1e-09 to 86400 s");
   double elsewhere = 3.0;
   EXPECT_REFUSED(moorsim_lines_step(h, x, xd, f, &elsewhere, &dt), MOORSIM_ERROR_USAGE,
                  "the lines are at 0");

@@ -2,9 +2,11 @@
 // warnings and refusals on stderr, one located line each.
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "tests/cli/run_cli.h"
 
@@ -55,6 +57,67 @@ TEST(ImportCommand, AMoorDynFileBecomesAScenarioThatStaticAndSimulateLinesRun) {
   EXPECT_EQ(again.exit_code, 2);
   EXPECT_EQ(again.err,
             "moorsim: --out: '" + scenario + "' exists (give --force to overwrite it)\n");
+}
+
+// The scenario and the depth grid it names are written together: when the scenario cannot
+// be written (here a 1 kB file size limit, as on a full disk), the grid is not left beside
+// it either, and the import can be run again once there is room.
+TEST(ImportCommand, AFailedWriteLeavesNeitherFileBehind) {
+  TempDirectory dir(::testing::TempDir());
+  std::string text = kOneLine;
+  text.replace(text.find("100           WtrDpth"), 0, "bottom.txt    SeafloorFile\n");
+  const std::filesystem::path file = dir.path() / "one.txt";
+  std::ofstream(file) << text;
+  std::ofstream(dir.path() / "bottom.txt") << "2 2\n0 500\n-50 50\n0 -50 -100\n0 50 -100\n"
+                                              "500 -50 -100\n500 50 -100\n";
+  const std::filesystem::path scenario = dir.path() / "one.yaml";
+  const auto saved = std::signal(SIGXFSZ, SIG_IGN);
+  const CliResult full = RunProgram(
+      "/usr/bin/prlimit",
+      {"--fsize=1000", MOORSIM_CLI, "import", "moordyn", file.string(), "--out", scenario.string()},
+      dir.path());
+  std::signal(SIGXFSZ, saved);
+  EXPECT_EQ(full.exit_code, 1) << full.Describe();
+  EXPECT_NE(full.err.find(scenario.string() + ": write failed"), std::string::npos)
+      << full.Describe();
+  std::vector<std::string> left;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
+    const std::string name = entry.path().filename().string();
+    if (name != "one.txt" && name != "bottom.txt" && name.rfind("cli_", 0) != 0) {
+      left.push_back(name);
+    }
+  }
+  EXPECT_TRUE(left.empty()) << left.front();
+  const CliResult again =
+      RunCli({"import", "moordyn", file.string(), "--out", scenario.string()}, dir.path());
+  ASSERT_EQ(again.exit_code, 0) << again.Describe();
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "one_seabed.csv"));
+  EXPECT_EQ(RunCli({"static", scenario.string()}, dir.path()).exit_code, 0);
+}
+
+// What moorsim refuses in the imported model is said of the MoorDyn file's line and field,
+// never of the scenario that was not written.
+TEST(ImportCommand, ARefusalNamesTheMoorDynLineAndField) {
+  TempDirectory dir(::testing::TempDir());
+  const auto refusal = [&](const std::string& from, const std::string& to) {
+    std::string text = kOneLine;
+    text.replace(text.find(from), from.size(), to);
+    const std::filesystem::path file = dir.path() / "bad.txt";
+    std::ofstream(file) << text;
+    const CliResult r = RunCli({"import", "moordyn", file.string()}, dir.path());
+    EXPECT_EQ(r.exit_code, 2) << r.Describe();
+    EXPECT_EQ(r.out, "");
+    return r.err;
+  };
+  const std::string f = (dir.path() / "bad.txt").string();
+  EXPECT_EQ(refusal("0.09    120", "-0.09   120"),
+            "moorsim: " + f +
+                ":6: line type chain, Diam: -0.09 m must be > 0 (the scenario's "
+                "mooring.line_types[1].diameter)\n");
+  EXPECT_EQ(refusal("460       20", "100       20"),
+            "moorsim: " + f +
+                ":15: line 1, UnstrLen: 100 m is shorter than the anchor-fairlead distance "
+                "419.8 m (the scenario's mooring.lines[1].length)\n");
 }
 
 TEST(ImportCommand, AnUnknownFormatOrAMissingFileIsExitTwo) {

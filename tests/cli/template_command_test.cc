@@ -212,6 +212,27 @@ TEST(TemplateCommand, OnAFullDiskTheReplacedFileStaysWhole) {
   EXPECT_EQ(files, 1u);
 }
 
+// A WAMIT folder whose name holds a line break (or a quote, a colon) is written so that it
+// reads back as that folder: the scenario loads and names the same files.
+TEST(TemplateCommand, AHydrodynamicsFolderWithALineBreakInItsNameLoads) {
+  TempDirectory dir(::testing::TempDir());
+  const std::filesystem::path folder = dir.path() / "hydro\nfolder: \"x\"";
+  std::filesystem::create_directories(folder);
+  for (const auto& entry : std::filesystem::directory_iterator(
+           std::filesystem::path(MOORSIM_SOURCE_DIR) / "data" / "fpso_wamit")) {
+    if (entry.path().stem() == "fpso") {
+      std::filesystem::copy_file(entry.path(), folder / entry.path().filename());
+    }
+  }
+  const std::filesystem::path path =
+      Write(dir, "odd.yaml",
+            {"turret", "--lines", "3", "--depth", "300", "--length", "900", "--pretension", "1e6",
+             "--hydrodynamics", (folder / "fpso").string()});
+  const scenarios::Scenario s = scenarios::LoadScenario(path.string());
+  ASSERT_TRUE(s.vessel.has_value());
+  EXPECT_EQ(s.vessel->hydrodynamics, (folder / "fpso").string());
+}
+
 TEST(TemplateCommand, OutMustBeARegularFile) {
   TempDirectory dir(::testing::TempDir());
   const std::vector<std::string> args = {"template",     "turret",   "--lines", "3",     "--depth",

@@ -214,6 +214,13 @@ inline const BadInput kParseErrors[] = {
      "1000, segments: 20}, {type: chain, length: 1250, segments: 20}]\n      bodies: [{joint: 1, "
      "mass: 1000}, {joint: 1, volume: 3}]",
      "1, volume", "mooring.lines[2].bodies[2].joint: 1 has a body already"},
+    {"NoSectionsWithABody", "- id: 2",
+     "type: wire\n      anchor: [0, 1950, 1000]\n      fairlead: [0, 20, 12]\n      length: 2250",
+     "anchor: [0, 1950, 1000]\n      fairlead: [0, 20, 12]\n      sections: []\n      bodies: "
+     "[{joint: 1, mass: 1000}]",
+     "[]",
+     "mooring.lines[2].sections: lists no section: a line needs one or more (or type, length "
+     "and segments)"},
     {"SectionWithoutSegments", "- id: 2",
      "type: wire\n      anchor: [0, 1950, 1000]\n      fairlead: [0, 20, 12]\n      length: 2250",
      "anchor: [0, 1950, 1000]\n      fairlead: [0, 20, 12]\n      sections: [{type: wire, length: "

@@ -341,6 +341,63 @@ TEST(MoorDynImport, ASeafloorFileArrivesAsADepthGrid) {
   fs::remove_all(dir);
 }
 
+// Grid counts too large for any file (2^63 would wrap the count of numbers they need
+// around to a small one; 1e300 is no size at all) are refused with the counts as written.
+TEST(MoorDynImport, SeafloorCountsBeyondAnySizeAreRefusedAsWritten) {
+  const fs::path dir = moorsim::testing::FreshDirectory("moordyn_seafloor_counts");
+  std::string text = kSpread;
+  text.replace(text.find("0.4           FrictionCoefficient"), 0,
+               "bottom.txt    SeafloorFile    bathymetry\n");
+  const fs::path file = Write(dir, "floor.txt", text);
+  const std::string where = file.string() + ":31: SeafloorFile bottom.txt: holds ";
+  Write(dir, "bottom.txt", "9223372036854775808 9223372036854777856\n0 0 0\n");
+  EXPECT_EQ(ErrorOf(file), where +
+                               "5 numbers where 9223372036854775808 x "
+                               "9223372036854777856 points need 2.5521177519070392e+38");
+  Write(dir, "bottom.txt", "1e300 2\n0 0 0\n");
+  EXPECT_EQ(ErrorOf(file), where + "5 numbers where 1e+300 x 2 points need 7e+300");
+  fs::remove_all(dir);
+}
+
+// What the loader refuses in the imported model is said of the MoorDyn file: the line and
+// field each value came from, here a section of a composite line and the clump weight on
+// its joint.
+TEST(MoorDynImport, WhatTheModelBreaksIsSaidOfTheMoorDynLineAndField) {
+  const fs::path dir = moorsim::testing::FreshDirectory("moordyn_located");
+  std::string text = kSpread;
+  text.replace(text.find("350       15"), 3, "0  ");
+  text.replace(text.find("5000   0.64"), 4, "-5000");
+  const fs::path file = Write(dir, "located.txt", text);
+  const std::string f = file.string();
+  EXPECT_EQ(ErrorOf(file), f +
+                               ":24: line 4, UnstrLen: 0 m must be > 0 (the scenario's "
+                               "mooring.lines[3].sections[1].length)\n" +
+                               f +
+                               ":17: point 7, Mass: -5000 kg must be >= 0 (the scenario's "
+                               "mooring.lines[3].bodies[1].mass)");
+  fs::remove_all(dir);
+}
+
+// A point, line or line type given twice is refused where it is given again: importing
+// would keep one of the two rows and drop the other unseen.
+TEST(MoorDynImport, ANameGivenTwiceIsRefusedWhereItRepeats) {
+  const fs::path dir = moorsim::testing::FreshDirectory("moordyn_twice");
+  std::string text = kSpread;
+  text.replace(text.find("7     Free"), 0,
+               "6     Fixed     0       600     -200    0      0       0      0\n");
+  text.replace(text.find("4     chain      7        3"), 0,
+               "3     chain      2        5         680       30      p\n");
+  text.replace(
+      text.find("wire       0.08"), 0,
+      "chain      0.1     150        8.0e8      -0.6        0    2.0    0.9    0.3     0.0\n");
+  const fs::path file = Write(dir, "twice.txt", text);
+  const std::string f = file.string();
+  EXPECT_EQ(ErrorOf(file), f + ":7: line type chain is given twice (first on line 6)\n" + f +
+                               ":18: point 6 is given twice (first on line 17)\n" + f +
+                               ":26: line 3 is given twice (first on line 25)");
+  fs::remove_all(dir);
+}
+
 // What moorsim cannot represent: one located line each, all of them at once.
 TEST(MoorDynImport, WhatDoesNotMapIsOneLocatedLineEach) {
   const fs::path dir = moorsim::testing::FreshDirectory("moordyn_refused");
