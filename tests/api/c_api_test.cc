@@ -10,6 +10,7 @@
 
 #include <Eigen/Geometry>
 
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -317,6 +318,11 @@ TEST(CApi, MisuseIsAnErrorCodeWithAMessageNeverACrash) {
                  "must be a number from 1e-09 to 86400 s");
   EXPECT_REFUSED(moorsim_lines_step(h, x, xd, f, &t, &infinite), MOORSIM_ERROR_INPUT,
                  "must be a number from 1e-09 to 86400 s");
+  double tiny = 5e-324, day_and_more = 86400.5;
+  EXPECT_REFUSED(moorsim_lines_step(h, x, xd, f, &t, &tiny), MOORSIM_ERROR_INPUT,
+                 "time step 5e-324 s must be a number from 1e-09 to 86400 s");
+  EXPECT_REFUSED(moorsim_lines_step(h, x, xd, f, &t, &day_and_more), MOORSIM_ERROR_INPUT,
+                 "(step again to go further)");
   double elsewhere = 3.0;
   EXPECT_REFUSED(moorsim_lines_step(h, x, xd, f, &elsewhere, &dt), MOORSIM_ERROR_USAGE,
                  "the lines are at 0");
@@ -475,6 +481,16 @@ TEST(CApiPlant, MisuseIsAnErrorCodeWithAMessage) {
       << moorsim_last_error();
   Plant plant(SeedPlant());
   EXPECT_REFUSED(moorsim_plant_advance_to(plant.handle, -1.0), MOORSIM_ERROR_INPUT, "behind");
+  EXPECT_REFUSED(moorsim_plant_advance_to(plant.handle, 1e300), MOORSIM_ERROR_INPUT,
+                 "one advance spans at most 86400 s (advance again to go further)");
+  EXPECT_REFUSED(moorsim_plant_advance_to(plant.handle, 1e8), MOORSIM_ERROR_INPUT,
+                 "time 1e+08 s lies 1e+08 s ahead of the plant's 0 s");
+  {
+    Plant later(SeedPlant());
+    ASSERT_EQ(moorsim_plant_advance_to(later.handle, 3.0), MOORSIM_OK);
+    EXPECT_REFUSED(moorsim_plant_advance_to(later.handle, std::nextafter(3.0, 0.0)),
+                   MOORSIM_ERROR_INPUT, "time 2.9999999999999996 s is behind the plant's 3 s");
+  }
   EXPECT_REFUSED(moorsim_plant_advance_to(plant.handle, NAN), MOORSIM_ERROR_INPUT, "not a number");
   const double bad[3] = {NAN, 0, 0};
   EXPECT_REFUSED(moorsim_plant_set_thrust(plant.handle, bad), MOORSIM_ERROR_INPUT, "not finite");
@@ -500,6 +516,63 @@ TEST(CApiPlant, MisuseIsAnErrorCodeWithAMessage) {
             MOORSIM_OK);
   EXPECT_REFUSED(moorsim_plant_restore(plant.handle, lines_state.data(), size), MOORSIM_ERROR_INPUT,
                  "not a moorsim plant state");
+}
+
+// A long call stops on moorsim_*_interrupt from another thread, soon and cleanly: the lines
+// as they were before the step, the plant at an instant it would have stopped at anyway,
+// both able to go on. A request made between calls stops the next one before it moves.
+TEST(CApi, AnInterruptStopsAStepAndLeavesTheLinesAsTheyWere) {
+  // Steps of at most 1 ms: a day's step would take hours.
+  Lines lines(Mooring(20, 640.0, "solver: {max_step: 0.001}\n"));
+  InitAtRest(lines.handle);
+  double x[6] = {0}, xd[6] = {0}, f[6], t = 0.0, day = 86400.0;
+  std::thread interrupter([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    EXPECT_EQ(moorsim_lines_interrupt(lines.handle), MOORSIM_OK);
+  });
+  EXPECT_REFUSED(moorsim_lines_step(lines.handle, x, xd, f, &t, &day), MOORSIM_ERROR_INTERRUPTED,
+                 "interrupted at t = ");
+  interrupter.join();
+  EXPECT_EQ(t, 0.0);
+  ASSERT_EQ(moorsim_lines_time(lines.handle, &t), MOORSIM_OK);
+  EXPECT_EQ(t, 0.0);
+  double dt = 0.05;
+  EXPECT_EQ(moorsim_lines_step(lines.handle, x, xd, f, &t, &dt), MOORSIM_OK)
+      << moorsim_last_error();
+  EXPECT_EQ(t, 0.05);
+  // Asked between calls: the next step stops before it moves, the one after runs.
+  ASSERT_EQ(moorsim_lines_interrupt(lines.handle), MOORSIM_OK);
+  EXPECT_EQ(moorsim_lines_step(lines.handle, x, xd, f, &t, &dt), MOORSIM_ERROR_INTERRUPTED);
+  EXPECT_EQ(t, 0.05);
+  EXPECT_EQ(moorsim_lines_step(lines.handle, x, xd, f, &t, &dt), MOORSIM_OK);
+  EXPECT_EQ(moorsim_lines_interrupt(nullptr), MOORSIM_ERROR_USAGE);
+}
+
+TEST(CApiPlant, AnInterruptStopsAnAdvanceWhereTheRunWouldHaveStoppedAnyway) {
+  Plant plant(SeedPlant());
+  std::thread interrupter([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    EXPECT_EQ(moorsim_plant_interrupt(plant.handle), MOORSIM_OK);
+  });
+  EXPECT_REFUSED(moorsim_plant_advance_to(plant.handle, 86400.0), MOORSIM_ERROR_INTERRUPTED,
+                 "interrupted at t = ");
+  interrupter.join();
+  double reached = 0.0;
+  ASSERT_EQ(moorsim_plant_time(plant.handle, &reached), MOORSIM_OK);
+  ASSERT_GT(reached, 0.0);
+  ASSERT_LT(reached, 86400.0);
+  // Going on from there is going there at once: the same plant, bit for bit.
+  const double on = std::ceil(reached) + 1.0;
+  ASSERT_EQ(moorsim_plant_advance_to(plant.handle, on), MOORSIM_OK) << moorsim_last_error();
+  Plant straight(SeedPlant());
+  ASSERT_EQ(moorsim_plant_advance_to(straight.handle, on), MOORSIM_OK);
+  EXPECT_EQ(PlantReadings(plant.handle), PlantReadings(straight.handle));
+  // Asked between calls: the next advance stops before it moves.
+  ASSERT_EQ(moorsim_plant_interrupt(plant.handle), MOORSIM_OK);
+  EXPECT_EQ(moorsim_plant_advance_to(plant.handle, on + 5.0), MOORSIM_ERROR_INTERRUPTED);
+  ASSERT_EQ(moorsim_plant_time(plant.handle, &reached), MOORSIM_OK);
+  EXPECT_EQ(reached, on);
+  EXPECT_EQ(moorsim_plant_interrupt(nullptr), MOORSIM_ERROR_USAGE);
 }
 
 }  // namespace
