@@ -1261,8 +1261,8 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
   return result;
 }
 
-void MergeCampaigns(const std::vector<std::filesystem::path>& directories,
-                    const std::filesystem::path& out, const std::string& command_line) {
+MergeResult MergeCampaigns(const std::vector<std::filesystem::path>& directories,
+                           const std::filesystem::path& out, const std::string& command_line) {
   if (directories.empty()) throw OptionError("merge", ": give at least one directory");
   // Every directory is read and checked before anything is written.
   nlohmann::json meta;
@@ -1302,6 +1302,11 @@ void MergeCampaigns(const std::vector<std::filesystem::path>& directories,
     const std::int64_t run = row.at("run").get<std::int64_t>();
     rows.emplace(run, std::move(row));
   }
+  MergeResult result;
+  result.runs = meta.at("runs").get<std::int64_t>();
+  for (std::int64_t run = 0; run < result.runs; ++run) {
+    if (!rows.contains(run)) result.missing.push_back(run);
+  }
   std::vector<nlohmann::json> all;
   for (auto& [run, row] : rows) {
     WriteFileAtomically(out / "rows" / (RunName(run) + ".json"), row.dump() + "\n");
@@ -1311,6 +1316,7 @@ void MergeCampaigns(const std::vector<std::filesystem::path>& directories,
                       meta.at("path").get<std::string>(), meta.at("seed").get<std::uint64_t>(),
                       meta.at("factors").get<std::vector<std::string>>(), std::move(all),
                       command_line);
+  return result;
 }
 
 }  // namespace moorsim::simulation

@@ -224,8 +224,14 @@ void DescribeCampaign(const PreparedCampaign& prepared, int threads, std::ostrea
 /// already holds). Throws InputError, before writing anything, for directories of different
 /// campaigns, an `out` that holds another campaign, a directory without campaign.json and a
 /// file in rows/ that is not a row of the campaign (ReadRows); Error when writing fails.
-void MergeCampaigns(const std::vector<std::filesystem::path>& directories,
-                    const std::filesystem::path& out, const std::string& command_line);
+/// Returns the campaign's runs and those no directory held a row of (shards not merged,
+/// runs not yet run): the tables then hold the others only.
+struct MergeResult {
+  std::int64_t runs = 0;
+  std::vector<std::int64_t> missing;  ///< run indices, ascending
+};
+MergeResult MergeCampaigns(const std::vector<std::filesystem::path>& directories,
+                           const std::filesystem::path& out, const std::string& command_line);
 
 /// Writes DIR/runs.csv and DIR/campaign.h5 from the rows (any order; sorted by run).
 void WriteCampaignTables(const std::filesystem::path& directory, const std::string& campaign_text,

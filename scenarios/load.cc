@@ -9,6 +9,7 @@
 #include <deque>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <sstream>
@@ -1128,20 +1129,48 @@ void CheckEnvironment(const Checker& check, const Scenario& scenario) {
   }
 }
 
-/// One sensor's faults: each mode's own size given and in range, no other mode's, an end
-/// after the start.
+/// One sensor's faults: each mode's own size given and in range, no other mode's, a time
+/// within the run and an end after it; no two faults that replace the reading (dead,
+/// stuck) on one channel at once.
 void CheckFaults(const Checker& check, const Scenario& scenario,
                  const std::vector<SensorsSpec::Fault>& faults, const std::string& sensor,
                  const std::string& unit) {
+  using Mode = vessel::SensorFault::Mode;
+  const auto path_of = [&](std::size_t i) {
+    return sensor + ".faults[" + std::to_string(i + 1) + "]";
+  };
   for (std::size_t i = 0; i < faults.size(); ++i) {
     const SensorsSpec::Fault& f = faults[i];
-    const std::string path = sensor + ".faults[" + std::to_string(i + 1) + "]";
+    const std::string path = path_of(i);
     if (sensor == "sensors.tension_cells") {
       check.InRange(path + ".line", f.line, 1, static_cast<int>(scenario.mooring.lines.size()));
+    }
+    if (!(f.time < scenario.simulation.duration)) {
+      check.Fail(path + ".time", WithUnit(f.time, "s") +
+                                     " is not before the end of the run (simulation.duration " +
+                                     WithUnit(scenario.simulation.duration, "s") + ")");
     }
     if (f.end && !(*f.end > f.time)) {
       check.Fail(path + ".end", WithUnit(*f.end, "s") + " must be after the fault's time (" +
                                     WithUnit(f.time, "s") + ")");
+    }
+    for (std::size_t k = 0; k < i; ++k) {
+      const SensorsSpec::Fault& e = faults[k];
+      const auto replacing = [](Mode m) { return m == Mode::kDead || m == Mode::kStuck; };
+      const bool replaces = replacing(f.mode) && replacing(e.mode);
+      const bool same_channel =
+          f.line == e.line && (f.channel == e.channel || f.channel == GnssFaultChannel::kBoth ||
+                               e.channel == GnssFaultChannel::kBoth);
+      const bool overlap = f.time < e.end.value_or(std::numeric_limits<double>::infinity()) &&
+                           e.time < f.end.value_or(std::numeric_limits<double>::infinity());
+      if (replaces && same_channel && overlap) {
+        check.Fail(path + ".time",
+                   "the " + std::string(ChoiceName(f.mode)) + " fault at " + WithUnit(f.time, "s") +
+                       " overlaps " + path_of(k) + " (" + std::string(ChoiceName(e.mode)) + " at " +
+                       WithUnit(e.time, "s") +
+                       ") on the same channel: each replaces the sensor's reading, so the two "
+                       "cannot act at once (other faults add to them in the order listed)");
+      }
     }
     // Each size belongs to one mode; a size that leaves the sensor as it is (its neutral
     // value, the default) is one not given.

@@ -2,7 +2,9 @@
 // RunBatch (campaign/batch.h) on OpenMP threads; `--merge` joins shard directories.
 #include <cstdio>
 #include <iostream>
+#include <iterator>
 #include <memory>
+#include <string>
 
 #include "campaign/batch.h"
 #include "core/error.h"
@@ -42,9 +44,25 @@ int Batch(const BatchCommandOptions& o) {
     if (!o.campaign.empty()) throw InputError("--merge: give directories only, no campaign file");
     if (!o.out) throw InputError("--merge needs --out DIR for the joined results");
     std::vector<std::filesystem::path> dirs(o.merge.begin(), o.merge.end());
-    simulation::MergeCampaigns(dirs, RequireText("--out", *o.out), o.command_line);
-    std::fprintf(stderr, "moorsim batch: merged %zu directories -> %s\n", dirs.size(),
-                 o.out->c_str());
+    const simulation::MergeResult merged =
+        simulation::MergeCampaigns(dirs, RequireText("--out", *o.out), o.command_line);
+    std::fprintf(stderr, "moorsim batch: merged %zu %s -> %s: %lld of %lld runs\n", dirs.size(),
+                 dirs.size() == 1 ? "directory" : "directories", o.out->c_str(),
+                 static_cast<long long>(merged.runs - std::ssize(merged.missing)),
+                 static_cast<long long>(merged.runs));
+    if (!merged.missing.empty()) {
+      // The tables hold what was merged; a report of them speaks of those runs only.
+      std::string runs;
+      for (std::size_t k = 0; k < merged.missing.size() && k < 10; ++k) {
+        runs += (k ? ", " : "") + std::to_string(merged.missing[k]);
+      }
+      if (merged.missing.size() > 10) runs += ", ...";
+      std::fprintf(stderr,
+                   "moorsim batch: warning: the campaign is incomplete: %zu runs have no row "
+                   "(runs %s); merge the other shards, or run the campaign with --out %s to "
+                   "finish it\n",
+                   merged.missing.size(), runs.c_str(), o.out->c_str());
+    }
     return 0;
   }
   if (o.campaign.empty()) throw InputError("batch: give a campaign file (or --merge DIR...)");

@@ -103,6 +103,32 @@ TEST(BatchCommand, MergeOfADirectoryWithoutItsCampaignRecordIsOneLineAndExit2) {
   EXPECT_FALSE(std::filesystem::exists(merged));
 }
 
+// Merging some of a campaign's shards is a merge, said to be incomplete with the runs that
+// have no row; the campaign run into the merged directory then finishes it.
+TEST(BatchCommand, AMergeOfSomeShardsSaysWhichRunsAreMissing) {
+  TempDirectory dir(::testing::TempDir());
+  const std::string campaign = WriteCampaign(dir.path(), 60);
+  const std::string shard = (dir.path() / "shard1").string();
+  const CliResult first =
+      RunCli({"batch", campaign, "--shard", "1/2", "--out", shard, "--quiet"}, dir.path());
+  ASSERT_EQ(first.exit_code, 0) << first.Describe();
+  const std::string merged = (dir.path() / "merged").string();
+  const CliResult r = RunCli({"batch", "--merge", shard, "--out", merged}, dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  EXPECT_EQ(r.err, "moorsim batch: merged 1 directory -> " + merged +
+                       ": 2 of 4 runs\nmoorsim batch: warning: the campaign is incomplete: 2 "
+                       "runs have no row (runs 1, 3); merge the other shards, or run the "
+                       "campaign with --out " +
+                       merged + " to finish it\n");
+  const CliResult rest = RunCli({"batch", campaign, "--out", merged, "--quiet"}, dir.path());
+  ASSERT_EQ(rest.exit_code, 0) << rest.Describe();
+  std::ifstream table(std::filesystem::path(merged) / "runs.csv");
+  std::string line;
+  int rows = 0;
+  while (std::getline(table, line)) rows += !line.empty() && line[0] != '#' ? 1 : 0;
+  EXPECT_EQ(rows, 1 + 4);  // the header and every run
+}
+
 TEST(BatchCommandAcceptance, WritesTheTableAndTheReportMatchesIt) {
   TempDirectory dir(::testing::TempDir());
   const std::string campaign = WriteCampaign(dir.path(), 80);

@@ -676,6 +676,17 @@ inline const BadInput kValidationErrors[] = {
      "sensors.tension_cells.faults[1].rate: a drift needs a nonzero rate [N/s]"},
     {"FaultEndBeforeItsTime", "faults:", "time: 500,", "time: 500, end: 400,", "end: ^400",
      "sensors.tension_cells.faults[1].end: 400 s must be after the fault's time (500 s)"},
+    {"FaultAfterTheEnd", "faults:", "time: 500,", "time: 1500,", "time: ^1500",
+     "sensors.tension_cells.faults[1].time: 1500 s is not before the end of the run "
+     "(simulation.duration 1000 s)"},
+    {"DeadCellWhileItIsStuck", "faults:", "rate: -1000}]",
+     "rate: -1000}, {line: 3, mode: stuck, time: 550, end: 700}, {line: 3, mode: dead, time: "
+     "600}]",
+     "time: ^600",
+     "sensors.tension_cells.faults[3].time: the dead fault at 600 s overlaps "
+     "sensors.tension_cells.faults[2] (stuck at 550 s) on the same channel: each replaces the "
+     "sensor's reading, so the two cannot act at once (other faults add to them in the order "
+     "listed)"},
     {"FaultSizeOfAnotherMode", "faults:", "rate: -1000", "offset: -1000", "offset: ^-1000",
      "sensors.tension_cells.faults[1].offset: only applies to mode 'step' (the mode is "
      "'drift')"},
