@@ -5,12 +5,15 @@
 
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <exception>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <new>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "core/format.h"
@@ -83,6 +86,33 @@ int Guard(const char* function, Body&& body) {
   } catch (...) {
     last_error = std::string(function) + ": unknown exception";
     return MOORSIM_ERROR_INTERNAL;
+  }
+}
+
+// The process's warning handler (moorsim_set_warning_handler) and its user pointer, read as
+// a pair.
+struct WarningHandler {
+  moorsim_warning_handler handler = nullptr;
+  void* user = nullptr;
+};
+std::mutex warning_mutex;
+WarningHandler warning_handler;
+
+// Hands each of `warnings` (from a call of `function`) to the handler, or to stderr.
+void Warn(const char* function, const std::vector<std::string>& warnings) {
+  if (warnings.empty()) return;
+  WarningHandler h;
+  {
+    const std::lock_guard<std::mutex> lock(warning_mutex);
+    h = warning_handler;
+  }
+  for (const std::string& w : warnings) {
+    const std::string message = std::string(function) + ": " + w;
+    if (h.handler != nullptr) {
+      h.handler(message.c_str(), h.user);
+    } else {
+      std::fprintf(stderr, "moorsim: warning: %s\n", message.c_str());
+    }
   }
 }
 
@@ -169,6 +199,11 @@ const char* moorsim_version(void) { return moorsim::kVersion; }
 
 const char* moorsim_last_error(void) { return last_error.c_str(); }
 
+void moorsim_set_warning_handler(moorsim_warning_handler handler, void* user) {
+  const std::lock_guard<std::mutex> lock(warning_mutex);
+  warning_handler = {handler, user};
+}
+
 moorsim_lines* moorsim_lines_create(const char* scenario_path) {
   return Create<moorsim_lines>("moorsim_lines_create", [&](moorsim_lines& h) {
     Require(scenario_path != nullptr, "the scenario path is NULL");
@@ -224,6 +259,7 @@ int moorsim_lines_init(moorsim_lines* lines, const double* x, const double* xd) 
     CoupledLines& l = Lines(lines);
     const BodyDofs pose = Dofs(x, "x"), velocity = Dofs(xd, "xd");
     moorsim::simulation::InitCoupledLines(l, lines->scenario, pose, velocity);
+    Warn("moorsim_lines_init", l.TakeWarnings());
   });
 }
 
@@ -239,8 +275,15 @@ int moorsim_lines_step(moorsim_lines* lines, const double* x, const double* xd, 
     Require(std::abs(*t - l.time()) <= 1e-9 * std::max(1.0, std::abs(l.time())),
             "t = " + moorsim::FormatNumber(*t) + " s but the lines are at " +
                 moorsim::FormatNumber(l.time()) + " s");
-    WriteLoad(l.Step(pose, velocity, *dt, [lines] { return lines->interrupt.exchange(false); }), f);
+    try {
+      WriteLoad(l.Step(pose, velocity, *dt, [lines] { return lines->interrupt.exchange(false); }),
+                f);
+    } catch (...) {  // what was doubtful may be why it failed
+      Warn("moorsim_lines_step", l.TakeWarnings());
+      throw;
+    }
     *t = l.time();
+    Warn("moorsim_lines_step", l.TakeWarnings());
   });
 }
 

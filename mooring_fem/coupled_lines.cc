@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "core/error.h"
 #include "core/format.h"
@@ -161,6 +162,17 @@ Vec6 CoupledLines::Init(const BodyDofs& pose, const BodyDofs& velocity, double t
   mooring_.SettleStatic(fairleads, x_.data());
   StartIntegrator();
   initialized_ = true;
+  for (int i = 0; i < num_lines() && !warned_height_; ++i) {
+    const double above = -fairleads[i].z(), length = spec_.lines[i].Length();
+    if (mooring_.at_vessel(i) && above > kDoubtfulHeightShare * length) {
+      warned_height_ = true;
+      warnings_.push_back("line " + std::to_string(i + 1) + "'s fairlead is " +
+                          FormatNumber(std::round(above * 10.0) / 10.0) +
+                          " m above the water at this pose: the lines are modelled submerged "
+                          "all along (their weight in water, drag and added mass), so the part "
+                          "hanging in air is not what it would be");
+    }
+  }
   return LoadOnBody();
 }
 
@@ -190,6 +202,17 @@ Vec6 CoupledLines::Step(const BodyDofs& pose, const BodyDofs& velocity, double d
                      FormatNumber(t_) + " s");
   }
   const BodyDofs q0 = path_->pose(), dq0 = path_->velocity();
+  const double moved = std::hypot(pose[0] - q0[0], pose[1] - q0[1], pose[2] - q0[2]);
+  double turned = 0.0;
+  for (int d = 3; d < 6; ++d) turned = std::max(turned, std::abs(pose[d] - q0[d]));
+  if (!warned_motion_ && (moved > kDoubtfulSpeed * dt || turned > kDoubtfulTurnRate * dt)) {
+    warned_motion_ = true;
+    warnings_.push_back("the body moves " + FormatNumber(moved) + " m and turns " +
+                        FormatNumber(turned) + " rad in a step of " + FormatNumber(dt) +
+                        " s at t = " + FormatNumber(t_) +
+                        " s, faster than a moored body can (a pose in other units, or a jump?); "
+                        "the lines follow it as given");
+  }
   path_->Extend(t1, pose, velocity);
   try {
     integrator_->SetStopTime(t1);
@@ -207,6 +230,8 @@ Vec6 CoupledLines::Step(const BodyDofs& pose, const BodyDofs& velocity, double d
   std::copy(integrator_->state(), integrator_->state() + x_.size(), x_.begin());
   return LoadOnBody();
 }
+
+std::vector<std::string> CoupledLines::TakeWarnings() { return std::exchange(warnings_, {}); }
 
 Vec6 CoupledLines::LoadOnBody() {
   CheckInitialized("the load on the body");

@@ -12,6 +12,7 @@
 #include <functional>
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "core/integrator.h"
@@ -82,6 +83,18 @@ class CoupledLines {
   /// there or already detached.
   void Part(const LineFailure& failure);
 
+  /// What the last Init() or Step() found doubtful but did anyway, one sentence each, taken
+  /// (the list is empty after the call): a fairlead far above the water (the lines are
+  /// modelled submerged all along), a body that moves faster than any moored body can
+  /// (a pose in other units, a jump). Each kind is said once per instance.
+  std::vector<std::string> TakeWarnings();
+  /// Beyond these a step's motion is said to be doubtful: the reference point's mean speed
+  /// over the step [m/s], and the mean rate of any angle [rad/s].
+  static constexpr double kDoubtfulSpeed = 50.0;
+  static constexpr double kDoubtfulTurnRate = 1.0;
+  /// A fairlead this share of its line's length or more above the water is said to be.
+  static constexpr double kDoubtfulHeightShare = 0.01;
+
   /// The whole state (time, the body's last pose and velocity, parted lines, every node and
   /// creep state) as bytes, tagged with the model's fingerprint and the program's version.
   /// Saving restarts the integrator from the saved state, as Restore() does, so that
@@ -122,6 +135,8 @@ class CoupledLines {
   bool topology_changed_ = false;      // since the integrator was made: make a new one
   double t_ = 0.0;
   bool initialized_ = false;
+  std::vector<std::string> warnings_;  // since the last TakeWarnings()
+  bool warned_height_ = false, warned_motion_ = false;
   std::uint64_t fingerprint_ = 0;
 };
 

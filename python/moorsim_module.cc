@@ -158,6 +158,17 @@ Int IntegerArgument(const py::handle& value, const char* name, Int low, Int high
   return number.cast<Int>();
 }
 
+// moorsim.MoorsimWarning (a RuntimeWarning): what a call did although it looks wrong.
+PyObject* warning_category = nullptr;
+
+// Issues each of `warnings` as a MoorsimWarning (an error where the caller's warning filters
+// make it one).
+void Warn(const std::vector<std::string>& warnings) {
+  for (const std::string& w : warnings) {
+    if (PyErr_WarnEx(warning_category, w.c_str(), 2) < 0) throw py::error_already_set();
+  }
+}
+
 // The lines of a scenario for a coupling (mooring_fem/coupled_lines.h).
 class Lines {
  public:
@@ -170,14 +181,18 @@ class Lines {
 
   Array Init(const Array& x, const Array& xd) {
     const auto pose = Dofs(x, "x"), velocity = Dofs(xd, "xd");
-    return Vector<6>(simulation::InitCoupledLines(*lines_, scenario_, pose, velocity));
+    const Vec6 load = simulation::InitCoupledLines(*lines_, scenario_, pose, velocity);
+    Warn(lines_->TakeWarnings());
+    return Vector<6>(load);
   }
   Array Step(const Array& x, const Array& xd, double dt) {
     Ready();
     const auto pose = Dofs(x, "x"), velocity = Dofs(xd, "xd");
-    return Vector<6>(Interruptibly([&](PythonStop& stop) {
+    const Vec6 load = Interruptibly([&](PythonStop& stop) {
       return lines_->Step(pose, velocity, dt, [&stop] { return stop(); });
-    }));
+    });
+    Warn(lines_->TakeWarnings());
+    return Vector<6>(load);
   }
   Array BodyLoad() {
     Ready();
@@ -427,6 +442,9 @@ PYBIND11_MODULE(_moorsim, m) {
   using namespace moorsim::python;
   m.doc() = "moorsim's compiled core; use the moorsim package";
   m.attr("__version__") = moorsim::kVersion;
+  warning_category =
+      PyErr_NewException("moorsim._moorsim.MoorsimWarning", PyExc_RuntimeWarning, nullptr);
+  m.attr("MoorsimWarning") = py::handle(warning_category);
   static py::exception<moorsim::Error> error(m, "Error", PyExc_RuntimeError);
   static py::exception<moorsim::InputError> input_error(m, "InputError", error.ptr());
   static py::exception<moorsim::SolverError> solver_error(m, "SolverError", error.ptr());

@@ -64,6 +64,24 @@ const char* moorsim_version(void);
  * into moorsim. */
 const char* moorsim_last_error(void);
 
+/* Warnings: what a call did although it looks wrong (a fairlead far above the water at
+ * init, a body moving faster than a moored body can in a step), one sentence each, each
+ * kind once per instance. The call still returns MOORSIM_OK. By default they are written to
+ * stderr as "moorsim: warning: <function>: <what>"; a program may take them instead with
+ * its own handler (NULL: back to the default), called on the thread of the call that
+ * warns. The handler is the process's, for every instance: set it before calls run. */
+typedef void (*moorsim_warning_handler)(const char* message, void* user);
+void moorsim_set_warning_handler(moorsim_warning_handler handler, void* user);
+
+/* Warnings: what a call did although it looks wrong (a fairlead far above the water at
+ * init, a body moving faster than a moored body can in a step), one sentence each, each
+ * kind once per instance. The call still returns MOORSIM_OK. By default they are written to
+ * stderr as "moorsim: warning: <function>: <what>"; a program may take them instead with
+ * its own handler (NULL: back to the default), called on the thread of the call that
+ * warns. The handler is the process's, for every instance: set it before calls run. */
+typedef void (*moorsim_warning_handler)(const char* message, void* user);
+void moorsim_set_warning_handler(moorsim_warning_handler handler, void* user);
+
 /* ---- The mooring lines alone ------------------------------------------------------ */
 
 typedef struct moorsim_lines moorsim_lines;

@@ -18,7 +18,11 @@
 
 Conventions are moorsim's: SI units, NED (x north, y east, z down), angles in radians,
 lines numbered from 1. Errors raise moorsim.InputError (bad input: a scenario, a value),
-moorsim.SolverError (the integrator) or moorsim.Error; bad arguments raise ValueError.
+moorsim.SolverError (the integrator) or moorsim.Error; bad arguments raise ValueError,
+IndexError (a line or node that is not there) or TypeError. What a call does although it
+looks wrong (a fairlead far above the water, a body faster than a moored body can be) is a
+moorsim.MoorsimWarning. Ctrl-C stops a long call within a second (KeyboardInterrupt): the
+lines as they were before a step, the plant at the instant it reached.
 """
 
 import json
@@ -28,11 +32,12 @@ import tempfile
 
 import numpy as np
 
-from ._moorsim import Error, InputError, Lines, Plant, SolverError, __version__
+from ._moorsim import Error, InputError, Lines, MoorsimWarning, Plant, SolverError, __version__
 from . import _moorsim
 
 __all__ = [
-    "Error", "InputError", "SolverError", "Lines", "Plant", "Run", "run", "read_run",
+    "Error", "InputError", "SolverError", "MoorsimWarning", "Lines", "Plant", "Run", "run",
+    "read_run",
     "run_campaign", "read_campaign", "detect", "__version__",
 ]
 

@@ -518,6 +518,42 @@ TEST(CApiPlant, MisuseIsAnErrorCodeWithAMessage) {
                  "not a moorsim plant state");
 }
 
+// What looks wrong but is done is warned of, once per kind and instance, through the
+// program's handler: a fairlead above the water by more than a hundredth of its line's
+// length (the lines are modelled submerged), a body faster than a moored body can be.
+TEST(CApi, DoubtfulPosesAndMotionsAreWarnedOfOnceAndStillDone) {
+  std::vector<std::string> warnings;
+  moorsim_set_warning_handler(
+      [](const char* message, void* user) {
+        static_cast<std::vector<std::string>*>(user)->push_back(message);
+      },
+      &warnings);
+  Lines lines(Mooring());
+  double x[6] = {0, 0, -20, 0, 0, 0}, xd[6] = {0}, f[6], t = 0.0, dt = 0.1;
+  ASSERT_EQ(moorsim_lines_init(lines.handle, x, xd), MOORSIM_OK) << moorsim_last_error();
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0].rfind("moorsim_lines_init: line 1's fairlead is 15 m above the water at "
+                              "this pose: the lines are modelled submerged all along",
+                              0),
+            0u)
+      << warnings[0];
+  x[2] = 0.0;
+  ASSERT_EQ(moorsim_lines_init(lines.handle, x, xd), MOORSIM_OK);
+  ASSERT_EQ(moorsim_lines_step(lines.handle, x, xd, f, &t, &dt), MOORSIM_OK);
+  EXPECT_EQ(warnings.size(), 1u);  // nothing doubtful
+  x[0] = 10.0;                     // 100 m/s
+  ASSERT_EQ(moorsim_lines_step(lines.handle, x, xd, f, &t, &dt), MOORSIM_OK);
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_EQ(warnings[1],
+            "moorsim_lines_step: the body moves 10 m and turns 0 rad in a step of 0.1 s at t = "
+            "0.1 s, faster than a moored body can (a pose in other units, or a jump?); the lines "
+            "follow it as given");
+  x[0] = 0.0;  // and back: said once only
+  ASSERT_EQ(moorsim_lines_step(lines.handle, x, xd, f, &t, &dt), MOORSIM_OK);
+  EXPECT_EQ(warnings.size(), 2u);
+  moorsim_set_warning_handler(nullptr, nullptr);
+}
+
 // A long call stops on moorsim_*_interrupt from another thread, soon and cleanly: the lines
 // as they were before the step, the plant at an instant it would have stopped at anyway,
 // both able to go on. A request made between calls stops the next one before it moves.

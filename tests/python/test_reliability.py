@@ -55,6 +55,16 @@ def test_a_pose_where_a_line_cannot_hang_is_bad_input():
     assert np.all(lines.fairlead_tensions() > 1e6)
 
 
+def test_what_looks_wrong_but_is_done_is_a_warning():
+    lines = moorsim.Lines(SEED)
+    with pytest.warns(moorsim.MoorsimWarning, match="^line 1's fairlead is 488 m above the water"):
+        lines.init(np.array([0.0, 0, -500, 0, 0, 0]), ZEROS)
+    lines.init(ZEROS, ZEROS)
+    with pytest.warns(moorsim.MoorsimWarning, match="^the body moves 1000 m and turns 0 rad in a "
+                                                    "step of 0.1 s at t = 0 s"):
+        lines.step(np.array([1000.0, 0, 0, 0, 0, 0]), ZEROS, 0.1)
+
+
 def test_detect_takes_one_tension_column_per_line_as_the_program_does():
     n = 10
     t = np.arange(n, dtype=float)
