@@ -191,16 +191,15 @@ Vec6 CoupledLines::Step(const BodyDofs& pose, const BodyDofs& velocity, double d
   CheckInitialized("a step");
   CheckFinite(pose, "pose");
   CheckFinite(velocity, "velocity");
-  if (!(dt >= kMinStep && dt <= kMaxStep)) {
+  // Shorter than a millionth of a millionth of the time, a step is lost in its rounding.
+  const double shortest = std::max(kMinStep, kMinStepShare * std::abs(t_));
+  if (!(dt >= shortest && dt <= kMaxStep)) {
     throw InputError("time step " + FormatNumber(dt) + " s must be a number from " +
-                     FormatNumber(kMinStep) + " to " + FormatNumber(kMaxStep) +
-                     " s (step again to go further)");
+                     FormatNumber(shortest) + " to " + FormatNumber(kMaxStep) + " s" +
+                     (shortest > kMinStep ? " at t = " + FormatNumber(t_) + " s" : "") +
+                     " (step again to go further)");
   }
   const double t1 = t_ + dt;
-  if (!(t1 > t_)) {
-    throw InputError("time step " + FormatNumber(dt) + " s is lost in the time " +
-                     FormatNumber(t_) + " s");
-  }
   const BodyDofs q0 = path_->pose(), dq0 = path_->velocity();
   const double moved = std::hypot(pose[0] - q0[0], pose[1] - q0[1], pose[2] - q0[2]);
   double turned = 0.0;
@@ -335,6 +334,10 @@ void CoupledLines::Restore(std::span<const std::uint8_t> bytes) {
   std::vector<double> x(r.GetCount(8, "state size"));
   if (r.remaining() != 8 * x.size()) r.Damaged("state size");
   for (double& v : x) v = r.Get<double>("state");
+  const auto finite = [](const auto& values) {
+    return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
+  };
+  if (!std::isfinite(t) || !finite(q) || !finite(dq) || !finite(x)) r.Damaged("numbers");
 
   const auto same = [](const LineFailure& a, const LineFailure& b) {
     return a.line == b.line && a.mode == b.mode &&

@@ -52,8 +52,10 @@ class CoupledLines {
   Vec6 Init(const BodyDofs& pose, const BodyDofs& velocity, double t0 = 0.0);
 
   /// The shortest and the longest step [s]: shorter ones are lost in the integrator's
-  /// arithmetic, longer ones are no coupling step (and would run for minutes unasked).
+  /// arithmetic (so is one shorter than kMinStepShare of the time), longer ones are no
+  /// coupling step (and would run for minutes unasked).
   static constexpr double kMinStep = 1e-9;
+  static constexpr double kMinStepShare = 1e-12;
   static constexpr double kMaxStep = 86400.0;
 
   /// Integrates the lines over [time(), time() + dt] with the body's path ending at `pose`
@@ -61,7 +63,8 @@ class CoupledLines {
   /// (the time and the CVODE flag) if the integrator fails, and moorsim::Interrupted once
   /// `interrupt` (asked as the integrator evaluates the lines, empty: never) returns true;
   /// the state is then the one before the step. Throws moorsim::InputError for a dt outside
-  /// [kMinStep, kMaxStep] or values that are not finite, ContractError before Init().
+  /// [max(kMinStep, kMinStepShare x time()), kMaxStep] or values that are not finite,
+  /// ContractError before Init().
   Vec6 Step(const BodyDofs& pose, const BodyDofs& velocity, double dt,
             const std::function<bool()>& interrupt = {});
 

@@ -120,11 +120,22 @@ void SteppedPlant::Restore(std::span<const std::uint8_t> bytes,
   r.SetFingerprintMeaning("its scenario, overrides or seed differ");
   r.CheckHeader(kTag, kFormat, fingerprint_);
   std::vector<Input> inputs(r.GetCount(32, "inputs"));
+  // Each input as AdvanceTo() and the setters would have taken it: a damaged one must not
+  // send the replay anywhere the plant could not have gone.
+  double reached = 0.0;
   for (Input& input : inputs) {
     const auto kind = r.Get<std::int64_t>("input");
     if (kind < Input::kAdvance || kind > Input::kLoad) r.Damaged("input kind");
     input.kind = static_cast<Input::Kind>(kind);
     for (double& v : input.values) v = r.Get<double>("input");
+    if (!std::all_of(input.values, input.values + 3, [](double v) { return std::isfinite(v); })) {
+      r.Damaged("input");
+    }
+    if (input.kind == Input::kAdvance) {
+      const double t = input.values[0];
+      if (!(t > reached && t - reached <= kMaxAdvance)) r.Damaged("input time");
+      reached = t;
+    }
   }
   if (r.remaining() != 0) r.Damaged("length");
   const auto same = [](const Input& a, const Input& b) {

@@ -108,8 +108,9 @@ int moorsim_lines_init(moorsim_lines* lines, const double* x, const double* xd);
 /* Integrates the lines from *t to *t + *dt with the body arriving at x[6] moving at xd[6],
  * writes their load on the body to f[6] (force [N] and moment about the reference point
  * [N m], Earth axes) and advances *t. *t must be the lines' time (moorsim_lines_time) and
- * *dt from MOORSIM_MIN_STEP to MOORSIM_MAX_STEP (MOORSIM_ERROR_INPUT otherwise). On a
- * solver error or an interruption the lines stay at the time and state before the call. */
+ * *dt from MOORSIM_MIN_STEP (and 1e-12 of *t, below which a step is lost in its rounding)
+ * to MOORSIM_MAX_STEP: MOORSIM_ERROR_INPUT otherwise. On a solver error or an interruption
+ * the lines stay at the time and state before the call. */
 int moorsim_lines_step(moorsim_lines* lines, const double* x, const double* xd, double* f,
                        double* t, double* dt);
 #define MOORSIM_MIN_STEP 1e-9    /* [s] */

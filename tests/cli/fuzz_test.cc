@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cstdint>
@@ -33,6 +34,7 @@
 #include "io/hdf5_file.h"
 #include "scenarios/campaign.h"
 #include "scenarios/load.h"
+#include "scenarios/moordyn.h"
 #include "simulation/pose_stream.h"
 #include "tests/cli/run_cli.h"
 #include "tests/support/scratch_directory.h"
@@ -475,6 +477,167 @@ TEST_F(Fuzz, RunH5WithFlippedBitsIsReadOrRefusedNamingTheFile) {
     refused += outcome.kind == Outcome::Kind::kRejected ? 1 : 0;
   }
   EXPECT_GT(refused, 30);
+}
+
+/// A MoorDyn input file of three lines, one of them two lines in series through a clump
+/// weight, on a surveyed seabed (bottom.txt beside it), one line type's stiffness a table
+/// (rope.txt beside it).
+const char kMoorDyn[] = R"(--------------------- MoorDyn Input File -----------------------
+fuzzed spread
+----------------------- LINE TYPES ------------------------------------------
+TypeName   Diam    Mass/m     EA         BA/-zeta    EI   Cd     Ca     CdAx    CaAx
+(name)     (m)     (kg/m)     (N)        (N-s/-)     (N-m^2)  (-)  (-)    (-)     (-)
+chain      0.1     150        8.0e8      -0.6        0    2.0    0.9    0.3     0.0
+rope       0.08    40         rope.txt   2.0e5       0    1.2    1.0    0.01    0.0
+---------------------- POINTS --------------------------------
+ID    Type      X       Y       Z       Mass   Volume  CdA    Ca
+(#)   (-)       (m)     (m)     (m)     (kg)   (m^3)   (m^2)  (-)
+1     Fixed     600     0       -200    0      0       0      0
+2     Fixed     -300    520     -200    0      0       0      0
+3     Fixed     -300    -520    -200    0      0       0      0
+4     Vessel    10      0       -15     0      0       0      0
+5     Vessel    -5      8.66    -15     0      0       0      0
+6     Vessel    -5      -8.66   -15     0      0       0      0
+7     Free      -150    -260    -190    5000   0.64    1.5    0.8
+---------------------- LINES ----------------------------------------
+ID   LineType   AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
+(#)   (name)     (#)      (#)       (m)       (-)     (-)
+1     chain      1        4         680       30      p
+2     chain      2        5         680       30      p
+3     rope       6        7         330       15      p
+4     chain      7        3         350       15      p
+---------------------- OPTIONS -----------------------------------------
+0.001         dtM           time step
+2.0e6         kBot          bottom stiffness (Pa/m)
+200           WtrDpth       water depth (m)
+bottom.txt    SeafloorFile  bathymetry
+0.4           FrictionCoefficient
+------------------------- need this line --------------------------------------
+)";
+
+const char kSeafloor[] =
+    "2 3\n-1000 1000\n-800 0 800\n-1000 -800 -200\n-1000 0 -200.2\n-1000 800 -200.4\n"
+    "1000 -800 -200.1\n1000 0 -200.3\n1000 800 -200.5\n";
+const char kRope[] = "strain tension\n(-) (N)\n---\n0 0\n0.01 1.0e6\n0.02 2.5e6\n0.05 9e6\n";
+
+/// Lines a MoorDyn file (or damage to it) could hold: its own rows elsewhere, rows with
+/// columns missing or added, references to what is not there, names given twice, sections
+/// moorsim does not model, options of every kind, other line ends and encodings.
+std::vector<std::string> MoorDynSplices(const std::string& text) {
+  std::vector<std::string> splices = Lines(text);
+  for (const char* line :
+       {"8     Fixed     0       0       -200    0      0       0      0",
+        "5     chain      9        4         680       30      p",
+        "5     nylon      1        4",
+        "1     Fixed     600     0       -200",
+        "4     Body1     0       0       -10",
+        "6     chain      4        5         30        10      p",
+        "7     chain      7        7         100       10      p",
+        "poly       0.2     50         1e8|2e8    1e7|1e6  0  1.2  1.0  0.01  0.0",
+        "syn        0.2     50         SYROPE:r.txt|1e8|2  1e7  0  1.2  1.0  0.01  0.0",
+        "---------------------- RODS ----",
+        "---------------------- BODIES ----",
+        "---------------------- SOMETHING ELSE ----",
+        "1 WaveKin",
+        "2 Currents",
+        "missing.txt SeafloorFile",
+        "-5 WtrDpth",
+        "abc WtrDpth",
+        "0 g",
+        "1e308 kBot",
+        "chain      0.1     150        8.0e8      -0.6        0    2.0    0.9    0.3     0.0 7",
+        "\xef\xbb\xbf--------------------- MoorDyn Input File ---",
+        "1\t\tFixed\t600\t0\t-200",
+        "caf\xe9       0.1     150        8.0e8      -0.6        0    2.0    0.9    0.3     0.0",
+        "4     Vessel    1e300   0       -15     0      0       0      0",
+        "END"}) {
+    splices.emplace_back(line);
+  }
+  return splices;
+}
+
+TEST_F(Fuzz, MutatedMoorDynFilesImportOrAreRefusedAtTheirLine) {
+  const std::filesystem::path dir = Dir() / "moordyn";
+  std::filesystem::create_directories(dir);
+  moorsim::testing::WriteWholeFile(dir / "bottom.txt", kSeafloor);
+  moorsim::testing::WriteWholeFile(dir / "rope.txt", kRope);
+  const std::string path = (dir / "spread.txt").string();
+  const std::string original = kMoorDyn;
+  Mutator mutator(kFuzzSeed + 5, MoorDynSplices(original));
+  int refused = 0, located = 0;
+  for (int i = 0; i < 250; ++i) {
+    std::string what;
+    // Now and then a line end of another system.
+    std::string text = mutator.Mutate(original, &what);
+    if (i % 25 == 0) {
+      for (std::size_t at = 0; (at = text.find('\n', at)) != std::string::npos; at += 2) {
+        text.insert(at, "\r");
+      }
+      what += ", CRLF";
+    }
+    moorsim::testing::WriteWholeFile(path, text);
+    const Outcome outcome =
+        Isolated([&] { scenarios::ImportMoorDyn(path, "fuzz", "fuzzed"); }, kCaseLimit);
+    const std::string label = Label("MoorDyn file", i, what);
+    ExpectAcceptedOrLocatedRejection(outcome, path + ":", label);
+    if (outcome.kind == Outcome::Kind::kRejected) {
+      ++refused;
+      // Said of a line of the file (a number after its name), but for what concerns the
+      // file as a whole (no tables, no depth, no line moorsim can hold).
+      for (const std::string& line : Lines(outcome.message)) {
+        const bool at_line = line.size() > path.size() + 1 &&
+                             std::isdigit(static_cast<unsigned char>(line[path.size() + 1]));
+        located += at_line ? 1 : 0;
+        EXPECT_TRUE(at_line || line.find(": no ") != std::string::npos ||
+                    line.find("not a MoorDyn") != std::string::npos ||
+                    line.find("cannot") != std::string::npos)
+            << label << ": a line that names no line of the file: " << line;
+      }
+    }
+  }
+  EXPECT_GT(refused, 80);
+  EXPECT_GT(located, 80);
+}
+
+TEST_F(Fuzz, MutatedSeafloorGridsAndStiffnessTablesAreRefusedAtTheMoorDynLine) {
+  const std::filesystem::path dir = Dir() / "moordyn_files";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "spread.txt").string();
+  moorsim::testing::WriteWholeFile(path, kMoorDyn);
+  std::vector<std::string> splices = {"9223372036854775808 9223372036854777856",
+                                      "1e300 2",
+                                      "2 2",
+                                      "0 3",
+                                      "-1 -1",
+                                      "0 0 0",
+                                      "nan nan nan",
+                                      "1e-320 1e308",
+                                      "4294967296 4294967297"};
+  Mutator mutator(kFuzzSeed + 6, splices);
+  int refused = 0;
+  for (int i = 0; i < 120; ++i) {
+    std::string what;
+    const bool grid = i % 2 == 0;
+    moorsim::testing::WriteWholeFile(dir / "bottom.txt",
+                                     grid ? mutator.Mutate(kSeafloor, &what) : kSeafloor);
+    moorsim::testing::WriteWholeFile(dir / "rope.txt", grid ? kRope : mutator.Mutate(kRope, &what));
+    const Outcome outcome =
+        Isolated([&] { scenarios::ImportMoorDyn(path, "fuzz", "fuzzed"); }, kCaseLimit);
+    const std::string label = Label(grid ? "seafloor grid" : "stiffness table", i, what);
+    // The grid's problems are said at the SeafloorFile option's line, the table's at its
+    // own row (the table is a file of the user's too) or at the line type's.
+    const std::string named = grid ? path + ":" : "";
+    ExpectAcceptedOrLocatedRejection(outcome, named, label);
+    if (outcome.kind == Outcome::Kind::kRejected) {
+      ++refused;
+      if (!grid) {
+        EXPECT_TRUE(outcome.message.rfind(path + ":", 0) == 0 ||
+                    outcome.message.rfind((dir / "rope.txt").string() + ":", 0) == 0)
+            << label << ": " << outcome.message;
+      }
+    }
+  }
+  EXPECT_GT(refused, 40);
 }
 
 // ---------------------------------------------------------------------------------------

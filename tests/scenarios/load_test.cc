@@ -459,7 +459,7 @@ TEST(ScenarioText, OverrideKeyPathsHaveOneSpellingAndBaseIsNotOne) {
             "scenario file");
   EXPECT_EQ(OverrideError({"simulation.duration=5\n---\n6"}),
             "set simulation.duration=5\n---\n6: the value holds more than one YAML document");
-  EXPECT_EQ(OverrideError({"simulation.duration=500", "mooring.lines[1].segments=20"}),
+  EXPECT_EQ(OverrideError({"simulation.duration=600", "mooring.lines[1].segments=20"}),
             "(no error)");
 }
 

@@ -222,9 +222,10 @@ TEST(AllErrors, IndependentChecksBetweenValuesAreAllReported) {
   std::string text = Edit(kBase, "- id: 3", "length: 2250", "length: 100");
   text = Edit(text, "simulation:", "duration: 1000", "duration: 10");
   const std::vector<std::string> lines = MessageLines(AllErrorsOf(text));
-  ASSERT_EQ(lines.size(), 2u) << AllErrorsOf(text);
+  ASSERT_EQ(lines.size(), 3u) << AllErrorsOf(text);
   EXPECT_NE(lines[0].find("mooring.lines[3].length: 100 m is shorter"), std::string::npos);
-  EXPECT_NE(lines[1].find("failure.time"), std::string::npos) << lines[1];
+  EXPECT_NE(lines[1].find("sensors.tension_cells.faults[1].time"), std::string::npos) << lines[1];
+  EXPECT_NE(lines[2].find("failure.time"), std::string::npos) << lines[2];
 }
 
 TEST(AllErrors, TheSameMistakeTwiceIsTwoLines) {
