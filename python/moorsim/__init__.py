@@ -44,6 +44,8 @@ __all__ = [
 
 def _overrides(set=None, seed=None, duration=None):
     """key.path=value strings, as `moorsim run --set` takes them, from a dict."""
+    if set is not None and not isinstance(set, dict):
+        raise TypeError(f"set must be a dict of key paths and values, not {type(set).__name__}")
     items = []
     for key, value in (set or {}).items():
         if isinstance(value, bool):

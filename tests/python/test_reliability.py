@@ -89,6 +89,79 @@ def test_a_step_longer_than_a_day_or_shorter_than_a_nanosecond_is_refused():
         plant.advance_to(np.nextafter(3.0, 0.0))
 
 
+def _misuses():
+    """Every function of the module with arguments of the wrong type, shape or size: (name,
+    call) pairs."""
+    lines = moorsim.Lines(SEED)
+    fresh = moorsim.Lines(SEED)
+    lines.init(ZEROS, ZEROS)
+    plant = moorsim.Plant(THESIS, seed=1)
+    t, pose = np.arange(5.0), np.zeros((5, 3))
+    cases = []
+    for name, bad in [("None", None), ("str", "x"), ("list of 5", [0.0] * 5),
+                      ("2-D", np.zeros((2, 6))), ("strings", np.array(["a"] * 6)),
+                      ("empty", np.zeros(0)), ("huge int", 10**400), ("nan", float("nan"))]:
+        cases += [
+            (f"Lines.init(x={name})", lambda b=bad: fresh.init(b, ZEROS)),
+            (f"Lines.init(xd={name})", lambda b=bad: fresh.init(ZEROS, b)),
+            (f"Lines.step(x={name})", lambda b=bad: lines.step(b, ZEROS, 0.1)),
+            (f"Lines.step(dt={name})", lambda b=bad: lines.step(ZEROS, ZEROS, b)),
+            (f"Lines.node_count({name})", lambda b=bad: lines.node_count(b)),
+            (f"Lines.segment_tensions({name})", lambda b=bad: lines.segment_tensions(b)),
+            (f"Lines.node_positions({name})", lambda b=bad: lines.node_positions(b)),
+            (f"Lines.part({name})", lambda b=bad: fresh.part(b)),
+            (f"Lines.part(where={name})", lambda b=bad: lines.part(1, where=b)),
+            (f"Lines.part(node={name})", lambda b=bad: lines.part(1, where="node", node=b)),
+            (f"Lines.restore({name})", lambda b=bad: lines.restore(b)),
+            (f"Plant(seed={name})", lambda b=bad: moorsim.Plant(THESIS, seed=b)),
+            (f"Plant.advance_to({name})", lambda b=bad: plant.advance_to(b)),
+            (f"Plant.set_thrust({name})", lambda b=bad: plant.set_thrust(b) if b is not None
+             else plant.set_thrust([float("inf"), 0, 0])),
+            (f"Plant.set_external_load({name})", lambda b=bad: plant.set_external_load(b)),
+            (f"Plant.restore({name})", lambda b=bad: plant.restore(b)),
+            (f"detect(time={name})", lambda b=bad: moorsim.detect(THESIS, b, pose)),
+            (f"detect(pose={name})", lambda b=bad: moorsim.detect(THESIS, t, b)),
+            (f"detect(thrust={name})",
+             lambda b=bad: moorsim.detect(THESIS, t, pose, thrust=b if b is not None else [])),
+            (f"detect(tensions={name})",
+             lambda b=bad: moorsim.detect(THESIS, t, pose, tensions=b if b is not None else [])),
+            (f"detect(set={name})", lambda b=bad: moorsim.detect(THESIS, t, pose, set=b or 5)),
+            (f"run(set={name})", lambda b=bad: moorsim.run(THESIS, set={"simulation.duration": b})),
+            (f"Lines({name})", lambda b=bad: moorsim.Lines(b)),
+            (f"Lines.from_yaml({name})", lambda b=bad: moorsim.Lines.from_yaml(b)),
+            (f"read_run({name})", lambda b=bad: moorsim.read_run(b)),
+        ]
+    # Arrays of the right shape but another size, and states of another kind.
+    cases += [
+        ("Lines.restore(a plant's state)", lambda: lines.restore(plant.save())),
+        ("Plant.restore(the lines' state)", lambda: plant.restore(lines.save())),
+        ("Lines.restore(cut short)", lambda: lines.restore(lines.save()[:-1])),
+        ("Plant.restore(cut short)", lambda: plant.restore(plant.save()[:-3])),
+        ("detect(pose with 2 columns)", lambda: moorsim.detect(THESIS, t, np.zeros((5, 2)))),
+        ("detect(pose with 4 rows)", lambda: moorsim.detect(THESIS, t, np.zeros((4, 3)))),
+        ("detect(thrust with 2 rows)",
+         lambda: moorsim.detect(THESIS, t, pose, thrust=np.zeros((2, 3)))),
+        ("Plant.set_thrust(4 numbers)", lambda: plant.set_thrust([1.0, 2.0, 3.0, 4.0])),
+    ]
+    return cases
+
+
+def test_every_function_refuses_wrong_types_shapes_and_sizes_with_a_python_error():
+    allowed = (TypeError, ValueError, IndexError, RuntimeError, OverflowError, OSError,
+               KeyError, moorsim.Error)
+    wrong = []
+    for name, call in _misuses():
+        try:
+            call()
+        except allowed as e:
+            # A refusal says what: a message of its own, never a bare exception.
+            if not str(e):
+                wrong.append(f"{name}: {type(e).__name__} without a message")
+        except Exception as e:  # noqa: BLE001 - anything else is the defect looked for
+            wrong.append(f"{name}: {type(e).__name__}: {e}")
+    assert not wrong, "\n".join(wrong)
+
+
 # The child: sets up one long call, says "ready", makes it, and reports how it ended and
 # whether the object can go on.
 CHILD = r"""
