@@ -3,7 +3,6 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 
 namespace moorsim::internal {
@@ -14,32 +13,6 @@ using Array = Eigen::Map<Eigen::ArrayXd>;
 // Every operation is element-wise, so an output that aliases an input is safe: each
 // element is read before it is written and no other element depends on it.
 Array A(N_Vector v) { return Array(N_VGetArrayPointer_Serial(v), N_VGetLength_Serial(v)); }
-
-// Numbers for a vector of length n that start on a cache line (N_VDestroy_Serial frees
-// them with free()). A vector at an odd multiple of 8 bytes, where malloc may leave it,
-// splits a quarter of the kernels' 16-byte loads across cache lines: the same build ran
-// 8 % slower when the allocations before its vectors had changed.
-double* AlignedNumbers(sunindextype n) {
-  constexpr std::size_t kLine = 64;
-  const std::size_t bytes = (static_cast<std::size_t>(std::max<sunindextype>(n, 1)) *
-                                 sizeof(double) + kLine - 1) / kLine * kLine;
-  return static_cast<double*>(std::aligned_alloc(kLine, bytes));
-}
-
-// CVODE's clones of the state vector (its history, weights and work vectors), with their
-// numbers on a cache line too.
-N_Vector AlignedClone(N_Vector w) {
-  N_Vector v = N_VCloneEmpty_Serial(w);
-  if (v == nullptr) return nullptr;
-  double* data = AlignedNumbers(N_VGetLength_Serial(w));
-  if (data == nullptr) {
-    N_VDestroy_Serial(v);
-    return nullptr;
-  }
-  NV_DATA_S(v) = data;
-  NV_OWN_DATA_S(v) = SUNTRUE;
-  return v;
-}
 
 void LinearSum(sunrealtype a, N_Vector x, sunrealtype b, N_Vector y, N_Vector z) {
   A(z) = a * A(x) + b * A(y);
@@ -156,22 +129,8 @@ void InstallFastSparseOps(SUNMatrix m) {
   m->ops->clone = &SparseClone;
 }
 
-N_Vector NewAlignedSerial(sunindextype n, SUNContext ctx) {
-  N_Vector v = N_VNewEmpty_Serial(n, ctx);
-  if (v == nullptr) return nullptr;
-  double* data = AlignedNumbers(n);
-  if (data == nullptr) {
-    N_VDestroy_Serial(v);
-    return nullptr;
-  }
-  NV_DATA_S(v) = data;
-  NV_OWN_DATA_S(v) = SUNTRUE;
-  return v;
-}
-
 void InstallFastSerialOps(N_Vector v) {
   N_VEnableFusedOps_Serial(v, SUNTRUE);
-  v->ops->nvclone = &AlignedClone;
   v->ops->nvlinearsum = &LinearSum;
   v->ops->nvconst = &Const;
   v->ops->nvprod = &Prod;

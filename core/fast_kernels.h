@@ -22,13 +22,8 @@ inline const SUNComm kNoCommunicator = SUN_COMM_NULL;
 inline void* const kNoCommunicator = nullptr;
 #endif
 
-/// A serial N_Vector of length n whose numbers start on a 64-byte cache line (null if
-/// memory runs out).
-N_Vector NewAlignedSerial(sunindextype n, SUNContext ctx);
-
 /// Replaces the hot operations of a serial N_Vector (linear sum, scale, constant, fused
-/// linear combination and scale-add, weighted RMS norm, element-wise products), and its
-/// clone, so that every clone's numbers start on a cache line as well.
+/// linear combination and scale-add, weighted RMS norm, element-wise products).
 void InstallFastSerialOps(N_Vector v);
 
 /// Replaces zero, copy, scale-add-identity and clone of a sparse SUNMatrix. Copy and

@@ -58,11 +58,10 @@ T* CheckPtr(T* p, const char* call) {
   return p;
 }
 
-// A state vector on a cache line with the fast element-wise kernels installed (clones
-// inherit them).
+// A state vector with the fast element-wise kernels installed (clones inherit them).
 N_Vector MakeStateVector(int n, SUNContext ctx) {
-  N_Vector v = internal::NewAlignedSerial(n, ctx);
-  if (v == nullptr) throw Error("integrator: no memory for a state vector");
+  N_Vector v = N_VNew_Serial(n, ctx);
+  if (v == nullptr) throw Error("SUNDIALS call N_VNew_Serial returned null");
   internal::InstallFastSerialOps(v);
   return v;
 }
