@@ -109,7 +109,10 @@ class PythonStop {
       std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::milliseconds(20))
           .count();
   std::atomic<int> signal_{0};
-  std::atomic<std::chrono::steady_clock::rep> asked_{0};
+  // The first ask of Python comes 20 ms into the call: a shorter call (a coupling step)
+  // never takes the GIL, and Python itself sees Ctrl-C as soon as it returns.
+  std::atomic<std::chrono::steady_clock::rep> asked_{
+      std::chrono::steady_clock::now().time_since_epoch().count()};
 };
 
 // Runs `call(stop)` without the GIL, `stop` answering Ctrl-C; an interrupted call raises
