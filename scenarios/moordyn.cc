@@ -472,6 +472,12 @@ class Origins {
 MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
                             const std::string& files_stem) {
   const std::string text = strict_yaml::ReadInputFile(path, kMaxFileBytes, "MoorDyn input");
+  // Names and fields go into the scenario as they are: the file is UTF-8 (or ASCII), said at
+  // its line, not where the scenario would be refused for it.
+  if (const std::optional<std::size_t> bad = strict_yaml::FirstInvalidUtf8(text)) {
+    throw InputError(path + ":" + std::to_string(strict_yaml::MarkOfOffset(text, *bad).line) +
+                     ": " + strict_yaml::InvalidUtf8(text, *bad));
+  }
   const std::vector<Section> sections = ReadSections(text);
   Problems problems(path);
   MoorDynImport out;

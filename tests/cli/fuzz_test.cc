@@ -37,6 +37,7 @@
 #include "scenarios/moordyn.h"
 #include "simulation/pose_stream.h"
 #include "tests/cli/run_cli.h"
+#include "tests/support/moordyn_spread.h"
 #include "tests/support/scratch_directory.h"
 
 namespace moorsim::simulation {
@@ -479,41 +480,19 @@ TEST_F(Fuzz, RunH5WithFlippedBitsIsReadOrRefusedNamingTheFile) {
   EXPECT_GT(refused, 30);
 }
 
-/// A MoorDyn input file of three lines, one of them two lines in series through a clump
-/// weight, on a surveyed seabed (bottom.txt beside it), one line type's stiffness a table
+/// The importer's test spread (three lines, one of them two lines in series through a
+/// clump weight) on a surveyed seabed (bottom.txt beside it), its wire's stiffness a table
 /// (rope.txt beside it).
-const char kMoorDyn[] = R"(--------------------- MoorDyn Input File -----------------------
-fuzzed spread
------------------------ LINE TYPES ------------------------------------------
-TypeName   Diam    Mass/m     EA         BA/-zeta    EI   Cd     Ca     CdAx    CaAx
-(name)     (m)     (kg/m)     (N)        (N-s/-)     (N-m^2)  (-)  (-)    (-)     (-)
-chain      0.1     150        8.0e8      -0.6        0    2.0    0.9    0.3     0.0
-rope       0.08    40         rope.txt   2.0e5       0    1.2    1.0    0.01    0.0
----------------------- POINTS --------------------------------
-ID    Type      X       Y       Z       Mass   Volume  CdA    Ca
-(#)   (-)       (m)     (m)     (m)     (kg)   (m^3)   (m^2)  (-)
-1     Fixed     600     0       -200    0      0       0      0
-2     Fixed     -300    520     -200    0      0       0      0
-3     Fixed     -300    -520    -200    0      0       0      0
-4     Vessel    10      0       -15     0      0       0      0
-5     Vessel    -5      8.66    -15     0      0       0      0
-6     Vessel    -5      -8.66   -15     0      0       0      0
-7     Free      -150    -260    -190    5000   0.64    1.5    0.8
----------------------- LINES ----------------------------------------
-ID   LineType   AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
-(#)   (name)     (#)      (#)       (m)       (-)     (-)
-1     chain      1        4         680       30      p
-2     chain      2        5         680       30      p
-3     rope       6        7         330       15      p
-4     chain      7        3         350       15      p
----------------------- OPTIONS -----------------------------------------
-0.001         dtM           time step
-2.0e6         kBot          bottom stiffness (Pa/m)
-200           WtrDpth       water depth (m)
-bottom.txt    SeafloorFile  bathymetry
-0.4           FrictionCoefficient
-------------------------- need this line --------------------------------------
-)";
+std::string FuzzedSpread() {
+  std::string text = moorsim::testing::kMoorDynSpread;
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    text.replace(text.find(from), from.size(), to);
+  };
+  replace("5.0e8 ", "rope.txt");
+  replace("0.4           FrictionCoefficient",
+          "bottom.txt    SeafloorFile  bathymetry\n0.4           FrictionCoefficient");
+  return text;
+}
 
 const char kSeafloor[] =
     "2 3\n-1000 1000\n-800 0 800\n-1000 -800 -200\n-1000 0 -200.2\n-1000 800 -200.4\n"
@@ -562,7 +541,7 @@ TEST_F(Fuzz, MutatedMoorDynFilesImportOrAreRefusedAtTheirLine) {
   moorsim::testing::WriteWholeFile(dir / "bottom.txt", kSeafloor);
   moorsim::testing::WriteWholeFile(dir / "rope.txt", kRope);
   const std::string path = (dir / "spread.txt").string();
-  const std::string original = kMoorDyn;
+  const std::string original = FuzzedSpread();
   Mutator mutator(kFuzzSeed + 5, MoorDynSplices(original));
   int refused = 0, located = 0;
   for (int i = 0; i < 150; ++i) {
@@ -603,7 +582,7 @@ TEST_F(Fuzz, MutatedSeafloorGridsAndStiffnessTablesAreRefusedAtTheMoorDynLine) {
   const std::filesystem::path dir = Dir() / "moordyn_files";
   std::filesystem::create_directories(dir);
   const std::string path = (dir / "spread.txt").string();
-  moorsim::testing::WriteWholeFile(path, kMoorDyn);
+  moorsim::testing::WriteWholeFile(path, FuzzedSpread());
   std::vector<std::string> splices = {"9223372036854775808 9223372036854777856",
                                       "1e300 2",
                                       "2 2",
