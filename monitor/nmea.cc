@@ -4,6 +4,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "core/format.h"
@@ -184,6 +185,58 @@ unsigned NmeaChecksum(std::string_view body) {
   unsigned sum = 0;
   for (const char c : body) sum ^= static_cast<unsigned char>(c);
   return sum;
+}
+
+std::string NmeaText(char start, std::string_view address, const std::vector<std::string>& fields) {
+  std::string body(address);
+  for (const std::string& field : fields) body += ',' + field;
+  static constexpr char kHex[] = "0123456789ABCDEF";
+  const unsigned sum = NmeaChecksum(body);
+  return std::string(1, start) + body + '*' + kHex[sum >> 4] + kHex[sum & 15];
+}
+
+std::string NmeaTagBlock(double unix_time) {
+  char text[48];
+  std::snprintf(text, sizeof text, "c:%.6f", unix_time);
+  static constexpr char kHex[] = "0123456789ABCDEF";
+  const unsigned sum = NmeaChecksum(text);
+  return std::string("\\") + text + '*' + kHex[sum >> 4] + kHex[sum & 15] + '\\';
+}
+
+bool SplitTagBlock(std::string_view* line, NmeaTags* tags, std::string* why) {
+  if (line->empty() || line->front() != '\\') return true;
+  const std::size_t end = line->find('\\', 1);
+  const std::string_view block = line->substr(1, end == std::string_view::npos ? 0 : end - 1);
+  const std::size_t star = block.rfind('*');
+  const auto fail = [&](const std::string& what) {
+    if (why != nullptr) *why = "TAG block: " + what;
+    return false;
+  };
+  if (end == std::string_view::npos || end > 100) return fail("no closing backslash");
+  if (star == std::string_view::npos || star + 3 != block.size()) return fail("no *hh checksum");
+  const int high = HexDigit(block[star + 1]), low = HexDigit(block[star + 2]);
+  const std::string_view body = block.substr(0, star);
+  if (high < 0 || low < 0) return fail("no *hh checksum");
+  if (NmeaChecksum(body) != static_cast<unsigned>(16 * high + low)) return fail("bad checksum");
+  NmeaTags found;
+  for (std::size_t from = 0; from < body.size();) {
+    const std::size_t comma = std::min(body.find(',', from), body.size());
+    const std::string_view tag = body.substr(from, comma - from);
+    if (tag.size() < 2 || tag[1] != ':') return fail("'" + std::string(tag) + "' is not k:value");
+    if (tag[0] == 'c') {
+      const std::optional<double> time = Number(tag.substr(2));
+      if (!time || *time < 0.0 || *time > 1e11) {
+        return fail("c: '" + std::string(tag.substr(2)) + "' is not a UNIX time in seconds");
+      }
+      found.unix_time = time;
+    } else if (tag[0] == 's') {
+      found.source = std::string(tag.substr(2));
+    }
+    from = comma + 1;
+  }
+  *tags = std::move(found);
+  line->remove_prefix(end + 1);
+  return true;
 }
 
 NmeaParse ParseNmea(std::string_view line) {

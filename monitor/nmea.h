@@ -114,4 +114,23 @@ std::optional<std::vector<NmeaTransducer>> DecodeTransducers(const NmeaSentence&
                                                              std::string* why);
 std::optional<NmeaClock> DecodeClock(const NmeaSentence& sentence, std::string* why);
 
+/// An NMEA TAG block (IEC 61162-450, NMEA 0183 v4) written before a sentence,
+/// `\c:1733580000.25,s:GP01*hh\`: the time the sentence was received [s since 1970 UTC]
+/// and its source, as a recorded log keeps them.
+struct NmeaTags {
+  std::optional<double> unix_time;  ///< c: (seconds; decimals allowed)
+  std::string source;               ///< s:
+};
+
+/// Splits a leading TAG block off `line`: true with `tags` set and `line` left at the
+/// sentence; true with nothing changed if the line has no TAG block; false with `why` for a
+/// TAG block that is cut, has a wrong checksum or a `c:` that is not a time.
+bool SplitTagBlock(std::string_view* line, NmeaTags* tags, std::string* why);
+
+/// A sentence's text: `start`, the address and the fields joined by commas, `*` and the
+/// checksum (no line end).
+std::string NmeaText(char start, std::string_view address, const std::vector<std::string>& fields);
+/// A TAG block with `c:` (UNIX time, to the microsecond) for a recorded log.
+std::string NmeaTagBlock(double unix_time);
+
 }  // namespace moorsim::monitor

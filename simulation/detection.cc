@@ -306,4 +306,22 @@ nlohmann::json DetectorsSummary(const scenarios::Scenario& scenario, const Detec
   return detectors;
 }
 
+nlohmann::ordered_json AlarmEventJson(const DetectorRecord& record, const detectors::AlarmEvent& e,
+                                      const detectors::Verdict& verdict,
+                                      const std::vector<std::string>& labels, int lines,
+                                      double latency_ms) {
+  const bool end = e.kind == detectors::AlarmEvent::Kind::kEnd;
+  nlohmann::ordered_json j;
+  j["time"] = e.time;
+  j["detector"] = record.label;
+  j["type"] = record.type;
+  j["event"] = detectors::AlarmEventName(e.kind);
+  j["hypothesis"] = end ? nlohmann::json(nullptr) : nlohmann::json(labels.at(e.hypothesis));
+  j["line"] = !end && e.hypothesis >= 1 && e.hypothesis <= lines ? nlohmann::json(e.hypothesis)
+                                                                 : nlohmann::json(nullptr);
+  j["score"] = end ? nlohmann::json(nullptr) : nlohmann::json(verdict.score.at(e.hypothesis));
+  j["latency_ms"] = latency_ms;
+  return j;
+}
+
 }  // namespace moorsim::simulation

@@ -124,6 +124,15 @@ class Detection {
 nlohmann::json PluginsSummary(
     const std::vector<std::shared_ptr<const detectors::PluginLibrary>>& used);
 
+/// One alarm event as `moorsim detect` prints it (one JSON object a line): time, detector
+/// label and type, event, the hypothesis it names (its label; the line number, null for a
+/// pair), the detector's score for it, and `latency_ms`, the wall time of that sample in
+/// the observers and detectors.
+nlohmann::ordered_json AlarmEventJson(const DetectorRecord& record, const detectors::AlarmEvent& e,
+                                      const detectors::Verdict& verdict,
+                                      const std::vector<std::string>& labels, int lines,
+                                      double latency_ms);
+
 /// summary.json's "failure": the scenario's line, time and mode, or null without one.
 nlohmann::json FailureSummary(const scenarios::Scenario& scenario);
 

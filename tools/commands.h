@@ -52,6 +52,10 @@ void CheckScenarioOut(const std::string& path, bool force);
 inline constexpr const char* kScenarioOutNote =
     "Without --out the scenario goes to stdout; --out does not replace an existing file\n"
     "unless --force.";
+/// `moorsim monitor CONFIG`: the detection on a vessel's own sensor feeds.
+Command AddMonitorCommand(CLI::App& app);
+/// `moorsim stream SCENARIO --to CONFIG`: a simulated ship's sensors played to a monitor.
+Command AddStreamCommand(CLI::App& app);
 /// Registers `moorsim import`.
 Command AddImportCommand(CLI::App& app);
 

@@ -11,9 +11,11 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <thread>
@@ -31,6 +33,7 @@
 #include "io/hdf5_file.h"
 #include "io/hdf5_reader.h"
 #include "io/text_file.h"
+#include "monitor/store.h"
 #include "scenarios/load.h"
 #include "simulation/detection_tables.h"
 #include "simulation/followed_file.h"
@@ -53,6 +56,7 @@ struct DetectOptions {
   std::optional<std::string> out;
   std::optional<std::string> max_gap;
   std::optional<std::string> flush_interval;
+  std::optional<std::string> from, to;
   bool follow = false;
   bool quiet = false;
 };
@@ -154,26 +158,6 @@ class DetectWriter {
   output::TableId time_, pose_, thrust_;
   std::optional<simulation::DetectionTables> tables_;
 };
-
-/// One alarm event as a JSON object: time, detector label and type, event, the hypothesis
-/// it names (its label; the line number, null for a pair), and the detector's score for it.
-nlohmann::ordered_json EventJson(const simulation::DetectorRecord& record,
-                                 const detectors::AlarmEvent& e, const detectors::Verdict& verdict,
-                                 const std::vector<std::string>& labels, int lines,
-                                 double latency_ms) {
-  const bool end = e.kind == detectors::AlarmEvent::Kind::kEnd;
-  nlohmann::ordered_json j;
-  j["time"] = e.time;
-  j["detector"] = record.label;
-  j["type"] = record.type;
-  j["event"] = detectors::AlarmEventName(e.kind);
-  j["hypothesis"] = end ? nlohmann::json(nullptr) : nlohmann::json(labels.at(e.hypothesis));
-  j["line"] = !end && e.hypothesis >= 1 && e.hypothesis <= lines ? nlohmann::json(e.hypothesis)
-                                                                 : nlohmann::json(nullptr);
-  j["score"] = end ? nlohmann::json(nullptr) : nlohmann::json(verdict.score.at(e.hypothesis));
-  j["latency_ms"] = latency_ms;
-  return j;
-}
 
 std::string CsvCell(const nlohmann::ordered_json& value) {
   if (value.is_null()) return "";
@@ -342,14 +326,49 @@ class Latency {
   double sum_ = 0.0, max_ = 0.0, last_ = 0.0;
 };
 
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+/// A time as UNIX seconds: a number, or UTC as YYYY-MM-DDTHH:MM:SS with an optional Z.
+double ParseUtc(const std::string& flag, const std::string& text) {
+  std::tm utc{};
+  int year = 0, month = 0, day = 0, hour = 0, minute = 0, second = 0;
+  char z = 'Z';
+  const int read = std::sscanf(text.c_str(), "%4d-%2d-%2dT%2d:%2d:%2d%c", &year, &month, &day,
+                               &hour, &minute, &second, &z);
+  if ((read == 6 || (read == 7 && z == 'Z')) &&
+      text.size() == static_cast<std::size_t>(read == 7 ? 20 : 19)) {
+    utc.tm_year = year - 1900;
+    utc.tm_mon = month - 1;
+    utc.tm_mday = day;
+    utc.tm_hour = hour;
+    utc.tm_min = minute;
+    utc.tm_sec = second;
+    return static_cast<double>(timegm(&utc));
+  }
+  try {
+    return ParseNumber(flag, text);
+  } catch (const InputError&) {
+    throw InputError(flag + ": '" + text +
+                     "' is neither UTC (2026-12-07T16:00:00Z) nor UNIX seconds");
+  }
+}
+
 int Detect(const DetectOptions& o) {
   // std::cin then reads through a buffer of its own, whose fill in_avail() tells (stdio's
   // is invisible): LineSource::AwaitInput relies on it.
   std::ios::sync_with_stdio(false);
   const bool from_stdin = o.input == "-";
   if (!from_stdin && !fs::exists(o.input)) throw InputError(o.input + ": no such file");
-  const bool hdf5 = !from_stdin && output::LooksLikeHdf5(o.input);
+  const bool store = !from_stdin && fs::is_directory(o.input);
+  const bool hdf5 = !from_stdin && !store && output::LooksLikeHdf5(o.input);
   if (o.follow && hdf5) throw InputError("--follow: " + o.input + " is a run.h5, not a CSV stream");
+  if (o.follow && store) {
+    throw InputError("--follow: " + o.input + " is a monitor's store, not a CSV stream");
+  }
+  if ((o.from || o.to) && !store) {
+    throw InputError(std::string(o.from ? "--from" : "--to") +
+                     ": chooses the samples of a monitor's store (a folder), not of a file");
+  }
   const double max_gap =
       o.max_gap ? ParseNumber("--max-gap", *o.max_gap) : simulation::kDefaultMaxGap;
   if (!(max_gap > 0.0)) throw InputError("--max-gap: '" + *o.max_gap + "' must be positive [s]");
@@ -369,6 +388,12 @@ int Detect(const DetectOptions& o) {
   scenarios::Scenario scenario;
   if (o.scenario) {
     scenario = scenarios::LoadScenario(RequireText("--scenario", *o.scenario), o.sets);
+  } else if (store) {
+    const monitor::StoreIdentity identity = monitor::ReadStoreIdentity(o.input);
+    scenario = scenarios::ParseScenario(identity.scenario_text, identity.scenario_path);
+    if (!o.sets.empty()) {
+      throw InputError("--set: needs --scenario (the monitor's own scenario is replayed)");
+    }
   } else if (hdf5) {
     scenario = simulation::ReadRunScenario(o.input);
     if (!o.sets.empty()) {
@@ -409,8 +434,9 @@ int Detect(const DetectOptions& o) {
     for (std::size_t i = 0; i < seen.size(); ++i) {
       const simulation::DetectorRecord& record = detection->records()[i];
       for (; seen[i] < record.history.events().size(); ++seen[i]) {
-        events.push_back(EventJson(record, record.history.events()[seen[i]],
-                                   detection->verdicts()[i], labels, lines, latency.last()));
+        events.push_back(simulation::AlarmEventJson(record, record.history.events()[seen[i]],
+                                                    detection->verdicts()[i], labels, lines,
+                                                    latency.last()));
       }
     }
     if (outputs) outputs->Take(observation, *detection, events);
@@ -420,7 +446,26 @@ int Detect(const DetectOptions& o) {
     if (!std::cout) stdout_closed = true;
   };
 
-  if (hdf5) {
+  if (store) {
+    const double from = o.from ? ParseUtc("--from", *o.from) : -kInfinity;
+    const double to = o.to ? ParseUtc("--to", *o.to) : kInfinity;
+    const std::vector<monitor::StoredSample> samples =
+        monitor::ReadStoredSamples(o.input, from, to);
+    if (samples.empty()) throw InputError(o.input + ": no samples between --from and --to");
+    if (samples.front().segment != samples.back().segment) {
+      throw InputError(
+          o.input + ": the samples span the monitor's detection segments " +
+          std::to_string(samples.front().segment) + " to " +
+          std::to_string(samples.back().segment) +
+          " (its detection started afresh in between); choose one with --from and --to");
+    }
+    simulation::StreamChecks checks(max_gap);
+    for (const monitor::StoredSample& sample : samples) {
+      checks.Check(sample.observation, o.input + " sample " + std::to_string(sample.index));
+      take(sample.observation);
+      if (stdout_closed) break;
+    }
+  } else if (hdf5) {
     for (const detectors::Observation& observation :
          simulation::ReadRunDetectionInput(o.input, lines, max_gap)) {
       take(observation);
@@ -506,8 +551,8 @@ Command AddDetectCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "detect", "run the observers and detectors on a recorded or live pose stream (no plant)");
   sub->add_option("input", o->input,
-                  "a CSV log (header required), a moorsim run.h5 to replay, or - for rows on "
-                  "standard input")
+                  "a CSV log (header required), a moorsim run.h5 to replay, a monitor's store (its "
+                  "folder), or - for rows on standard input")
       ->required();
   sub->add_option("--scenario", o->scenario,
                   "scenario YAML: mooring, vessel, sensors and detectors (default for a "
@@ -520,6 +565,10 @@ Command AddDetectCommand(CLI::App& app) {
                   "live input with --out: DIR/detect.h5 and DIR/alarms.csv are made durable at "
                   "least this often and at every alarm; a kill loses at most this much [s] "
                   "(default 10)");
+  sub->add_option("--from", o->from,
+                  "a monitor's store: the first sample's time, UTC (2026-12-07T16:00:00Z) or "
+                  "UNIX seconds (default: the first recorded)");
+  sub->add_option("--to", o->to, "a monitor's store: samples before this time (default: all)");
   sub->add_flag("--follow", o->follow,
                 "at the end of a CSV file, wait for more rows (a log being appended) until "
                 "SIGINT/SIGTERM; follows rotation as tail -F does (truncated, replaced or "

@@ -39,6 +39,8 @@ int main(int argc, char** argv) {
   add(&moorsim::cli::AddSchemaCommand);
   add(&moorsim::cli::AddAnalyzeCommand);
   add(&moorsim::cli::AddDetectCommand);
+  add(&moorsim::cli::AddMonitorCommand);
+  add(&moorsim::cli::AddStreamCommand);
   add(&moorsim::cli::AddTemplateCommand);
   add(&moorsim::cli::AddImportCommand);
   {

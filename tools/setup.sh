@@ -17,6 +17,7 @@ packages=(
   libhdf5-dev              # run.h5 writer (HDF5 C API)
   nettle-dev               # SHA-256 of detector plugin libraries
   libgeographiclib-dev     # the monitor: latitude and longitude to the scenario's frame
+  libsqlite3-dev           # the monitor's record (SQLite in write-ahead-log mode)
   libopenmpi-dev openmpi-bin   # moorsim batch under mpirun
   python3-numpy python3-h5py python3-matplotlib   # tools/plot_run.py
   python3-scipy            # tools/report.py: the intervals' distributions

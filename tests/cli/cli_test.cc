@@ -289,8 +289,8 @@ TEST_F(CliTest, TopLevelHelpListsEachCommandOnOneLine) {
     commands.push_back(line.substr(2, line.find(' ', 2) - 2));
   }
   EXPECT_EQ(commands, (std::vector<std::string>{"static", "run", "simulate-lines", "validate",
-                                                "schema", "analyze", "detect", "template", "import",
-                                                "batch", "compare"}));
+                                                "schema", "analyze", "detect", "monitor", "stream",
+                                                "template", "import", "batch", "compare"}));
 }
 
 TEST_F(CliTest, AnEndlessInputIsRejectedNotReadForever) {

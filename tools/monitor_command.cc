@@ -1,0 +1,71 @@
+// `moorsim monitor CONFIG`: the detection on a vessel's own sensor feeds, as a service that
+// runs until SIGINT or SIGTERM (or to the end of a replayed log). monitor/service.h says what
+// it does; scenarios/monitor_config.h what the configuration holds.
+#include <csignal>
+#include <iostream>
+#include <memory>
+
+#include "core/error.h"
+#include "core/format.h"
+#include "monitor/service.h"
+#include "scenarios/load.h"
+#include "scenarios/monitor_config.h"
+#include "simulation/run.h"
+#include "tools/commands.h"
+
+namespace moorsim::cli {
+namespace {
+
+struct MonitorOptions {
+  std::string config;
+  bool quiet = false;
+};
+
+int Monitor(const MonitorOptions& o) {
+  const scenarios::MonitorConfig config =
+      scenarios::LoadMonitorConfig(RequireText("CONFIG", o.config));
+  const scenarios::Scenario scenario = scenarios::LoadScenario(config.scenario_path);
+  simulation::InstallStopSignalHandlers();
+  // A bridge or a display that goes away must not take the monitor with it.
+  std::signal(SIGPIPE, SIG_IGN);
+  monitor::MonitorOptions options;
+  options.stop = [] { return simulation::StopSignal() != 0; };
+  if (!o.quiet) {
+    options.log = [](const std::string& line) {
+      std::cerr << "moorsim monitor: " << line << std::endl;
+    };
+  }
+  monitor::Monitor service(config, scenario, options);
+  const monitor::MonitorSummary summary = service.Run();
+  if (!o.quiet) {
+    std::cerr << "moorsim monitor: " << summary.lines << " lines, " << summary.samples
+              << " samples, " << summary.events << " detector events, " << summary.alarm_changes
+              << " alarm changes" << std::endl;
+  }
+  const int signal = simulation::StopSignal();
+  return signal != 0 ? 128 + signal : 0;
+}
+
+}  // namespace
+
+Command AddMonitorCommand(CLI::App& app) {
+  auto o = std::make_shared<MonitorOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "monitor", "watch a vessel's mooring live from its own sensor feeds (NMEA 0183)");
+  sub->add_option("config", o->config,
+                  "monitor configuration (YAML): the vessel's scenario, its place on the Earth, "
+                  "the feeds, the store and the outputs")
+      ->required();
+  sub->add_flag("--quiet", o->quiet, "no operator log on stderr");
+  AddPluginOption(sub);
+  sub->footer(
+      "\nRuns until SIGINT or SIGTERM (exit 128 + signal), or to the end of a replayed log\n"
+      "(exit 0). Detector events are printed as `moorsim detect` prints them, one JSON line\n"
+      "each, and alarm changes as JSON lines {unix, utc, alarm, state, text}; both go to the\n"
+      "configuration's `alarms` (default standard output). Everything read and decided is\n"
+      "recorded in the store first; a monitor started again on its store lists its alarms\n"
+      "as they were and warms its observers on what it recorded.");
+  return [o] { return Monitor(*o); };
+}
+
+}  // namespace moorsim::cli
