@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstring>
 #include <ctime>
+#include <deque>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -23,6 +24,7 @@
 #include "core/format.h"
 #include "core/version.h"
 #include "monitor/alarms.h"
+#include "monitor/display.h"
 #include "monitor/feeds.h"
 #include "monitor/ingest.h"
 #include "monitor/nmea.h"
@@ -32,6 +34,9 @@
 
 namespace moorsim::monitor {
 namespace {
+
+/// The samples whose positions the display draws as the vessel's track (at 1 Hz, 15 min).
+constexpr std::size_t kTrack = 900;
 
 std::string ReadWhole(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -107,14 +112,18 @@ struct Monitor::Parts {
   double started = 0.0;  // UNIX time the monitor started (or the replay's first line)
   double now = 0.0;      // the monitor's clock: the system's, or the replayed line's
   double last_commit = 0.0;
+  double last_tag_wall = 0.0;  // when the latest tag was read (feeds timed by tags)
   double next_repeat = 0.0;
   int send_fd = -1, ack_fd = -1;
   sockaddr_in send_to{};
   std::FILE* alarms = stdout;
   bool alarms_owned = false;
   MonitorSummary summary;
-  std::vector<FeedHealth> feed_health;  // as last logged
-  std::vector<bool> stale;              // per channel, as last logged
+  std::vector<FeedHealth> feed_health;      // as last logged
+  std::vector<bool> stale;                  // per channel, as last logged
+  std::deque<std::array<double, 2>> track;  // the latest samples' positions
+  std::unique_ptr<DisplayServer> display;
+  bool alarms_changed = false;  // since the display was last sent the state
 
   ~Parts() {
     if (send_fd >= 0) ::close(send_fd);
@@ -149,6 +158,10 @@ struct Monitor::Parts {
           " starts at t = " + FormatNumber(sample.observation.t) + " s");
     }
     store->SampleTaken(sample, segment);
+    if (sample.observation.valid[0]) {
+      track.push_back({sample.observation.pose(0), sample.observation.pose(1)});
+      if (track.size() > kTrack) track.pop_front();
+    }
     const auto start = std::chrono::steady_clock::now();
     detection->Update(sample.observation);
     const double ms =
@@ -214,6 +227,7 @@ struct Monitor::Parts {
   }
 
   void Announce(AlarmChange change) {
+    alarms_changed = true;
     const std::int64_t id = store->Change(change);
     if (change.kind == AlarmChange::Kind::kRaised) {
       change.alarm.id = id;
@@ -299,10 +313,19 @@ struct Monitor::Parts {
 
   void Line(const FeedLine& line) {
     ++summary.lines;
-    if (config.Tagged()) now = std::max(now, line.stamp);
+    if (config.Tagged() && line.stamp >= now) {
+      now = line.stamp;
+      last_tag_wall = UnixNow();
+    }
     store->Line(line);
     ingest->Take(line);
     TakeSamples();
+  }
+
+  void Publish() {
+    if (!display) return;
+    display->Publish(alarms_changed);
+    alarms_changed = false;
   }
 
   void Tick() {
@@ -310,6 +333,7 @@ struct Monitor::Parts {
     TakeSamples();
     UpdateAlarms();
     RepeatAlr();
+    Publish();
     if (now - last_commit >= 1.0) {
       store->Commit();
       last_commit = now;
@@ -419,6 +443,13 @@ Monitor::Monitor(const scenarios::MonitorConfig& config, const scenarios::Scenar
   } else {
     p.feeds =
         std::make_unique<Feeds>(config.feeds, &p.poller, [&p](FeedLine line) { p.Line(line); });
+    if (config.display) {
+      p.display = std::make_unique<DisplayServer>(
+          *config.display, &p.poller, [this] { return State().dump(); },
+          [&p](int number) { return p.Acknowledge(number, "display"); });
+      p.Log("display: http://" + config.display->address + ":" + std::to_string(p.display->port()) +
+            "/");
+    }
   }
 }
 
@@ -451,7 +482,17 @@ MonitorSummary Monitor::Run() {
     p.LogFeeds();
     const int wait_ms = static_cast<int>(std::clamp((wanted - wall) * 1000.0, 0.0, 200.0));
     p.poller.Wait(wait_ms);
-    if (!tagged) p.now = UnixNow();
+    if (!tagged) {
+      p.now = UnixNow();
+    } else if (p.last_tag_wall > 0.0) {
+      // Nothing for a second: the clock runs on with the system's, so that silent feeds
+      // go stale and a stopped sender is seen.
+      const double quiet = UnixNow() - p.last_tag_wall - 1.0;
+      if (quiet > 0.0) {
+        p.now += quiet;
+        p.last_tag_wall += quiet;
+      }
+    }
     p.Tick();
   }
   p.store->Commit();
@@ -460,20 +501,107 @@ MonitorSummary Monitor::Run() {
 
 nlohmann::json Monitor::State() const {
   const Parts& p = *parts_;
+  const auto number = [](double x) {
+    return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
+  };
   nlohmann::json state;
+  state["scenario"] = p.scenario.name;
   state["now"] = p.now;
+  state["wall"] = UnixNow();  // the system's clock, which the feeds' times are on
   state["epoch"] = p.store->epoch();
-  state["active"] = p.ingest->active();
+  state["detecting"] = p.ingest->active();
   state["segment"] = p.segment;
+  const Vec3& pose = p.ingest->latest_pose();
+  state["vessel"] = {
+      {"north", number(pose(0))}, {"east", number(pose(1))}, {"heading", number(pose(2))}};
+  const scenarios::VesselSpec vessel = p.scenario.vessel.value_or(scenarios::VesselSpec{});
+  state["hull"] = {{"length", vessel.hull.length}, {"beam", vessel.hull.beam}};
+  state["turret"] = {vessel.turret.x, vessel.turret.y};
+  nlohmann::json track = nlohmann::json::array();
+  for (const auto& point : p.track) track.push_back({point[0], point[1]});
+  state["track"] = track;
+  state["watch_circle"] = p.config.display && p.config.display->watch_circle > 0.0
+                              ? nlohmann::json(p.config.display->watch_circle)
+                              : nlohmann::json(nullptr);
+
+  // A line is parted while an active alarm names it; unknown while nothing is detected.
+  const VecX& measured = p.ingest->latest_tensions();
+  const std::optional<VecX> expected =
+      p.detection ? p.detection->expected_tensions() : std::nullopt;
+  const double noise = p.scenario.sensors.tension_noise.std_dev;
+  nlohmann::json lines = nlohmann::json::array();
+  for (int k = 1; k <= p.lines; ++k) {
+    const scenarios::LineSpec& spec = p.scenario.mooring.lines[static_cast<std::size_t>(k - 1)];
+    const auto alarm = p.board.listed().find(k);
+    const bool parted = alarm != p.board.listed().end() && alarm->second.Active();
+    const double e = expected ? (*expected)(k - 1) : kNaN;
+    lines.push_back({{"line", k},
+                     {"anchor", {spec.anchor(0), spec.anchor(1)}},
+                     {"fairlead_body", {spec.fairlead_body(0), spec.fairlead_body(1)}},
+                     {"state", parted ? "parted" : (p.ingest->active() ? "intact" : "unknown")},
+                     {"measured", number(measured(k - 1))},
+                     {"expected", number(e)},
+                     // The band: three times the cells' noise, or a tenth of what is
+                     // expected, whichever is wider.
+                     {"band", number(std::max(3.0 * noise, 0.1 * std::abs(e)))}});
+  }
+  state["lines"] = lines;
+
+  nlohmann::json detectors = nlohmann::json::array();
+  for (std::size_t i = 0; p.detection && i < p.detection->records().size(); ++i) {
+    const simulation::DetectorRecord& r = p.detection->records()[i];
+    const detectors::Verdict& v = p.detection->verdicts()[i];
+    const std::size_t h = static_cast<std::size_t>(v.hypothesis);
+    detectors.push_back(
+        {{"label", r.label},
+         {"type", r.type},
+         {"alarm", v.alarm},
+         {"hypothesis", h < p.labels.size() ? p.labels[h] : std::string("?")},
+         {"score", h < v.score.size() ? number(v.score[h]) : nlohmann::json(nullptr)},
+         {"threshold", r.threshold ? nlohmann::json(*r.threshold) : nlohmann::json(nullptr)}});
+  }
+  state["detectors"] = detectors;
+
   nlohmann::json alarms = nlohmann::json::array();
-  for (const auto& [number, a] : p.board.listed()) {
-    alarms.push_back({{"number", number},
+  for (const auto& [n, a] : p.board.listed()) {
+    alarms.push_back({{"number", n},
                       {"text", a.text},
                       {"raised", a.raised},
                       {"active", a.Active()},
                       {"acknowledged", a.acknowledged.has_value()}});
   }
   state["alarms"] = alarms;
+
+  nlohmann::json feeds = nlohmann::json::array();
+  if (p.feeds) {
+    const std::vector<FeedHealth> health = p.feeds->Health();
+    for (std::size_t i = 0; i < health.size(); ++i) {
+      const FeedHealth& h = health[i];
+      const FeedCounts& counts = p.ingest->feeds()[i];
+      feeds.push_back({{"name", h.name},
+                       {"kind", h.kind},
+                       {"endpoint", h.endpoint},
+                       {"connected", h.connected},
+                       {"lines", h.lines},
+                       {"faults", counts.Faults() + h.overlong + h.untimed},
+                       {"ignored", counts.ignored},
+                       {"last_fault", counts.last_fault},
+                       {"problem", h.problem},
+                       {"last_line", h.last_line}});
+    }
+  }
+  state["feeds"] = feeds;
+  nlohmann::json channels = nlohmann::json::array();
+  for (const ChannelHealth& c : p.ingest->channels()) {
+    channels.push_back({{"name", c.name},
+                        {"feed", c.feed},
+                        {"readings", c.readings},
+                        {"rejected", c.rejected},
+                        {"last", c.last},
+                        {"stale", c.Stale(p.now, p.config.stale_after)},
+                        {"problem", c.problem}});
+  }
+  state["channels"] = channels;
   return state;
 }
 

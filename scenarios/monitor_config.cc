@@ -198,10 +198,15 @@ constexpr Key kDisplayKeys[] = {
      .description = "The address the display is served on (default 127.0.0.1)."},
     {.name = "port",
      .kind = Kind::kInteger,
-     .description = "Its port (default 8080).",
-     .minimum = kPortLow,
+     .description = "Its port (default 8080; 0: any free one, which the log names).",
+     .minimum = Bound{0.0, false, ""},
      .maximum = kPortHigh,
      .interval = true},
+    {.name = "watch_circle",
+     .unit = "m",
+     .description = "The radius of the watch circle drawn around the origin (default none).",
+     .minimum = Bound{0.0, false, ""},
+     .maximum = Bound{1e5, false, ""}},
 };
 constexpr Block kDisplay{"The crew's display, a web page the monitor serves.", kDisplayKeys};
 
@@ -477,6 +482,7 @@ void ParseRoot(const Reader& root, MonitorConfig& c) {
       d.address = NonEmpty(*address);
     }
     display->Optional("port", d.port);
+    display->Optional("watch_circle", d.watch_circle);
     c.display = d;
   }
 }

@@ -24,7 +24,7 @@
 //   store: store                      # the record (alarms, acknowledgements, samples)
 //   alarms: alarms.jsonl              # JSON alarm lines; "-" (default) for stdout
 //   bridge: {send: 127.0.0.1:10120, listen: 10121}   # ALR sentences out, ACK in (UDP)
-//   display: {address: 127.0.0.1, port: 8080}
+//   display: {address: 127.0.0.1, port: 8080, watch_circle: 40}
 #pragma once
 
 #include <optional>
@@ -98,7 +98,8 @@ struct BridgeConfig {
 
 struct DisplayConfig {
   std::string address = "127.0.0.1";
-  int port = 8080;
+  int port = 8080;            ///< 0: any free port (the log says which)
+  double watch_circle = 0.0;  ///< [m] drawn around the origin; 0: none
 };
 
 struct MonitorConfig {

@@ -65,6 +65,7 @@ struct Detection::Parts {
   std::vector<std::unique_ptr<detectors::Detector>> detectors;
   std::vector<detectors::Verdict> verdicts;
   std::optional<Vec3> bias, wave_motion;  // the latest load picture
+  std::optional<VecX> expected_tensions;  // the latest sample's, with cells
 };
 
 Detection::Detection(const PlantModel& plant, const vessel::VesselModel& vessel,
@@ -165,6 +166,7 @@ void Detection::Update(const detectors::Observation& observation) {
     p.bias = evidence.load->bias;
     p.wave_motion = evidence.load->wave_motion;
   }
+  if (evidence.tensions) p.expected_tensions = evidence.tensions->expected;
   for (std::size_t i = 0; i < p.detectors.size(); ++i) {
     const detectors::Verdict& v = p.verdicts[i] = p.detectors[i]->Update(evidence);
     records_[i].history.Update(observation.t, v.alarm, v.hypothesis);
@@ -205,6 +207,9 @@ const std::vector<detectors::Verdict>& Detection::verdicts() const { return part
 const std::optional<Vec3>& Detection::bias() const { return parts_->bias; }
 
 const std::optional<Vec3>& Detection::wave_motion() const { return parts_->wave_motion; }
+const std::optional<VecX>& Detection::expected_tensions() const {
+  return parts_->expected_tensions;
+}
 
 std::vector<std::shared_ptr<const detectors::PluginLibrary>> Detection::PluginLibraries() const {
   std::vector<std::shared_ptr<const detectors::PluginLibrary>> libraries;

@@ -108,6 +108,10 @@ class Detection {
   /// (Earth frame); unset before the first sample or without the EKF bank.
   const std::optional<Vec3>& bias() const;
   const std::optional<Vec3>& wave_motion() const;
+  /// What each fairlead's cell should read at the intact filter's pose [N] (NaN where the
+  /// model holds no expectation), as of the latest sample that carried cell readings; unset
+  /// before one or without cells.
+  const std::optional<VecX>& expected_tensions() const;
 
  private:
   struct Parts;

@@ -26,7 +26,9 @@ std::shared_ptr<const void> Store(const std::string& key, std::shared_ptr<const 
 /// The entry of type T under `key`, built by `build()` (returning a T) if absent.
 template <class T, class Build>
 std::shared_ptr<const T> SharedPart(const std::string& key, Build build) {
-  const std::string typed = std::string(typeid(T).name()) + "\n" + key;
+  std::string typed = typeid(T).name();
+  typed += '\n';
+  typed += key;
   if (std::shared_ptr<const void> found = shared_parts_detail::Find(typed)) {
     return std::static_pointer_cast<const T>(found);
   }

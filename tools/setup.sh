@@ -27,6 +27,7 @@ packages=(
   python3-pandas python3-xarray     # campaign tables as DataFrames, runs as xarray Datasets
   clang-format
   mkdocs                   # the user guide (docs/) as a site, checked by tools/dev/test.sh
+  chromium nodejs          # tests: the monitor's display in a headless browser
 )
 
 missing=()
@@ -38,12 +39,22 @@ done
 
 if ((${#missing[@]} == 0)); then
   echo "setup: all ${#packages[@]} packages already installed"
-  exit 0
 fi
-
-echo "setup: installing ${missing[*]}"
 SUDO=""
 if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+# Debian's nodejs comes without npm (its own package); another build of nodejs may bring it.
+if ! command -v npm > /dev/null; then missing+=(npm); fi
+if ((${#missing[@]} > 0)); then
+  echo "setup: installing ${missing[*]}"
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# playwright-core from the npm registry (Debian has none), at the version package-lock.json
+# pins, to drive Debian's chromium in the display's tests; it downloads no browser.
+display_tests="$(cd "$(dirname "$0")/.." && pwd)/tests/display"
+if [[ ! -f "$display_tests/node_modules/playwright-core/package.json" ]]; then
+  echo "setup: installing playwright-core into tests/display"
+  (cd "$display_tests" && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund)
+fi
