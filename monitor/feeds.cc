@@ -160,7 +160,7 @@ class Feed {
       }
       ++health_.lines;
       health_.last_line = stamp;
-      (*sink_)(FeedLine{index_, std::move(text), when});
+      (*sink_)(FeedLine{index_, std::move(text), when, stamp});
     };
     health_.overlong += splitter_.Take(data, size, line);
     if (end_of_message) health_.overlong += splitter_.End(line);
@@ -523,7 +523,7 @@ bool TaggedLog::Next(FeedLine* line) {
       continue;
     }
     last_ = *tags.unix_time;
-    *line = FeedLine{feed_, std::move(text), last_};
+    *line = FeedLine{feed_, std::move(text), last_, UnixNow()};
     return true;
   }
   return false;

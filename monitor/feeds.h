@@ -52,9 +52,10 @@ class Poller {
 
 /// One line read, and when.
 struct FeedLine {
-  int feed = 0;        ///< index in the configuration's feeds
-  std::string text;    ///< without its line end (a TAG block, if any, still in front)
-  double stamp = 0.0;  ///< UNIX time [s] it was read (or its tag's, when replayed)
+  int feed = 0;          ///< index in the configuration's feeds
+  std::string text;      ///< without its line end (a TAG block, if any, still in front)
+  double stamp = 0.0;    ///< UNIX time [s] it was read (or its tag's, when replayed)
+  double arrival = 0.0;  ///< UNIX time [s] it was read, whatever its stamp (for latencies)
 };
 
 /// What a feed has done since it started.

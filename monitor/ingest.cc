@@ -42,8 +42,10 @@ std::optional<double> Number(std::string_view text) {
 
 }  // namespace
 
-Ingest::Ingest(const scenarios::MonitorConfig& config, int lines, double rate, double epoch)
+Ingest::Ingest(const scenarios::MonitorConfig& config, int lines, double rate, double epoch,
+               Waits waits)
     : config_(config),
+      waits_(waits),
       lines_(lines),
       rate_(rate),
       epoch_(epoch),
@@ -81,10 +83,8 @@ bool Ingest::Claim(int channel, int feed) {
   ChannelHealth& c = channels_[static_cast<std::size_t>(channel)];
   const std::string& name = config_.feeds[static_cast<std::size_t>(feed)].name;
   if (c.feed.empty()) c.feed = name;
-  if (c.feed == name) return true;
   // The first feed that brings a channel keeps it: two receivers are never mixed.
-  ++counts_[static_cast<std::size_t>(feed)].ignored;
-  return false;
+  return c.feed == name;
 }
 
 void Ingest::Reject(int channel, int feed, const std::string& why) {
@@ -95,6 +95,7 @@ void Ingest::Reject(int channel, int feed, const std::string& why) {
 }
 
 void Ingest::Take(const FeedLine& line) {
+  arrival_ = line.arrival;
   const double tau = line.stamp - epoch_;
   CloseBefore(tau);
   FeedCounts& counts = counts_[static_cast<std::size_t>(line.feed)];
@@ -147,12 +148,15 @@ void Ingest::Take(const FeedLine& line) {
       }
       thrust = v;
     }
-    if (!Claim(channel, line.feed)) return;
+    if (!Claim(channel, line.feed)) {
+      ++counts.ignored;
+      return;
+    }
+    ++counts.sentences;
     if (!(thrust->cwiseAbs().maxCoeff() <= kMaxLoad)) {
       Reject(channel, line.feed, "a component beyond 1e9");
       return;
     }
-    ++counts.sentences;
     ChannelHealth& c = channels_[static_cast<std::size_t>(channel)];
     ++c.readings;
     c.last = line.stamp;
@@ -179,8 +183,11 @@ void Ingest::Take(const FeedLine& line) {
   if (s.type == "GGA" || s.type == "GNS" || s.type == "RMC") {
     const std::optional<NmeaFix> fix = DecodeFix(s, &why);
     if (!fix) return fault("bad field", why);
+    if (!Claim(kPositionChannel, line.feed)) {
+      ++counts.ignored;
+      return;
+    }
     ++counts.sentences;
-    if (!Claim(kPositionChannel, line.feed)) return;
     if (fix->quality == 0) return Reject(kPositionChannel, line.feed, s.type + ": no fix");
     const Vec3 ned = frame_.NorthEastDown(fix->latitude, fix->longitude);
     if (ned.head<2>().norm() > kMaxDistance) {
@@ -203,8 +210,11 @@ void Ingest::Take(const FeedLine& line) {
   } else if (s.type == "HDT" || s.type == "THS") {
     const std::optional<NmeaHeading> heading = DecodeHeading(s, &why);
     if (!heading) return fault("bad field", why);
+    if (!Claim(kHeadingChannel, line.feed)) {
+      ++counts.ignored;
+      return;
+    }
     ++counts.sentences;
-    if (!Claim(kHeadingChannel, line.feed)) return;
     if (heading->mode && *heading->mode == 'V') {
       return Reject(kHeadingChannel, line.feed, "THS: mode V (not valid)");
     }
@@ -277,8 +287,8 @@ void Ingest::Take(const FeedLine& line) {
 }
 
 bool Ingest::Complete() const {
-  return window_.fix && window_.heading && (!config_.thrust || window_.thrust) &&
-         window_.cells == static_cast<int>(config_.cells.size());
+  return window_.fix && window_.heading && (!config_.thrust || !waits_.thrust || window_.thrust) &&
+         (!waits_.cells || window_.cells == static_cast<int>(config_.cells.size()));
 }
 
 bool Ingest::Start(double tau) {
@@ -291,7 +301,10 @@ bool Ingest::Start(double tau) {
   return tau >= static_cast<double>(open_) / rate_;
 }
 
-void Ingest::Advance(double now) { CloseBefore(now - epoch_); }
+void Ingest::Advance(double now) {
+  arrival_ = now;
+  CloseBefore(now - epoch_);
+}
 
 double Ingest::NextDeadline() const {
   if (open_ < 0) return kInfinity;
@@ -334,6 +347,7 @@ void Ingest::Close() {
   Sample sample;
   sample.index = open_ - 1;
   sample.starts_segment = segment_start_;
+  sample.arrival = arrival_;
   segment_start_ = false;
   detectors::Observation& o = sample.observation;
   o.t = t;

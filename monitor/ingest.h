@@ -6,11 +6,13 @@
 // The sample clock: instants t_k = k / rate seconds after the monitor's epoch (a whole UNIX
 // second fixed when its store was made), the rate being the scenario's sensors' (the rate
 // the detectors were built for). Sample k takes the first position fix and the first
-// heading read in [t_k, t_k+1): it closes as soon as it has both (no waiting: the alarm
-// follows the sentence that completes it), or when a line read at or after t_k+1 (or the
-// clock, live) says the interval is over, with the channel missing a dropout the observers
-// predict through. The load cells and the thrust are held: the sample takes each one's
-// latest reading, the cells only when every cell has read within `stale_after` of t_k.
+// heading read in [t_k, t_k+1). It closes as soon as it has them and, where the vessel
+// sends them at the detection's rate or faster (Waits), a thrust reading and every cell's
+// reading of that interval (no waiting beyond: the alarm follows the line that completes
+// it), or when a line read at or after t_k+1 (or the clock, live) says the interval is
+// over, a position or heading missing then being a dropout the observers predict through.
+// The thrust and the cells are held: the sample takes each one's latest reading, the cells
+// only when every cell has read within `stale_after` of t_k.
 // Everything depends only on the lines and their times, in order, so a recorded log
 // replayed gives the same samples as the live feeds gave.
 //
@@ -71,13 +73,25 @@ struct Sample {
   std::int64_t index = 0;  ///< k
   detectors::Observation observation;
   bool starts_segment = false;  ///< the detection (re)starts with it
+  /// UNIX time the line that completed it was read (live: the clock's time when it closed
+  /// an interval that ended without one), for the monitor's latencies.
+  double arrival = 0.0;
+};
+
+/// Which held channels a sample waits for (besides position and heading): those the vessel
+/// delivers at least as often as the detection samples (a 1 Hz cell is not waited for by a
+/// 10 Hz detection: the sample takes its latest reading).
+struct Waits {
+  bool cells = true;
+  bool thrust = true;
 };
 
 class Ingest {
  public:
   /// `lines`: the scenario's mooring lines; `rate`: the detection's sample rate [Hz];
   /// `epoch`: UNIX time of instant 0.
-  Ingest(const scenarios::MonitorConfig& config, int lines, double rate, double epoch);
+  Ingest(const scenarios::MonitorConfig& config, int lines, double rate, double epoch,
+         Waits waits = {});
 
   /// One line read; the samples it closes are queued (TakeSamples).
   void Take(const FeedLine& line);
@@ -120,9 +134,13 @@ class Ingest {
   bool Start(double tau);
   void Close();
   void Reject(int channel, int feed, const std::string& why);
+  // Whether `feed` brings `channel`: the first feed that brings a channel keeps it, so that
+  // two receivers are never mixed (the other's sentences are counted as ignored).
   bool Claim(int channel, int feed);
 
   scenarios::MonitorConfig config_;
+  Waits waits_;
+  double arrival_ = 0.0;  // of the line being taken, or the clock's
   int lines_;
   double rate_;
   double epoch_;

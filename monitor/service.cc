@@ -30,6 +30,7 @@
 #include "monitor/nmea.h"
 #include "monitor/store.h"
 #include "simulation/detection.h"
+#include "simulation/latency.h"
 #include "simulation/simulation.h"
 
 namespace moorsim::monitor {
@@ -86,9 +87,14 @@ int SensorAlarm(const detectors::SensorId& sensor) {
 }  // namespace
 
 nlohmann::json MonitorSummary::Json() const {
-  return {{"lines", lines},       {"samples", samples},
-          {"events", events},     {"alarm_changes", alarm_changes},
-          {"segments", segments}, {"warmed_seconds", warmed_seconds}};
+  return {{"lines", lines},
+          {"samples", samples},
+          {"events", events},
+          {"alarm_changes", alarm_changes},
+          {"segments", segments},
+          {"warmed_seconds", warmed_seconds},
+          {"sample_latency", sample_latency},
+          {"alarm_latency", alarm_latency}};
 }
 
 struct Monitor::Parts {
@@ -119,6 +125,9 @@ struct Monitor::Parts {
   std::FILE* alarms = stdout;
   bool alarms_owned = false;
   MonitorSummary summary;
+  // From the arrival of the line that completed a sample to its events recorded and
+  // printed, and, for samples that changed an alarm, to its ALR sent [ms].
+  simulation::Latency sample_latency, alarm_latency;
   std::vector<FeedHealth> feed_health;      // as last logged
   std::vector<bool> stale;                  // per channel, as last logged
   std::deque<std::array<double, 2>> track;  // the latest samples' positions
@@ -180,8 +189,16 @@ struct Monitor::Parts {
     }
   }
 
+  /// The samples the ingest closed, each through the detection and the alarms.
   void TakeSamples() {
-    for (const Sample& sample : ingest->TakeSamples()) TakeSample(sample, true);
+    for (const Sample& sample : ingest->TakeSamples()) {
+      TakeSample(sample, true);
+      const long changes = summary.alarm_changes;
+      UpdateAlarms();
+      const double ms = 1e3 * (UnixNow() - sample.arrival);
+      sample_latency.Add(ms);
+      if (summary.alarm_changes > changes) alarm_latency.Add(ms);
+    }
   }
 
   /// The conditions that hold now, and the alarm changes they make.
@@ -348,8 +365,11 @@ struct Monitor::Parts {
       Log("store: resumed; the last samples are older than max_gap, the detection starts afresh");
       return;
     }
+    const auto start = std::chrono::steady_clock::now();
     NewDetection();
     for (const StoredSample& s : past) detection->Update(s.observation);
+    const double took =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     for (std::size_t i = 0; i < seen.size(); ++i) {
       seen[i] = detection->records()[i].history.events().size();
     }
@@ -357,7 +377,8 @@ struct Monitor::Parts {
     warmed = true;
     summary.warmed_seconds = past.back().observation.t - past.front().observation.t;
     Log("store: resumed; observers warmed on " + FormatNumber(summary.warmed_seconds) +
-        " s of recorded samples");
+        " s of recorded samples (" + std::to_string(past.size()) + " samples, " +
+        FormatNumber(std::round(took * 1000.0)) + " ms)");
   }
 };
 
@@ -406,8 +427,11 @@ Monitor::Monitor(const scenarios::MonitorConfig& config, const scenarios::Scenar
                      ": a replay records into a store of its own: give an empty "
                      "folder");
   }
-  p.ingest =
-      std::make_unique<Ingest>(config, p.lines, scenario.sensors.gnss_rate, p.store->epoch());
+  Waits waits;
+  waits.cells = scenario.sensors.tension_rate >= scenario.sensors.gnss_rate;
+  waits.thrust = scenario.controller.rate >= scenario.sensors.gnss_rate;
+  p.ingest = std::make_unique<Ingest>(config, p.lines, scenario.sensors.gnss_rate, p.store->epoch(),
+                                      waits);
   if (p.store->resumed()) {
     p.board.Restore(p.store->ListedAlarms());
     p.Log("store: " + std::to_string(p.board.listed().size()) + " alarms listed as they were");
@@ -470,6 +494,8 @@ MonitorSummary Monitor::Run() {
       }
     }
     p.store->Commit();
+    p.summary.sample_latency = p.sample_latency.Summary();
+    p.summary.alarm_latency = p.alarm_latency.Summary();
     return p.summary;
   }
   // The clock: the system's, or with feeds timed by their tags the latest tag read (the
@@ -496,6 +522,8 @@ MonitorSummary Monitor::Run() {
     p.Tick();
   }
   p.store->Commit();
+  p.summary.sample_latency = p.sample_latency.Summary();
+  p.summary.alarm_latency = p.alarm_latency.Summary();
   return p.summary;
 }
 
@@ -583,7 +611,10 @@ nlohmann::json Monitor::State() const {
                        {"endpoint", h.endpoint},
                        {"connected", h.connected},
                        {"lines", h.lines},
+                       {"sentences", counts.sentences},
                        {"faults", counts.Faults() + h.overlong + h.untimed},
+                       {"fault_kinds", counts.faults},
+                       {"overlong", h.overlong},
                        {"ignored", counts.ignored},
                        {"last_fault", counts.last_fault},
                        {"problem", h.problem},

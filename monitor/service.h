@@ -41,6 +41,10 @@ struct MonitorSummary {
   long alarm_changes = 0;
   long segments = 0;
   double warmed_seconds = 0.0;  ///< the recorded past the observers were warmed on
+  /// From the arrival of the line that completed a sample to its events printed (every
+  /// sample), and to its ALR sent (the samples that changed an alarm): simulation::Latency's
+  /// summaries.
+  nlohmann::json sample_latency, alarm_latency;
   nlohmann::json Json() const;
 };
 

@@ -37,6 +37,7 @@
 #include "scenarios/load.h"
 #include "simulation/detection_tables.h"
 #include "simulation/followed_file.h"
+#include "simulation/latency.h"
 #include "simulation/output_layout.h"
 #include "simulation/pose_stream.h"
 #include "simulation/run.h"
@@ -287,45 +288,6 @@ class DetectOutputs {
   std::optional<output::TextFile> alarms_;
 };
 
-/// Per-sample wall time of the observers and detectors [ms]: mean and max over every sample,
-/// the 99th percentile over the last kRecent (a day at 1 Hz), so that a live monitor that
-/// runs for months keeps bounded memory.
-class Latency {
- public:
-  static constexpr std::size_t kRecent = 86400;
-  void Add(double ms) {
-    if (recent_.size() < kRecent) {
-      recent_.push_back(ms);
-    } else {
-      recent_[count_ % kRecent] = ms;
-    }
-    ++count_;
-    sum_ += ms;
-    max_ = std::max(max_, ms);
-    last_ = ms;
-  }
-  double last() const { return last_; }
-  double mean() const { return count_ > 0 ? sum_ / static_cast<double>(count_) : 0.0; }
-  nlohmann::json Summary() const {
-    if (count_ == 0) return {{"samples", 0}};
-    std::vector<double> sorted = recent_;
-    const std::size_t p99 =
-        std::min(sorted.size() - 1, static_cast<std::size_t>(0.99 * sorted.size()));
-    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(p99),
-                     sorted.end());
-    return {{"samples", count_},
-            {"mean_ms", mean()},
-            {"p99_ms", sorted[p99]},
-            {"p99_over_samples", sorted.size()},
-            {"max_ms", max_}};
-  }
-
- private:
-  std::vector<double> recent_;
-  std::size_t count_ = 0;
-  double sum_ = 0.0, max_ = 0.0, last_ = 0.0;
-};
-
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 /// A time as UNIX seconds: a number, or UTC as YYYY-MM-DDTHH:MM:SS with an optional Z.
@@ -419,7 +381,7 @@ int Detect(const DetectOptions& o) {
   bool stdout_closed = false;
 
   std::vector<std::size_t> seen(detection->records().size(), 0);
-  Latency latency;
+  simulation::Latency latency;
   long samples = 0;
   double first_time = kNaN, last_time = kNaN;
   // One sample through the bank; every new alarm event printed (and kept) at once.

@@ -40,7 +40,9 @@ int Monitor(const MonitorOptions& o) {
   if (!o.quiet) {
     std::cerr << "moorsim monitor: " << summary.lines << " lines, " << summary.samples
               << " samples, " << summary.events << " detector events, " << summary.alarm_changes
-              << " alarm changes" << std::endl;
+              << " alarm changes; latency from a line's arrival to its events "
+              << summary.sample_latency.dump() << ", to its ALR " << summary.alarm_latency.dump()
+              << std::endl;
   }
   const int signal = simulation::StopSignal();
   return signal != 0 ? 128 + signal : 0;

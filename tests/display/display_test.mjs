@@ -93,7 +93,7 @@ function alarmLines() {
 try {
   const library = path.join(source, 'scenarios', 'library');
   const cells = 'sensors:\n  tension_cells: {rate_hz: 1, noise: {std_dev: 1.0e4}}\n';
-  fs.writeFileSync(path.join(work, 'vessel.yaml'),
+  fs.writeFileSync(path.join(work, 'seed_fpso.yaml'),
                    `base: ${path.join(library, 'thesis_no_failure.yaml')}\n${cells}`);
   fs.writeFileSync(path.join(work, 'trial.yaml'),
                    `base: ${path.join(library, 'thesis_line6.yaml')}\n${cells}`);
@@ -101,7 +101,7 @@ try {
   const port = await freePort('tcp');
   const transducers = [1, 2, 3, 4, 5, 6, 7, 8]
     .map((k) => `  - {transducer: LC${k}, line: ${k}}`).join('\n');
-  fs.writeFileSync(path.join(work, 'monitor.yaml'), `scenario: vessel.yaml
+  fs.writeFileSync(path.join(work, 'monitor.yaml'), `scenario: seed_fpso.yaml
 origin: {latitude_deg: 61.25, longitude_deg: 1.75}
 antenna: [40, -5, -30]
 feeds:

@@ -13,6 +13,7 @@
 
 #include <chrono>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <sstream>
 #include <thread>
 
@@ -210,6 +211,112 @@ TEST(MonitorSlow, AShipAt20TimesOverUdpReachesTheBridgeAndSurvivesAKill) {
   EXPECT_GT(samples.size(), 600u);
   EXPECT_EQ(samples.front().segment, 1);
   EXPECT_EQ(samples.back().segment, 2);
+}
+
+}  // namespace
+}  // namespace moorsim::monitor
+
+namespace moorsim::monitor {
+namespace {
+
+// GET `path` from the display on 127.0.0.1:`port`: the response's body.
+std::string HttpGet(int port, const std::string& path) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<std::uint16_t>(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) {
+    ::close(fd);
+    return "";
+  }
+  const std::string request = "GET " + path + " HTTP/1.1\r\nHost: localhost\r\n\r\n";
+  ::send(fd, request.data(), request.size(), 0);
+  std::string response;
+  char buffer[65536];
+  for (ssize_t n; (n = ::recv(fd, buffer, sizeof buffer, 0)) > 0;) response.append(buffer, n);
+  ::close(fd);
+  const std::size_t body = response.find("\r\n\r\n");
+  return body == std::string::npos ? "" : response.substr(body + 4);
+}
+
+TEST(MonitorSlow, RandomBytesAtAMegabyteASecondAreCountedAndStopNothing) {
+  const TempDirectory dir(::testing::TempDir());
+  const int feed_port = FreePort(SOCK_DGRAM), tcp_port = FreePort(SOCK_STREAM),
+            display_port = FreePort(SOCK_STREAM);
+  // The second feed is a TCP server of this test's that sends nothing but noise.
+  const int server = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in local{};
+  local.sin_family = AF_INET;
+  local.sin_port = htons(static_cast<std::uint16_t>(tcp_port));
+  local.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  const int one = 1;
+  ::setsockopt(server, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+  ASSERT_EQ(::bind(server, reinterpret_cast<sockaddr*>(&local), sizeof local), 0);
+  ::listen(server, 1);
+  const auto config = dir.path() / "noise.yaml";
+  WriteWholeFile(config, ConfigText(kLine6,
+                                    "  - {name: udp, udp: {address: 127.0.0.1, port: " +
+                                        std::to_string(feed_port) +
+                                        "}}\n  - {name: tcp, tcp: {host: 127.0.0.1, port: " +
+                                        std::to_string(tcp_port) + "}}\n",
+                                    "display: {port: " + std::to_string(display_port) + "}\n"));
+  const auto log = dir.path() / "monitor.log";
+  const pid_t monitor = StartCli({"monitor", config.string()}, {dir.path() / "out"}, {log});
+  ASSERT_TRUE(AwaitText(log, "display: http", 60.0)) << ReadWholeFile(log);
+  pollfd waiting = {server, POLLIN, 0};
+  ASSERT_EQ(::poll(&waiting, 1, 10000), 1) << "the monitor did not connect";
+  const int client = ::accept(server, nullptr, nullptr);
+
+  const int sender = ::socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in to = local;
+  to.sin_port = htons(static_cast<std::uint16_t>(feed_port));
+  std::mt19937_64 random(20261207);
+  const auto start = std::chrono::steady_clock::now();
+  std::size_t sent = 0;
+  // 5 s at 1 MB/s on each feed: random bytes (with their CR and LF), and now and then a
+  // sentence with one character changed.
+  const std::string gga = NmeaText('$', "GPGGA",
+                                   {"120000.00", "6115.0000000", "N", "00145.0000000", "E", "1",
+                                    "12", "0.8", "0.0", "M", "0.0", "M", "", ""});
+  while (std::chrono::steady_clock::now() - start < std::chrono::seconds(5)) {
+    std::string chunk(1024, '\0');
+    for (char& c : chunk) c = static_cast<char>(random() & 0xff);
+    std::string mutated = gga;
+    mutated[random() % mutated.size()] = static_cast<char>(random() & 0x7f);
+    chunk += "\r\n" + mutated + "\r\n";
+    ::sendto(sender, chunk.data(), chunk.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof to);
+    ::send(client, chunk.data(), chunk.size(), MSG_NOSIGNAL);
+    sent += 2 * chunk.size();
+    const double due = static_cast<double>(sent) / 2e6;
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (due > elapsed) std::this_thread::sleep_for(std::chrono::duration<double>(due - elapsed));
+  }
+  ::close(sender);
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+
+  // Alive, answering, and every line it read is accounted for: used, ignored or a fault.
+  const std::string body = HttpGet(display_port, "/api/state");
+  ASSERT_FALSE(body.empty()) << ReadWholeFile(log);
+  const nlohmann::json state = nlohmann::json::parse(body);
+  std::int64_t faults = 0;
+  for (const nlohmann::json& feed : state["feeds"]) {
+    std::int64_t kinds = 0;
+    for (const auto& [kind, count] : feed["fault_kinds"].items())
+      kinds += count.get<std::int64_t>();
+    EXPECT_EQ(feed["lines"].get<std::int64_t>(),
+              feed["sentences"].get<std::int64_t>() + feed["ignored"].get<std::int64_t>() + kinds)
+        << feed.dump();
+    EXPECT_GT(feed["lines"].get<std::int64_t>(), 1000) << feed.dump();
+    faults += kinds;
+  }
+  EXPECT_GT(faults, 2000);
+  ::close(client);
+  ::close(server);
+  ::kill(monitor, SIGTERM);
+  const int status = Reap(monitor, 30.0);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 128 + SIGTERM) << ReadWholeFile(log);
 }
 
 }  // namespace
