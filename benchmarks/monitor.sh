@@ -104,4 +104,6 @@ if kind == "soak":
     result["rss_hour_1_mb"], result["rss_hour_24_mb"] = first["rss_mb"], last["rss_mb"]
 json.dump(result, sys.stdout, indent=1)
 EOF
+cp alarms.jsonl "$out/$kind-alarms.jsonl"
+cp monitor.err "$out/$kind-monitor.err"
 cat "$out/$kind.json"

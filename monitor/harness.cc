@@ -84,8 +84,11 @@ Routing RouteFeeds(const scenarios::MonitorConfig& config, const std::string& po
   return r;
 }
 
-SentenceWriter::SentenceWriter(const scenarios::MonitorConfig& config, Routing routing)
-    : config_(config), routing_(routing), frame_(config.latitude, config.longitude) {}
+SentenceWriter::SentenceWriter(const scenarios::MonitorConfig& config, Routing routing,
+                               double cells_rate)
+    : config_(config), routing_(routing), frame_(config.latitude, config.longitude) {
+  if (cells_rate > 0.0) cells_clock_.emplace(cells_rate);
+}
 
 std::vector<PlayedLine> SentenceWriter::Lines(const detectors::Observation& o, double unix_time) {
   std::vector<PlayedLine> lines;
@@ -121,7 +124,7 @@ std::vector<PlayedLine> SentenceWriter::Lines(const detectors::Observation& o, d
     if (text == "360.0000") text = "0.0000";
     lines.push_back({routing_.heading, NmeaText('$', "HEHDT", {text, "T"})});
   }
-  if (o.tensions) {
+  if (o.tensions && (!cells_clock_ || cells_clock_->Due(o.t))) {
     for (const scenarios::CellConfig& cell : config_.cells) {
       const double reading = (*o.tensions)(cell.line - 1) / cell.scale;
       lines.push_back(

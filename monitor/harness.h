@@ -12,9 +12,11 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "core/sample_clock.h"
 #include "detectors/detector.h"
 #include "monitor/geodesy.h"
 #include "scenarios/monitor_config.h"
@@ -40,7 +42,9 @@ Routing RouteFeeds(const scenarios::MonitorConfig& config, const std::string& po
 
 class SentenceWriter {
  public:
-  SentenceWriter(const scenarios::MonitorConfig& config, Routing routing);
+  /// `cells_rate`: the load cells' sample rate [Hz] (their XDR are sent at its instants
+  /// only; 0: with every sample).
+  SentenceWriter(const scenarios::MonitorConfig& config, Routing routing, double cells_rate = 0.0);
   /// The lines of one sample, stamped `unix_time` (the sample's instant + 1 ms).
   std::vector<PlayedLine> Lines(const detectors::Observation& o, double unix_time);
 
@@ -49,6 +53,7 @@ class SentenceWriter {
   Routing routing_;
   GeodeticFrame frame_;
   double heading_ = 0.0;  // the last measured heading [rad], for the antenna's place
+  std::optional<SampleClock> cells_clock_;
 };
 
 /// Sends lines to the configuration's feeds (UDP datagrams, TCP clients, a pipe or a log).

@@ -301,8 +301,8 @@ bool Ingest::Start(double tau) {
   return tau >= static_cast<double>(open_) / rate_;
 }
 
-void Ingest::Advance(double now) {
-  arrival_ = now;
+void Ingest::Advance(double now, double wall) {
+  arrival_ = wall;
   CloseBefore(now - epoch_);
 }
 

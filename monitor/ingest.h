@@ -95,8 +95,9 @@ class Ingest {
 
   /// One line read; the samples it closes are queued (TakeSamples).
   void Take(const FeedLine& line);
-  /// Live: the clock says `now` [UNIX s]; closes the intervals that ended by then.
-  void Advance(double now);
+  /// Live: the clock says `now` [UNIX s]; closes the intervals that ended by then (their
+  /// samples' arrival: `wall`, the system's clock).
+  void Advance(double now, double wall);
   std::vector<Sample> TakeSamples();
   /// After a restart: the detection goes on from the recorded sample `last` (index k): the
   /// next interval is the one the clock is in, the heading unwrapped from the recorded one,

@@ -346,7 +346,7 @@ struct Monitor::Parts {
   }
 
   void Tick() {
-    ingest->Advance(now);
+    ingest->Advance(now, UnixNow());
     TakeSamples();
     UpdateAlarms();
     RepeatAlr();

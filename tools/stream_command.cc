@@ -56,7 +56,7 @@ int Stream(const StreamOptions& o) {
                      "sampled for detection; add the detectors the monitor runs");
   }
   const monitor::Routing routing = monitor::RouteFeeds(config, o.position, o.heading, o.cells);
-  monitor::SentenceWriter writer(config, routing);
+  monitor::SentenceWriter writer(config, routing, scenario.sensors.tension_rate);
   monitor::Player player(config);
   simulation::Simulation sim(scenario, scenario.simulation.seed);
   sim.KeepDetectionInput(true);

@@ -101,7 +101,7 @@ TEST(Ingest, AMissingHeadingIsADropoutAndALongSilenceSuspendsTheDetection) {
   EXPECT_FALSE(samples[0].observation.valid[2]);
   EXPECT_TRUE(samples[1].observation.valid[2]);
   // Nothing from 3 s to 10 s: dropouts up to max_gap (5 s), then suspended.
-  ingest.Advance(kEpoch + 10.5);
+  ingest.Advance(kEpoch + 10.5, kEpoch + 10.5);
   samples = ingest.TakeSamples();
   ASSERT_EQ(samples.size(), 5u);  // 3, 4, 5, 6, 7 (7 - 2 = 5 s without either)
   EXPECT_FALSE(ingest.active());
