@@ -222,12 +222,14 @@ void Store::OpenRecord(double unix_time) {
   record_day_ = day;
 }
 
-std::vector<Alarm> Store::ListedAlarms() {
+namespace {
+
+/// The alarm occurrences a query on the alarms table selects (its columns in order).
+std::vector<Alarm> AlarmsOf(Store::Database& d, const std::string& where) {
   std::vector<Alarm> listed;
-  Database::Statement s(*main_,
-                        "SELECT id, number, text, raised, cleared, acknowledged, acknowledged_by "
-                        "FROM alarms WHERE id IN (SELECT MAX(id) FROM alarms GROUP BY number) "
-                        "AND (cleared IS NULL OR acknowledged IS NULL) ORDER BY number");
+  Store::Database::Statement s(
+      d, "SELECT id, number, text, raised, cleared, acknowledged, acknowledged_by FROM alarms " +
+             where);
   while (s.Step()) {
     Alarm a;
     a.id = s.Integer(0);
@@ -240,6 +242,20 @@ std::vector<Alarm> Store::ListedAlarms() {
     listed.push_back(std::move(a));
   }
   return listed;
+}
+
+}  // namespace
+
+std::vector<Alarm> Store::ListedAlarms() {
+  return AlarmsOf(*main_,
+                  "WHERE id IN (SELECT MAX(id) FROM alarms GROUP BY number) AND (cleared IS NULL "
+                  "OR acknowledged IS NULL) ORDER BY number");
+}
+
+std::vector<Alarm> ReadStoredAlarms(const std::string& folder) {
+  ReadStoreEpoch(folder);
+  Store::Database d((fs::path(folder) / "monitor.db").string());
+  return AlarmsOf(d, "ORDER BY id");
 }
 
 std::int64_t Store::LastSegment() {

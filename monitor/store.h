@@ -103,6 +103,8 @@ class Store {
 /// store for a folder that is not one.
 std::vector<StoredSample> ReadStoredSamples(const std::string& folder, double from, double to);
 StoreIdentity ReadStoreIdentity(const std::string& folder);
+/// Every alarm occurrence a store recorded, in the order they were raised.
+std::vector<Alarm> ReadStoredAlarms(const std::string& folder);
 double ReadStoreEpoch(const std::string& folder);
 
 }  // namespace moorsim::monitor
