@@ -65,7 +65,10 @@ def play(run):
             sets += ["--set", f"{key}={value}"]
         if run["block"] == "failures":
             sets += ["--set", "failure.mode=fairlead"]
-        subprocess.run([MOORSIM, "stream", vessel, "--to", os.path.join(work, "True.yaml"),
+        # The campaign's own scenario, with its overrides (the monitor's vessel is the same
+        # without the failure: the library's case with the current, or without it for 0).
+        played = os.path.join(LIBRARY, "thesis_no_failure_current.yaml")
+        subprocess.run([MOORSIM, "stream", played, "--to", os.path.join(work, "True.yaml"),
                         "--seed", run["seed"], "--quiet"] + sets, check=True)
         result = {}
         for thrust in (True, False):
