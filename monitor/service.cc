@@ -29,6 +29,7 @@
 #include "monitor/ingest.h"
 #include "monitor/nmea.h"
 #include "monitor/store.h"
+#include "scenarios/plant_builder.h"
 #include "simulation/detection.h"
 #include "simulation/latency.h"
 #include "simulation/simulation.h"
@@ -100,6 +101,7 @@ nlohmann::json MonitorSummary::Json() const {
 struct Monitor::Parts {
   scenarios::MonitorConfig config;
   scenarios::Scenario scenario;
+  simulation::PlantModel model;  // the typed model the detection is built from
   MonitorOptions options;
   int lines = 0;
   std::unique_ptr<simulation::Detection> detection;
@@ -151,7 +153,7 @@ struct Monitor::Parts {
   }
 
   void NewDetection() {
-    detection = simulation::MakeDetection(scenario);
+    detection = simulation::MakeDetection(model, scenario.simulation.seed);
     seen.assign(detection->records().size(), 0);
   }
 
@@ -388,6 +390,7 @@ Monitor::Monitor(const scenarios::MonitorConfig& config, const scenarios::Scenar
   Parts& p = *parts_;
   p.config = config;
   p.scenario = scenario;
+  p.model = scenarios::ToPlantModel(scenario);
   p.options = std::move(options);
   p.lines = static_cast<int>(scenario.mooring.lines.size());
   if (scenario.detectors.empty()) {

@@ -25,7 +25,7 @@
 #include "mooring_fem/seabed.h"
 #include "scenarios/convert.h"
 #include "scenarios/depth_grid.h"
-#include "scenarios/plant_model.h"
+#include "scenarios/plant_builder.h"
 #include "scenarios/strict_yaml.h"
 
 namespace moorsim::scenarios {

@@ -83,7 +83,7 @@
 // simulation) are documented in scenarios/README.md; each is a row of the top-level
 // section table in load.cc. The mooring and solver blocks are the FEM's parameter types
 // (mooring_fem/parameters.h; scenarios/convert.h converts); the coupled sections become the
-// typed plant model (simulation/plant_model.h) through scenarios/plant_model.h.
+// typed plant model (simulation/plant_model.h) through scenarios/plant_builder.h.
 #pragma once
 
 #include <string>

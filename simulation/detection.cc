@@ -15,7 +15,7 @@
 #include "detectors/plugin_detector.h"
 #include "detectors/registry.h"
 #include "scenarios/load.h"
-#include "scenarios/plant_model.h"
+#include "scenarios/plant_builder.h"
 #include "simulation/detection_models.h"
 #include "simulation/shared_parts.h"
 

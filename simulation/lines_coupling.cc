@@ -2,7 +2,7 @@
 
 #include "scenarios/convert.h"
 #include "scenarios/load.h"
-#include "scenarios/plant_model.h"
+#include "scenarios/plant_builder.h"
 #include "simulation/simulation.h"
 
 namespace moorsim::simulation {

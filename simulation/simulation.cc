@@ -25,7 +25,7 @@
 #include "detectors/registry.h"
 #include "mooring_fem/line_simulation.h"
 #include "scenarios/load.h"
-#include "scenarios/plant_model.h"
+#include "scenarios/plant_builder.h"
 #include "simulation/shared_parts.h"
 #include "vessel/controller.h"
 #include "vessel/fpso_model.h"
@@ -245,6 +245,16 @@ Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed) 
 }
 
 Simulation::~Simulation() = default;
+
+std::unique_ptr<Detection> MakeDetection(const PlantModel& model, std::uint64_t seed) {
+  if (!model.detection || model.detection->detectors.empty()) {
+    throw InputError("detectors: none (detection needs at least one)");
+  }
+  PlantModel plant_only = model;
+  plant_only.detection.reset();
+  const Simulation start(plant_only, seed);
+  return std::make_unique<Detection>(model, start.plant_model(), start.initial_pose());
+}
 
 std::unique_ptr<Detection> MakeDetection(const scenarios::Scenario& scenario) {
   if (scenario.detectors.empty()) {

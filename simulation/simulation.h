@@ -114,6 +114,10 @@ std::shared_ptr<const mooring_fem::WaveKinematics> LineWaves(
 /// For `moorsim detect` on recorded data. Throws InputError for a scenario without
 /// detectors or one that cannot be simulated.
 std::unique_ptr<Detection> MakeDetection(const scenarios::Scenario& scenario);
+/// The same from the typed plant model (its `detection` set) and the run seed its start is
+/// made with: what a program that fills the model in code, or the monitor, builds its
+/// detection from.
+std::unique_ptr<Detection> MakeDetection(const PlantModel& model, std::uint64_t seed);
 
 class Simulation {
  public:

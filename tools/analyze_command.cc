@@ -19,7 +19,7 @@
 #include "detectors/hypothesis_bank.h"
 #include "scenarios/convert.h"
 #include "scenarios/load.h"
-#include "scenarios/plant_model.h"
+#include "scenarios/plant_builder.h"
 #include "simulation/detection_models.h"
 #include "simulation/simulation.h"
 #include "tools/commands.h"

@@ -21,7 +21,7 @@
 #include "mooring_fem/line_simulation.h"
 #include "scenarios/convert.h"
 #include "scenarios/load.h"
-#include "scenarios/plant_model.h"
+#include "scenarios/plant_builder.h"
 #include "simulation/lines_coupling.h"
 #include "simulation/simulation.h"
 #include "tools/commands.h"

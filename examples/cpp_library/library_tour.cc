@@ -17,7 +17,7 @@
 #include <moorsim/core/version.h>
 #include <moorsim/mooring_fem/coupled_lines.h>
 #include <moorsim/scenarios/load.h>
-#include <moorsim/scenarios/plant_model.h>
+#include <moorsim/scenarios/plant_builder.h>
 #include <moorsim/simulation/run.h>
 #include <moorsim/simulation/simulation.h>
 #include <moorsim/simulation/stepped_plant.h>

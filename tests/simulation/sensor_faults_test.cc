@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scenarios/load.h"
-#include "scenarios/plant_model.h"
+#include "scenarios/plant_builder.h"
 #include "simulation/detection.h"
 #include "simulation/simulation.h"
 #include "tests/simulation/test_scenarios.h"

@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "scenarios/plant_model.h"
+#include "scenarios/plant_builder.h"
 #include "simulation/simulation.h"
 #include "tests/simulation/test_scenarios.h"
 #include "vessel/hull_loads.h"

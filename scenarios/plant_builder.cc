@@ -1,4 +1,4 @@
-#include "scenarios/plant_model.h"
+#include "scenarios/plant_builder.h"
 
 #include <algorithm>
 #include <cmath>
