@@ -8,6 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
+
 #include "core/angles.h"
 #include "monitor/harness.h"
 #include "monitor/nmea.h"
@@ -156,6 +159,80 @@ TEST(LineSplitter, LinesEndAtCrOrLfAndAnOverlongOneIsCutOffAndCounted) {
   EXPECT_EQ(lines, (std::vector<std::string>{"$A*00", "$B*00"}));
   splitter.End(take);
   EXPECT_EQ(lines.back(), "$C");
+}
+
+}  // namespace
+}  // namespace moorsim::monitor
+
+namespace moorsim::monitor {
+namespace {
+
+// A million lines (a hundred thousand under the sanitizers): the sentences of a moving
+// vessel, each mutated (a character changed, dropped or doubled, the line cut, bytes of
+// noise) or left whole, through the ingest. Nothing throws; every line is used, ignored or
+// a counted fault; every sample is finite and on the clock.
+TEST(Ingest, AMillionMutatedLinesAreAllCountedAndTheSamplesStaySane) {
+#if defined(__SANITIZE_ADDRESS__)
+  constexpr long kLines = 100000;
+#else
+  constexpr long kLines = 1000000;
+#endif
+  const scenarios::MonitorConfig config = Config(true, true);
+  SentenceWriter writer(config, Routing{0, 0, 0, 0});
+  Ingest ingest(config, 2, 1.0, kEpoch);
+  std::mt19937_64 random(55);
+  long lines = 0, samples = 0;
+  double last_t = -1.0;
+  for (int k = 0; lines < kLines; ++k) {
+    for (FeedLine line : LinesOf(writer, Sample(k % 50))) {
+      line.stamp = kEpoch + k + 1e-3;
+      std::string& t = line.text;
+      switch (random() % 6) {
+        case 0:
+          t[random() % t.size()] = static_cast<char>(random() & 0xff);
+          break;
+        case 1:
+          t.erase(random() % t.size(), 1);
+          break;
+        case 2:
+          t.resize(random() % t.size());
+          break;
+        case 3: {
+          const std::size_t at = random() % t.size();
+          t.insert(at, 1, t[at]);
+          break;
+        }
+        case 4:
+          for (char& c : t) c = static_cast<char>(random() & 0xff);
+          break;
+        default:
+          break;  // whole
+      }
+      if (t.empty()) continue;
+      ingest.Take(line);
+      ++lines;
+      for (const monitor::Sample& s : ingest.TakeSamples()) {
+        ++samples;
+        const detectors::Observation& o = s.observation;
+        ASSERT_GT(o.t, last_t);
+        last_t = o.t;
+        ASSERT_EQ(o.t, static_cast<double>(s.index));
+        for (int i = 0; i < 3; ++i) {
+          if (o.valid[i]) {
+            ASSERT_TRUE(std::isfinite(o.pose(i))) << i;
+          }
+        }
+        ASSERT_TRUE(o.tau_command.allFinite());
+        if (o.tensions) {
+          ASSERT_TRUE(o.tensions->allFinite());
+        }
+      }
+    }
+  }
+  const FeedCounts& counts = ingest.feeds()[0];
+  EXPECT_EQ(counts.sentences + counts.ignored + counts.Faults(), lines);
+  EXPECT_GT(counts.Faults(), lines / 2);
+  EXPECT_GT(samples, lines / 40);  // a sixth of the fixes and headings are whole
 }
 
 }  // namespace
