@@ -6,6 +6,8 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
@@ -133,6 +135,14 @@ struct DisplayServer::Impl {
     }
     if (path.rfind("/api/ack/", 0) == 0) {
       if (method != "POST") return Reply(c, Error(405, "Method Not Allowed"));
+      // Only the page itself: a request from another site's page cannot carry this header
+      // without the browser asking first (CORS), which is never granted.
+      std::string headers = c.request.substr(0, c.request.find("\r\n\r\n"));
+      std::transform(headers.begin(), headers.end(), headers.begin(),
+                     [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+      if (headers.find("\r\nx-moorsim-acknowledge: yes") == std::string::npos) {
+        return Reply(c, Error(403, "Forbidden"));
+      }
       const std::string number = path.substr(9);
       const bool digits = !number.empty() && number.size() <= 3 &&
                           number.find_first_not_of("0123456789") == std::string::npos;

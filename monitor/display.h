@@ -5,7 +5,9 @@
 //   GET  /api/state        the monitor's state as JSON (Monitor::State)
 //   GET  /api/events       server-sent events: the state again at every change, and at least
 //                          every second
-//   POST /api/ack/<number> acknowledges alarm <number> (as the bridge's ACK does)
+//   POST /api/ack/<number> acknowledges alarm <number> (as the bridge's ACK does); the
+//                          request must carry `X-Moorsim-Acknowledge: yes`, which another
+//                          site's page cannot send without a CORS grant (never given)
 // Each connection gets a bounded buffer: a client that stops reading is dropped, never
 // waited for; a request larger than 8 kB or not HTTP is answered 400 and closed.
 #pragma once

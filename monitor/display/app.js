@@ -111,7 +111,8 @@ function drawAlarms(state) {
       const button = document.createElement('button');
       button.textContent = 'Acknowledge';
       button.addEventListener('click', () => {
-        fetch('/api/ack/' + a.number, {method: 'POST'});
+        fetch('/api/ack/' + a.number,
+              {method: 'POST', headers: {'X-Moorsim-Acknowledge': 'yes'}});
       });
       action.appendChild(button);
     }

@@ -152,6 +152,9 @@ display: {address: 127.0.0.1, port: ${port}, watch_circle: 30}
   check(await page.locator('#cells .cell').count() === 8, 'the eight load cells are shown');
   if (screenshot) await page.screenshot({ path: screenshot });
 
+  const forged = await fetch(url + 'api/ack/6', { method: 'POST' });
+  check(forged.status === 403,
+        `an acknowledgement without the page's header is refused (${forged.status})`);
   await page.locator('#alarms tr[data-alarm="6"] button').click();
   await until('the acknowledgement reaching the monitor', () => alarmLines().find(
     (j) => j.alarm === 6 && j.state === 'acknowledged' && j.by === 'display'), 5);
