@@ -162,6 +162,7 @@ struct Monitor::Parts {
     if (sample.starts_segment) {
       ++segment;
       ++summary.segments;
+      store->SegmentStarted(segment);
       if (!warmed) NewDetection();
       warmed = false;
       ever_active = true;

@@ -258,8 +258,15 @@ std::vector<Alarm> ReadStoredAlarms(const std::string& folder) {
   return AlarmsOf(d, "ORDER BY id");
 }
 
+void Store::SegmentStarted(std::int64_t segment) {
+  Database::Statement put(*main_, "INSERT OR REPLACE INTO meta VALUES ('segment', ?)");
+  put.Bind(1, std::to_string(segment)).Run();
+}
+
 std::int64_t Store::LastSegment() {
-  std::int64_t last = 0;
+  // The number kept with the store's identity; the records' own, for a store from before.
+  const std::string kept = main_->Meta("segment");
+  std::int64_t last = kept.empty() ? 0 : std::stoll(kept);
   for (const std::int64_t day : {record_day_ - 1, record_day_}) {
     const fs::path path = fs::path(folder_) / RecordName(day);
     if (!fs::exists(path)) continue;

@@ -68,6 +68,9 @@ class Store {
   std::vector<StoredSample> RecentSamples(double since);
   /// The highest segment number stored (0 for none).
   std::int64_t LastSegment();
+  /// A detection segment starts: its number is kept, so that a restart after any outage
+  /// numbers the next one after it.
+  void SegmentStarted(std::int64_t segment);
 
   /// A line read (kept until Commit).
   void Line(const FeedLine& line);
