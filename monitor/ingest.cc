@@ -198,6 +198,9 @@ void Ingest::Take(const FeedLine& line) {
     ChannelHealth& c = channels_[kPositionChannel];
     ++c.readings;
     c.last = line.stamp;
+    c.detail = s.type + " quality " + std::to_string(fix->quality);
+    if (fix->satellites) c.detail += ", " + std::to_string(*fix->satellites) + " satellites";
+    if (fix->hdop) c.detail += ", HDOP " + FormatNumber(*fix->hdop);
     // The scenario's axes: its north turned `grid_north` clockwise from true north.
     const Vec3 grid(cos_grid_ * ned(0) + sin_grid_ * ned(1),
                     -sin_grid_ * ned(0) + cos_grid_ * ned(1), ned(2));
@@ -221,6 +224,7 @@ void Ingest::Take(const FeedLine& line) {
     ChannelHealth& c = channels_[kHeadingChannel];
     ++c.readings;
     c.last = line.stamp;
+    c.detail = heading->mode ? s.type + " mode " + std::string(1, *heading->mode) : s.type;
     const double psi = (heading->degrees - config_.grid_north) * kDegree;
     if (Start(tau) && !window_.heading) window_.heading = psi;
     latest_pose_(2) = heading_ ? *heading_ + WrapAngle(psi - *heading_) : WrapAngle(psi);

@@ -50,6 +50,9 @@ struct ChannelHealth {
   std::int64_t rejected = 0;  ///< decoded but not usable (no fix, not valid, out of range)
   double last = 0.0;          ///< UNIX time of its last good reading, 0 before one
   std::string problem;        ///< why the last one was rejected
+  /// What the last good reading said of itself: a fix's sentence, quality, satellites and
+  /// HDOP ("GGA quality 4, 12 satellites, HDOP 0.8"), a THS's mode.
+  std::string detail;
   bool Stale(double now, double stale_after) const {
     return !(last > 0.0) || now - last > stale_after;
   }

@@ -634,7 +634,8 @@ nlohmann::json Monitor::State() const {
                         {"rejected", c.rejected},
                         {"last", c.last},
                         {"stale", c.Stale(p.now, p.config.stale_after)},
-                        {"problem", c.problem}});
+                        {"problem", c.problem},
+                        {"detail", c.detail}});
   }
   state["channels"] = channels;
   return state;

@@ -202,7 +202,7 @@ function drawFeeds(state) {
     const row = document.createElement('tr');
     if (c.stale) row.className = 'stale';
     row.dataset.channel = c.name;
-    cell(row, c.name + (c.stale ? ' (stale)' : ''));
+    cell(row, c.name + (c.stale ? ' (stale)' : '') + (c.detail ? ': ' + c.detail : ''));
     cell(row, c.feed || '-');
     cell(row, String(c.readings), 'number');
     cell(row, String(c.rejected), 'number');

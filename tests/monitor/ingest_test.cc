@@ -83,6 +83,8 @@ TEST(Ingest, APoseComesBackThroughLatitudeLongitudeGridAndAntenna) {
     EXPECT_NEAR((*o.tensions)(0), 1.2345e6, 0.05);
     EXPECT_NEAR((*o.tensions)(1), 2.5e6, 50.0);  // kN to one decimal
   }
+  EXPECT_EQ(ingest.channels()[kPositionChannel].detail, "GGA quality 1, 12 satellites, HDOP 0.8");
+  EXPECT_EQ(ingest.channels()[kHeadingChannel].detail, "HDT");
 }
 
 TEST(Ingest, AMissingHeadingIsADropoutAndALongSilenceSuspendsTheDetection) {
