@@ -425,7 +425,7 @@ Monitor::Monitor(const scenarios::MonitorConfig& config, const scenarios::Scenar
     p.now = UnixNow();
   }
   p.started = p.now;
-  p.store = std::make_unique<Store>(config.store, identity, p.now);
+  p.store = std::make_unique<Store>(config.store, identity, p.now, config.keep_days);
   if (replay && p.store->resumed()) {
     throw InputError(config.store +
                      ": a replay records into a store of its own: give an empty "

@@ -170,8 +170,8 @@ std::optional<VecX> TensionsOf(const std::string& text) {
 
 }  // namespace
 
-Store::Store(const std::string& folder, const StoreIdentity& identity, double now)
-    : folder_(folder) {
+Store::Store(const std::string& folder, const StoreIdentity& identity, double now, int keep_days)
+    : folder_(folder), keep_days_(keep_days) {
   std::error_code error;
   fs::create_directories(folder, error);
   if (error || !fs::is_directory(folder)) {
@@ -220,6 +220,19 @@ void Store::OpenRecord(double unix_time) {
   record_ = std::make_unique<Database>((fs::path(folder_) / RecordName(day)).string());
   record_->Exec(kRecordSchema);
   record_day_ = day;
+  if (keep_days_ <= 0) return;
+  // Records past their days go (their names sort by date: compare the names).
+  // "record-YYYY-MM-DD", and the database's own files after it (.db, .db-wal, .db-shm).
+  const std::string oldest_kept = RecordName(day - keep_days_ + 1).substr(0, 17);
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder_)) {
+    const std::string name = entry.path().filename().string();
+    const bool record =
+        name.starts_with("record-") && name.size() >= 20 && name.compare(17, 3, ".db") == 0;
+    if (record && name.substr(0, 17) < oldest_kept) {
+      std::error_code ignored;
+      fs::remove(entry.path(), ignored);
+    }
+  }
 }
 
 namespace {

@@ -48,8 +48,9 @@ class Store {
   /// Opens the store in `folder` (made if absent), or starts one. Throws InputError naming
   /// the folder if it cannot be written, or if it is another scenario's store (a restart
   /// with a changed scenario would mix two vessels' records). `now`: UNIX time, whose whole
-  /// second becomes a new store's epoch.
-  Store(const std::string& folder, const StoreIdentity& identity, double now);
+  /// second becomes a new store's epoch. `keep_days` > 0: each day's record is deleted
+  /// once it is that many days older than the newest (0: every record is kept).
+  Store(const std::string& folder, const StoreIdentity& identity, double now, int keep_days = 0);
   ~Store();
   Store(const Store&) = delete;
   Store& operator=(const Store&) = delete;
@@ -98,6 +99,7 @@ class Store {
   std::unique_ptr<Database> record_;
 
   std::int64_t record_day_ = -1;
+  int keep_days_ = 0;
   bool pending_ = false;
 };
 

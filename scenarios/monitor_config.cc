@@ -259,6 +259,12 @@ constexpr Key kMonitorKeys[] = {
      .description = "The folder of the record, relative to this file's folder.",
      .required = true},
     {.name = "thrust", .kind = Kind::kMap, .description = "The thrust feed.", .block = &kThrust},
+    {.name = "keep_days",
+     .kind = Kind::kInteger,
+     .description = "The daily records (lines and samples) older than this many days are "
+                    "deleted (default 0: kept); alarms and events are always kept.",
+     .minimum = Bound{0.0, false, ""},
+     .maximum = Bound{100000.0, false, ""}},
 };
 constexpr Block kMonitor{"A moorsim monitor configuration.", kMonitorKeys};
 
@@ -440,6 +446,7 @@ void ParseRoot(const Reader& root, MonitorConfig& c) {
     }
   }
   root.Optional("stale_after", c.stale_after);
+  root.Optional("keep_days", c.keep_days);
   root.Optional("max_gap", c.max_gap);
   c.store = Resolved(c.source_path, NonEmpty(root.Child("store")));
   if (const std::optional<Reader> alarms = root.Find("alarms")) {

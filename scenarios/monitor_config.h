@@ -22,6 +22,7 @@
 //   thrust: {feed: dp}                # optional: the thrust the allocation sends
 //   stale_after: 3                    # [s] a channel silent this long is stale
 //   store: store                      # the record (alarms, acknowledgements, samples)
+//   keep_days: 90                     # daily records older than this are deleted
 //   alarms: alarms.jsonl              # JSON alarm lines; "-" (default) for stdout
 //   bridge: {send: 127.0.0.1:10120, listen: 10121}   # ALR sentences out, ACK in (UDP)
 //   display: {address: 127.0.0.1, port: 8080, watch_circle: 40}
@@ -113,6 +114,7 @@ struct MonitorConfig {
   double stale_after = 3.0;  ///< [s]
   double max_gap = 60.0;     ///< [s] the detection is suspended after a gap this long
   std::string store;         ///< resolved
+  int keep_days = 0;         ///< daily records older than this are deleted; 0: kept
   std::string alarms = "-";  ///< "-" or a resolved path
   std::optional<BridgeConfig> bridge;
   std::optional<DisplayConfig> display;

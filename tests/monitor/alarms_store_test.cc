@@ -129,3 +129,30 @@ TEST(Store, SamplesAlarmsAndAcknowledgementsReadBackAfterReopening) {
 
 }  // namespace
 }  // namespace moorsim::monitor
+
+namespace moorsim::monitor {
+namespace {
+
+TEST(Store, RecordsPastTheirDaysAreDeletedAndTheRestKept) {
+  const moorsim::testing::TempDirectory dir(::testing::TempDir());
+  const std::filesystem::path folder = dir.path() / "store";
+  std::filesystem::create_directories(folder);
+  for (const char* name : {"record-2026-12-01.db", "record-2026-12-01.db-wal",
+                           "record-2026-12-05.db", "record-2026-12-06.db", "monitor-notes.txt"}) {
+    moorsim::testing::WriteWholeFile(folder / name, "x");
+  }
+  StoreIdentity identity;
+  identity.scenario_text = "name: a\n";
+  // 2026-12-07 12:00 UTC, two days kept: the 6th and the 7th.
+  const Store store(folder.string(), identity, 1796644800.0, 2);
+  EXPECT_FALSE(std::filesystem::exists(folder / "record-2026-12-01.db"));
+  EXPECT_FALSE(std::filesystem::exists(folder / "record-2026-12-01.db-wal"));
+  EXPECT_FALSE(std::filesystem::exists(folder / "record-2026-12-05.db"));
+  EXPECT_TRUE(std::filesystem::exists(folder / "record-2026-12-06.db"));
+  EXPECT_TRUE(std::filesystem::exists(folder / "record-2026-12-07.db"));
+  EXPECT_TRUE(std::filesystem::exists(folder / "monitor-notes.txt"));
+  EXPECT_TRUE(std::filesystem::exists(folder / "monitor.db"));
+}
+
+}  // namespace
+}  // namespace moorsim::monitor
