@@ -61,15 +61,9 @@ void AlarmBoard::SetId(int number, std::int64_t id) {
 
 std::string AlrSentence(const std::string& talker, const Alarm& alarm) {
   const double changed = alarm.cleared.value_or(alarm.acknowledged.value_or(alarm.raised));
-  const double day = std::fmod(changed, 86400.0);
-  const int hours = static_cast<int>(day / 3600.0);
-  const int minutes = static_cast<int>((day - 3600.0 * hours) / 60.0);
-  const double seconds = day - 3600.0 * hours - 60.0 * minutes;
-  char time[16];
-  std::snprintf(time, sizeof time, "%02d%02d%05.2f", hours, minutes, std::min(seconds, 59.99));
   char number[8];
   std::snprintf(number, sizeof number, "%03d", alarm.number % 1000);
-  std::vector<std::string> fields = {time, number, alarm.Active() ? "A" : "V",
+  std::vector<std::string> fields = {NmeaTimeOfDay(changed), number, alarm.Active() ? "A" : "V",
                                      alarm.acknowledged ? "A" : "V", ""};
   const std::string address = talker + "ALR";
   // $ + address + 5 commas + fields + *hh: what is left for the text.

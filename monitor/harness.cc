@@ -38,15 +38,6 @@ std::string DegreesMinutes(double degrees, int degree_digits) {
   return text;
 }
 
-std::string TimeOfDay(double unix_time) {
-  const double day = unix_time - 86400.0 * std::floor(unix_time / 86400.0);
-  const long centis = std::lround(day * 100.0) % 8640000L;
-  char text[16];
-  std::snprintf(text, sizeof text, "%02ld%02ld%02ld.%02ld", centis / 360000, centis / 6000 % 60,
-                centis / 100 % 60, centis % 100);
-  return text;
-}
-
 std::string Fixed(double value, int decimals) {
   char text[48];
   std::snprintf(text, sizeof text, "%.*f", decimals, value);
@@ -101,7 +92,7 @@ std::vector<PlayedLine> SentenceWriter::Lines(const detectors::Observation& o, d
     const double g = config_.grid_north * kDegree;
     const Vec3 ned(std::cos(g) * x - std::sin(g) * y, std::sin(g) * x + std::cos(g) * y, 0.0);
     const Vec3 geodetic = frame_.LatitudeLongitudeHeight(ned);
-    const std::vector<std::string> fields = {TimeOfDay(unix_time),
+    const std::vector<std::string> fields = {NmeaTimeOfDay(unix_time),
                                              DegreesMinutes(geodetic(0), 2),
                                              geodetic(0) >= 0.0 ? "N" : "S",
                                              DegreesMinutes(geodetic(1), 3),

@@ -28,16 +28,11 @@ constexpr double kMaxDistance = 100e3;
 /// The largest tension or thrust component believed [N, N m].
 constexpr double kMaxLoad = 1e9;
 
+/// A CSV cell as a number, the spaces around it allowed.
 std::optional<double> Number(std::string_view text) {
   while (!text.empty() && text.front() == ' ') text.remove_prefix(1);
   while (!text.empty() && text.back() == ' ') text.remove_suffix(1);
-  double value = 0.0;
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  if (text.empty() || ec != std::errc() || ptr != end || !std::isfinite(value)) {
-    return std::nullopt;
-  }
-  return value;
+  return NmeaNumber(text);
 }
 
 }  // namespace

@@ -26,16 +26,6 @@ int HexDigit(char c) {
   return -1;
 }
 
-// A whole field as a finite number, or nothing.
-std::optional<double> Number(std::string_view text) {
-  if (text.empty()) return std::nullopt;
-  double value = 0.0;
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  if (ec != std::errc() || ptr != end || !std::isfinite(value)) return std::nullopt;
-  return value;
-}
-
 std::optional<int> Whole(std::string_view text) {
   if (text.empty()) return std::nullopt;
   int value = 0;
@@ -68,7 +58,7 @@ class Fields {
     if (t.empty()) return true;
     const std::optional<int> h = t.size() >= 6 ? Whole(t.substr(0, 2)) : std::nullopt;
     const std::optional<int> m = t.size() >= 6 ? Whole(t.substr(2, 2)) : std::nullopt;
-    const std::optional<double> s = t.size() >= 6 ? Number(t.substr(4)) : std::nullopt;
+    const std::optional<double> s = t.size() >= 6 ? NmeaNumber(t.substr(4)) : std::nullopt;
     if (!h || !m || !s || *h < 0 || *h > 23 || *m < 0 || *m > 59 || *s < 0.0 || *s >= 61.0 ||
         t[4] == '-' || t[4] == '+') {
       return Fail(k, "not a time hhmmss.ss");
@@ -88,7 +78,7 @@ class Fields {
       return Fail(k, "not " + std::string(degree_digits == 2 ? "ddmm.mmmm" : "dddmm.mmmm"));
     }
     const std::optional<int> degrees = Whole(t.substr(0, degree_digits));
-    const std::optional<double> minutes = Number(t.substr(degree_digits));
+    const std::optional<double> minutes = NmeaNumber(t.substr(degree_digits));
     if (!degrees || !minutes || *degrees < 0 || *minutes < 0.0 || *minutes >= 60.0 ||
         t[degree_digits] == '-' || t[degree_digits] == '+') {
       return Fail(k, "not " + std::string(degree_digits == 2 ? "ddmm.mmmm" : "dddmm.mmmm"));
@@ -110,7 +100,7 @@ class Fields {
 
   bool OptionalNumber(std::size_t k, std::optional<double>* out, double low, double high) {
     if (Empty(k)) return true;
-    const std::optional<double> v = Number(Text(k));
+    const std::optional<double> v = NmeaNumber(Text(k));
     if (!v || *v < low || *v > high) {
       return Fail(k, "not a number in [" + FormatNumber(low) + ", " + FormatNumber(high) + "]");
     }
@@ -181,6 +171,24 @@ void RequireType(const NmeaSentence& s, std::initializer_list<std::string_view> 
 
 }  // namespace
 
+std::optional<double> NmeaNumber(std::string_view text) {
+  if (text.empty()) return std::nullopt;
+  double value = 0.0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  if (ec != std::errc() || ptr != end || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+std::string NmeaTimeOfDay(double unix_time) {
+  const double day = unix_time - 86400.0 * std::floor(unix_time / 86400.0);
+  const long centis = std::lround(day * 100.0) % 8640000L;
+  char text[16];
+  std::snprintf(text, sizeof text, "%02ld%02ld%02ld.%02ld", centis / 360000, centis / 6000 % 60,
+                centis / 100 % 60, centis % 100);
+  return text;
+}
+
 unsigned NmeaChecksum(std::string_view body) {
   unsigned sum = 0;
   for (const char c : body) sum ^= static_cast<unsigned char>(c);
@@ -224,7 +232,7 @@ bool SplitTagBlock(std::string_view* line, NmeaTags* tags, std::string* why) {
     const std::string_view tag = body.substr(from, comma - from);
     if (tag.size() < 2 || tag[1] != ':') return fail("'" + std::string(tag) + "' is not k:value");
     if (tag[0] == 'c') {
-      const std::optional<double> time = Number(tag.substr(2));
+      const std::optional<double> time = NmeaNumber(tag.substr(2));
       if (!time || *time < 0.0 || *time > 1e11) {
         return fail("c: '" + std::string(tag.substr(2)) + "' is not a UNIX time in seconds");
       }

@@ -130,6 +130,12 @@ bool SplitTagBlock(std::string_view* line, NmeaTags* tags, std::string* why);
 /// A sentence's text: `start`, the address and the fields joined by commas, `*` and the
 /// checksum (no line end).
 std::string NmeaText(char start, std::string_view address, const std::vector<std::string>& fields);
+/// The UTC time of day of `unix_time` as a sentence's time field, "hhmmss.ss" (rounded to
+/// the hundredth of a second).
+std::string NmeaTimeOfDay(double unix_time);
+/// A field (or a CSV cell) that is a whole finite number, or nothing.
+std::optional<double> NmeaNumber(std::string_view text);
+
 /// A TAG block with `c:` (UNIX time, to the microsecond) for a recorded log.
 std::string NmeaTagBlock(double unix_time);
 
