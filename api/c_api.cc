@@ -19,9 +19,9 @@
 #include "core/format.h"
 #include "core/version.h"
 #include "mooring_fem/coupled_lines.h"
+#include "runner/lines_coupling.h"
+#include "runner/stepped_plant.h"
 #include "scenarios/load.h"
-#include "simulation/lines_coupling.h"
-#include "simulation/stepped_plant.h"
 
 // An interrupt request (moorsim_*_interrupt): set from any thread or a signal handler,
 // taken by the call that honours it.
@@ -35,7 +35,7 @@ struct moorsim_lines {
 };
 
 struct moorsim_plant {
-  std::unique_ptr<moorsim::simulation::SteppedPlant> plant;
+  std::unique_ptr<moorsim::runner::SteppedPlant> plant;
   std::atomic<bool> interrupt{false};
 };
 
@@ -172,12 +172,12 @@ Handle* Create(const char* function, const std::function<void(Handle&)>& make) {
   return made;
 }
 
-moorsim::simulation::SteppedPlant& Plant(moorsim_plant* handle) {
+moorsim::runner::SteppedPlant& Plant(moorsim_plant* handle) {
   Require(handle != nullptr, "the plant handle is NULL");
   return *handle->plant;
 }
 
-const moorsim::simulation::SteppedPlant& Plant(const moorsim_plant* handle) {
+const moorsim::runner::SteppedPlant& Plant(const moorsim_plant* handle) {
   Require(handle != nullptr, "the plant handle is NULL");
   return *handle->plant;
 }
@@ -208,7 +208,7 @@ moorsim_lines* moorsim_lines_create(const char* scenario_path) {
   return Create<moorsim_lines>("moorsim_lines_create", [&](moorsim_lines& h) {
     Require(scenario_path != nullptr, "the scenario path is NULL");
     h.scenario = moorsim::scenarios::LoadScenario(scenario_path);
-    h.lines = moorsim::simulation::MakeCoupledLines(h.scenario);
+    h.lines = moorsim::runner::MakeCoupledLines(h.scenario);
   });
 }
 
@@ -216,7 +216,7 @@ moorsim_lines* moorsim_lines_create_from_yaml(const char* yaml_text) {
   return Create<moorsim_lines>("moorsim_lines_create_from_yaml", [&](moorsim_lines& h) {
     Require(yaml_text != nullptr, "the YAML text is NULL");
     h.scenario = moorsim::scenarios::ParseScenario(yaml_text, "<yaml text>");
-    h.lines = moorsim::simulation::MakeCoupledLines(h.scenario);
+    h.lines = moorsim::runner::MakeCoupledLines(h.scenario);
   });
 }
 
@@ -258,7 +258,7 @@ int moorsim_lines_init(moorsim_lines* lines, const double* x, const double* xd) 
   return Guard("moorsim_lines_init", [&] {
     CoupledLines& l = Lines(lines);
     const BodyDofs pose = Dofs(x, "x"), velocity = Dofs(xd, "xd");
-    moorsim::simulation::InitCoupledLines(l, lines->scenario, pose, velocity);
+    moorsim::runner::InitCoupledLines(l, lines->scenario, pose, velocity);
     Warn("moorsim_lines_init", l.TakeWarnings());
   });
 }
@@ -411,7 +411,7 @@ int moorsim_lines_restore(moorsim_lines* lines, const void* buffer, size_t size)
 moorsim_plant* moorsim_plant_create(const char* scenario_path, unsigned long long seed) {
   return Create<moorsim_plant>("moorsim_plant_create", [&](moorsim_plant& h) {
     Require(scenario_path != nullptr, "the scenario path is NULL");
-    h.plant = std::make_unique<moorsim::simulation::SteppedPlant>(
+    h.plant = std::make_unique<moorsim::runner::SteppedPlant>(
         moorsim::scenarios::LoadScenario(scenario_path), seed);
   });
 }
@@ -419,7 +419,7 @@ moorsim_plant* moorsim_plant_create(const char* scenario_path, unsigned long lon
 moorsim_plant* moorsim_plant_create_from_yaml(const char* yaml_text, unsigned long long seed) {
   return Create<moorsim_plant>("moorsim_plant_create_from_yaml", [&](moorsim_plant& h) {
     Require(yaml_text != nullptr, "the YAML text is NULL");
-    h.plant = std::make_unique<moorsim::simulation::SteppedPlant>(
+    h.plant = std::make_unique<moorsim::runner::SteppedPlant>(
         moorsim::scenarios::ParseScenario(yaml_text, "<yaml text>"), seed);
   });
 }

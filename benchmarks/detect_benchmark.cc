@@ -5,6 +5,7 @@
 // of the record the detection starts over (outside the timing).
 #include <benchmark/benchmark.h>
 
+#include "runner/scenario_plant.h"
 #include "scenarios/load.h"
 #include "simulation/simulation.h"
 
@@ -16,7 +17,9 @@ const char* const kLine6 = MOORSIM_SOURCE_DIR "/scenarios/library/thesis_line6.y
 
 // The samples the run's detection took, in order.
 std::vector<Observation> RecordedSamples(const moorsim::scenarios::Scenario& s) {
-  moorsim::simulation::Simulation sim(s, s.simulation.seed);
+  const std::unique_ptr<moorsim::simulation::Simulation> owned =
+      moorsim::runner::MakeSimulation(s, s.simulation.seed);
+  moorsim::simulation::Simulation& sim = *owned;
   sim.KeepDetectionInput(true);
   std::vector<Observation> samples;
   for (int t = 1; t <= 1000; ++t) {
@@ -33,12 +36,12 @@ void BM_DetectSample(benchmark::State& state) {
       kLine6, state.range(0) == 1 ? std::vector<std::string>{"detection.pairs=true"}
                                   : std::vector<std::string>{});
   const std::vector<Observation> samples = RecordedSamples(s);
-  std::unique_ptr<moorsim::simulation::Detection> detection = moorsim::simulation::MakeDetection(s);
+  std::unique_ptr<moorsim::simulation::Detection> detection = moorsim::runner::MakeDetection(s);
   std::size_t next = 0;
   for (auto _ : state) {
     if (next == samples.size()) {
       state.PauseTiming();
-      detection = moorsim::simulation::MakeDetection(s);
+      detection = moorsim::runner::MakeDetection(s);
       next = 0;
       state.ResumeTiming();
     }

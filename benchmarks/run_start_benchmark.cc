@@ -3,6 +3,9 @@
 // moored static start, the detectors' set-up) for the thesis case with its three detectors.
 #include <benchmark/benchmark.h>
 
+#include <memory>
+
+#include "runner/scenario_plant.h"
 #include "scenarios/load.h"
 #include "simulation/simulation.h"
 #include "vessel/hydro_data.h"
@@ -27,8 +30,9 @@ BENCHMARK(BM_LoadScenario)->Unit(benchmark::kMillisecond);
 void BM_SimulationStart(benchmark::State& state) {
   const moorsim::scenarios::Scenario s = moorsim::scenarios::LoadScenario(kThesis);
   for (auto _ : state) {
-    moorsim::simulation::Simulation sim(s, 1);
-    benchmark::DoNotOptimize(sim.time());
+    const std::unique_ptr<moorsim::simulation::Simulation> sim =
+        moorsim::runner::MakeSimulation(s, 1);
+    benchmark::DoNotOptimize(sim->time());
   }
 }
 BENCHMARK(BM_SimulationStart)->Unit(benchmark::kMillisecond);

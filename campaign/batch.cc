@@ -24,11 +24,19 @@
 #include "io/csv_table.h"
 #include "io/directory_lock.h"
 #include "io/hdf5_file.h"
+#include "runner/scenario_plant.h"
 #include "scenarios/load.h"
 #include "scenarios/strict_yaml.h"
 #include "vessel/hydro_data.h"
 
 namespace moorsim::simulation {
+
+using runner::RunRequest;
+using runner::RunResult;
+using runner::RunStatus;
+using runner::StatusName;
+using runner::WriteFileAtomically;
+
 namespace {
 
 // The thesis plant with its detectors runs at about this many times real time on each of
@@ -807,7 +815,7 @@ PreparedCampaign PrepareCampaign(const std::string& campaign_path,
           key.append(o).append(";");
         }
       }
-      if (detector_configurations.insert(key).second) CheckDetectors(s);
+      if (detector_configurations.insert(key).second) runner::CheckDetectors(s);
     } catch (const InputError& e) {
       throw InputError(RunLocation(c, run, e.what()));
     }

@@ -41,8 +41,8 @@
 #include "campaign/batch_mpi.h"
 #include "core/types.h"
 #include "detectors/registry.h"
+#include "runner/run.h"
 #include "scenarios/campaign.h"
-#include "simulation/run.h"
 
 namespace moorsim::simulation {
 
@@ -177,7 +177,7 @@ std::string RunLocation(const scenarios::Campaign& campaign, const scenarios::Ca
 /// The row of one run (DIR/rows/*.json). `truth` is null for a run whose scenario was
 /// refused: its row has no failure, lines or detectors.
 nlohmann::json MakeRow(const PreparedCampaign& prepared, const scenarios::CampaignRun& run,
-                       const RunTruth* truth, const RunResult& result,
+                       const RunTruth* truth, const runner::RunResult& result,
                        const std::vector<StatisticTrace>& traces, const std::string& out_dir);
 
 /// How a batch ended: every run ok; some run failed or timed out (their rows say why); the

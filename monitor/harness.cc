@@ -118,6 +118,7 @@ std::vector<PlayedLine> SentenceWriter::Lines(const detectors::Observation& o, d
   if (o.tensions && (!cells_clock_ || cells_clock_->Due(o.t))) {
     for (const scenarios::CellConfig& cell : config_.cells) {
       const double reading = (*o.tensions)(cell.line - 1) / cell.scale;
+      if (!std::isfinite(reading)) continue;  // a dead cell sends nothing
       lines.push_back(
           {routing_.cells,
            NmeaText('$', "IIXDR", {"N", Fixed(reading, 1), cell.units, cell.transducer})});

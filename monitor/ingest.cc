@@ -269,10 +269,7 @@ void Ingest::Take(const FeedLine& line) {
       c.last = line.stamp;
       cell_value_[k] = newtons;
       cell_time_[k] = tau;
-      if (InOpen(tau) && cell_interval_[k] != open_) {
-        cell_interval_[k] = open_;
-        ++window_.cells;
-      }
+      if (InOpen(tau)) cell_interval_[k] = open_;
       latest_tensions_(spec.line - 1) = newtons;
     }
   } else if (s.type == "ZDA") {
@@ -286,8 +283,15 @@ void Ingest::Take(const FeedLine& line) {
 }
 
 bool Ingest::Complete() const {
-  return window_.fix && window_.heading && (!config_.thrust || !waits_.thrust || window_.thrust) &&
-         (!waits_.cells || window_.cells == static_cast<int>(config_.cells.size()));
+  if (!window_.fix || !window_.heading) return false;
+  if (config_.thrust && waits_.thrust && !window_.thrust) return false;
+  if (!waits_.cells) return true;
+  // Every cell that is not stale at the interval's start has read in it.
+  const double t = static_cast<double>(open_) / rate_;
+  for (std::size_t k = 0; k < cell_time_.size(); ++k) {
+    if (cell_interval_[k] != open_ && cell_time_[k] >= t - config_.stale_after) return false;
+  }
+  return true;
 }
 
 bool Ingest::Start(double tau) {
@@ -295,6 +299,7 @@ bool Ingest::Start(double tau) {
     // The first reading of position or heading opens the first interval, its own.
     open_ = static_cast<std::int64_t>(std::floor(tau * rate_));
     while (tau >= static_cast<double>(open_ + 1) / rate_) ++open_;
+    ExpectCellsFrom(static_cast<double>(open_) / rate_);
   }
   // A reading behind the open interval belongs to one closed already.
   return tau >= static_cast<double>(open_) / rate_;
@@ -360,22 +365,33 @@ void Ingest::Close() {
   if (heading) o.pose(2) = *psi;
   o.tau_command = thrust_;
   if (!config_.cells.empty()) {
-    bool current = true;
-    for (std::size_t k = 0; k < cell_time_.size(); ++k) {
-      current = current && cell_time_[k] >= t - config_.stale_after;
+    // Each cell's latest reading, withheld (NaN) while it is stale; none while all are.
+    VecX tensions = VecX::Constant(lines_, kNaN);
+    bool any = false;
+    for (std::size_t k = 0; k < config_.cells.size(); ++k) {
+      if (cell_time_[k] < t - config_.stale_after || !std::isfinite(cell_value_[k])) continue;
+      tensions(config_.cells[k].line - 1) = cell_value_[k];
+      any = true;
     }
-    if (current) {
-      VecX tensions(lines_);
-      for (std::size_t k = 0; k < config_.cells.size(); ++k) {
-        tensions(config_.cells[k].line - 1) = cell_value_[k];
-      }
-      o.tensions = tensions;
-    }
+    if (any) o.tensions = tensions;
   }
   samples_.push_back(std::move(sample));
 }
 
+void Ingest::ExpectCellsFrom(double t) {
+  for (double& time : cell_time_) time = std::max(time, t);
+}
+
 void Ingest::Resume(std::int64_t k, const detectors::Observation& last) {
+  // The cells' readings as the last sample held them.
+  for (std::size_t c = 0; c < config_.cells.size() && last.tensions; ++c) {
+    const double reading = (*last.tensions)(config_.cells[c].line - 1);
+    if (std::isfinite(reading)) {
+      cell_value_[c] = reading;
+      cell_time_[c] = last.t;
+    }
+  }
+  ExpectCellsFrom(static_cast<double>(k + 1) / rate_);
   open_ = k + 1;
   window_ = Window{};
   active_ = true;

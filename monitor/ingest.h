@@ -7,12 +7,13 @@
 // second fixed when its store was made), the rate being the scenario's sensors' (the rate
 // the detectors were built for). Sample k takes the first position fix and the first
 // heading read in [t_k, t_k+1). It closes as soon as it has them and, where the vessel
-// sends them at the detection's rate or faster (Waits), a thrust reading and every cell's
-// reading of that interval (no waiting beyond: the alarm follows the line that completes
+// sends them at the detection's rate or faster (Waits), a thrust reading and the reading of
+// every cell that is not stale (no waiting beyond: the alarm follows the line that completes
 // it), or when a line read at or after t_k+1 (or the clock, live) says the interval is
 // over, a position or heading missing then being a dropout the observers predict through.
-// The thrust and the cells are held: the sample takes each one's latest reading, the cells
-// only when every cell has read within `stale_after` of t_k.
+// The thrust and the cells are held: the sample takes each one's latest reading, a cell's
+// only while it has read within `stale_after` of t_k (a stale cell's is withheld, NaN, and
+// the other cells still count; no tensions at all while every cell is stale).
 // Everything depends only on the lines and their times, in order, so a recorded log
 // replayed gives the same samples as the live feeds gave.
 //
@@ -127,13 +128,15 @@ class Ingest {
     std::optional<Vec3> fix;  // antenna north, east, down
     std::optional<double> heading;
     bool thrust = false;  // a thrust reading in this interval
-    int cells = 0;        // cells that have read in this interval
   };
   // Whether the open interval has every channel it waits for.
   bool Complete() const;
   // Whether `tau` lies in the open interval.
   bool InOpen(double tau) const { return open_ >= 0 && tau >= static_cast<double>(open_) / rate_; }
   void CloseBefore(double tau);
+  // From `t` on the cells are waited for (as if they had read at t) until they are stale:
+  // from the first interval, and from a resumed one.
+  void ExpectCellsFrom(double t);
   // Opens the first interval at the first reading; whether `tau` lies in the open one.
   bool Start(double tau);
   void Close();

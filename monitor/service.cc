@@ -29,7 +29,6 @@
 #include "monitor/ingest.h"
 #include "monitor/nmea.h"
 #include "monitor/store.h"
-#include "scenarios/plant_builder.h"
 #include "simulation/detection.h"
 #include "simulation/latency.h"
 #include "simulation/simulation.h"
@@ -100,8 +99,7 @@ nlohmann::json MonitorSummary::Json() const {
 
 struct Monitor::Parts {
   scenarios::MonitorConfig config;
-  scenarios::Scenario scenario;
-  simulation::PlantModel model;  // the typed model the detection is built from
+  MonitoredVessel vessel;  // its model is what the detection is built from
   MonitorOptions options;
   int lines = 0;
   std::unique_ptr<simulation::Detection> detection;
@@ -153,7 +151,7 @@ struct Monitor::Parts {
   }
 
   void NewDetection() {
-    detection = simulation::MakeDetection(model, scenario.simulation.seed);
+    detection = simulation::MakeDetection(vessel.model, vessel.seed);
     seen.assign(detection->records().size(), 0);
   }
 
@@ -385,19 +383,20 @@ struct Monitor::Parts {
   }
 };
 
-Monitor::Monitor(const scenarios::MonitorConfig& config, const scenarios::Scenario& scenario,
+Monitor::Monitor(const scenarios::MonitorConfig& config, const MonitoredVessel& vessel,
                  MonitorOptions options)
     : parts_(std::make_unique<Parts>()) {
   Parts& p = *parts_;
   p.config = config;
-  p.scenario = scenario;
-  p.model = scenarios::ToPlantModel(scenario);
+  p.vessel = vessel;
   p.options = std::move(options);
-  p.lines = static_cast<int>(scenario.mooring.lines.size());
-  if (scenario.detectors.empty()) {
+  const simulation::PlantModel& model = vessel.model;
+  p.lines = static_cast<int>(model.mooring.lines.size());
+  if (!model.detection || model.detection->detectors.empty()) {
     throw InputError(config.scenario_path + ": the scenario has no detectors to run");
   }
-  if (scenario.sensors.gnss_rate != scenario.sensors.gyro_rate) {
+  const double rate = model.pose_sensors.gnss_rate;
+  if (rate != model.pose_sensors.gyro_rate) {
     throw InputError(config.scenario_path +
                      ": sensors.gnss.rate_hz and sensors.gyro.rate_hz differ; the monitor "
                      "samples both on one clock");
@@ -409,8 +408,8 @@ Monitor::Monitor(const scenarios::MonitorConfig& config, const scenarios::Scenar
   StoreIdentity identity;
   identity.config_path = config.source_path;
   identity.config_text = ReadWhole(config.source_path);
-  identity.scenario_path = scenario.source_path;
-  identity.scenario_text = scenario.text;
+  identity.scenario_path = vessel.source_path;
+  identity.scenario_text = vessel.source_text;
   identity.version = kVersion;
 
   FeedLine first;
@@ -432,10 +431,9 @@ Monitor::Monitor(const scenarios::MonitorConfig& config, const scenarios::Scenar
                      "folder");
   }
   Waits waits;
-  waits.cells = scenario.sensors.tension_rate >= scenario.sensors.gnss_rate;
-  waits.thrust = scenario.controller.rate >= scenario.sensors.gnss_rate;
-  p.ingest = std::make_unique<Ingest>(config, p.lines, scenario.sensors.gnss_rate, p.store->epoch(),
-                                      waits);
+  waits.cells = model.tension_cells && model.tension_cells->rate >= rate;
+  waits.thrust = model.controller.rate >= rate;
+  p.ingest = std::make_unique<Ingest>(config, p.lines, rate, p.store->epoch(), waits);
   if (p.store->resumed()) {
     p.board.Restore(p.store->ListedAlarms());
     p.Log("store: " + std::to_string(p.board.listed().size()) + " alarms listed as they were");
@@ -537,7 +535,7 @@ nlohmann::json Monitor::State() const {
     return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
   };
   nlohmann::json state;
-  state["scenario"] = p.scenario.name;
+  state["scenario"] = p.vessel.name;
   state["now"] = p.now;
   state["wall"] = UnixNow();  // the system's clock, which the feeds' times are on
   state["epoch"] = p.store->epoch();
@@ -546,9 +544,9 @@ nlohmann::json Monitor::State() const {
   const Vec3& pose = p.ingest->latest_pose();
   state["vessel"] = {
       {"north", number(pose(0))}, {"east", number(pose(1))}, {"heading", number(pose(2))}};
-  const scenarios::VesselSpec vessel = p.scenario.vessel.value_or(scenarios::VesselSpec{});
-  state["hull"] = {{"length", vessel.hull.length}, {"beam", vessel.hull.beam}};
-  state["turret"] = {vessel.turret.x, vessel.turret.y};
+  const simulation::PlantModel& model = p.vessel.model;
+  state["hull"] = {{"length", p.vessel.hull_length}, {"beam", p.vessel.hull_beam}};
+  state["turret"] = {model.turret.x, model.turret.y};
   nlohmann::json track = nlohmann::json::array();
   for (const auto& point : p.track) track.push_back({point[0], point[1]});
   state["track"] = track;
@@ -560,10 +558,10 @@ nlohmann::json Monitor::State() const {
   const VecX& measured = p.ingest->latest_tensions();
   const std::optional<VecX> expected =
       p.detection ? p.detection->expected_tensions() : std::nullopt;
-  const double noise = p.scenario.sensors.tension_noise.std_dev;
+  const double noise = model.tension_cells ? model.tension_cells->noise.std_dev : 0.0;
   nlohmann::json lines = nlohmann::json::array();
   for (int k = 1; k <= p.lines; ++k) {
-    const scenarios::LineSpec& spec = p.scenario.mooring.lines[static_cast<std::size_t>(k - 1)];
+    const mooring_fem::LineParameters& spec = model.mooring.lines[static_cast<std::size_t>(k - 1)];
     const auto alarm = p.board.listed().find(k);
     const bool parted = alarm != p.board.listed().end() && alarm->second.Active();
     const double e = expected ? (*expected)(k - 1) : kNaN;

@@ -11,6 +11,7 @@
 // replay are not announced again). Otherwise its detection starts afresh with the feeds.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -18,7 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scenarios/monitor_config.h"
-#include "scenarios/scenario.h"
+#include "simulation/plant_model.h"
 
 namespace moorsim::monitor {
 
@@ -31,6 +32,24 @@ struct MonitorOptions {
   /// A line for the operator's log (standard error): feeds connecting, channels going
   /// stale, the store resumed.
   std::function<void(const std::string&)> log;
+};
+
+/// The vessel the monitor watches: its typed plant model (mooring, sensors, controller and
+/// detection: what the detection is built from, as simulation::MakeDetection() builds it)
+/// and what the display and the store need besides. `moorsim monitor` fills it from the
+/// configuration's scenario file; a program may fill it in code.
+struct MonitoredVessel {
+  simulation::PlantModel model;
+  /// The run seed the detection's static start is made with (a scenario's simulation.seed).
+  std::uint64_t seed = 1;
+  /// Shown on the display.
+  std::string name;
+  /// The hull's outline on the display's plan view [m].
+  double hull_length = 0.0, hull_beam = 0.0;
+  /// What the model was made from, recorded with the store: `moorsim detect STORE` loads
+  /// `source_text` as a scenario to replay the record, and a store of another source is
+  /// refused.
+  std::string source_path, source_text;
 };
 
 /// What a run of the monitor did.
@@ -50,10 +69,10 @@ struct MonitorSummary {
 
 class Monitor {
  public:
-  /// Builds the detection of `scenario` (the configuration's), opens the store, the feeds,
+  /// Builds the detection of `vessel` (the configuration's), opens the store, the feeds,
   /// the bridge's sockets and the alarm output. Throws InputError for what the
   /// configuration asks that cannot be had (a port taken, a store of another scenario).
-  Monitor(const scenarios::MonitorConfig& config, const scenarios::Scenario& scenario,
+  Monitor(const scenarios::MonitorConfig& config, const MonitoredVessel& vessel,
           MonitorOptions options);
   ~Monitor();
   Monitor(const Monitor&) = delete;

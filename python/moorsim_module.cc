@@ -22,13 +22,14 @@
 #include "core/error.h"
 #include "core/version.h"
 #include "mooring_fem/coupled_lines.h"
+#include "runner/lines_coupling.h"
+#include "runner/run.h"
+#include "runner/scenario_plant.h"
+#include "runner/stepped_plant.h"
 #include "scenarios/load.h"
 #include "simulation/detection.h"
-#include "simulation/lines_coupling.h"
 #include "simulation/output_layout.h"
-#include "simulation/run.h"
 #include "simulation/simulation.h"
-#include "simulation/stepped_plant.h"
 
 namespace py = pybind11;
 using namespace pybind11::literals;
@@ -176,7 +177,7 @@ void Warn(const std::vector<std::string>& warnings) {
 class Lines {
  public:
   explicit Lines(scenarios::Scenario scenario)
-      : scenario_(std::move(scenario)), lines_(simulation::MakeCoupledLines(scenario_)) {}
+      : scenario_(std::move(scenario)), lines_(runner::MakeCoupledLines(scenario_)) {}
 
   int num_lines() const { return lines_->num_lines(); }
   double time() const { return lines_->time(); }
@@ -184,7 +185,7 @@ class Lines {
 
   Array Init(const Array& x, const Array& xd) {
     const auto pose = Dofs(x, "x"), velocity = Dofs(xd, "xd");
-    const Vec6 load = simulation::InitCoupledLines(*lines_, scenario_, pose, velocity);
+    const Vec6 load = runner::InitCoupledLines(*lines_, scenario_, pose, velocity);
     Warn(lines_->TakeWarnings());
     return Vector<6>(load);
   }
@@ -286,7 +287,7 @@ py::dict RowDict(const simulation::Sample& s) {
   return d;
 }
 
-// The coupled plant of a scenario, stepped by the caller (simulation/stepped_plant.h).
+// The coupled plant of a scenario, stepped by the caller (runner/stepped_plant.h).
 class Plant {
  public:
   Plant(const std::string& scenario, std::uint64_t seed, const std::vector<std::string>& overrides)
@@ -339,20 +340,20 @@ class Plant {
   }
 
  private:
-  simulation::SteppedPlant plant_;
+  runner::SteppedPlant plant_;
 };
 
 py::dict Run(const std::string& scenario, const std::vector<std::string>& overrides,
              const std::optional<std::string>& out) {
-  simulation::RunRequest request;
+  runner::RunRequest request;
   request.scenario_path = scenario;
   request.overrides = overrides;
   request.write_files = out.has_value();
   if (out) request.out = *out;
-  const simulation::RunResult result = Interruptible(
-      request.stop_requested, [&request] { return simulation::RunScenario(request); });
+  const runner::RunResult result =
+      Interruptible(request.stop_requested, [&request] { return runner::RunScenario(request); });
   py::dict d;
-  d["status"] = simulation::StatusName(result.status);
+  d["status"] = runner::StatusName(result.status);
   d["message"] = result.message;
   d["directory"] = result.directory.string();
   d["summary"] = result.summary.dump();
@@ -396,7 +397,7 @@ py::dict Detect(const std::string& scenario_path, const std::vector<std::string>
   if (thrust) check_rows(*thrust, 3, "thrust");
   // One reading per line, as `moorsim detect` takes them: a cell for every line or none.
   if (tensions) check_rows(*tensions, scenario.mooring.lines.size(), "tensions");
-  const std::unique_ptr<simulation::Detection> detection = simulation::MakeDetection(scenario);
+  const std::unique_ptr<simulation::Detection> detection = runner::MakeDetection(scenario);
   const std::size_t detectors = detection->records().size();
   const std::size_t hypotheses = static_cast<std::size_t>(detection->num_hypotheses());
   std::vector<std::vector<double>> alarm(detectors), decision(detectors), score(detectors);
@@ -432,10 +433,10 @@ py::dict Detect(const std::string& scenario_path, const std::vector<std::string>
         py::dict("type"_a = detection->records()[j].type, "alarm"_a = Vector(alarm[j]),
                  "decision"_a = Vector(decision[j]), "score"_a = Matrix(score[j], n, width));
   }
-  return py::dict("detectors"_a = by_label, "hypotheses"_a = detection->HypothesisLabels(),
-                  "summary"_a = simulation::DetectorsSummary(scenario, *detection,
-                                                             n > 0 ? time.data()[n - 1] : 0.0)
-                                    .dump());
+  return py::dict(
+      "detectors"_a = by_label, "hypotheses"_a = detection->HypothesisLabels(),
+      "summary"_a =
+          runner::DetectorsSummary(scenario, *detection, n > 0 ? time.data()[n - 1] : 0.0).dump());
 }
 
 }  // namespace

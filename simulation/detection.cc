@@ -14,8 +14,6 @@
 #include "detectors/passive_observer.h"
 #include "detectors/plugin_detector.h"
 #include "detectors/registry.h"
-#include "scenarios/load.h"
-#include "scenarios/plant_builder.h"
 #include "simulation/detection_models.h"
 #include "simulation/shared_parts.h"
 
@@ -48,14 +46,6 @@ std::shared_ptr<const T> SharedOrOwn(const std::string& key, Build build) {
 
 void CheckDetectors(const DetectionSetup& setup) {
   for (std::size_t i = 0; i < setup.detectors.size(); ++i) BuildDetector(setup, i);
-}
-
-void CheckDetectors(const scenarios::Scenario& scenario) {
-  try {
-    CheckDetectors(scenarios::ToDetectionSetup(scenario));
-  } catch (const InputError& e) {
-    scenarios::PlaceAtKey(scenario, e, "detectors[");
-  }
 }
 
 struct Detection::Parts {
@@ -235,80 +225,6 @@ nlohmann::json PluginsSummary(
     plugins.push_back({{"path", library->path()}, {"sha256", library->sha256()}});
   }
   return plugins;
-}
-
-nlohmann::json FailureSummary(const scenarios::Scenario& scenario) {
-  if (scenario.failure.line == 0) return nullptr;
-  return {{"line", scenario.failure.line},
-          {"time", scenario.failure.time},
-          {"mode", ChoiceName(scenario.failure.mode)}};
-}
-
-nlohmann::json DetectorsSummary(const scenarios::Scenario& scenario, const Detection& detection,
-                                double end_time) {
-  nlohmann::json detectors = nlohmann::json::object();
-  const std::vector<std::string> labels = detection.HypothesisLabels();
-  const int lines = static_cast<int>(scenario.mooring.lines.size());
-  for (const DetectorRecord& d : detection.records()) {
-    nlohmann::json j;
-    j["type"] = d.type;
-    if (d.threshold) j["threshold"] = *d.threshold;
-    const std::optional<detectors::AlarmEvent> first = d.FirstAlarm();
-    j["alarm_time"] = first ? nlohmann::json(first->time) : nlohmann::json(nullptr);
-    // Hypothesis k <= number of lines is "line k failed"; pairs are named by their label.
-    if (!first) {
-      j["isolated_line"] = nullptr;
-    } else if (first->hypothesis >= 1 && first->hypothesis <= lines) {
-      j["isolated_line"] = first->hypothesis;
-    } else {
-      j["isolated_line"] = nullptr;
-      j["isolated_hypothesis"] = labels.at(first->hypothesis);
-    }
-    j["delay"] = (first && d.failure_time) ? nlohmann::json(first->time - *d.failure_time)
-                                           : nlohmann::json(nullptr);
-    j["false_alarms"] = d.FalseAlarms();
-    // The verdict as it evolved (detectors::AlarmHistory): when it first named the failed
-    // line after the break, by an onset, a revision or an alarm already standing on it;
-    // what it said at the end; how long an alarm stood before and after the break.
-    const bool failed = scenario.failure.line > 0 && scenario.failure.time <= end_time;
-    const double t_failure = failed ? scenario.failure.time : end_time;
-    const std::optional<double> named =
-        failed ? d.history.FirstNamed(scenario.failure.line, t_failure) : std::nullopt;
-    j["isolation_time"] = named ? nlohmann::json(*named) : nlohmann::json(nullptr);
-    j["isolation_delay"] = named ? nlohmann::json(*named - t_failure) : nlohmann::json(nullptr);
-    j["final_alarm"] = d.history.alarm();
-    j["final_hypothesis"] = d.history.alarm() ? nlohmann::json(labels.at(d.history.hypothesis()))
-                                              : nlohmann::json(nullptr);
-    const int final_hypothesis = d.history.hypothesis();
-    j["final_line"] = final_hypothesis >= 1 && final_hypothesis <= lines
-                          ? nlohmann::json(final_hypothesis)
-                          : nlohmann::json(nullptr);
-    j["alarm_seconds_before_failure"] = d.history.AlarmSeconds(0.0, t_failure);
-    j["alarm_seconds_after_failure"] =
-        failed ? nlohmann::json(d.history.AlarmSeconds(t_failure, end_time))
-               : nlohmann::json(nullptr);
-    nlohmann::json history = nlohmann::json::array();
-    for (const detectors::AlarmEvent& e : d.history.events()) {
-      history.push_back({{"time", e.time},
-                         {"event", detectors::AlarmEventName(e.kind)},
-                         {"hypothesis", e.kind == detectors::AlarmEvent::Kind::kEnd
-                                            ? nlohmann::json(nullptr)
-                                            : nlohmann::json(labels.at(e.hypothesis))}});
-    }
-    j["history"] = history;
-    // The sensors it judged faulty (not a line's failure), each spell.
-    nlohmann::json sensor_faults = nlohmann::json::array();
-    for (const detectors::SensorFaultSpell& spell : d.sensor_faults.spells()) {
-      sensor_faults.push_back(
-          {{"sensor", spell.sensor.Name()},
-           {"fault", detectors::SensorSymptomName(spell.symptom)},
-           {"since", spell.since},
-           {"until", spell.until ? nlohmann::json(*spell.until) : nlohmann::json(nullptr)}});
-    }
-    j["sensor_faults"] = sensor_faults;
-    detectors[d.label] = j;
-  }
-  return detectors;
 }
 
 nlohmann::ordered_json AlarmEventJson(const DetectorRecord& record, const detectors::AlarmEvent& e,

@@ -1,10 +1,10 @@
-// The detection of a scenario on its own: the hypothesis bank, the observer bank and the
-// scenario's detectors, fed one sensor sample at a time. The coupled simulation feeds it the
-// samples its sensors take; `moorsim detect` feeds it a recorded or live stream without the
-// plant. Both build it from the same scenario the same way, so a replay of a run's recorded
-// detection input gives the run's verdicts bit for bit.
+// The detection of a plant model on its own: the hypothesis bank, the observer bank and the
+// model's detectors, fed one sensor sample at a time. The coupled simulation feeds it the
+// samples its sensors take; `moorsim detect` and the monitor feed it a recorded or live
+// stream without the plant. All build it from the same model the same way, so a replay of a
+// run's recorded detection input gives the run's verdicts bit for bit.
 //
-// The models depend on the scenario and the vessel's moored static start only (not on the
+// The models depend on the set-up and the vessel's moored static start only (not on the
 // seed): the bank, the GLR signatures and the passive observers' training are shared by
 // every Detection of the same set-up in the process (shared_parts.h).
 #pragma once
@@ -22,7 +22,6 @@
 #include "detectors/alarm_history.h"
 #include "detectors/detector.h"
 #include "detectors/plugin_detector.h"
-#include "scenarios/scenario.h"
 #include "simulation/plant_model.h"
 #include "vessel/vessel_model.h"
 
@@ -67,9 +66,6 @@ struct DetectionTiming {
 /// observers give what it reads. Throws InputError "detectors[<i>].<key>: ..." (1-based
 /// i) for a bad one.
 void CheckDetectors(const DetectionSetup& setup);
-/// The same for a scenario, the error placed at the detector's entry in the file.
-/// `moorsim validate` and `run` call it.
-void CheckDetectors(const scenarios::Scenario& scenario);
 
 class Detection {
  public:
@@ -136,15 +132,5 @@ nlohmann::ordered_json AlarmEventJson(const DetectorRecord& record, const detect
                                       const detectors::Verdict& verdict,
                                       const std::vector<std::string>& labels, int lines,
                                       double latency_ms);
-
-/// summary.json's "failure": the scenario's line, time and mode, or null without one.
-nlohmann::json FailureSummary(const scenarios::Scenario& scenario);
-
-/// summary.json's "detectors" object (one entry per detector: alarm time, isolated line,
-/// delay, false alarms, isolation, final verdict, alarm seconds, the event history) for a
-/// detection that ran up to `end_time` [s]; the scenario's failure, if any, is the truth
-/// the verdicts are scored against.
-nlohmann::json DetectorsSummary(const scenarios::Scenario& scenario, const Detection& detection,
-                                double end_time);
 
 }  // namespace moorsim::simulation

@@ -11,7 +11,6 @@
 #include "core/error.h"
 #include "io/csv_table.h"
 #include "io/hdf5_reader.h"
-#include "scenarios/load.h"
 
 namespace moorsim::simulation {
 
@@ -68,8 +67,9 @@ void StreamChecks::Check(const detectors::Observation& o, const std::string& whe
     if (!std::isfinite(o.tau_command(i))) fail(kColumns[4 + i], "not a finite number");
   }
   if (o.tensions) {
+    // NaN: that cell's reading withheld (the others count).
     for (Eigen::Index i = 0; i < o.tensions->size(); ++i) {
-      if (!std::isfinite((*o.tensions)(i))) {
+      if (std::isinf((*o.tensions)(i))) {
         const std::string column = "tension_" + std::to_string(i + 1);
         fail(column.c_str(), "not a finite number");
       }
@@ -187,21 +187,14 @@ bool CsvPoseStream::Take(const std::string& line, detectors::Observation* observ
     o.tau_command(i) = number(columns_[4 + i], false);
   }
   if (!tension_columns_.empty()) {
+    // An empty cell: that line's reading withheld (NaN); all empty: no tensions this row.
     VecX tensions(lines_);
     int empty = 0;
     for (int i = 0; i < lines_; ++i) {
       tensions(i) = number(tension_columns_[i], true);
       empty += std::isnan(tensions(i)) ? 1 : 0;
     }
-    if (empty > 0 && empty < lines_) {
-      for (int i = 0; i < lines_; ++i) {
-        if (std::isnan(tensions(i))) {
-          throw InputError(where + ": column 'tension_" + std::to_string(i + 1) +
-                           "': empty while other lines have a reading (all or none per row)");
-        }
-      }
-    }
-    if (empty == 0) o.tensions = tensions;
+    if (empty < lines_) o.tensions = tensions;
   }
   checks_.Check(o, where);
   *observation = o;
@@ -251,57 +244,6 @@ std::vector<detectors::Observation> ReadRunDetectionInput(const std::string& pat
     checks.Check(o, path + " /detection/input row " + std::to_string(r + 1));
   }
   return observations;
-}
-
-namespace {
-
-/// The loader's message about a run.h5's recorded scenario, each line restated to name the
-/// run.h5: the loader names the scenario's source file, whose lines (and perhaps whose
-/// content) are not those of the text the run recorded.
-std::string InRecordedScenario(const std::string& path, const std::string& source,
-                               const std::string& message) {
-  const std::string scenario = path + ": the scenario it records (from " + source + ")";
-  std::string restated;
-  for (std::size_t begin = 0; begin <= message.size();) {
-    const std::size_t end = std::min(message.find('\n', begin), message.size());
-    std::string line = message.substr(begin, end - begin);
-    begin = end + 1;
-    if (!restated.empty()) restated += '\n';
-    const std::string prefix = source + ":";
-    if (line.rfind(prefix, 0) != 0) {
-      restated += scenario + ": " + line;
-      continue;
-    }
-    line.erase(0, prefix.size());
-    // "12:5: key: what" (a located message) or " what".
-    const std::size_t digits = line.find_first_not_of("0123456789:");
-    if (digits != std::string::npos && digits > 0 && line.compare(digits - 1, 2, ": ") == 0) {
-      restated += scenario + ", line " + line;
-    } else {
-      restated += scenario + ":" + line;
-    }
-  }
-  return restated;
-}
-
-}  // namespace
-
-scenarios::Scenario ReadRunScenario(const std::string& path) {
-  const output::Hdf5Reader file(path);
-  const std::string text = file.StringAttribute("/", "scenario");
-  const std::string source = file.StringAttribute("/", "scenario_path");
-  std::vector<std::string> overrides;
-  const std::string joined = file.StringAttribute("/", "overrides");
-  for (std::size_t begin = 0; begin < joined.size();) {
-    const std::size_t end = std::min(joined.find('\n', begin), joined.size());
-    overrides.push_back(joined.substr(begin, end - begin));
-    begin = end + 1;
-  }
-  try {
-    return scenarios::ParseScenario(text, source, overrides);
-  } catch (const InputError& error) {
-    throw InputError(InRecordedScenario(path, source, error.what()));
-  }
 }
 
 }  // namespace moorsim::simulation

@@ -30,7 +30,6 @@
 
 #include "core/types.h"
 #include "detectors/detector.h"
-#include "scenarios/scenario.h"
 
 namespace moorsim::simulation {
 
@@ -98,11 +97,5 @@ class CsvPoseStream {
 /// sample.
 std::vector<detectors::Observation> ReadRunDetectionInput(const std::string& path, int lines,
                                                           double max_gap);
-
-/// The scenario a run.h5 records (its text, source path and overrides), loaded as the run
-/// loaded it. Throws InputError naming the run.h5 for a file that is not one, and for a
-/// recorded scenario that does not load: "<path>: the scenario it records (from <source>),
-/// line L:C: ...", the line being that of the recorded text.
-scenarios::Scenario ReadRunScenario(const std::string& path);
 
 }  // namespace moorsim::simulation

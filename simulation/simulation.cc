@@ -24,8 +24,6 @@
 #include "detectors/passive_observer.h"
 #include "detectors/registry.h"
 #include "mooring_fem/line_simulation.h"
-#include "scenarios/load.h"
-#include "scenarios/plant_builder.h"
 #include "simulation/shared_parts.h"
 #include "vessel/controller.h"
 #include "vessel/fpso_model.h"
@@ -234,16 +232,6 @@ Simulation::Simulation(const PlantModel& model, std::uint64_t seed)
   StartIntegrator();
 }
 
-Simulation::Simulation(const scenarios::Scenario& scenario, std::uint64_t seed) try
-    : Simulation(scenarios::ToPlantModel(scenario), seed) {
-} catch (const InputError& e) {
-  // A free point that cannot be at rest where it is, a detector's bad parameter: placed at
-  // its key in the file.
-  const std::string_view message = e.what();
-  scenarios::PlaceAtKey(scenario, e,
-                        message.starts_with("mooring.points[") ? "mooring.points[" : "detectors[");
-}
-
 Simulation::~Simulation() = default;
 
 std::unique_ptr<Detection> MakeDetection(const PlantModel& model, std::uint64_t seed) {
@@ -254,21 +242,6 @@ std::unique_ptr<Detection> MakeDetection(const PlantModel& model, std::uint64_t 
   plant_only.detection.reset();
   const Simulation start(plant_only, seed);
   return std::make_unique<Detection>(model, start.plant_model(), start.initial_pose());
-}
-
-std::unique_ptr<Detection> MakeDetection(const scenarios::Scenario& scenario) {
-  if (scenario.detectors.empty()) {
-    throw InputError(scenario.source_path + ": detectors: none (detection needs at least one)");
-  }
-  scenarios::Scenario plant_only = scenario;
-  plant_only.detectors.clear();
-  const Simulation start(plant_only, scenario.simulation.seed);
-  try {
-    return std::make_unique<Detection>(scenarios::ToPlantModel(scenario), start.plant_model(),
-                                       start.initial_pose());
-  } catch (const InputError& e) {
-    scenarios::PlaceAtKey(scenario, e, "detectors[");
-  }
 }
 
 int Simulation::num_hypotheses() const { return detection_ ? detection_->num_hypotheses() : 0; }

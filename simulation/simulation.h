@@ -1,4 +1,5 @@
-// The coupled simulation of a plant model (plant_model.h; a scenario gives one): the seed
+// The coupled simulation of a plant model (plant_model.h; a scenario gives one through the
+// runner, runner/scenario_plant.h): the seed
 // FPSO (or any vessel with WAMIT data) on its FEM mooring lines in one CVODE system
 // (core/coupled_system.h), with the realised sea, current and wind, thrusters, a discrete
 // position-mooring controller, sensors and a scheduled line failure. Everything random comes from
@@ -28,7 +29,6 @@
 #include "detectors/detector.h"
 #include "mooring_fem/mooring_attachment.h"
 #include "mooring_fem/mooring_system.h"
-#include "scenarios/scenario.h"
 #include "simulation/detection.h"
 #include "simulation/plant_model.h"
 #include "vessel/controller.h"
@@ -109,14 +109,11 @@ std::shared_ptr<const mooring_fem::WaveKinematics> LineWaves(
     const vessel::WaveRealisation& sea, const mooring_fem::Water& water,
     mooring_fem::WaveStretching stretching);
 
-/// The scenario's detection as a run of it builds it, without the run: the plant is built
-/// and put at its moored static start (the models depend on it) and nothing is integrated.
-/// For `moorsim detect` on recorded data. Throws InputError for a scenario without
-/// detectors or one that cannot be simulated.
-std::unique_ptr<Detection> MakeDetection(const scenarios::Scenario& scenario);
-/// The same from the typed plant model (its `detection` set) and the run seed its start is
-/// made with: what a program that fills the model in code, or the monitor, builds its
-/// detection from.
+/// The model's detection (its `detection` set) as a run of it with seed `seed` builds it,
+/// without the run: the plant is built and put at its moored static start (the models
+/// depend on it) and nothing is integrated. For `moorsim detect` on recorded data and the
+/// monitor on live feeds. Throws InputError for a model without detectors or one that
+/// cannot be simulated.
 std::unique_ptr<Detection> MakeDetection(const PlantModel& model, std::uint64_t seed);
 
 class Simulation {
@@ -127,8 +124,6 @@ class Simulation {
   /// with the offending part: "detectors[2].floor: ...", "mooring.points[1]: ..."),
   /// moorsim::Error if the static start fails.
   Simulation(const PlantModel& model, std::uint64_t seed);
-  /// The plant of a scenario (scenarios::ToPlantModel()), its errors placed in the file.
-  Simulation(const scenarios::Scenario& scenario, std::uint64_t seed);
   ~Simulation();
 
   /// Integrates to t, acting on every discrete event on the way. Throws SolverError (with t

@@ -17,6 +17,7 @@
 #include "core/version.h"
 #include "detectors/distinguishability.h"
 #include "detectors/hypothesis_bank.h"
+#include "runner/scenario_plant.h"
 #include "scenarios/convert.h"
 #include "scenarios/load.h"
 #include "scenarios/plant_builder.h"
@@ -75,7 +76,9 @@ int Analyze(const AnalyzeOptions& o) {
   // Its own detectors are not needed (and passive observers would train for seconds).
   scenarios::Scenario plant_only = scenario;
   plant_only.detectors.clear();
-  simulation::Simulation sim(plant_only, scenario.simulation.seed);
+  const std::unique_ptr<simulation::Simulation> owned =
+      runner::MakeSimulation(plant_only, scenario.simulation.seed);
+  simulation::Simulation& sim = *owned;
   const simulation::DetectionModels models = simulation::MakeDetectionModels(
       scenarios::ToDetectionSetup(scenario), sim.plant().model(), sim.initial_pose());
   const detectors::HypothesisBank bank(scenarios::ToMooringParameters(scenario.mooring),

@@ -95,8 +95,8 @@ int Batch(const BatchCommandOptions& o) {
   options.mpi = mpi.session;
   const bool speaks = mpi.session.rank == 0;
   options.progress = options.progress && speaks;
-  simulation::InstallStopSignalHandlers();
-  options.stop_requested = simulation::StopSignal;
+  runner::InstallStopSignalHandlers();
+  options.stop_requested = runner::StopSignal;
   const simulation::BatchResult result = simulation::RunBatch(options);
   if (!speaks) return ExitCodeOf(result);
   if (!result.message.empty()) {

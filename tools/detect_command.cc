@@ -34,13 +34,14 @@
 #include "io/hdf5_reader.h"
 #include "io/text_file.h"
 #include "monitor/store.h"
+#include "runner/run.h"
+#include "runner/scenario_plant.h"
 #include "scenarios/load.h"
 #include "simulation/detection_tables.h"
 #include "simulation/followed_file.h"
 #include "simulation/latency.h"
 #include "simulation/output_layout.h"
 #include "simulation/pose_stream.h"
-#include "simulation/run.h"
 #include "simulation/simulation.h"
 #include "tools/commands.h"
 
@@ -246,7 +247,7 @@ class DetectOutputs {
       Publish("alarms.csv");
     }
     finished_ = true;
-    simulation::WriteFileAtomically(dir_ / "summary.json", summary.dump(2) + "\n");
+    runner::WriteFileAtomically(dir_ / "summary.json", summary.dump(2) + "\n");
   }
 
  private:
@@ -357,7 +358,7 @@ int Detect(const DetectOptions& o) {
       throw InputError("--set: needs --scenario (the monitor's own scenario is replayed)");
     }
   } else if (hdf5) {
-    scenario = simulation::ReadRunScenario(o.input);
+    scenario = runner::ReadRunScenario(o.input);
     if (!o.sets.empty()) {
       throw InputError("--set: needs --scenario (the run's own scenario is replayed as it ran)");
     }
@@ -366,7 +367,7 @@ int Detect(const DetectOptions& o) {
         "--scenario: required for a CSV stream (the mooring and vessel of the "
         "detectors' models come from it)");
   }
-  const std::unique_ptr<Detection> detection = simulation::MakeDetection(scenario);
+  const std::unique_ptr<Detection> detection = runner::MakeDetection(scenario);
   const std::vector<std::string> labels = detection->HypothesisLabels();
   const int lines = static_cast<int>(scenario.mooring.lines.size());
 
@@ -441,12 +442,12 @@ int Detect(const DetectOptions& o) {
       if (outputs) outputs->Idle();
     };
     if (o.follow && !from_stdin) {
-      simulation::InstallStopSignalHandlers();
+      runner::InstallStopSignalHandlers();
       simulation::FollowedFile followed(o.input);
       // Asked at the end of the file before each wait: the outputs' flush happens there.
       const auto stop = [&] {
         idle();
-        return simulation::StopSignal() != 0;
+        return runner::StopSignal() != 0;
       };
       const auto rotated = [&](simulation::Rotation rotation, std::size_t dropped_bytes) {
         ReportRotation(o.input, rotation, dropped_bytes);
@@ -483,16 +484,16 @@ int Detect(const DetectOptions& o) {
   summary["samples"] = samples;
   summary["first_time"] = samples > 0 ? nlohmann::json(first_time) : nlohmann::json(nullptr);
   summary["last_time"] = samples > 0 ? nlohmann::json(last_time) : nlohmann::json(nullptr);
-  summary["failure"] = simulation::FailureSummary(scenario);
+  summary["failure"] = runner::FailureSummary(scenario);
   if (const nlohmann::json plugins = simulation::PluginsSummary(detection->PluginLibraries());
       !plugins.empty()) {
     summary["plugins"] = plugins;
   }
   summary["detectors"] =
-      simulation::DetectorsSummary(scenario, *detection, samples > 0 ? last_time : 0.0);
+      runner::DetectorsSummary(scenario, *detection, samples > 0 ? last_time : 0.0);
   summary["detection"] = {{"setup_seconds", detection->timing().setup_seconds},
                           {"latency", latency.Summary()}};
-  const int signal = stdout_closed ? SIGPIPE : simulation::StopSignal();
+  const int signal = stdout_closed ? SIGPIPE : runner::StopSignal();
   if (signal != 0) {
     summary["stopped"] =
         stdout_closed ? std::string("standard output closed") : "signal " + std::to_string(signal);

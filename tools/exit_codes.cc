@@ -6,16 +6,16 @@
 
 namespace moorsim::cli {
 
-int ExitCodeOf(const simulation::RunResult& result) {
+int ExitCodeOf(const runner::RunResult& result) {
   switch (result.status) {
-    case simulation::RunStatus::kOk:
+    case runner::RunStatus::kOk:
       return 0;
-    case simulation::RunStatus::kFailed:
-    case simulation::RunStatus::kTimedOut:
+    case runner::RunStatus::kFailed:
+    case runner::RunStatus::kTimedOut:
       return 1;
-    case simulation::RunStatus::kRejected:
+    case runner::RunStatus::kRejected:
       return 2;
-    case simulation::RunStatus::kInterrupted:
+    case runner::RunStatus::kInterrupted:
       return 128 + (result.signal > 0 ? result.signal : SIGINT);
   }
   return 1;

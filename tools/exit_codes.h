@@ -9,11 +9,11 @@
 
 #include "campaign/batch.h"
 #include "core/error.h"
-#include "simulation/run.h"
+#include "runner/run.h"
 
 namespace moorsim::cli {
 
-int ExitCodeOf(const simulation::RunResult& result);
+int ExitCodeOf(const runner::RunResult& result);
 int ExitCodeOf(const simulation::BatchResult& result);
 
 /// A library error about its options as the command line names them: the library's "out",

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "core/error.h"
+#include "runner/run.h"
 #include "scenarios/moordyn.h"
-#include "simulation/run.h"
 #include "tools/commands.h"
 
 namespace moorsim::cli {
@@ -56,7 +56,7 @@ int RunImport(const ImportOptions& o) {
     files.emplace_back(beside, contents);
   }
   files.emplace_back(*o.out, imported.yaml);
-  simulation::WriteFilesAtomically(files);
+  runner::WriteFilesAtomically(files);
   std::printf("%s: %d line%s from %s\n", o.out->c_str(), imported.lines,
               imported.lines == 1 ? "" : "s", file.c_str());
   return 0;

@@ -8,9 +8,11 @@
 #include "core/error.h"
 #include "core/format.h"
 #include "monitor/service.h"
+#include "runner/run.h"
+#include "runner/scenario_plant.h"
 #include "scenarios/load.h"
 #include "scenarios/monitor_config.h"
-#include "simulation/run.h"
+#include "scenarios/plant_builder.h"
 #include "tools/commands.h"
 
 namespace moorsim::cli {
@@ -21,21 +23,37 @@ struct MonitorOptions {
   bool quiet = false;
 };
 
+// The vessel of the configuration's scenario file: its plant model, with what the display and
+// the store take from the file besides. Its detectors are checked first, so that a bad one
+// is named at its place in the file.
+monitor::MonitoredVessel VesselOf(const scenarios::Scenario& scenario) {
+  monitor::MonitoredVessel vessel;
+  vessel.model = scenarios::ToPlantModel(scenario);  // names a missing vessel section
+  runner::CheckDetectors(scenario);
+  vessel.seed = scenario.simulation.seed;
+  vessel.name = scenario.name;
+  vessel.hull_length = scenario.vessel->hull.length;
+  vessel.hull_beam = scenario.vessel->hull.beam;
+  vessel.source_path = scenario.source_path;
+  vessel.source_text = scenario.text;
+  return vessel;
+}
+
 int Monitor(const MonitorOptions& o) {
   const scenarios::MonitorConfig config =
       scenarios::LoadMonitorConfig(RequireText("CONFIG", o.config));
   const scenarios::Scenario scenario = scenarios::LoadScenario(config.scenario_path);
-  simulation::InstallStopSignalHandlers();
+  runner::InstallStopSignalHandlers();
   // A bridge or a display that goes away must not take the monitor with it.
   std::signal(SIGPIPE, SIG_IGN);
   monitor::MonitorOptions options;
-  options.stop = [] { return simulation::StopSignal() != 0; };
+  options.stop = [] { return runner::StopSignal() != 0; };
   if (!o.quiet) {
     options.log = [](const std::string& line) {
       std::cerr << "moorsim monitor: " << line << std::endl;
     };
   }
-  monitor::Monitor service(config, scenario, options);
+  monitor::Monitor service(config, VesselOf(scenario), options);
   const monitor::MonitorSummary summary = service.Run();
   if (!o.quiet) {
     std::cerr << "moorsim monitor: " << summary.lines << " lines, " << summary.samples
@@ -44,7 +62,7 @@ int Monitor(const MonitorOptions& o) {
               << summary.sample_latency.dump() << ", to its ALR " << summary.alarm_latency.dump()
               << std::endl;
   }
-  const int signal = simulation::StopSignal();
+  const int signal = runner::StopSignal();
   return signal != 0 ? 128 + signal : 0;
 }
 

@@ -1,12 +1,12 @@
 // `moorsim run`: one coupled simulation of a scenario, written to DIR/run.h5 and
-// DIR/summary.json by the library's RunScenario (simulation/run.h), which batch runs
+// DIR/summary.json by the library's RunScenario (runner/run.h), which batch runs
 // and the tests call too.
 #include <cstdio>
 #include <iostream>
 #include <memory>
 
 #include "detectors/registry.h"
-#include "simulation/run.h"
+#include "runner/run.h"
 #include "tools/commands.h"
 #include "tools/exit_codes.h"
 
@@ -45,7 +45,7 @@ void PrintDetectors(const nlohmann::json& summary) {
 }
 
 int Run(const RunOptions& o) {
-  simulation::RunRequest request;
+  runner::RunRequest request;
   request.scenario_path = o.scenario;
   request.overrides = o.sets;
   if (o.seed) request.overrides.push_back("simulation.seed=" + RequireText("--seed", *o.seed));
@@ -54,16 +54,15 @@ int Run(const RunOptions& o) {
   }
   if (o.out) request.out = RequireText("--out", *o.out);
   request.progress = !o.quiet;
-  simulation::InstallStopSignalHandlers();
-  request.stop_requested = simulation::StopSignal;
-  const simulation::RunResult result = simulation::RunScenario(request);
-  if (result.status == simulation::RunStatus::kRejected) {
+  runner::InstallStopSignalHandlers();
+  request.stop_requested = runner::StopSignal;
+  const runner::RunResult result = runner::RunScenario(request);
+  if (result.status == runner::RunStatus::kRejected) {
     std::cerr << "moorsim: " << FlagMessage(result.message, result.option_error) << "\n";
     return ExitCodeOf(result);
   }
-  if (result.status != simulation::RunStatus::kOk) {
-    std::cerr << "moorsim: " << simulation::StatusName(result.status) << ": " << result.message
-              << "\n";
+  if (result.status != runner::RunStatus::kOk) {
+    std::cerr << "moorsim: " << runner::StatusName(result.status) << ": " << result.message << "\n";
   }
   if (!o.quiet && result.summary_written) {
     const double wall = result.summary.at("wall_time").get<double>();

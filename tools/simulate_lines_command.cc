@@ -19,10 +19,10 @@
 #include "core/version.h"
 #include "io/text_file.h"
 #include "mooring_fem/line_simulation.h"
+#include "runner/lines_coupling.h"
 #include "scenarios/convert.h"
 #include "scenarios/load.h"
 #include "scenarios/plant_builder.h"
-#include "simulation/lines_coupling.h"
 #include "simulation/simulation.h"
 #include "tools/commands.h"
 
@@ -304,7 +304,7 @@ int RunSimulateLines(const SimulateLinesOptions& o) {
   for (const ScheduledPart& p : parts) sim.ScheduleFailure(p.time, p.failure);
   // The scenario's waves on the lines (environment.waves.on_lines), realised from its seed
   // as a run of it would realise them; the motion stays the one prescribed.
-  if (auto waves = simulation::ScenarioLineWaves(scenario)) sim.mooring().SetWaves(waves);
+  if (auto waves = runner::ScenarioLineWaves(scenario)) sim.mooring().SetWaves(waves);
   const auto t_ready = Clock::now();
 
   auto write_row = [&] {

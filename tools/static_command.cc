@@ -16,6 +16,7 @@
 #include "mooring_fem/catenary.h"
 #include "mooring_fem/line_simulation.h"
 #include "mooring_fem/mooring_system.h"
+#include "runner/scenario_plant.h"
 #include "scenarios/convert.h"
 #include "scenarios/load.h"
 #include "simulation/simulation.h"
@@ -228,7 +229,7 @@ Command AddValidateCommand(CLI::App& app) {
       detectors::DetectorHelp());
   return [path, resolved] {
     const scenarios::Scenario s = scenarios::LoadScenario(*path);
-    simulation::CheckDetectors(s);
+    runner::CheckDetectors(s);
     if (*resolved) {
       std::fwrite(s.text.data(), 1, s.text.size(), stdout);
     } else {

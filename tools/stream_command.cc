@@ -15,9 +15,10 @@
 #include "core/format.h"
 #include "monitor/feeds.h"
 #include "monitor/harness.h"
+#include "runner/run.h"
+#include "runner/scenario_plant.h"
 #include "scenarios/load.h"
 #include "scenarios/monitor_config.h"
-#include "simulation/run.h"
 #include "simulation/simulation.h"
 #include "tools/commands.h"
 
@@ -58,9 +59,11 @@ int Stream(const StreamOptions& o) {
   const monitor::Routing routing = monitor::RouteFeeds(config, o.position, o.heading, o.cells);
   monitor::SentenceWriter writer(config, routing, scenario.sensors.tension_rate);
   monitor::Player player(config);
-  simulation::Simulation sim(scenario, scenario.simulation.seed);
+  const std::unique_ptr<simulation::Simulation> owned =
+      runner::MakeSimulation(scenario, scenario.simulation.seed);
+  simulation::Simulation& sim = *owned;
   sim.KeepDetectionInput(true);
-  simulation::InstallStopSignalHandlers();
+  runner::InstallStopSignalHandlers();
   std::signal(SIGPIPE, SIG_IGN);
 
   const bool paced = !player.OnlyLogs();
@@ -68,7 +71,7 @@ int Stream(const StreamOptions& o) {
   const auto clients = player.Clients();
   if (paced && std::any_of(clients.begin(), clients.end(), [](int c) { return c == 0; })) {
     const double until = monitor::UnixNow() + wait;
-    while (monitor::UnixNow() < until && simulation::StopSignal() == 0) {
+    while (monitor::UnixNow() < until && runner::StopSignal() == 0) {
       const auto now_clients = player.Clients();
       if (std::none_of(now_clients.begin(), now_clients.end(), [](int c) { return c == 0; })) {
         break;
@@ -80,19 +83,19 @@ int Stream(const StreamOptions& o) {
   const double start = std::floor(monitor::UnixNow()) + 1.0;
   const double duration = scenario.simulation.duration;
   long sent = 0, samples = 0;
-  for (double t = 0.0; t < duration && simulation::StopSignal() == 0;) {
+  for (double t = 0.0; t < duration && runner::StopSignal() == 0;) {
     t = std::min(duration, t + 10.0);
     sim.AdvanceTo(t);
     for (const detectors::Observation& obs : sim.Record().detection_input) {
       const double stamp = start + obs.t + 1e-3;
       if (paced) {
         const double at = start + (obs.t + 1e-3) / speed;
-        for (double now = monitor::UnixNow(); now < at && simulation::StopSignal() == 0;
+        for (double now = monitor::UnixNow(); now < at && runner::StopSignal() == 0;
              now = monitor::UnixNow()) {
           player.Serve(static_cast<int>(std::clamp((at - now) * 1000.0, 0.0, 50.0)));
         }
       }
-      if (simulation::StopSignal() != 0) break;
+      if (runner::StopSignal() != 0) break;
       for (const monitor::PlayedLine& line : writer.Lines(obs, stamp)) {
         player.Send(line, stamp);
         ++sent;
@@ -104,7 +107,7 @@ int Stream(const StreamOptions& o) {
     std::cerr << "moorsim stream: " << samples << " samples, " << sent << " lines played from "
               << scenario.name << " (seed " << scenario.simulation.seed << ")" << std::endl;
   }
-  const int signal = simulation::StopSignal();
+  const int signal = runner::StopSignal();
   return signal != 0 ? 128 + signal : 0;
 }
 

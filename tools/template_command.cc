@@ -9,10 +9,10 @@
 #include <string>
 
 #include "core/error.h"
+#include "runner/run.h"
 #include "scenarios/load.h"
 #include "scenarios/strict_yaml.h"
 #include "scenarios/template.h"
-#include "simulation/run.h"
 #include "tools/commands.h"
 
 namespace moorsim::cli {
@@ -114,7 +114,7 @@ int RunTemplate(const TemplateOptions& o) {
     return 0;
   }
   // Written whole or not at all: on a full disk an existing file stays as it was.
-  simulation::WriteFileAtomically(source_name, text);
+  runner::WriteFileAtomically(source_name, text);
   std::printf("%s: %s mooring, %zu lines, pretension %.1f kN, anchors %.1f m from the vessel\n",
               source_name.c_str(), o.kind.c_str(), layout.lines.size(), layout.pretension / 1e3,
               layout.anchor_radius);

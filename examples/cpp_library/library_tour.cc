@@ -3,9 +3,9 @@
 //   1. a mooring built in code from typed parameters, no YAML, and its lines stepped
 //      along the body's motion (mooring_fem::CoupledLines);
 //   2. a scenario run as one call, its rows handed to a callback, stopped on request
-//      after the first minute (simulation::RunScenario);
+//      after the first minute (runner::RunScenario);
 //   3. the coupled plant stepped with a thrust command of one's own
-//      (simulation::SteppedPlant);
+//      (runner::SteppedPlant);
 //   4. the plant's typed model (simulation::PlantModel) taken from the scenario, changed
 //      in code (no failure, another setpoint) and simulated (simulation::Simulation).
 //
@@ -16,11 +16,11 @@
 
 #include <moorsim/core/version.h>
 #include <moorsim/mooring_fem/coupled_lines.h>
+#include <moorsim/runner/run.h>
+#include <moorsim/runner/stepped_plant.h>
 #include <moorsim/scenarios/load.h>
 #include <moorsim/scenarios/plant_builder.h>
-#include <moorsim/simulation/run.h>
 #include <moorsim/simulation/simulation.h>
-#include <moorsim/simulation/stepped_plant.h>
 
 namespace ms = moorsim;
 
@@ -71,7 +71,7 @@ int main(int argc, char** argv) {
                 forces[0].norm(), forces[1].norm(), forces[2].norm(), forces[3].norm());
 
     // 2. A run with a row callback, stopped after its first 60 s.
-    ms::simulation::RunRequest request;
+    ms::runner::RunRequest request;
     request.scenario_path = argv[1];
     request.write_files = false;
     int rows = 0;
@@ -81,12 +81,12 @@ int main(int argc, char** argv) {
       last_time = s.time;
     };
     request.stop_requested = [&] { return last_time >= 60.0 ? 2 : 0; };
-    const ms::simulation::RunResult result = ms::simulation::RunScenario(request);
-    std::printf("run: %s after %d rows, at %.0f s\n", ms::simulation::StatusName(result.status),
-                rows, result.simulated_time);
+    const ms::runner::RunResult result = ms::runner::RunScenario(request);
+    std::printf("run: %s after %d rows, at %.0f s\n", ms::runner::StatusName(result.status), rows,
+                result.simulated_time);
 
     // 3. The plant with a thrust of one's own: 1 MN forward for a minute.
-    ms::simulation::SteppedPlant plant(ms::scenarios::LoadScenario(argv[1]), 1);
+    ms::runner::SteppedPlant plant(ms::scenarios::LoadScenario(argv[1]), 1);
     const ms::Vec6 start = plant.Now().pose_true;
     plant.SetThrustCommand(ms::Vec3(1.0e6, 0.0, 0.0));
     plant.AdvanceTo(60.0);

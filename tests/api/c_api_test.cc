@@ -18,9 +18,9 @@
 #include <vector>
 
 #include "mooring_fem/line_simulation.h"
+#include "runner/run.h"
 #include "scenarios/convert.h"
 #include "scenarios/load.h"
-#include "simulation/run.h"
 
 namespace {
 
@@ -400,7 +400,7 @@ std::vector<double> PlantReadings(moorsim_plant* plant) {
 
 TEST(CApiPlant, AdvancedThroughTheOutputInstantsWithItsControllerItGivesTheRunsRows) {
   const std::string yaml = SeedPlant();
-  moorsim::simulation::RunRequest request;
+  moorsim::runner::RunRequest request;
   auto scenario = std::make_shared<moorsim::scenarios::Scenario>(
       moorsim::scenarios::ParseScenario(yaml, "<yaml text>"));
   scenario->simulation.seed = 7;
@@ -408,8 +408,8 @@ TEST(CApiPlant, AdvancedThroughTheOutputInstantsWithItsControllerItGivesTheRunsR
   request.write_files = false;
   std::vector<moorsim::simulation::Sample> rows;
   request.on_row = [&rows](const moorsim::simulation::Sample& s) { rows.push_back(s); };
-  const moorsim::simulation::RunResult result = moorsim::simulation::RunScenario(request);
-  ASSERT_EQ(result.status, moorsim::simulation::RunStatus::kOk) << result.message;
+  const moorsim::runner::RunResult result = moorsim::runner::RunScenario(request);
+  ASSERT_EQ(result.status, moorsim::runner::RunStatus::kOk) << result.message;
   ASSERT_EQ(rows.size(), 61u);
 
   Plant plant(yaml, 7);

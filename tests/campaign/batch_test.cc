@@ -28,6 +28,11 @@
 namespace moorsim::simulation {
 namespace {
 
+using runner::RunRequest;
+using runner::RunResult;
+using runner::RunScenario;
+using runner::RunStatus;
+
 // The signal that stopped a batch (0: it was not interrupted).
 int Interruption(const BatchResult& r) {
   return r.status == BatchStatus::kInterrupted ? r.signal : 0;

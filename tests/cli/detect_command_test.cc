@@ -19,6 +19,7 @@
 #include "io/hdf5_file.h"
 #include "io/hdf5_reader.h"
 #include "scenarios/load.h"
+#include "simulation/pose_stream.h"
 #include "tests/cli/run_cli.h"
 
 namespace moorsim::testing {
@@ -491,6 +492,26 @@ TEST(DetectCommandInput, EveryBadInputIsOneLineNamingFileRowAndColumn) {
                        "3", "column 'north': a NUL byte (binary data, not text)");
   ExpectOneLocatedLine(std::string("time,nor\0th\n", 12), "1",
                        "header: column 2: a NUL byte (binary data, not text)");
+}
+
+TEST(DetectCommandInput, AnEmptyTensionCellWithholdsThatCellAloneAndAllEmptyNone) {
+  simulation::CsvPoseStream stream("log.csv", 3, 60.0);
+  detectors::Observation o;
+  const std::string head = "time,north,east,heading,thrust_surge,thrust_sway,thrust_yaw,";
+  EXPECT_FALSE(stream.Take(head + "tension_1,tension_2,tension_3", &o));
+  ASSERT_TRUE(stream.Take("0,1,2,0.1,0,0,0,1e6,,3e6", &o));
+  ASSERT_TRUE(o.tensions.has_value());
+  EXPECT_EQ((*o.tensions)(0), 1e6);
+  EXPECT_TRUE(std::isnan((*o.tensions)(1)));
+  EXPECT_EQ((*o.tensions)(2), 3e6);
+  ASSERT_TRUE(stream.Take("1,1,2,0.1,0,0,0,,,", &o));
+  EXPECT_FALSE(o.tensions.has_value());
+  try {
+    stream.Take("2,1,2,0.1,0,0,0,1e6,inf,3e6", &o);
+    ADD_FAILURE() << "an infinite tension was taken";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("log.csv:4: column 'tension_2': ", 0), 0u) << e.what();
+  }
 }
 
 TEST(DetectCommandInput, AByteOrderMarkBeforeTheHeaderIsSkipped) {

@@ -32,15 +32,19 @@
 
 #include "core/error.h"
 #include "io/hdf5_file.h"
+#include "runner/scenario_plant.h"
 #include "scenarios/campaign.h"
 #include "scenarios/load.h"
 #include "scenarios/moordyn.h"
 #include "simulation/pose_stream.h"
 #include "tests/cli/run_cli.h"
 #include "tests/support/moordyn_spread.h"
+#include "tests/support/sanitized.h"
 #include "tests/support/scratch_directory.h"
 
 namespace moorsim::simulation {
+
+using runner::ReadRunScenario;
 namespace {
 
 constexpr std::uint64_t kFuzzSeed = 20261126;
@@ -449,7 +453,7 @@ TEST_F(Fuzz, TruncatedRunH5IsRefusedNamingTheFile) {
   const std::string path = (Dir() / "truncated.h5").string();
   // Every length would be 100 000 cases; 200 evenly spread ones cover every region of the
   // file (superblock, object headers, heaps, B-trees, chunks, the end-of-file metadata).
-  constexpr int kCases = 200;
+  constexpr int kCases = moorsim::testing::CaseCount(200, 50);
   for (int i = 0; i < kCases; ++i) {
     const std::size_t length = original.size() * static_cast<std::size_t>(i) / kCases;
     moorsim::testing::WriteWholeFile(path, original.substr(0, length));
@@ -467,7 +471,8 @@ TEST_F(Fuzz, RunH5WithFlippedBitsIsReadOrRefusedNamingTheFile) {
   const std::string path = (Dir() / "flipped.h5").string();
   Mutator mutator(kFuzzSeed + 3, {});
   int refused = 0;
-  for (int i = 0; i < 300; ++i) {
+  const int cases = moorsim::testing::CaseCount(300, 100);
+  for (int i = 0; i < cases; ++i) {
     std::string damaged = original;
     const std::size_t bit = static_cast<std::size_t>(mutator.Below(8 * original.size()));
     damaged[bit / 8] ^= static_cast<char>(1u << (bit % 8));
@@ -477,7 +482,7 @@ TEST_F(Fuzz, RunH5WithFlippedBitsIsReadOrRefusedNamingTheFile) {
                                      Label("run.h5", i, "bit " + std::to_string(bit) + " flipped"));
     refused += outcome.kind == Outcome::Kind::kRejected ? 1 : 0;
   }
-  EXPECT_GT(refused, 30);
+  EXPECT_GT(refused, cases / 10);
 }
 
 /// The importer's test spread (three lines, one of them two lines in series through a

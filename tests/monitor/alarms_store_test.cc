@@ -87,6 +87,10 @@ TEST(Store, SamplesAlarmsAndAcknowledgementsReadBackAfterReopening) {
       sample.observation.valid = {true, true, k != 1};
       sample.observation.tau_command = Vec3(1e5 / 3.0, 2, 3);
       if (k == 2) sample.observation.tensions = VecX::Constant(2, 1e6 / 7.0);
+      if (k == 1) {  // cell 1 withheld
+        sample.observation.tensions = VecX::Constant(2, 2e6 / 7.0);
+        (*sample.observation.tensions)(0) = kNaN;
+      }
       store.SampleTaken(sample, 1);
     }
     Alarm alarm;
@@ -114,6 +118,9 @@ TEST(Store, SamplesAlarmsAndAcknowledgementsReadBackAfterReopening) {
   EXPECT_EQ(samples[2].observation.tau_command(0), 1e5 / 3.0);
   ASSERT_TRUE(samples[2].observation.tensions.has_value());
   EXPECT_EQ((*samples[2].observation.tensions)(1), 1e6 / 7.0);
+  ASSERT_TRUE(samples[1].observation.tensions.has_value());
+  EXPECT_TRUE(std::isnan((*samples[1].observation.tensions)(0)));
+  EXPECT_EQ((*samples[1].observation.tensions)(1), 2e6 / 7.0);
   EXPECT_FALSE(samples[0].observation.tensions.has_value());
   EXPECT_EQ(store.LastSegment(), 1);
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "scenarios/plant_builder.h"
 #include "simulation/simulation.h"
 #include "tests/simulation/test_scenarios.h"
 #include "vessel/controller.h"
@@ -21,8 +22,8 @@ TEST(ControlledVesselSlow, PiRemovesTheOffsetOfAConstantLoad) {
   // Kp x 7 cm = 7 kN, so the thrust is judged by its mean too.
   const std::string pi =
       "controller: {type: pi, rate_hz: 1, setpoint: {x: 0, y: 0, heading_deg: 0}}\n";
-  Simulation controlled(testing::SeedVesselScenario(pi), 1);
-  Simulation free(testing::SeedVesselScenario(), 1);
+  Simulation controlled(scenarios::ToPlantModel(testing::SeedVesselScenario(pi)), 1);
+  Simulation free(scenarios::ToPlantModel(testing::SeedVesselScenario()), 1);
   for (Simulation* sim : {&controlled, &free}) sim->SetExternalLoad(Vec3(3e5, 0, 0));
   double mean_controlled = 0.0, mean_free = 0.0, mean_thrust = 0.0;
   int samples = 0;
@@ -48,7 +49,7 @@ TEST(ControlledVesselSlow, PiRemovesTheOffsetOfAConstantLoad) {
 TEST(ControlledVessel, EveryControllerTypeTheLoaderAcceptsBuilds) {
   for (std::string_view type : ChoiceNames<vessel::ControllerType>()) {
     const std::string yaml = "controller: {type: " + std::string(type) + "}\n";
-    Simulation sim(testing::SeedVesselScenario(yaml), 1);
+    Simulation sim(scenarios::ToPlantModel(testing::SeedVesselScenario(yaml)), 1);
     sim.AdvanceTo(2.0);
     EXPECT_EQ(sim.time(), 2.0) << type;
   }

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "scenarios/load.h"
+#include "scenarios/plant_builder.h"
 #include "simulation/simulation.h"
 
 namespace moorsim::simulation {
@@ -47,7 +48,7 @@ TEST_P(SingleLineFailureAcceptance, EveryDetectorAlarmsAndNamesTheLineWithin180s
                                "simulation.duration=" + std::to_string(kFailureTime + 200.0)});
   ASSERT_EQ(scenario.detectors.size(), 4u);
   ASSERT_EQ(scenario.failure.time, kFailureTime);
-  Simulation sim(scenario, scenario.simulation.seed);
+  Simulation sim(scenarios::ToPlantModel(scenario), scenario.simulation.seed);
   sim.AdvanceTo(scenario.simulation.duration);
   ExpectEveryDetectorFinds(sim, line);
 }
@@ -65,7 +66,7 @@ TEST(CoupledDetectionAcceptance, PassiveObserversFindLineSix) {
       scenarios::LoadScenario(kLibrary + "thesis_line6_current.yaml",
                               {"detection.observer=passive", "simulation.duration=600",
                                "detectors=[{type: dht}, {type: mle}, {type: glr}]"});
-  Simulation sim(scenario, scenario.simulation.seed);
+  Simulation sim(scenarios::ToPlantModel(scenario), scenario.simulation.seed);
   sim.AdvanceTo(scenario.simulation.duration);
   ExpectEveryDetectorFinds(sim, 6);
 }
@@ -74,7 +75,7 @@ TEST(CoupledDetectionAcceptance, NoAlarmInAnHourWithoutFailure) {
   const scenarios::Scenario scenario = scenarios::LoadScenario(
       kLibrary + "thesis_no_failure_current.yaml", {"simulation.duration=3600"});
   ASSERT_EQ(scenario.detectors.size(), 4u);
-  Simulation sim(scenario, scenario.simulation.seed);
+  Simulation sim(scenarios::ToPlantModel(scenario), scenario.simulation.seed);
   sim.AdvanceTo(3600.0);
   for (const DetectorRecord& r : sim.detector_records()) {
     SCOPED_TRACE(r.label);

@@ -11,6 +11,7 @@
 
 #include "core/block_solver.h"
 #include "scenarios/load.h"
+#include "scenarios/plant_builder.h"
 #include "simulation/simulation.h"
 #include "tests/simulation/test_scenarios.h"
 
@@ -121,7 +122,7 @@ TEST(CoupledJacobian, MatchesFiniteDifferencesAwayFromRest) {
   scenarios::Scenario scenario = testing::SeedVesselScenario();
   for (auto& line : scenario.mooring.lines)
     line.sections.front().segments = 10;  // a small system, same blocks
-  Simulation sim(scenario, 1);
+  Simulation sim(scenarios::ToPlantModel(scenario), 1);
   CheckJacobian(sim, AwayFromRest(sim), 10.0);
   CheckBlockSolve(sim, AwayFromRest(sim), 10.0);
 }
@@ -137,7 +138,7 @@ TEST(CoupledJacobian, BlockSolverAfterLinesPart) {
   for (const auto& [failure, chains] : cases) {
     scenarios::Scenario scenario = testing::SeedVesselScenario(failure);
     for (auto& line : scenario.mooring.lines) line.sections.front().segments = 10;
-    Simulation sim(scenario, 1);
+    Simulation sim(scenarios::ToPlantModel(scenario), 1);
     sim.AdvanceTo(1.0);
     SCOPED_TRACE(failure);
     ASSERT_NE(sim.system().Blocks(), nullptr);
@@ -157,7 +158,7 @@ TEST(CoupledJacobian, AFreePointInTheBorder) {
   for (auto& line : scenario.mooring.lines) {
     line.sections.front().segments = std::min(line.sections.front().segments, 10);
   }
-  Simulation sim(scenario, 1);
+  Simulation sim(scenarios::ToPlantModel(scenario), 1);
   ASSERT_NE(sim.system().Blocks(), nullptr);
   EXPECT_EQ(sim.system().Blocks()->border, sim.plant().StateSize() + 6);
   CheckJacobian(sim, AwayFromRest(sim), 10.0);
@@ -176,7 +177,7 @@ TEST(CoupledJacobian, ViscoElasticTopSegments) {
     line.sections = {{"chain_seed", 400.0, 3}, {"polyester", 1800.0, 5}};
     line.joints.clear();
   }
-  Simulation sim(scenario, 1);
+  Simulation sim(scenarios::ToPlantModel(scenario), 1);
   EXPECT_EQ(sim.system().Blocks(), nullptr);
   CheckJacobian(sim, AwayFromRest(sim), 10.0);
 }
@@ -202,7 +203,7 @@ TEST_P(TurretJacobian, MatchesFiniteDifferences) {
   }
   scenario.vessel->turret.x = 30.0;
   scenario.vessel->turret.y = 2.0;
-  Simulation sim(scenario, 1);
+  Simulation sim(scenarios::ToPlantModel(scenario), 1);
   ASSERT_TRUE(sim.plant().turret_turns());
   CheckJacobian(sim, AwayFromRest(sim, GetParam().relative_rate), 10.0);
   CheckBlockSolve(sim, AwayFromRest(sim, GetParam().relative_rate), 10.0);

@@ -23,6 +23,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scenarios/load.h"
+#include "scenarios/plant_builder.h"
 #include "simulation/simulation.h"
 
 namespace moorsim::simulation {
@@ -47,7 +48,7 @@ std::vector<double> Values(const V& v) {
 json Simulate(const GoldenCase& c) {
   const scenarios::Scenario scenario =
       scenarios::LoadScenario(MOORSIM_SOURCE_DIR "/scenarios/library/" + c.scenario, {});
-  Simulation sim(scenario, scenario.simulation.seed);
+  Simulation sim(scenarios::ToPlantModel(scenario), scenario.simulation.seed);
   json samples = json::array();
   const auto count = static_cast<int>(std::lround(c.duration / c.interval));
   for (int k = 0; k <= count; ++k) {

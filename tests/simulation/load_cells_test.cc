@@ -15,6 +15,7 @@
 #include "detectors/hypothesis_bank.h"
 #include "scenarios/convert.h"
 #include "scenarios/load.h"
+#include "scenarios/plant_builder.h"
 #include "simulation/detection_models.h"
 #include "simulation/simulation.h"
 
@@ -31,7 +32,7 @@ TEST(LoadCells, TheExpectedReadingIsTheFemLinesStaticTension) {
   // Calm water: the run starts on the FEM's static shape at the moored pose.
   const scenarios::Scenario scenario = scenarios::LoadScenario(
       kCellsLibrary + "thesis_no_failure.yaml", {"environment={}", kCells, kCellDetectors});
-  Simulation sim(scenario, 1);
+  Simulation sim(scenarios::ToPlantModel(scenario), 1);
   const std::vector<double> fem = sim.FairleadTensions();
   const DetectionModels models =
       MakeDetectionModels(*sim.model().detection, sim.plant_model(), sim.initial_pose());
@@ -58,7 +59,7 @@ CellRun RunWithCells(const std::vector<std::string>& more) {
   overrides.insert(overrides.end(), more.begin(), more.end());
   const scenarios::Scenario scenario =
       scenarios::LoadScenario(kCellsLibrary + "thesis_line6.yaml", overrides);
-  Simulation sim(scenario, scenario.simulation.seed);
+  Simulation sim(scenarios::ToPlantModel(scenario), scenario.simulation.seed);
   sim.AdvanceTo(700.0);
   CellRun run;
   for (const DetectorRecord& r : sim.detector_records()) {

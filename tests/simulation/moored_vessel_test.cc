@@ -11,6 +11,7 @@
 #include "mooring_fem/catenary.h"
 #include "mooring_fem/mooring_system.h"
 #include "scenarios/convert.h"
+#include "scenarios/plant_builder.h"
 #include "simulation/simulation.h"
 #include "tests/simulation/test_scenarios.h"
 
@@ -68,7 +69,7 @@ double FairleadDepth(Simulation& sim) {
 }
 
 TEST(MooredVessel, StartsAtTheMooredDraughtAndStaysAtRest) {
-  Simulation sim(testing::SeedVesselScenario(), 1);
+  Simulation sim(scenarios::ToPlantModel(testing::SeedVesselScenario()), 1);
   // Eight lines each pull down 4.95 MN at the fairlead (docs/design.md section 9): the vessel
   // sinks by about 8 x 4.95e6 / C33 = 8 x 4.95e6 / 8.363e7 = 0.47 m.
   const double expected = 8 * 4.948e6 / 8.3627e7;
@@ -90,7 +91,7 @@ TEST(MooredVessel, StartsAtTheMooredDraughtAndStaysAtRest) {
 TEST(MooredVessel, ConstantForceGivesTheCatenaryStaticOffset) {
   // 1 MN toward north-east-ish; the vessel settles where the catenary balances it. Surge
   // damping: the MSS rule gives about 40 % of critical, so 1500 s is > 6 decay times.
-  Simulation sim(testing::SeedVesselScenario(), 1);
+  Simulation sim(scenarios::ToPlantModel(testing::SeedVesselScenario()), 1);
   const Vec3 external(1.0e6, 0.4e6, 0.0);
   sim.SetExternalLoad(external);
   sim.AdvanceTo(1500.0);
@@ -113,7 +114,7 @@ TEST(MooredVesselSlow, SurgeDecayPeriodFollowsTheCatenaryStiffness) {
   // zeta ~ 0.02, which changes the period by 0.02 %).
   const scenarios::Scenario scenario = testing::SeedVesselScenario(
       "", "  initial_pose: {x: 3, y: 0, heading_deg: 0}\n  damping: {surge_time: 1.0e6}\n");
-  Simulation sim(scenario, 1);
+  Simulation sim(scenarios::ToPlantModel(scenario), 1);
   std::vector<double> crossings;
   double previous = sim.state()[0];
   double energy = sim.MechanicalEnergy();
@@ -151,7 +152,7 @@ TEST(MooredVesselSlow, PartedLineDriftsAwayFromItsAnchorToTheCatenaryBalance) {
   // the seven remaining catenaries balance.
   const scenarios::Scenario scenario = testing::SeedVesselScenario(
       "failure: {line: 6, time: 50, mode: fairlead}\nsimulation: {duration: 3000}\n");
-  Simulation sim(scenario, 1);
+  Simulation sim(scenarios::ToPlantModel(scenario), 1);
   sim.AdvanceTo(50.0);
   EXPECT_LT(std::hypot(sim.state()[0], sim.state()[1]), 0.01);
   sim.AdvanceTo(2500.0);

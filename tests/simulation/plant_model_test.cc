@@ -10,6 +10,7 @@
 #include <string>
 
 #include "scenarios/convert.h"
+#include "scenarios/plant_builder.h"
 #include "simulation/plant_model.h"
 #include "simulation/simulation.h"
 #include "tests/simulation/test_scenarios.h"
@@ -91,7 +92,7 @@ PlantModel PlantInCode(const mooring_fem::MooringParameters& mooring) {
 TEST(PlantModel, FilledInCodeRunsAsItsScenarioBitForBit) {
   const scenarios::Scenario scenario = testing::SeedVesselScenario(
       kSections, "  turret: {bearing: free}\n  initial_pose: {x: 2, y: 2, heading_deg: 0}\n");
-  Simulation from_scenario(scenario, 7);
+  Simulation from_scenario(scenarios::ToPlantModel(scenario), 7);
   Simulation in_code(PlantInCode(scenarios::ToMooringParameters(scenario.mooring)), 7);
   for (double t = 10.0; t <= 60.0; t += 10.0) {
     from_scenario.AdvanceTo(t);

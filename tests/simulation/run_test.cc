@@ -1,8 +1,8 @@
-// One run as a library call (simulation/run.h): every clock reached at any rate, the
+// One run as a library call (runner/run.h): every clock reached at any rate, the
 // status and exit code of each outcome, and outputs that never lie after an interruption,
 // a crash or a full disk (fault injection: a stop request at a chosen row, a child process
 // that dies without closing its files, a file-size limit that makes writes fail).
-#include "simulation/run.h"
+#include "runner/run.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -26,10 +26,17 @@
 #include "core/error.h"
 #include "core/sample_clock.h"
 #include "scenarios/load.h"
+#include "scenarios/plant_builder.h"
 #include "tests/support/scratch_directory.h"
 
 namespace moorsim::simulation {
 namespace {
+
+using runner::RunRequest;
+using runner::RunResult;
+using runner::RunScenario;
+using runner::RunStatus;
+using runner::WriteFileAtomically;
 
 namespace fs = std::filesystem;
 
@@ -86,7 +93,7 @@ TEST_F(RunSlow, EveryControllerRateReachesEveryInstant) {
     SCOPED_TRACE(rate);
     const scenarios::Scenario scenario = scenarios::LoadScenario(
         kThesis, {std::string("controller.rate_hz=") + rate, "simulation.duration=20"});
-    Simulation sim(scenario, 1);
+    Simulation sim(scenarios::ToPlantModel(scenario), 1);
     sim.AdvanceTo(20.0);
     EXPECT_EQ(sim.time(), 20.0);
     const SampleClock clock(scenario.controller.rate);
@@ -111,7 +118,7 @@ TEST_F(RunTest, StationKeepingFollowsTheHeadingAndTheThrustersLimits) {
     SCOPED_TRACE(setpoint);
     const scenarios::Scenario scenario =
         scenarios::LoadScenario(kThesis, {setpoint, "simulation.duration=40"});
-    Simulation sim(scenario, 1);
+    Simulation sim(scenarios::ToPlantModel(scenario), 1);
     const double target = scenario.controller.setpoint ? scenario.controller.setpoint->z()
                                                        : scenario.vessel->initial_pose.z();
     double largest = 0.0, last = 0.0;
@@ -139,7 +146,7 @@ TEST_F(RunTest, StationKeepingFollowsTheHeadingAndTheThrustersLimits) {
     const scenarios::Scenario scenario = scenarios::LoadScenario(
         kThesis, {"controller.type=none", "environment.wind={speed: 20, direction_from_deg: -45}",
                   "failure.line=2", "failure.time=30.5", "simulation.duration=60"});
-    Simulation sim(scenario, 1);
+    Simulation sim(scenarios::ToPlantModel(scenario), 1);
     const double target = scenario.controller.setpoint->z();
     double before = 0.0, after = 0.0;
     for (int k = 0; k <= 60; ++k) {

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "runner/scenario_plant.h"
 #include "scenarios/load.h"
 #include "scenarios/plant_builder.h"
 #include "simulation/detection.h"
@@ -16,6 +17,8 @@
 
 namespace moorsim::simulation {
 namespace {
+
+using runner::DetectorsSummary;
 
 const char kCells[] = R"(
 sensors:
@@ -56,8 +59,8 @@ TEST(SensorFaults, TheScenarioKeysBecomeTheModelsFaults) {
 }
 
 TEST(SensorFaults, AFaultyRunMeasuresTheHealthyRunsPlantWithItsFaults) {
-  Simulation healthy(testing::SeedVesselScenario(kCells), 4);
-  Simulation faulty(testing::SeedVesselScenario(kFaults), 4);
+  Simulation healthy(scenarios::ToPlantModel(testing::SeedVesselScenario(kCells)), 4);
+  Simulation faulty(scenarios::ToPlantModel(testing::SeedVesselScenario(kFaults)), 4);
   double frozen_east = 0.0, last_heading = 0.0;
   for (int k = 1; k <= 35; ++k) {
     const double t = k;
@@ -98,7 +101,7 @@ TEST(SensorFaults, ACellJudgedFaultyIsReportedAsASensorNotALine) {
       {"sensors.tension_cells={rate_hz: 1, noise: {std_dev: 1.0e4}, faults: [{line: 6, mode: "
        "dead, time: 300}]}",
        "detectors=[{type: cells}]", "simulation.duration=700"});
-  Simulation sim(scenario, 1);
+  Simulation sim(scenarios::ToPlantModel(scenario), 1);
   sim.AdvanceTo(700.0);
   const DetectorRecord& cells = sim.detection()->records().at(0);
   EXPECT_EQ(cells.FalseAlarms(), 0);
@@ -126,7 +129,7 @@ TEST(SensorFaults, TheFusedDetectorNamesAGnssJumpAndNoLine) {
         {"sensors.tension_cells={rate_hz: 1, noise: {std_dev: 1.0e4}}",
          "sensors.gnss.faults=[{mode: step, time: 300, offset: 2.5}]", "detectors=" + detectors,
          "simulation.duration=600"});
-    Simulation sim(scenario, 3);
+    Simulation sim(scenarios::ToPlantModel(scenario), 3);
     sim.AdvanceTo(600.0);
     return DetectorsSummary(scenario, *sim.detection(), 600.0);
   };

@@ -2,6 +2,7 @@
 // per key, the same object for every caller, also when threads ask at once; the detectors'
 // parts of a set-up are built once for all its run seeds.
 #include "simulation/shared_parts.h"
+#include "scenarios/plant_builder.h"
 
 #include <gtest/gtest.h>
 
@@ -63,16 +64,17 @@ TEST(SharedPartSlow, RunsOfOneSetUpShareTheDetectorsPartsWhateverTheirSeed) {
   const scenarios::Scenario scenario =
       scenarios::LoadScenario(library + "thesis_line6_current.yaml", passive);
   ASSERT_TRUE(scenario.environment.waves.enabled);
-  const Simulation first(scenario, 101);
+  const Simulation first(scenarios::ToPlantModel(scenario), 101);
   const std::size_t entries = SharedPartCount();
-  const Simulation second(scenario, 102);
+  const Simulation second(scenarios::ToPlantModel(scenario), 102);
   EXPECT_EQ(SharedPartCount(), entries);
   // The calm-water equilibrium, to the last bit, whatever the waves do at t = 0.
   EXPECT_EQ(first.initial_pose(), second.initial_pose());
 
   std::vector<std::string> other = passive;
   other.insert(other.end(), {"detection.measurement_variance=0.006"});
-  const Simulation third(scenarios::LoadScenario(library + "thesis_line6_current.yaml", other),
+  const Simulation third(scenarios::ToPlantModel(
+                             scenarios::LoadScenario(library + "thesis_line6_current.yaml", other)),
                          101);
   EXPECT_GT(SharedPartCount(), entries);
 }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/angles.h"
+#include "scenarios/plant_builder.h"
 #include "simulation/simulation.h"
 #include "tests/simulation/test_scenarios.h"
 #include "vessel/turret.h"
@@ -31,10 +32,12 @@ double TurretAngle(Simulation& sim) { return sim.state()[sim.plant().turret_stat
 double Heading(Simulation& sim) { return sim.state()[5]; }
 
 TEST(Turret, LockedIsTheTurretlessPlantToTheBit) {
-  Simulation plain(testing::SeedVesselScenario("", "  initial_pose: {x: 2, heading_deg: 3}\n"), 1);
+  Simulation plain(scenarios::ToPlantModel(
+                       testing::SeedVesselScenario("", "  initial_pose: {x: 2, heading_deg: 3}\n")),
+                   1);
   Simulation locked(
-      testing::SeedVesselScenario(
-          "", "  initial_pose: {x: 2, heading_deg: 3}\n  turret: {bearing: locked}\n"),
+      scenarios::ToPlantModel(testing::SeedVesselScenario(
+          "", "  initial_pose: {x: 2, heading_deg: 3}\n  turret: {bearing: locked}\n")),
       1);
   ASSERT_EQ(plain.state().size(), locked.state().size());
   plain.AdvanceTo(60.0);
@@ -49,7 +52,7 @@ TEST(Turret, FreeAtTheReferencePointLeavesYawWithoutMooringStiffness) {
   //   psi(t) = (N / B66) (t - T (1 - exp(-t / T))),  T = (I66 + A66) / B66 (= yaw_time).
   // The lines hold the turret where it was: the turret's own heading psi + alpha stays ~0.
   constexpr double kMoment = 2.0e7;  // [N m], ~2 deg of a locked turret's yaw offset
-  Simulation sim(TurretScenario("{bearing: free}"), 1);
+  Simulation sim(scenarios::ToPlantModel(TurretScenario("{bearing: free}")), 1);
   sim.SetExternalLoad(Vec3(0.0, 0.0, kMoment));
   const vessel::VesselParameters& p = sim.plant().model().parameters();
   const double inertia = p.rigid_body_mass(5, 5) + p.added_mass(5, 5);
@@ -67,7 +70,7 @@ TEST(Turret, FreeAtTheReferencePointLeavesYawWithoutMooringStiffness) {
 
   // The same moment on a locked turret: the mooring's yaw stiffness holds the hull near
   // N / K_yaw (5.7e8 N m/rad: 2 deg).
-  Simulation locked(TurretScenario("{bearing: locked}"), 1);
+  Simulation locked(scenarios::ToPlantModel(TurretScenario("{bearing: locked}")), 1);
   locked.SetExternalLoad(Vec3(0.0, 0.0, kMoment));
   locked.AdvanceTo(300.0);
   EXPECT_LT(std::abs(Heading(locked)), 3.0 * kDegree);
@@ -91,7 +94,7 @@ TEST(TurretSlow, ForwardOfTheReferencePointWeathervanesIntoTheCurrent) {
   s.mooring.current.speed = {1.5, 1.5};
   s.mooring.current.direction = 210.0 * kDegree;  // toward 210 deg: from 30 deg
   s.environment.hull_viscous_drag = true;         // the current's load on the hull
-  Simulation sim(s, 1);
+  Simulation sim(scenarios::ToPlantModel(s), 1);
   std::vector<double> error;  // at 1000, 2000, ..., 6000 s
   for (double t = 1000.0; t <= 6000.0; t += 1000.0) {
     sim.AdvanceTo(t);
@@ -117,7 +120,7 @@ double Breakaway(Simulation& sim) {
 
 TEST(TurretSlow, FrictionHoldsBelowTheBreakawayMomentAndSlipsAbove) {
   const std::string turret = "{bearing: friction, friction_coefficient: 0.01, slip_rate: 1.0e-5}";
-  Simulation probe(TurretScenario(turret), 1);
+  Simulation probe(scenarios::ToPlantModel(TurretScenario(turret)), 1);
   const double breakaway = Breakaway(probe);  // 0.01 x 20 m x ~40 MN of line weight
   ASSERT_GT(breakaway, 5e6);
   ASSERT_LT(breakaway, 1.2e7);
@@ -125,7 +128,7 @@ TEST(TurretSlow, FrictionHoldsBelowTheBreakawayMomentAndSlipsAbove) {
   // Half the breakaway moment: the bearing holds. The regularised Coulomb moment creeps at
   // the rate where it balances the load, w_s atanh(N_bearing / N_breakaway); with the hull
   // held by the lines' yaw stiffness nearly all of N passes through the bearing.
-  Simulation hold(TurretScenario(turret), 1);
+  Simulation hold(scenarios::ToPlantModel(TurretScenario(turret)), 1);
   hold.SetExternalLoad(Vec3(0.0, 0.0, 0.5 * breakaway));
   hold.AdvanceTo(100.0);
   const double alpha100 = TurretAngle(hold);
@@ -137,7 +140,7 @@ TEST(TurretSlow, FrictionHoldsBelowTheBreakawayMomentAndSlipsAbove) {
   EXPECT_LT(std::abs(Heading(hold)), 1.5 * kDegree);  // ~N / K_yaw, as if locked
 
   // Twice the breakaway moment: the bearing slips and the hull turns away.
-  Simulation slip(TurretScenario(turret), 1);
+  Simulation slip(scenarios::ToPlantModel(TurretScenario(turret)), 1);
   slip.SetExternalLoad(Vec3(0.0, 0.0, 2.0 * breakaway));
   slip.AdvanceTo(300.0);
   EXPECT_GT(Heading(slip), 5.0 * kDegree);
@@ -151,9 +154,10 @@ TEST(Turret, StartsAtItsInitialHeadingWhereTheLinesHoldIt) {
   // turret's absolute heading stays put. Started at angle 0 instead, the fairleads are a
   // quarter turn off their anchors and the lines swing the turret round.
   const std::string hull = "  initial_pose: {x: 0, y: 0, heading_deg: 90}\n";
-  Simulation held(TurretScenario("{bearing: free, initial_heading_deg: 0}", hull), 1);
+  Simulation held(
+      scenarios::ToPlantModel(TurretScenario("{bearing: free, initial_heading_deg: 0}", hull)), 1);
   EXPECT_NEAR(TurretAngle(held), -90.0 * kDegree, 1e-12);
-  Simulation swung(TurretScenario("{bearing: free}", hull), 1);
+  Simulation swung(scenarios::ToPlantModel(TurretScenario("{bearing: free}", hull)), 1);
   EXPECT_EQ(TurretAngle(swung), 0.0);
   double held_most = 0.0, swung_most = 0.0;
   for (int t = 1; t <= 60; ++t) {
@@ -171,7 +175,9 @@ TEST(Turret, StartsAtItsInitialHeadingWhereTheLinesHoldIt) {
 TEST(Turret, EnergyNeverGrowsWithoutInput) {
   // Free, undamped bearing; the hull starts 10 deg off the lines' rest heading, so the lines
   // swing the turret back (it turns relative to the hull) and their drag takes the energy.
-  Simulation sim(TurretScenario("{bearing: free}", "  initial_pose: {heading_deg: 10}\n"), 1);
+  Simulation sim(scenarios::ToPlantModel(
+                     TurretScenario("{bearing: free}", "  initial_pose: {heading_deg: 10}\n")),
+                 1);
   double energy = sim.MechanicalEnergy();
   for (double t = 1.0; t <= 200.0; t += 1.0) {
     sim.AdvanceTo(t);
@@ -200,7 +206,7 @@ TEST_P(FreeTurretHeadingAcceptance, StaysWithinItsBandForAnHour) {
       {"simulation.duration=3600"});
   ASSERT_EQ(scenario.vessel->turret.bearing,
             vessel::TurretBearing::kFree);  // the library's own set-up
-  Simulation sim(scenario, scenario.simulation.seed);
+  Simulation sim(scenarios::ToPlantModel(scenario), scenario.simulation.seed);
   const double setpoint = scenario.controller.setpoint->z();
   double worst = 0.0;
   for (double t = 300.0; t <= 3600.0; t += 1.0) {

@@ -96,7 +96,7 @@ TEST(VesselConversion, TheRunUsesTheScenariosHullAndWindage) {
       "  wind: {speed: 15, direction_from_deg: 100, gust: false}\n",
       "  hull: {draught: 16, displaced_volume: 130000}\n"
       "  windage: {lateral_area: 6000, lateral_centroid: -20}\n");
-  Simulation sim(s, 1);
+  Simulation sim(scenarios::ToPlantModel(s), 1);
   Vec6 eta = Vec6::Zero();
   eta(5) = 0.3;
   Vec6 nu = Vec6::Zero();

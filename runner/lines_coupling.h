@@ -7,7 +7,7 @@
 #include "mooring_fem/coupled_lines.h"
 #include "scenarios/scenario.h"
 
-namespace moorsim::simulation {
+namespace moorsim::runner {
 
 /// The waves the scenario's lines see (environment.waves.on_lines, realised from
 /// simulation.seed as a run realises them); null where they see none.
@@ -24,4 +24,4 @@ std::unique_ptr<mooring_fem::CoupledLines> MakeCoupledLines(const scenarios::Sce
 Vec6 InitCoupledLines(mooring_fem::CoupledLines& lines, const scenarios::Scenario& scenario,
                       const mooring_fem::BodyDofs& pose, const mooring_fem::BodyDofs& velocity);
 
-}  // namespace moorsim::simulation
+}  // namespace moorsim::runner

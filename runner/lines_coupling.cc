@@ -1,11 +1,15 @@
-#include "simulation/lines_coupling.h"
+#include "runner/lines_coupling.h"
 
 #include "scenarios/convert.h"
 #include "scenarios/load.h"
 #include "scenarios/plant_builder.h"
 #include "simulation/simulation.h"
 
-namespace moorsim::simulation {
+namespace moorsim::runner {
+
+using simulation::LineWaves;
+using simulation::RealiseSea;
+using simulation::SeaModel;
 
 std::shared_ptr<const mooring_fem::WaveKinematics> ScenarioLineWaves(
     const scenarios::Scenario& scenario) {
@@ -31,4 +35,4 @@ Vec6 InitCoupledLines(mooring_fem::CoupledLines& lines, const scenarios::Scenari
   }
 }
 
-}  // namespace moorsim::simulation
+}  // namespace moorsim::runner

@@ -1,4 +1,4 @@
-#include "simulation/run.h"
+#include "runner/run.h"
 
 #include "simulation/output_layout.h"
 
@@ -21,10 +21,21 @@
 #include "io/directory_lock.h"
 #include "io/hdf5_file.h"
 #include "io/text_file.h"
+#include "runner/scenario_plant.h"
 #include "scenarios/load.h"
 #include "simulation/detection_tables.h"
 
-namespace moorsim::simulation {
+namespace moorsim::runner {
+
+namespace layout = simulation::layout;
+using simulation::Detection;
+using simulation::DetectionTables;
+using simulation::DetectionTiming;
+using simulation::DetectorRecord;
+using simulation::PluginsSummary;
+using simulation::Sample;
+using simulation::Simulation;
+using simulation::StationKeeping;
 namespace {
 
 std::string Join(const std::vector<std::string>& items) {
@@ -305,7 +316,7 @@ RunResult RunScenario(const RunRequest& request) noexcept {
   result.status = RunStatus::kOk;
   try {
     try {
-      sim = std::make_unique<Simulation>(scenario, scenario.simulation.seed);
+      sim = MakeSimulation(scenario, scenario.simulation.seed);
     } catch (const InputError& e) {  // a scenario the loader's rules let through
       result.status = RunStatus::kRejected;
       result.message = e.what();
@@ -437,4 +448,4 @@ RunResult RunScenario(const RunRequest& request) noexcept {
   return result;
 }
 
-}  // namespace moorsim::simulation
+}  // namespace moorsim::runner

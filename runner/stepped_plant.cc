@@ -1,4 +1,4 @@
-#include "simulation/stepped_plant.h"
+#include "runner/stepped_plant.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,8 +8,12 @@
 #include "core/format.h"
 #include "core/sha256.h"
 #include "core/state_bytes.h"
+#include "runner/scenario_plant.h"
 
-namespace moorsim::simulation {
+namespace moorsim::runner {
+
+using simulation::Sample;
+using simulation::Simulation;
 namespace {
 
 constexpr char kTag[9] = "moorsimP";
@@ -27,7 +31,7 @@ std::uint64_t PlantFingerprint(const scenarios::Scenario& scenario, std::uint64_
 // The plant at its moored static start, with what happens at t = 0 done (the first sensor
 // sample and controller instant), as a run starts.
 std::unique_ptr<Simulation> Start(const scenarios::Scenario& scenario, std::uint64_t seed) {
-  auto simulation = std::make_unique<Simulation>(scenario, seed);
+  std::unique_ptr<Simulation> simulation = MakeSimulation(scenario, seed);
   simulation->AdvanceTo(0.0);
   return simulation;
 }
@@ -162,4 +166,4 @@ void SteppedPlant::Restore(std::span<const std::uint8_t> bytes,
   }
 }
 
-}  // namespace moorsim::simulation
+}  // namespace moorsim::runner

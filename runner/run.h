@@ -32,9 +32,10 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "scenarios/scenario.h"
 #include "simulation/simulation.h"
 
-namespace moorsim::simulation {
+namespace moorsim::runner {
 
 enum class RunStatus {
   kOk,           ///< simulated to the end, outputs written
@@ -69,7 +70,7 @@ struct RunRequest {
   /// still built and returned. A campaign's runs are kept this way unless asked.
   bool write_files = true;
   /// Called with every output row, in order, after it is recorded.
-  std::function<void(const Sample&)> on_row;
+  std::function<void(const simulation::Sample&)> on_row;
 };
 
 struct RunResult {
@@ -107,4 +108,4 @@ void InstallStopSignalHandlers();
 /// The signal number caught since InstallStopSignalHandlers, 0 if none.
 int StopSignal();
 
-}  // namespace moorsim::simulation
+}  // namespace moorsim::runner

@@ -22,12 +22,12 @@
 #include "scenarios/scenario.h"
 #include "simulation/simulation.h"
 
-namespace moorsim::simulation {
+namespace moorsim::runner {
 
 class SteppedPlant {
  public:
   /// The plant of `scenario` (loaded with `overrides`, which are part of its identity) for
-  /// run seed `seed`, at its moored static start. Throws as Simulation does.
+  /// run seed `seed`, at its moored static start. Throws as simulation::Simulation does.
   SteppedPlant(const scenarios::Scenario& scenario, std::uint64_t seed);
 
   double time() const { return simulation_->time(); }
@@ -46,8 +46,8 @@ class SteppedPlant {
   /// A steady load on the hull, Earth axes (X north, Y east [N], moment about z [N m]).
   void SetExternalLoad(const Vec3& load);
   /// Everything recorded at the current time (Simulation::Record), computed once per time.
-  const Sample& Now();
-  const Simulation& simulation() const { return *simulation_; }
+  const simulation::Sample& Now();
+  const simulation::Simulation& simulation() const { return *simulation_; }
 
   std::vector<std::uint8_t> Save() const;
   /// Returns to a saved state. Throws InputError for bytes that are not a moorsim plant
@@ -69,9 +69,9 @@ class SteppedPlant {
   scenarios::Scenario scenario_;
   std::uint64_t seed_;
   std::uint64_t fingerprint_;
-  std::unique_ptr<Simulation> simulation_;
+  std::unique_ptr<simulation::Simulation> simulation_;
   std::vector<Input> inputs_;
-  std::optional<Sample> now_;
+  std::optional<simulation::Sample> now_;
 };
 
-}  // namespace moorsim::simulation
+}  // namespace moorsim::runner
