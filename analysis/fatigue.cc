@@ -9,13 +9,13 @@
 namespace moorsim::analysis {
 namespace {
 
-// Sorted by name.
-const std::array<TnCurve, 5> kPresets = {{
-    {"polyester", TnCurve::Range::kNormalised, 25000.0, 5.2, 0.0},
-    {"six_strand_rope", TnCurve::Range::kStress, 3.4e14, 4.0, 0.0},
-    {"spiral_rope", TnCurve::Range::kStress, 1.7e17, 4.8, 0.0},
-    {"studless_chain", TnCurve::Range::kStress, 6.0e10, 3.0, 0.0},
-    {"studlink_chain", TnCurve::Range::kStress, 1.2e11, 3.0, 0.0},
+// In the order of TnPreset.
+constexpr std::array<TnCurve, 5> kPresets = {{
+    {TnRange::kStress, 6.0e10, 3.0, 0.0},
+    {TnRange::kStress, 1.2e11, 3.0, 0.0},
+    {TnRange::kStress, 3.4e14, 4.0, 0.0},
+    {TnRange::kStress, 1.7e17, 4.8, 0.0},
+    {TnRange::kNormalised, 25000.0, 5.2, 0.0},
 }};
 
 }  // namespace
@@ -30,22 +30,12 @@ double TnCurve::CyclesToFailure(double tension_range, double mean, double area,
   return a_corrected * std::pow(s, -m);
 }
 
-const TnCurve* TnCurvePreset(std::string_view name) {
-  for (const TnCurve& c : kPresets) {
-    if (c.name == name) return &c;
-  }
-  return nullptr;
-}
+TnCurve TnCurveOf(TnPreset preset) { return kPresets[static_cast<std::size_t>(preset)]; }
 
-std::vector<std::string_view> TnCurvePresetNames() {
-  std::vector<std::string_view> names;
-  for (const TnCurve& c : kPresets) names.push_back(c.name);
-  return names;
-}
-
-double NominalArea(std::string_view curve_name, double diameter) {
+double NominalArea(TnPreset preset, double diameter) {
   const double section = std::numbers::pi * diameter * diameter / 4.0;
-  return curve_name.ends_with("_chain") ? 2.0 * section : section;
+  const bool chain = preset == TnPreset::kStudlessChain || preset == TnPreset::kStudlinkChain;
+  return chain ? 2.0 * section : section;
 }
 
 double MinerDamage(std::span<const RainflowCycle> cycles, const FatigueComponent& component) {

@@ -20,15 +20,26 @@
 #include <vector>
 
 #include "analysis/rainflow.h"
+#include "core/choice.h"
 
 namespace moorsim::analysis {
 
+/// How a curve measures the range.
+enum class TnRange {
+  kStress,      ///< S = tension range / nominal area, in MPa
+  kNormalised,  ///< R = tension range / breaking strength
+};
+inline constexpr std::string_view kTnRangeNames[] = {"stress", "normalised"};
+constexpr ChoiceInfo ChoicesOf(TnRange) { return {"T-N range", kTnRangeNames}; }
+
+/// The standards' curves (TnCurveOf()).
+enum class TnPreset { kStudlessChain, kStudlinkChain, kSixStrandRope, kSpiralRope, kPolyester };
+inline constexpr std::string_view kTnPresetNames[] = {
+    "studless_chain", "studlink_chain", "six_strand_rope", "spiral_rope", "polyester"};
+constexpr ChoiceInfo ChoicesOf(TnPreset) { return {"T-N curve", kTnPresetNames}; }
+
 struct TnCurve {
-  enum class Range {
-    kStress,      ///< S = tension range / area, in MPa
-    kNormalised,  ///< R = tension range / breaking strength
-  };
-  std::string name;
+  using Range = TnRange;
   Range range = Range::kStress;
   /// N = a S^-m: a_D for a stress curve (S in MPa), K for a normalised one.
   double a = 0.0;
@@ -43,15 +54,12 @@ struct TnCurve {
   double CyclesToFailure(double tension_range, double mean, double area, double breaking) const;
 };
 
-/// The curves by name: "studless_chain", "studlink_chain", "six_strand_rope",
-/// "spiral_rope" (DNV-OS-E301), "polyester" (API RP 2SM). Null for an unknown name.
-const TnCurve* TnCurvePreset(std::string_view name);
-/// Every preset's name, sorted.
-std::vector<std::string_view> TnCurvePresetNames();
+/// A standard's curve.
+TnCurve TnCurveOf(TnPreset preset);
 
 /// The nominal area [m^2] a stress curve divides by, for a component of nominal diameter
-/// `diameter` [m]: two bars for a chain (the "_chain" presets), one section otherwise.
-double NominalArea(std::string_view curve_name, double diameter);
+/// `diameter` [m]: two bars for a chain, one section otherwise.
+double NominalArea(TnPreset preset, double diameter);
 
 /// What a T-N curve needs of the component.
 struct FatigueComponent {

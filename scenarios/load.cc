@@ -154,6 +154,34 @@ LineType ParseLineType(const Reader& r) {
   r.Optional("added_mass_tangential", type.added_mass_tangential);
   r.Optional("friction_axial", type.friction_axial);
   r.Optional("friction_lateral", type.friction_lateral);
+  r.Optional("minimum_breaking_load", type.minimum_breaking_load);
+  if (const std::optional<Reader> fatigue = r.Find("fatigue")) {
+    fatigue->CheckKeys();
+    const std::optional<analysis::TnPreset> preset = fatigue->Maybe<analysis::TnPreset>("curve");
+    analysis::TnCurve curve = preset ? analysis::TnCurveOf(*preset) : analysis::TnCurve{};
+    if (!fatigue->Find("curve")) {
+      for (const char* key : {"a", "m"}) {
+        if (!fatigue->Find(key))
+          fatigue->Fail(std::string("give a curve, or a and m (") + key + " missing)");
+      }
+    }
+    fatigue->Optional("a", curve.a);
+    fatigue->Optional("m", curve.m);
+    fatigue->Optional("range", curve.range);
+    fatigue->Optional("mean_load_slope", curve.mean_load_slope);
+    if (curve.range == analysis::TnRange::kNormalised || curve.mean_load_slope > 0.0) {
+      if (!(type.minimum_breaking_load > 0.0)) {
+        fatigue->Fail(
+            "a curve on the breaking load (normalised, or with a mean-load term) "
+            "needs the type's minimum_breaking_load");
+      }
+    }
+    type.fatigue_area =
+        fatigue->Maybe<double>("nominal_area")
+            .value_or(analysis::NominalArea(preset.value_or(analysis::TnPreset::kSixStrandRope),
+                                            type.diameter));
+    type.fatigue_curve = curve;
+  }
   type.mark = r.mark();
   return type;
 }

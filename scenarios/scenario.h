@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/fatigue.h"
 #include "core/angles.h"
 #include "core/types.h"
 #include "mooring_fem/parameters.h"
@@ -37,8 +38,16 @@ using Seabed = mooring_fem::Seabed;
 using SolverSpec = mooring_fem::SolverSettings;
 
 /// A line type (mooring_fem::LineType) and where its list entry was written.
+/// A line type (mooring_fem::LineType), where it was written, and what the design checks
+/// take from it: its strength and its fatigue curve.
 struct LineType : mooring_fem::LineType {
   SourceMark mark;
+  /// Minimum breaking load [N]; 0: not given.
+  double minimum_breaking_load = 0.0;
+  /// The T-N curve of its fatigue and the nominal area [m^2] a stress curve divides the
+  /// tension range by; unset: not given.
+  std::optional<analysis::TnCurve> fatigue_curve;
+  double fatigue_area = 0.0;
 };
 
 /// A free point (mooring_fem::FreePoint), its name and where it was written.

@@ -211,6 +211,36 @@ constexpr Key kStrainTensionKeys[] = {
 };
 constexpr Block kStrainTension{"One point of a tension-strain curve.", kStrainTensionKeys};
 
+constexpr Key kFatigueKeys[] = {
+    Positive("a", "", 1e30,
+             "The curve's constant: a_D of N = a_D S^-m (S in MPa) for a stress curve, K of "
+             "N R^M = K for a normalised one; omitted = the named curve's."),
+    {.name = "curve",
+     .kind = Kind::kString,
+     .description = "A standard's curve: studless_chain, studlink_chain, six_strand_rope, "
+                    "spiral_rope (DNV-OS-E301, on the nominal stress range) or polyester "
+                    "(API RP 2SM, on the range over the breaking load). Omitted: give a and m.",
+     .choices = ChoiceNames<analysis::TnPreset>(),
+     .choice_noun = ChoiceNoun<analysis::TnPreset>()},
+    Positive("m", "", 20.0, "The curve's exponent; omitted = the named curve's."),
+    NonNegative("mean_load_slope", "", 100.0,
+                "c of log10 a = log10 a0 - c L_m, L_m the cycle's mean tension over the "
+                "minimum breaking load (API RP 2SK's mean-load term); omitted = the named "
+                "curve's (0 for all of them)."),
+    Positive("nominal_area", "m^2", 1.0,
+             "The area a stress curve divides the tension range by; omitted = two bars of the "
+             "type's diameter for a chain curve, one section (pi d^2 / 4) otherwise."),
+    {.name = "range",
+     .kind = Kind::kString,
+     .description = "stress (the tension range over nominal_area, in MPa) or normalised (over "
+                    "minimum_breaking_load); omitted = the named curve's, else stress.",
+     .choices = ChoiceNames<analysis::TnRange>(),
+     .choice_noun = ChoiceNoun<analysis::TnRange>()},
+};
+constexpr Block kFatigue{
+    "The line type's T-N curve for the fatigue checks: a standard's curve, or a and m.",
+    kFatigueKeys};
+
 constexpr Key kLineTypeKeys[] = {
     {.name = "added_mass_normal",
      .description = "Added-mass coefficient C_MN.",
@@ -261,6 +291,8 @@ constexpr Key kLineTypeKeys[] = {
                 "Del Vecchio's beta per % of the breaking load, times 100). With "
                 "dynamic_axial_stiffness; none = a constant dynamic stiffness.",
                 "polyester's is about 30"),
+    Map("fatigue", kFatigue,
+        "The T-N curve for the fatigue checks; omitted = none (the checks then name the type)."),
     WithDefault({.name = "friction_axial",
                  .description = "Seabed Coulomb friction coefficient along the line.",
                  .minimum = AtLeast(0.0),
@@ -277,6 +309,10 @@ constexpr Key kLineTypeKeys[] = {
                     "section of a line that weighs more than its water as a whole.",
      .required = true,
      .maximum = AtMost(10000.0, "the heaviest chains weigh about 1000 kg/m")},
+    Positive("minimum_breaking_load", "N", 1e9,
+             "Minimum breaking load (MBL), which the design checks' safety factors and "
+             "utilisations are taken against; omitted = none (the checks then name the type).",
+             "the strongest chains break at about 3e7 N"),
     {.name = "name",
      .kind = Kind::kString,
      .description = "Unique name that lines refer to in their `type`.",

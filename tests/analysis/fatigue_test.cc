@@ -14,29 +14,27 @@ namespace moorsim::analysis {
 namespace {
 
 TEST(TnCurve, ThePresetsAreTheStandardsCurves) {
-  ASSERT_NE(TnCurvePreset("studless_chain"), nullptr);
-  EXPECT_EQ(TnCurvePreset("studless_chain")->a, 6.0e10);
-  EXPECT_EQ(TnCurvePreset("studlink_chain")->a, 1.2e11);
-  EXPECT_EQ(TnCurvePreset("six_strand_rope")->m, 4.0);
-  EXPECT_EQ(TnCurvePreset("spiral_rope")->a, 1.7e17);
-  EXPECT_EQ(TnCurvePreset("polyester")->range, TnCurve::Range::kNormalised);
-  EXPECT_EQ(TnCurvePreset("polyester")->m, 5.2);
-  EXPECT_EQ(TnCurvePreset("chain"), nullptr);
-  EXPECT_EQ(TnCurvePresetNames().size(), 5u);
+  EXPECT_EQ(TnCurveOf(TnPreset::kStudlessChain).a, 6.0e10);
+  EXPECT_EQ(TnCurveOf(TnPreset::kStudlinkChain).a, 1.2e11);
+  EXPECT_EQ(TnCurveOf(TnPreset::kSixStrandRope).m, 4.0);
+  EXPECT_EQ(TnCurveOf(TnPreset::kSpiralRope).a, 1.7e17);
+  EXPECT_EQ(TnCurveOf(TnPreset::kPolyester).range, TnCurve::Range::kNormalised);
+  EXPECT_EQ(TnCurveOf(TnPreset::kPolyester).m, 5.2);
+  EXPECT_EQ(ParseChoice<TnPreset>("spiral_rope"), TnPreset::kSpiralRope);
   // A 100 mm studless chain: two bars of 7854 mm^2; 1 MN of range is 63.662 MPa, which the
   // curve allows 6e10 / 63.662^3 = 232 547 times.
-  const double area = NominalArea("studless_chain", 0.1);
+  const double area = NominalArea(TnPreset::kStudlessChain, 0.1);
   EXPECT_NEAR(area, 2.0 * std::numbers::pi * 0.05 * 0.05, 1e-15);
-  EXPECT_NEAR(TnCurvePreset("studless_chain")->CyclesToFailure(1.0e6, 0.0, area, 0.0), 232547.0,
+  EXPECT_NEAR(TnCurveOf(TnPreset::kStudlessChain).CyclesToFailure(1.0e6, 0.0, area, 0.0), 232547.0,
               1.0);
   // Polyester: R = 0.1 of the breaking strength, N = 25000 / 0.1^5.2.
-  EXPECT_NEAR(TnCurvePreset("polyester")->CyclesToFailure(1.0e6, 0.0, 0.0, 1.0e7),
+  EXPECT_NEAR(TnCurveOf(TnPreset::kPolyester).CyclesToFailure(1.0e6, 0.0, 0.0, 1.0e7),
               25000.0 * std::pow(10.0, 5.2), 1e-6 * 25000.0 * std::pow(10.0, 5.2));
 }
 
 TEST(Miner, ConstantAmplitudeCyclesSumTheirFractionsAndTheMeanLoadShortensTheLife) {
-  FatigueComponent chain{*TnCurvePreset("studlink_chain"), NominalArea("studlink_chain", 0.12),
-                         1.2e7};
+  FatigueComponent chain{TnCurveOf(TnPreset::kStudlinkChain),
+                         NominalArea(TnPreset::kStudlinkChain, 0.12), 1.2e7};
   std::vector<double> history;
   for (int i = 0; i < 1000; ++i) history.push_back(i % 2 == 0 ? 3.0e6 : 5.0e6);
   // 499 full cycles of 2 MN and two half cycles... every range is 2 MN: 999 halves.
@@ -44,7 +42,7 @@ TEST(Miner, ConstantAmplitudeCyclesSumTheirFractionsAndTheMeanLoadShortensTheLif
       1.0 / chain.curve.CyclesToFailure(2.0e6, 4.0e6, chain.area, chain.breaking);
   EXPECT_NEAR(MinerDamage(history, chain), 999.0 / 2.0 * per_cycle, 1e-12 * 999.0 * per_cycle);
   // A mean-load term: log10 a = log10 a0 - c L_m.
-  TnCurve rope{"rope", TnCurve::Range::kNormalised, 231.0, 4.09, 2.79};
+  TnCurve rope{TnRange::kNormalised, 231.0, 4.09, 2.79};
   const double n0 = rope.CyclesToFailure(1.0e6, 0.0, 0.0, 1.0e7);
   const double n3 = rope.CyclesToFailure(1.0e6, 3.0e6, 0.0, 1.0e7);
   EXPECT_NEAR(n3 / n0, std::pow(10.0, -2.79 * 0.3), 1e-12);
@@ -86,8 +84,8 @@ TEST(Miner, ANarrowBandGaussianProcessHasTheClosedFormsDamage) {
   // In newtons: sigma 100 kN about a mean of 2 MN, on a 100 mm chain.
   const double scale = 1.0e5 / sigma_units;
   for (double& t : tension) t = 2.0e6 + scale * t;
-  const FatigueComponent chain{*TnCurvePreset("studless_chain"), NominalArea("studless_chain", 0.1),
-                               8.0e6};
+  const FatigueComponent chain{TnCurveOf(TnPreset::kStudlessChain),
+                               NominalArea(TnPreset::kStudlessChain, 0.1), 8.0e6};
   const double m = chain.curve.m;
   const double sigma_mpa = 1.0e5 / chain.area / 1.0e6;
   const double closed = nu0 * duration * std::pow(2.0 * std::sqrt(2.0) * sigma_mpa, m) *

@@ -36,6 +36,8 @@ mooring:
       added_mass_normal: 1.5
       friction_axial: 0.5
       friction_lateral: 1.0
+      minimum_breaking_load: 5.4e6
+      fatigue: {curve: studless_chain, nominal_area: 0.0101}
     - name: wire
       diameter: 0.1
       mass_per_length: 40
@@ -44,6 +46,8 @@ mooring:
       drag_normal: 1.2
       drag_tangential: 0.008
       added_mass_normal: 1.0
+      minimum_breaking_load: 7.0e6
+      fatigue: {a: 231, m: 4.09, range: normalised, mean_load_slope: 2.79}
   defaults: {segments: 40}
   lines:
     - id: 1
@@ -228,6 +232,15 @@ inline const BadInput kParseErrors[] = {
      "{type: wire", "mooring.lines[2].sections[1]: required key 'segments' is missing"},
     {"UnknownKeyInLine", "- id: 2", "length: 2250", "lenght: 2250", "lenght",
      "mooring.lines[2]: unknown key 'lenght' (did you mean 'length'?)"},
+    {"UnknownFatigueCurve", "- name: chain", "curve: studless_chain", "curve: studless", "studless",
+     "mooring.line_types[1].fatigue.curve: unknown T-N curve 'studless' (known: polyester, "
+     "six_strand_rope, spiral_rope, studless_chain, studlink_chain)"},
+    {"FatigueWithoutCurveOrExponent", "- name: wire", "a: 231, m: 4.09, ", "a: 231, ", "{a: 231",
+     "mooring.line_types[2].fatigue: give a curve, or a and m (m missing)"},
+    {"NormalisedCurveWithoutBreakingLoad", "- name: wire", "      minimum_breaking_load: 7.0e6\n",
+     "", "{a: 231",
+     "mooring.line_types[2].fatigue: a curve on the breaking load (normalised, or with "
+     "a mean-load term) needs the type's minimum_breaking_load"},
     {"UnknownTopLevelSection", "", "solver:\n", "vessels: {}\nsolver:\n", "vessels",
      "unknown key 'vessels' (did you mean 'vessel'?)"},
     {"UnknownKeyInFlowMap", "", "gravity: 9.81", "gravity: 9.81, salinity: 35", "salinity",

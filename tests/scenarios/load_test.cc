@@ -144,6 +144,17 @@ TEST(ParseScenario, ReadsEveryKeyOfTheBaseText) {
   EXPECT_FALSE(wire.axial_damping_ratio.has_value());  // no default ratio beside a given c
   EXPECT_EQ(wire.friction_axial, 0.0);
   EXPECT_EQ(wire.friction_lateral, 0.0);
+  EXPECT_EQ(wire.minimum_breaking_load, 7.0e6);
+  ASSERT_TRUE(wire.fatigue_curve.has_value());
+  EXPECT_EQ(wire.fatigue_curve->range, analysis::TnRange::kNormalised);
+  EXPECT_EQ(wire.fatigue_curve->a, 231.0);
+  EXPECT_EQ(wire.fatigue_curve->m, 4.09);
+  EXPECT_EQ(wire.fatigue_curve->mean_load_slope, 2.79);
+  const LineType& chain = s.mooring.line_types[0];
+  EXPECT_EQ(chain.minimum_breaking_load, 5.4e6);
+  ASSERT_TRUE(chain.fatigue_curve.has_value());
+  EXPECT_EQ(chain.fatigue_curve->a, 6.0e10);  // DNV-OS-E301's studless chain
+  EXPECT_EQ(chain.fatigue_area, 0.0101);
   ASSERT_EQ(s.mooring.lines.size(), 3u);
   EXPECT_EQ(s.mooring.lines[0].Segments(), 30);  // its own
   EXPECT_EQ(s.mooring.lines[1].Segments(), 40);  // mooring.defaults.segments
