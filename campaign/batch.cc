@@ -17,6 +17,7 @@
 #include <thread>
 #include <unordered_map>
 
+#include "campaign/design.h"
 #include "core/error.h"
 #include "core/sha256.h"
 #include "core/version.h"
@@ -966,6 +967,8 @@ nlohmann::json MakeRow(const PreparedCampaign& p, const scenarios::CampaignRun& 
   row["detectors"] = detectors;
   row["integrator"] = summary.value("integrator", nlohmann::json::object());
   row["station_keeping"] = summary.value("station_keeping", nlohmann::json::object());
+  // The lines' extremes and fatigue damage, the vessel's largest offset (the design checks).
+  if (summary.contains("design")) row["design"] = summary.at("design");
   return row;
 }
 
@@ -1229,6 +1232,7 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
         ReadRowsOf(result.directory, p.identity.sha256, c.NumRuns());
     WriteCampaignTables(result.directory, c.text, c.name, c.source_path, c.seed, c.FactorKeys(),
                         rows, o.command_line);
+    WriteDesignTables(result.directory, c, rows);
     for (const nlohmann::json& row : rows) {
       const nlohmann::json error = StationKeepingValue(row, "heading_error_max_deg");
       result.heading_lost += error.is_number() && error.get<double>() > kHeadingLostDeg ? 1 : 0;
@@ -1320,6 +1324,8 @@ MergeResult MergeCampaigns(const std::vector<std::filesystem::path>& directories
     WriteFileAtomically(out / "rows" / (RunName(run) + ".json"), row.dump() + "\n");
     all.push_back(std::move(row));
   }
+  WriteDesignTables(out, scenarios::ParseCampaign(text, meta.at("path").get<std::string>(), false),
+                    all);
   WriteCampaignTables(out, text, meta.at("name").get<std::string>(),
                       meta.at("path").get<std::string>(), meta.at("seed").get<std::uint64_t>(),
                       meta.at("factors").get<std::vector<std::string>>(), std::move(all),

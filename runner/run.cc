@@ -21,6 +21,7 @@
 #include "io/directory_lock.h"
 #include "io/hdf5_file.h"
 #include "io/text_file.h"
+#include "runner/design_record.h"
 #include "runner/scenario_plant.h"
 #include "scenarios/load.h"
 #include "simulation/detection_tables.h"
@@ -311,6 +312,7 @@ RunResult RunScenario(const RunRequest& request) noexcept {
   const auto start = std::chrono::steady_clock::now();
   std::unique_ptr<Simulation> sim;
   std::unique_ptr<RunWriter> writer;
+  std::optional<DesignRecord> design;
   bool run_file_broken = false;
   bool partial_created = false;  // only a file this run created is ever removed
   result.status = RunStatus::kOk;
@@ -322,6 +324,7 @@ RunResult RunScenario(const RunRequest& request) noexcept {
       result.message = e.what();
       return result;
     }
+    design.emplace(scenario, *sim);
     try {
       if (request.write_files) {
         output::Hdf5File file(output::PartialPath(run_path).string());
@@ -340,6 +343,7 @@ RunResult RunScenario(const RunRequest& request) noexcept {
       sim->AdvanceTo(rows.Instant(k));
       // Recorded whether or not a file is written, so a run is the same either way.
       const Sample sample = sim->Record();
+      design->Add(*sim, sample);
       if (request.on_row) request.on_row(sample);
       try {
         if (writer) {
@@ -425,6 +429,7 @@ RunResult RunScenario(const RunRequest& request) noexcept {
     if (sim) {
       AddDetection(scenario, *sim, summary);
       AddStationKeeping(*sim, summary);
+      if (design) summary["design"] = design->Summary();
     }
     summary["status"] = StatusName(result.status);
     if (!result.message.empty()) summary["error"] = result.message;

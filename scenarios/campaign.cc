@@ -343,6 +343,16 @@ CampaignBlock ParseBlock(const Reader& r, const YAML::Node& node) {
   if (const std::optional<Reader> combine = r.Find("combine")) {
     b.zip = combine->As<CampaignBlock::Combine>() == CampaignBlock::Combine::kZip;
   }
+  if (const std::optional<Reader> design = r.Find("design")) {
+    design->CheckKeys();
+    CampaignBlock::Design d;
+    design->Optional("condition", d.condition);
+    d.probability = design->Maybe<double>("probability");
+    if (d.probability && d.condition != analysis::DesignCondition::kIntact) {
+      design->Child("probability").Fail("a fatigue sea state is an intact one (condition: intact)");
+    }
+    b.design = d;
+  }
   const Reader seeds = r.Child("seeds");
   if (seeds.IsMap()) {
     seeds.CheckKeys();
@@ -389,7 +399,7 @@ void BlocksOf(const Reader& root, const ParseContext& strict, const YAML::Node& 
 // `root` collects its errors (every top-level problem, one per block); each block is read
 // with `strict`, which stops at the block's first problem (its factors build on each other).
 void ParseDocument(const Reader& root, const ParseContext& strict, const YAML::Node& document,
-                   Campaign& c) {
+                   Campaign& c, bool need_scenario) {
   root.CheckKeys();
   root.Attempt([&] {
     root.Optional("name", c.name);
@@ -407,7 +417,7 @@ void ParseDocument(const Reader& root, const ParseContext& strict, const YAML::N
     }
     c.scenario_path = resolved.lexically_normal().string();
     std::error_code error;
-    if (!std::filesystem::is_regular_file(c.scenario_path, error)) {
+    if (need_scenario && !std::filesystem::is_regular_file(c.scenario_path, error)) {
       scenario.Fail("'" + given + "': no scenario file at " + c.scenario_path);
     }
   });
@@ -416,6 +426,20 @@ void ParseDocument(const Reader& root, const ParseContext& strict, const YAML::N
     if (const std::optional<Reader> set = root.Find("set")) c.set = ParseSet(*set, document["set"]);
   });
   root.Attempt([&] { BlocksOf(root, strict, document, c); });
+  root.Attempt([&] {
+    if (const std::optional<Reader> design = root.Find("design")) {
+      design->CheckKeys();
+      CampaignDesign d;
+      design->Optional("standard", d.standard);
+      design->Optional("consequence_class", d.consequence_class);
+      design->Optional("quantile", d.quantile);
+      design->Optional("confidence", d.confidence);
+      d.offset_limit = design->Maybe<double>("offset_limit");
+      design->Optional("fatigue_factor", d.fatigue_factor);
+      design->Optional("service_life", d.service_life);
+      c.design = d;
+    }
+  });
 }
 
 void BlocksOf(const Reader& root, const ParseContext& strict, const YAML::Node& document,
@@ -589,7 +613,8 @@ std::string CampaignRun::Command(const Campaign& campaign, const std::string& ou
   return command + " --seed " + std::to_string(seed);
 }
 
-Campaign ParseCampaign(const std::string& yaml_text, const std::string& source_name) {
+Campaign ParseCampaign(const std::string& yaml_text, const std::string& source_name,
+                       bool need_scenario) {
   Campaign c;
   c.source_path = source_name;
   c.text = yaml_text;
@@ -605,7 +630,7 @@ Campaign ParseCampaign(const std::string& yaml_text, const std::string& source_n
   try {
     const YAML::Node document = LoadDocument(yaml_text, source_name, "campaign", "scenario");
     const Reader root(context, document, "", ToSourceMark(document.Mark()), &schema::Campaign());
-    ParseDocument(root, strict, document, c);
+    ParseDocument(root, strict, document, c, need_scenario);
   } catch (const YAML::Exception& error) {
     ThrowAt(source_name, ToSourceMark(error.mark), "", error.msg);
   }

@@ -46,6 +46,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/design_tension.h"
 #include "scenarios/scenario.h"
 
 namespace moorsim::scenarios {
@@ -81,6 +82,13 @@ struct CampaignBlock {
   std::vector<std::string> set;  ///< "key.path=value", in the order written
   std::vector<CampaignFactor> factors;
   bool zip = false;
+  /// Its runs' part in the design checks (`design:`): the condition its storms test, and
+  /// for fatigue the share of the time its sea state holds; unset: none.
+  struct Design {
+    analysis::DesignCondition condition = analysis::DesignCondition::kIntact;
+    std::optional<double> probability;  ///< in (0, 1]: a fatigue sea state
+  };
+  std::optional<Design> design;
   /// Derived seeds: this many per point. Explicit seeds: first_seed..last_seed per point.
   std::int64_t seed_count = 1;
   std::optional<std::uint64_t> first_seed, last_seed;
@@ -95,6 +103,17 @@ constexpr ChoiceInfo ChoicesOf(CampaignFactor::Function) { return {"function", k
 inline constexpr std::string_view kCombineNames[] = {"grid", "zip"};
 constexpr ChoiceInfo ChoicesOf(CampaignBlock::Combine) { return {"combination", kCombineNames}; }
 
+/// The campaign's design checks (`design:`): the standard and its settings.
+struct CampaignDesign {
+  analysis::DesignStandard standard = analysis::DesignStandard::kApiRp2sk;
+  int consequence_class = 1;           ///< DNV-OS-E301: 1 or 2
+  double quantile = 0.9;               ///< a storm maximum's quantile reported beside the MPM
+  double confidence = 0.95;            ///< of the intervals
+  std::optional<double> offset_limit;  ///< [m] the vessel's largest allowed offset
+  double fatigue_factor = 1.0;         ///< the life must exceed service_life times this
+  double service_life = 20.0;          ///< [years]
+};
+
 struct Campaign {
   std::string name;
   std::string source_path;    ///< as given
@@ -103,6 +122,7 @@ struct Campaign {
   std::uint64_t seed = 0;
   std::vector<std::string> set;  ///< for every run
   std::vector<CampaignBlock> blocks;
+  std::optional<CampaignDesign> design;
   std::int64_t NumRuns() const;
   /// Every factor key of every block, first appearance first (the results' columns).
   std::vector<std::string> FactorKeys() const;
@@ -125,7 +145,10 @@ struct CampaignRun {
 /// Reads and checks the campaign file (the base scenario is not loaded here; see
 /// simulation::PrepareCampaign). Throws InputError.
 Campaign LoadCampaign(const std::string& path);
-Campaign ParseCampaign(const std::string& yaml_text, const std::string& source_name);
+/// `need_scenario` false: the base scenario need not be where the campaign names it (a
+/// results directory's copy of the campaign, read where its scenario is not).
+Campaign ParseCampaign(const std::string& yaml_text, const std::string& source_name,
+                       bool need_scenario = true);
 
 /// The derived simulator seed of run `index`: SplitMix64Mix(SplitMix64Mix(campaign seed) ^
 /// Fnv1a64("campaign run <index>")), so neighbouring indices give unrelated seeds.

@@ -604,6 +604,7 @@ void ParseSimulation(const Reader& r, Scenario& scenario) {
   r.Optional("duration", s.duration);
   r.Optional("output_rate_hz", s.output_rate);
   r.Optional("seed", s.seed);
+  r.Optional("statistics_from", s.statistics_from);
 }
 
 // The top level: a reader per section (the schema lists the keys; `base` was resolved
@@ -1278,6 +1279,11 @@ void CheckDetectors(const Checker& check, const Scenario& scenario) {
 }
 
 void CheckSimulation(const Checker& check, const SimulationSpec& s) {
+  if (!(s.statistics_from < s.duration)) {
+    check.Fail("simulation.statistics_from", WithUnit(s.statistics_from, "s") +
+                                                 " is not before the end of the run (" +
+                                                 WithUnit(s.duration, "s") + ")");
+  }
   const double rows = s.duration * s.output_rate;
   if (!(rows <= kMaxOutputRows)) {
     check.Fail("simulation.output_rate_hz",

@@ -343,6 +343,9 @@ struct SimulationSpec {
   double duration = 1000.0;  ///< [s]
   double output_rate = 1.0;  ///< [Hz]
   std::uint64_t seed = 1;
+  /// [s] The design record's statistics (extremes, fatigue damage, offset) start here:
+  /// what comes before (a line removed at 0 s and the vessel settling) is left out.
+  double statistics_from = 0.0;
 };
 
 struct Scenario {

@@ -1102,6 +1102,13 @@ constexpr Key kSimulationKeys[] = {
                  .kind = Kind::kCount,
                  .description = "Run seed: every random stream derives from it."},
                 MOORSIM_DEFAULT(SimulationSpec{}.seed)),
+    WithDefault(NonNegative("statistics_from", "s", kMaxTime,
+                            "Where the design record's statistics (the lines' extremes and "
+                            "fatigue damage, the vessel's largest offset) start: what comes "
+                            "before (a line removed at 0 s, the vessel settling) is left out. "
+                            "Before the end of the run.",
+                            "116 days"),
+                MOORSIM_DEFAULT(SimulationSpec{}.statistics_from)),
 };
 constexpr Block kSimulation{"Run length, output rate and seed.", kSimulationKeys};
 
@@ -1201,6 +1208,25 @@ constexpr Key kSeedRangeKeys[] = {
 };
 constexpr Block kSeedRange{"These seeds, from `from` to `to`.", kSeedRangeKeys};
 
+constexpr Key kBlockDesignKeys[] = {
+    WithDefault({.name = "condition",
+                 .kind = Kind::kString,
+                 .description = "The condition the block's storms test: intact, damaged (a "
+                                "line removed before the storm: its failure at 0 s and "
+                                "simulation.statistics_from after the vessel settles) or "
+                                "transient (a line parting during the storm).",
+                 .choices = ChoiceNames<analysis::DesignCondition>(),
+                 .choice_noun = ChoiceNoun<analysis::DesignCondition>()},
+                MOORSIM_DEFAULT(CampaignBlock::Design{}.condition)),
+    {.name = "probability",
+     .description = "A fatigue sea state: the share of the time it holds (the scatter "
+                    "diagram's), in (0, 1]. The blocks with one give the fatigue life.",
+     .minimum = Above(0.0),
+     .maximum = AtMost(1.0),
+     .interval = true},
+};
+constexpr Block kBlockDesign{"The block's part in the design checks.", kBlockDesignKeys};
+
 constexpr Key kCampaignBlockKeys[] = {
     {.name = "combine",
      .kind = Kind::kString,
@@ -1208,6 +1234,8 @@ constexpr Key kCampaignBlockKeys[] = {
                     "value of each).",
      .choices = ChoiceNames<CampaignBlock::Combine>(),
      .choice_noun = ChoiceNoun<CampaignBlock::Combine>()},
+    Map("design", kBlockDesign,
+        "The block's part in the design checks (with the campaign's `design`); omitted: none."),
     {.name = "factors",
      .kind = Kind::kList,
      .description = "The keys varied in this block.",
@@ -1225,6 +1253,53 @@ constexpr Key kCampaignBlockKeys[] = {
 };
 constexpr Block kCampaignBlock{"A block of runs.", kCampaignBlockKeys};
 
+constexpr Key kCampaignDesignKeys[] = {
+    WithDefault({.name = "confidence",
+                 .description = "Of the statistics' intervals.",
+                 .minimum = Above(0.5),
+                 .maximum = Below(1.0),
+                 .interval = true},
+                MOORSIM_DEFAULT(CampaignDesign{}.confidence)),
+    WithDefault({.name = "consequence_class",
+                 .kind = Kind::kInteger,
+                 .description = "dnv_os_e301's consequence class, 1 or 2.",
+                 .minimum = AtLeast(1.0),
+                 .maximum = AtMost(2.0),
+                 .interval = true},
+                MOORSIM_DEFAULT(CampaignDesign{}.consequence_class)),
+    WithDefault({.name = "fatigue_factor",
+                 .description = "The fatigue life must be at least service_life times this "
+                                "(DNV-OS-E301's design fatigue factor, API RP 2SK's factor of "
+                                "safety on the life).",
+                 .minimum = AtLeast(1.0),
+                 .maximum = AtMost(100.0)},
+                MOORSIM_DEFAULT(CampaignDesign{}.fatigue_factor)),
+    Positive("offset_limit", "m", kMaxDepth,
+             "The vessel's largest allowed offset from its initial pose (the risers' "
+             "limit); omitted: the offsets are reported, not checked.",
+             "the deepest ocean is 11 km"),
+    WithDefault({.name = "quantile",
+                 .description = "A storm maximum's quantile reported beside the MPM.",
+                 .minimum = Above(0.0),
+                 .maximum = Below(1.0),
+                 .interval = true},
+                MOORSIM_DEFAULT(CampaignDesign{}.quantile)),
+    WithDefault(Positive("service_life", "years", 200.0, "The mooring's service life."),
+                MOORSIM_DEFAULT(CampaignDesign{}.service_life)),
+    WithDefault({.name = "standard",
+                 .kind = Kind::kString,
+                 .description = "api_rp_2sk (the MPM against the breaking load over 1.67 "
+                                "intact, 1.25 damaged, 1.05 transient) or dnv_os_e301 "
+                                "(partial factors on the mean and dynamic tension against "
+                                "0.95 of the breaking load; ULS intact, ALS damaged and "
+                                "transient).",
+                 .choices = ChoiceNames<analysis::DesignStandard>(),
+                 .choice_noun = ChoiceNoun<analysis::DesignStandard>()},
+                MOORSIM_DEFAULT(CampaignDesign{}.standard)),
+};
+constexpr Block kCampaignDesign{
+    "The design checks from the blocks' runs: the standard and its settings.", kCampaignDesignKeys};
+
 constexpr Key kCampaignKeys[] = {
     {.name = "blocks",
      .kind = Kind::kList,
@@ -1232,6 +1307,9 @@ constexpr Key kCampaignKeys[] = {
      .required = true,
      .block = &kCampaignBlock,
      .min_items = 1},
+    Map("design", kCampaignDesign,
+        "The design checks (extreme tensions, safety factors, offsets, fatigue) from the "
+        "blocks with a `design`; omitted: none."),
     {.name = "name",
      .kind = Kind::kString,
      .description = "Campaign name; default: the file name without extension."},

@@ -524,6 +524,29 @@ std::vector<double> Simulation::FairleadTensions() {
   return tensions;
 }
 
+std::vector<std::vector<double>> Simulation::SegmentTensions() {
+  const std::vector<PointKinematics> points = Points();
+  const double* lines = x_.data() + plant_->StateSize();
+  std::vector<std::vector<double>> tensions(mooring_.num_lines());
+  for (int i = 0; i < mooring_.num_lines(); ++i) {
+    tensions[i] = mooring_.SegmentTensions(lines, i, points);
+  }
+  return tensions;
+}
+
+std::vector<std::vector<Vec3>> Simulation::NodePositions() {
+  const std::vector<PointKinematics> points = Points();
+  const double* lines = x_.data() + plant_->StateSize();
+  std::vector<std::vector<Vec3>> nodes(mooring_.num_lines());
+  for (int i = 0; i < mooring_.num_lines(); ++i) {
+    const int n = mooring_.line(i).segments;
+    for (int node = 0; node <= n; ++node) {
+      nodes[i].push_back(mooring_.NodePosition(lines, i, node, points));
+    }
+  }
+  return nodes;
+}
+
 double Simulation::MechanicalEnergy() {
   const Eigen::Map<const Vec6> eta(x_.data()), nu(x_.data() + 6);
   const int nb = plant_->StateSize();

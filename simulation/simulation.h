@@ -149,6 +149,12 @@ class Simulation {
   Sample Record();
   /// Each line's fairlead tension [N] at the current state.
   std::vector<double> FairleadTensions();
+  /// Each line's segment tensions [N], from the anchor up (MooringSystem::SegmentTensions),
+  /// at the current state.
+  std::vector<std::vector<double>> SegmentTensions();
+  /// Each line's node positions (Earth frame, NED [m]), from the anchor up, at the current
+  /// state.
+  std::vector<std::vector<Vec3>> NodePositions();
   /// Vessel energy (kinetic + hydrostatic) plus line energy (kinetic, gravitational,
   /// elastic, seabed) [J], relative to nothing in particular: differences matter.
   double MechanicalEnergy();

@@ -38,7 +38,7 @@ from . import _moorsim
 __all__ = [
     "Error", "InputError", "SolverError", "MoorsimWarning", "Lines", "Plant", "Run", "run",
     "read_run",
-    "run_campaign", "read_campaign", "detect", "__version__",
+    "run_campaign", "read_campaign", "read_design", "detect", "__version__",
 ]
 
 
@@ -205,6 +205,33 @@ def read_campaign(directory):
         with open(campaign) as f:
             table.attrs["campaign"] = json.load(f)
     return table
+
+
+def read_design(directory):
+    """A design campaign's checks (`moorsim batch` of a campaign with a `design` section):
+    {"extremes": DataFrame (DIR/design.csv: per block, point and line the MPM with its
+    interval, the design tension, safety factor, utilisation and result), "offsets":
+    DataFrame (per block and point the largest offset's MPM against the limit), "fatigue":
+    DataFrame (DIR/fatigue.csv: per line and place the damage per year and the life),
+    "checks": DIR/design.json as read}. Raises FileNotFoundError naming design.json for a
+    campaign without design checks."""
+    import pandas as pd
+
+    path = os.path.join(directory, "design.json")
+    if not os.path.exists(path):
+        raise FileNotFoundError(f"{path}: no design checks (the campaign has no design section)")
+    with open(path) as f:
+        checks = json.load(f)
+    offsets = pd.DataFrame([
+        {"block": o["block"], "point": o["point"], "condition": o["condition"], "runs": o["runs"],
+         "mpm": (o.get("mpm") or {}).get("value"), "mpm_lower": (o.get("mpm") or {}).get("lower"),
+         "mpm_upper": (o.get("mpm") or {}).get("upper"), "limit": o.get("limit"),
+         "pass": o.get("pass")}
+        for o in checks["offsets"]])
+    return {"extremes": pd.read_csv(os.path.join(directory, "design.csv")),
+            "offsets": offsets,
+            "fatigue": pd.read_csv(os.path.join(directory, "fatigue.csv")),
+            "checks": checks}
 
 
 def run_campaign(campaign, out=None, threads=0, keep_runs=False, progress=False):

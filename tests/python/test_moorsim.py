@@ -170,6 +170,45 @@ blocks:
     assert "dht.alarm_time" in table.columns
     again = moorsim.read_campaign(tmp_path / "out")
     assert again.equals(table)
+    with pytest.raises(FileNotFoundError, match="no design checks"):
+        moorsim.read_design(tmp_path / "out")
+
+
+def test_a_design_campaign_arrives_as_its_tables(tmp_path):
+    # The thesis chain with a breaking load and DNV's studless curve; three storms.
+    (tmp_path / "plant.yaml").write_text(f"""base: {THESIS}
+mooring:
+  line_types:
+    - {{name: chain_seed, diameter: 0.08, mass_per_length: 275, axial_stiffness: 2.28785e8,
+       axial_damping_ratio: 0.5, drag_normal: 0.3, drag_tangential: 1.0, added_mass_normal: 1.5,
+       minimum_breaking_load: 1.5e7, fatigue: {{curve: studless_chain}}}}
+detectors: []
+failure: ~
+""")
+    campaign = tmp_path / "design.yaml"
+    campaign.write_text("""scenario: plant.yaml
+seed: 5
+set: {simulation.duration: 30, simulation.output_rate_hz: 5}
+design: {standard: api_rp_2sk}
+blocks:
+  - name: storm
+    design: {condition: intact}
+    seeds: 3
+  - name: sea_state
+    design: {probability: 1}
+    seeds: 1
+""")
+    moorsim.run_campaign(campaign, out=tmp_path / "out", threads=2)
+    design = moorsim.read_design(tmp_path / "out")
+    extremes = design["extremes"]
+    assert list(extremes["line"]) == list(range(1, 9))
+    assert (extremes["result"] == "pass").all()
+    assert (extremes["required_factor"] == 1.67).all()
+    np.testing.assert_allclose(extremes["safety_factor"], 1.5e7 / extremes["design_tension"])
+    assert len(design["offsets"]) == 1
+    fatigue = design["fatigue"]
+    assert len(fatigue) == 16 and (fatigue["life_years"] > 0).all()
+    assert design["checks"]["fatigue"]["probability"] == 1
 
 
 def test_a_run_as_an_xarray_dataset(cli_run):

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/fatigue.h"
 #include "core/angles.h"
 #include "core/error.h"
 #include "core/sample_clock.h"
@@ -390,6 +391,65 @@ TEST(BridledMooringSlow, TheCellsTestNamesAPartedLeg) {
   EXPECT_EQ(cells.at("isolated_line"), 9) << cells.dump();
   EXPECT_EQ(cells.at("false_alarms"), 0) << cells.dump();
   EXPECT_LT(cells.at("delay").get<double>(), 20.0) << cells.dump();
+}
+
+// The design record (summary.json's "design") against the rows the run gave its caller:
+// each line's largest top tension, when, its mean and spread, its largest after the
+// failure, the rainflow damage of the rows' top tensions on the line type's curve; the
+// largest tension along a line at least the top's; the vessel's largest offset from its
+// initial pose.
+TEST_F(RunTest, TheDesignRecordIsTheRowsExtremesAndTheirDamage) {
+  scenarios::Scenario scenario =
+      scenarios::LoadScenario(kThesis, {"simulation.duration=60", "simulation.output_rate_hz=5",
+                                        "failure={line: 3, time: 30, mode: fairlead}"});
+  scenarios::LineType& chain = scenario.mooring.line_types[0];
+  chain.minimum_breaking_load = 5.4e6;
+  chain.fatigue_curve = analysis::TnCurveOf(analysis::TnPreset::kStudlessChain);
+  chain.fatigue_area = analysis::NominalArea(analysis::TnPreset::kStudlessChain, chain.diameter);
+  RunRequest request;
+  request.scenario = std::make_shared<const scenarios::Scenario>(scenario);
+  request.write_files = false;
+  const std::size_t lines = scenario.mooring.lines.size();
+  std::vector<std::vector<double>> top(lines);
+  std::vector<double> times;
+  double offset = 0.0;
+  const Vec3 start = scenarios::ToPlantModel(scenario).initial_pose;
+  request.on_row = [&](const Sample& s) {
+    times.push_back(s.time);
+    for (std::size_t k = 0; k < lines; ++k) top[k].push_back(s.fairlead_tension[k]);
+    offset = std::max(offset, std::hypot(s.pose_true(0) - start(0), s.pose_true(1) - start(1)));
+  };
+  const RunResult r = RunScenario(request);
+  ASSERT_EQ(r.status, RunStatus::kOk) << r.message;
+  const nlohmann::json& design = r.summary.at("design");
+  EXPECT_EQ(design.at("output_rate"), 5.0);
+  EXPECT_EQ(times.size(), 301u);
+  EXPECT_EQ(design.at("max_offset").get<double>(), offset);
+  const analysis::FatigueComponent component{*chain.fatigue_curve, chain.fatigue_area,
+                                             chain.minimum_breaking_load};
+  for (std::size_t k = 0; k < lines; ++k) {
+    SCOPED_TRACE("line " + std::to_string(k + 1));
+    const nlohmann::json& line = design.at("lines").at(k);
+    const std::vector<double>& t = top[k];
+    const auto largest = std::max_element(t.begin(), t.end());
+    EXPECT_EQ(line.at("max_top_tension").get<double>(), *largest);
+    EXPECT_EQ(line.at("time_of_max_top_tension").get<double>(), times[largest - t.begin()]);
+    double mean = 0.0;
+    for (double x : t) mean += x;
+    mean /= static_cast<double>(t.size());
+    EXPECT_NEAR(line.at("mean_top_tension").get<double>(), mean, 1e-9 * mean);
+    EXPECT_GT(line.at("std_top_tension").get<double>(), 0.0);
+    const double after = *std::max_element(t.begin() + 150, t.end());  // from 30 s on
+    EXPECT_EQ(line.at("max_top_tension_after_failure").get<double>(), after);
+    EXPECT_GE(line.at("max_tension_along").get<double>(), *largest);
+    EXPECT_EQ(line.at("minimum_breaking_load").get<double>(), 5.4e6);
+    EXPECT_DOUBLE_EQ(line.at("top_damage").get<double>(), analysis::MinerDamage(t, component));
+    EXPECT_GT(line.at("touchdown_damage").get<double>(), 0.0);
+    // The thesis lines lie on the seabed near their anchors: the touchdown is up the line.
+    EXPECT_GT(line.at("touchdown_segment").get<int>(), 1);
+  }
+  // Line 3 parted at its fairlead: nothing at its top after the failure.
+  EXPECT_EQ(design.at("lines").at(2).at("max_top_tension_after_failure").get<double>(), 0.0);
 }
 
 }  // namespace
