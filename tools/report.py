@@ -8,7 +8,8 @@ Per detector: detection and isolation rates (overall, per failed line, per facto
 the confusion matrix, detection delays, false alarms per hour, ROC curves over the
 detector's threshold grid, the run counts by status, the station keeping per block (runs
 that left their setpoint heading, flagged) and the worst runs with the command that repeats
-each. All intervals are 95 %: Wilson (1927) score intervals for proportions,
+each. A campaign with a design section adds its design checks (DIR/design.json): the lines'
+MPM tensions and their checks, the offsets and the fatigue lives. All intervals are 95 %: Wilson (1927) score intervals for proportions,
 exact (Garwood 1936) intervals for Poisson rates, from scipy's distributions.
 
 A missing directory or file, or a file that is not a campaign, ends the script with a
@@ -972,8 +973,70 @@ def worst_section(p: Page) -> list:
                    for w in p.rep["worst_runs"]])]
 
 
+def interval_text(e: dict | None) -> str:
+    if not e:
+        return "–"
+    return f"{number(e['value'])} [{number(e['lower'])}, {number(e['upper'])}]"
+
+
+def result_text(passed) -> str:
+    return "–" if passed is None else ("pass" if passed else "FAIL")
+
+
+def design_section(p: Page) -> list:
+    """The campaign's design checks (DIR/design.json, written by `moorsim batch`)."""
+    d = p.rep.get("design")
+    if not d:
+        return []
+    standard = {"api_rp_2sk": "API RP 2SK (the MPM against the breaking load)",
+                "dnv_os_e301": f"DNV-OS-E301, consequence class {d['consequence_class']} "
+                               "(partial factors on mean and dynamic tension against 0.95 MBL)"}
+    out = [f"<h2>Design checks</h2><p class='note'>By {html.escape(standard[d['standard']])}. "
+           f"MPM: the mode of a Gumbel distribution fitted by maximum likelihood to the "
+           f"storms' (seeds') maxima, with its {d['confidence']:.0%} interval; the "
+           f"{d['quantile']:g} quantile beside it. Tensions in kN. Each entry's runs are in "
+           f"design.json (run_indices); each run's row holds the command that repeats it. "
+           f"The tables are also design.csv and fatigue.csv.</p>"]
+    rows = []
+    for e in d["extremes"]:
+        check = e.get("check") or {}
+        kn = lambda x: None if x is None else x / 1e3
+        rows.append([e["block"], e["point"], e["condition"], e.get("parted_line", "–"), e["line"],
+                     e["type"], e["runs"],
+                     interval_text({k: kn(v) for k, v in e["mpm"].items()} if e.get("mpm") else None),
+                     number(kn((e.get("quantile") or {}).get("value"))),
+                     number(kn(e.get("mean_tension"))), number(kn(e.get("minimum_breaking_load"))),
+                     number(kn(check.get("design_tension"))),
+                     f"{number(check.get('safety_factor'), 3)} ({number(check.get('required_factor'), 3)})",
+                     number(check.get("utilisation"), 3), result_text(check.get("pass")),
+                     e.get("runs_for_5_percent", "–"), e.get("note", "")])
+    out.append(table(["block", "point", "condition", "parted line", "line", "type", "runs",
+                      "MPM [interval]", "quantile", "mean", "MBL", "design tension",
+                      "safety factor (required)", "utilisation", "result",
+                      "seeds for ±5 %", "note"], rows))
+    out.append("<p class='note'>The vessel's largest offset from its initial pose [m].</p>")
+    out.append(table(["block", "point", "condition", "runs", "MPM [interval]", "limit", "result"],
+                     [[o["block"], o["point"], o["condition"], o["runs"],
+                       interval_text(o.get("mpm")), number(o.get("limit")),
+                       result_text(o.get("pass"))] for o in d["offsets"]]))
+    f = d["fatigue"]
+    if f["states"]:
+        out.append(f"<p class='note'>Fatigue over {len(f['states'])} sea states (their "
+                   f"probabilities sum to {f['probability']:.4g}): damage per year and life, "
+                   f"against a service life of {f['service_life']:g} years times "
+                   f"{f['fatigue_factor']:g}.</p>")
+        out.append(table(["line", "place", "type", "damage per year", "life [years]", "result",
+                          "note"],
+                         [[line["line"], place, line[place]["type"],
+                           number(line[place]["annual_damage"], 3),
+                           number(line[place]["life_years"], 4), result_text(line[place]["pass"]),
+                           line[place].get("note", "")]
+                          for line in f["lines"] for place in ("top", "touchdown")]))
+    return out
+
+
 def write_html(p: Page) -> None:
-    out = header_section(p) + runs_section(p)
+    out = header_section(p) + runs_section(p) + design_section(p)
     if not p.labels:
         out.append("<p>The campaign has no detectors: nothing more to report.</p>")
     for section in (rates_section, confusion_section, delay_section, verdict_section,
@@ -1008,7 +1071,12 @@ def main(argv: list[str]) -> int:
         return EXIT_BAD_INPUT
     out_dir = args.out if args.out is not None else args.dir
     out_dir.mkdir(parents=True, exist_ok=True)
-    rep = json_safe(analyze(campaign))
+    rep = analyze(campaign)
+    design = args.dir / "design.json"
+    if design.exists():
+        with open(design, encoding="utf-8") as stream:
+            rep["design"] = json.load(stream)
+    rep = json_safe(rep)
     with open(out_dir / "report.json", "w", encoding="utf-8") as stream:
         json.dump(rep, stream, indent=1, allow_nan=False)
     print(f"wrote {out_dir / 'report.json'}")

@@ -3,8 +3,10 @@ moorsim.run() is `moorsim run`'s run.h5 bit for bit; the plant stepped from Pyth
 scenario's controller gives that run; detection replayed on arrays gives the run's
 verdicts; the lines save and restore bit for bit; a campaign's table arrives as a
 DataFrame; bad arguments raise, naming what is wrong."""
+import json
 import os
 import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -209,6 +211,13 @@ blocks:
     fatigue = design["fatigue"]
     assert len(fatigue) == 16 and (fatigue["life_years"] > 0).all()
     assert design["checks"]["fatigue"]["probability"] == 1
+    # The report shows them, and report.json holds them as design.json does.
+    report = subprocess.run([sys.executable, os.path.join(SOURCE, "tools/report.py"),
+                             str(tmp_path / "out")], capture_output=True, text=True)
+    assert report.returncode == 0, report.stderr
+    assert "<h2>Design checks</h2>" in (tmp_path / "out" / "report.html").read_text()
+    with open(tmp_path / "out" / "report.json") as f:
+        assert json.load(f)["design"] == design["checks"]
 
 
 def test_a_run_as_an_xarray_dataset(cli_run):
