@@ -477,7 +477,7 @@ std::string WriteTemplate(const TemplateRequest& request, const TemplateLayout& 
     const std::string text = "      " + key + ": " + value;
     y << text;
     if (!comment.empty()) {
-      y << std::string(std::max<std::size_t>(1, 36 - text.size()), ' ') << "# " << comment;
+      y << std::string(text.size() < 36 ? 36 - text.size() : 1, ' ') << "# " << comment;
     }
     y << "\n";
   };
@@ -510,6 +510,12 @@ std::string WriteTemplate(const TemplateRequest& request, const TemplateLayout& 
          "      # DNV-RP-E301 (sliding along the chain easier than across it).\n";
     field("friction_axial", Number(chain.friction_axial), "");
     field("friction_lateral", Number(chain.friction_lateral), "");
+    y << "      # For the design checks (docs/design-checks.md): 275 kg/m is a studless chain of\n"
+         "      # 117.6 mm bar by its weight (0.0199 d^2 kg/m, d in mm); grade R3's breaking load\n"
+         "      # 0.0223 d^2 (44 - 0.08 d) kN, and DNV-OS-E301's studless curve on its two bars.\n"
+         "      # Give your chain's grade and certificate values.\n";
+    field("minimum_breaking_load", "1.066e7", "[N]");
+    field("fatigue", "{curve: studless_chain, nominal_area: 0.02171}", "two bars [m^2]");
   }
   if (uses_rope) {
     const mooring_fem::LineType rope = mooring_fem::PolyesterRope();
@@ -529,6 +535,10 @@ std::string WriteTemplate(const TemplateRequest& request, const TemplateLayout& 
     field("drag_normal", Number(rope.drag_normal), "C_DN [-]");
     field("drag_tangential", Number(rope.drag_tangential), "C_DT [-]");
     field("added_mass_normal", Number(rope.added_mass_normal), "C_MN [-]");
+    y << "      # For the design checks: a generic breaking load for a 200 mm polyester rope and\n"
+         "      # API RP 2SM's curve; give your rope's certificate value.\n";
+    field("minimum_breaking_load", "9.0e6", "[N]");
+    field("fatigue", "{curve: polyester}", "");
   }
   if (!composite) {
     y << "\n  defaults: {segments: 50}          # equal segments per line (docs/line-model.md: "

@@ -123,6 +123,15 @@ TEST(PlanTemplate, SectionedLinesInGroupsCarryTheirPretensionInTheFem) {
     EXPECT_EQ(s.mooring.lines[k].sections[1].type, "polyester");
     EXPECT_EQ(s.mooring.lines[k].sections[1].segments, 55);  // one per 40 m
   }
+  // Both types carry what the design checks need: a breaking load and a T-N curve.
+  ASSERT_EQ(s.mooring.line_types.size(), 2u);
+  for (const LineType& type : s.mooring.line_types) {
+    SCOPED_TRACE(type.name);
+    EXPECT_GT(type.minimum_breaking_load, 0.0);
+    ASSERT_TRUE(type.fatigue_curve.has_value());
+  }
+  EXPECT_EQ(s.mooring.line_types[0].fatigue_curve->a, 6.0e10);  // DNV's studless chain
+  EXPECT_EQ(s.mooring.line_types[1].fatigue_curve->m, 5.2);     // API RP 2SM's polyester
   mooring_fem::MooringSystem mooring(ToMooringParameters(s.mooring));
   std::vector<Vec3> positions;
   std::vector<PointKinematics> fairleads(12);
