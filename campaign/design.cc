@@ -190,6 +190,8 @@ nlohmann::json DesignChecks(const scenarios::Campaign& campaign,
                       {"run_indices", runs}});
     const std::size_t lines = g.rows.front()->at("design").at("lines").size();
     for (std::size_t k = 0; k < lines; ++k) {
+      const nlohmann::json& line = g.rows.front()->at("design").at("lines").at(k);
+      types[k] = {line.at("type").get<std::string>(), line.at("touchdown_type").get<std::string>()};
       for (const char* place : {"top", "touchdown"}) {
         double rate = 0.0;
         bool known = true;
@@ -204,9 +206,6 @@ nlohmann::json DesignChecks(const scenarios::Campaign& campaign,
           }
           rate += damage.get<double>() / duration;
         }
-        const nlohmann::json& line = g.rows.front()->at("design").at("lines").at(k);
-        types[k] = {line.at("type").get<std::string>(),
-                    line.at("touchdown_type").get<std::string>()};
         if (!known) {
           missing[{k, place}] = "no T-N curve (fatigue) for its line type";
           continue;
