@@ -16,6 +16,7 @@
 #include <sstream>
 #include <thread>
 #include <unordered_map>
+#include <variant>
 
 #include "campaign/design.h"
 #include "core/error.h"
@@ -699,8 +700,17 @@ struct LoadedRun {
 };
 
 LoadedRun LoadRun(const scenarios::Campaign& c, const scenarios::CampaignRun& run) {
+  // A transient run whose instant is not yet known (checked before its intact run has run)
+  // is loaded with one at 0 s: any instant in the run is checked alike.
+  const scenarios::CampaignBlock& b = c.blocks[static_cast<std::size_t>(run.block)];
+  std::vector<std::string> overrides = run.overrides;
+  if (b.design && !b.design->intact.empty() &&
+      std::none_of(overrides.begin(), overrides.end(),
+                   [](const std::string& o) { return o.starts_with("failure.time="); })) {
+    overrides.insert(overrides.end() - 1, "failure.time=0");
+  }
   try {
-    LoadedRun loaded{scenarios::LoadScenario(c.scenario_path, run.overrides), {}};
+    LoadedRun loaded{scenarios::LoadScenario(c.scenario_path, overrides), {}};
     loaded.truth = TruthOf(loaded.scenario);
     return loaded;
   } catch (const InputError& e) {
@@ -831,6 +841,19 @@ PreparedCampaign PrepareCampaign(const std::string& campaign_path,
     }
   }
   shown.Show(p.checked_runs.size(), p.checked_runs.size(), true);
+  std::int64_t start = 0;
+  for (const scenarios::CampaignBlock& b : c.blocks) {
+    const std::int64_t size = b.Points() * b.SeedsPerPoint();
+    for (std::int64_t i = start; b.design && !b.design->intact.empty() && i < start + size; ++i) {
+      const scenarios::CampaignRun run = scenarios::MakeCampaignRun(c, i);
+      try {
+        p.transients.emplace(i, *scenarios::TransientSourceOf(c, run));
+      } catch (const InputError& e) {
+        throw InputError(RunLocation(c, run, e.what()));
+      }
+    }
+    start += size;
+  }
   std::int64_t first = 0;
   for (const scenarios::CampaignBlock& b : c.blocks) {
     p.block_durations.push_back(
@@ -894,7 +917,10 @@ void DescribeCampaign(const PreparedCampaign& p, int threads, std::ostream& out)
     simulated_seconds += truth.duration;
     out << r.index << "\t" << c.blocks[static_cast<std::size_t>(r.block)].name << "\t" << r.seed
         << "\t";
-    if (truth.failure_line > 0) {
+    if (const auto transient = p.transients.find(i); transient != p.transients.end()) {
+      out << "line " << transient->second.line << " at its largest tension in run "
+          << transient->second.intact_run;
+    } else if (truth.failure_line > 0) {
       out << "line " << truth.failure_line << " at " << Shortest(truth.failure_time) << " s";
     } else {
       out << "none";
@@ -1011,41 +1037,106 @@ void WriteCampaignTables(const std::filesystem::path& directory, const std::stri
 
 namespace {
 
+/// The failure time a transient run takes from its intact run's row, or why there is none.
+std::variant<double, std::string> InstantOf(const nlohmann::json& intact,
+                                            const scenarios::TransientSource& source) {
+  const std::string run = "intact run " + std::to_string(source.intact_run);
+  if (intact.value("status", "") != "ok") {
+    return run + " ended " + intact.value("status", "without a status") +
+           ": it gives no instant for line " + std::to_string(source.line) + " to part at";
+  }
+  const nlohmann::json* lines =
+      intact.contains("design") ? &intact.at("design").at("lines") : nullptr;
+  const auto k = static_cast<std::size_t>(source.line - 1);
+  if (lines == nullptr || k >= lines->size() ||
+      !lines->at(k).value("time_of_max_top_tension", nlohmann::json()).is_number()) {
+    return run + " records no largest tension of line " + std::to_string(source.line);
+  }
+  return lines->at(k).at("time_of_max_top_tension").get<double>();
+}
+
 /// The runs of this process (rank 0, or the only process): the pending list, and every row
-/// written to DIR/rows as it arrives, from this process's threads or another rank's.
+/// written to DIR/rows as it arrives, from this process's threads or another rank's. A
+/// transient run that takes its instant from an intact run waits for that run's row (the
+/// pending list holds the intact runs first).
 class LocalRunSource final : public RunSource {
  public:
   LocalRunSource(const PreparedCampaign& campaign, std::vector<std::int64_t> pending,
-                 std::filesystem::path rows, Progress& progress)
+                 const std::vector<nlohmann::json>& finished, std::filesystem::path rows,
+                 Progress& progress)
       : campaign_(campaign),
         pending_(std::move(pending)),
         rows_(std::move(rows)),
-        progress_(progress) {}
+        progress_(progress) {
+    for (const std::int64_t run : pending_) {
+      if (const auto t = campaign_.transients.find(run); t != campaign_.transients.end()) {
+        needed_.insert(t->second.intact_run);
+      }
+    }
+    for (const nlohmann::json& row : finished) {
+      const std::int64_t run = row.at("run").get<std::int64_t>();
+      if (needed_.count(run)) intact_rows_.emplace(run, row);
+    }
+    for (const std::int64_t run : needed_) {
+      if (!intact_rows_.count(run) &&
+          std::find(pending_.begin(), pending_.end(), run) == pending_.end()) {
+        throw ContractError("batch: intact run " + std::to_string(run) +
+                            " neither done nor pending");
+      }
+    }
+  }
 
-  std::optional<std::int64_t> Next() override {
-    const std::size_t k = next_.fetch_add(1);
-    if (k >= pending_.size()) return std::nullopt;
-    return pending_[k];
+  NextRun Next() override {
+    const std::lock_guard<std::mutex> guard(mutex_);
+    while (next_ < pending_.size()) {
+      const std::int64_t run = pending_[next_];
+      const auto transient = campaign_.transients.find(run);
+      if (transient == campaign_.transients.end()) {
+        ++next_;
+        return {.index = run};
+      }
+      const auto intact = intact_rows_.find(transient->second.intact_run);
+      if (intact == intact_rows_.end()) return {.index = NextRun::kNotYet};
+      ++next_;
+      const std::variant<double, std::string> instant =
+          InstantOf(intact->second, transient->second);
+      if (const double* time = std::get_if<double>(&instant)) {
+        return {.index = run, .failure_time = *time};
+      }
+      RunResult refused;
+      refused.message = std::get<std::string>(instant);
+      const scenarios::CampaignRun refused_run =
+          scenarios::MakeCampaignRun(campaign_.campaign, run);
+      WriteRow(run, MakeRow(campaign_, refused_run, nullptr, refused, {}, "").dump() + "\n", false);
+    }
+    return {};
   }
   void Deliver(std::int64_t run, const std::string& row, bool ok) override {
-    WriteFileAtomically(rows_ / (RunName(run) + ".json"), row);
     const std::lock_guard<std::mutex> guard(mutex_);
-    ++done_;
-    if (!ok) ++failed_;
-    seconds_done_ += campaign_.EstimatedDuration(run);
-    progress_.Update(done_, failed_, seconds_done_, false);
+    WriteRow(run, row, ok);
+    if (needed_.count(run)) intact_rows_.emplace(run, nlohmann::json::parse(row));
   }
   std::int64_t done() const { return done_; }
   std::int64_t failed() const { return failed_; }
   double seconds_done() const { return seconds_done_; }
 
  private:
+  void WriteRow(std::int64_t run, const std::string& row, bool ok) {
+    WriteFileAtomically(rows_ / (RunName(run) + ".json"), row);
+    ++done_;
+    if (!ok) ++failed_;
+    seconds_done_ += campaign_.EstimatedDuration(run);
+    progress_.Update(done_, failed_, seconds_done_, false);
+  }
+
   const PreparedCampaign& campaign_;
   std::vector<std::int64_t> pending_;
   std::filesystem::path rows_;
   Progress& progress_;
-  std::atomic<std::size_t> next_{0};
+  std::set<std::int64_t> needed_;                       // intact runs a pending transient needs
+  std::map<std::int64_t, nlohmann::json> intact_rows_;  // their rows, as they come
   std::mutex mutex_;
+  std::size_t next_ = 0;
   std::int64_t done_ = 0, failed_ = 0;
   double seconds_done_ = 0.0;
 };
@@ -1061,9 +1152,14 @@ std::string RunWorkers(const PreparedCampaign& p, const BatchOptions& o,
   {
     while (stop() == 0) {
       try {
-        const std::optional<std::int64_t> next = source.Next();
-        if (!next) break;
-        const scenarios::CampaignRun run = scenarios::MakeCampaignRun(p.campaign, *next);
+        const NextRun next = source.Next();
+        if (next.index == NextRun::kNoRun) break;
+        if (next.index == NextRun::kNotYet) {  // an intact run this one needs is running
+          std::this_thread::sleep_for(std::chrono::milliseconds(100));
+          continue;
+        }
+        scenarios::CampaignRun run = scenarios::MakeCampaignRun(p.campaign, next.index);
+        if (!std::isnan(next.failure_time)) scenarios::SetFailureTime(run, next.failure_time);
         std::shared_ptr<const scenarios::Scenario> scenario;
         RunTruth truth;
         try {
@@ -1187,19 +1283,32 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
     CreateDirectory(result.directory / "rows");
 
     // 3. What is left to do in this shard.
+    // Transient runs that take their instants from intact runs come after all others, and
+    // the intact runs they need are run here if DIR holds no row of them (another shard's).
+    const std::vector<nlohmann::json> finished_rows =
+        ReadRowsOf(result.directory, p.identity.sha256, c.NumRuns());
     std::set<std::int64_t> finished;
-    for (const nlohmann::json& row : ReadRowsOf(result.directory, p.identity.sha256, c.NumRuns())) {
+    for (const nlohmann::json& row : finished_rows)
       finished.insert(row.at("run").get<std::int64_t>());
-    }
-    std::vector<std::int64_t> pending;
+    std::vector<std::int64_t> pending, transient;
+    std::set<std::int64_t> needed;
     for (std::int64_t run = o.shard_index; run < c.NumRuns(); run += o.shard_count) {
       ++result.runs;
       if (finished.count(run)) {
         ++result.skipped;
+      } else if (const auto t = p.transients.find(run); t != p.transients.end()) {
+        transient.push_back(run);
+        needed.insert(t->second.intact_run);
       } else {
         pending.push_back(run);
       }
     }
+    for (const std::int64_t run : needed) {
+      if (finished.count(run) || (run - o.shard_index) % o.shard_count == 0) continue;
+      pending.push_back(run);  // another shard's
+      ++result.runs;
+    }
+    pending.insert(pending.end(), transient.begin(), transient.end());
 
     // 4. The runs: this process's threads, and the other ranks through the service thread.
     // Each run owns everything it builds; shared are the prepared campaign (read only),
@@ -1208,7 +1317,7 @@ BatchResult RunBatch(const BatchOptions& o) noexcept {
     double pending_seconds = 0.0;
     for (const std::int64_t k : pending) pending_seconds += p.EstimatedDuration(k);
     Progress progress(o.progress, result.runs, result.skipped, pending_seconds);
-    LocalRunSource local(p, std::move(pending), result.directory / "rows", progress);
+    LocalRunSource local(p, std::move(pending), finished_rows, result.directory / "rows", progress);
     std::string service_error;
     std::thread service;
     if (mpi.size > 1) {

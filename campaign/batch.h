@@ -18,6 +18,12 @@
 //                     the end of every batch, also an interrupted one
 //   runs/NNNNNNNN/    run.h5 and summary.json of each run, only with keep_runs
 //
+// A transient block that names its intact block (design.intact) runs after the intact runs
+// it needs: each of its runs parts its line at the instant of that line's largest top
+// tension in its intact run (the time added to its overrides as failure.time, so its row's
+// command repeats it alone). A shard runs, and keeps the rows of, the intact runs its
+// transient runs need that DIR does not hold yet, also those of other shards.
+//
 // A run that fails (integrator, static start) or passes its wall-clock limit is a row
 // with that status and the campaign goes on. A stop request (SIGINT/SIGTERM) ends every
 // run at its next output row; those runs get no row and are done again on resume.
@@ -29,6 +35,7 @@
 #include <functional>
 #include <iosfwd>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -146,6 +153,8 @@ struct PreparedCampaign {
   /// The plugin libraries the checked runs' scenarios name (`plugin:`), without repeats.
   std::vector<std::string> plugin_paths;
   CampaignIdentity identity;
+  /// Every transient run that takes its instant from an intact run (design.intact), by index.
+  std::map<std::int64_t, scenarios::TransientSource> transients;
   /// The estimated simulated duration of run `index` (its block's).
   double EstimatedDuration(std::int64_t index) const;
 };

@@ -33,6 +33,8 @@ int LaunchedRanks() {
 #ifdef MOORSIM_WITH_MPI
 namespace {
 
+static_assert(std::is_trivially_copyable_v<NextRun>, "NextRun is sent as its bytes");
+
 enum Tag : int { kRequest = 1, kIndex = 2, kRow = 3, kFinished = 4 };
 
 void CheckMpi(int code, const char* call) {
@@ -47,14 +49,13 @@ void CheckMpi(int code, const char* call) {
 
 class Remote final : public RunSource {
  public:
-  std::optional<std::int64_t> Next() override {
+  NextRun Next() override {
     const std::lock_guard<std::mutex> guard(mutex_);
     CheckMpi(MPI_Send(nullptr, 0, MPI_CHAR, 0, kRequest, MPI_COMM_WORLD), "MPI_Send");
-    std::int64_t index = -1;
-    CheckMpi(MPI_Recv(&index, 1, MPI_INT64_T, 0, kIndex, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
+    NextRun next;
+    CheckMpi(MPI_Recv(&next, sizeof next, MPI_BYTE, 0, kIndex, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
              "MPI_Recv");
-    if (index < 0) return std::nullopt;
-    return index;
+    return next;
   }
   void Deliver(std::int64_t run, const std::string& row, bool ok) override {
     std::vector<char> message(sizeof run + 1 + row.size());
@@ -120,9 +121,9 @@ void ServeRemoteWorkers(const MpiSession& session, RunSource& local,
              "MPI_Recv");
     switch (status.MPI_TAG) {
       case kRequest: {
-        std::int64_t index = -1;
-        if (stop() == 0) index = local.Next().value_or(-1);
-        CheckMpi(MPI_Send(&index, 1, MPI_INT64_T, status.MPI_SOURCE, kIndex, MPI_COMM_WORLD),
+        NextRun next;  // the same binary on every rank: sent as its bytes
+        if (stop() == 0) next = local.Next();
+        CheckMpi(MPI_Send(&next, sizeof next, MPI_BYTE, status.MPI_SOURCE, kIndex, MPI_COMM_WORLD),
                  "MPI_Send");
         break;
       }

@@ -6,7 +6,8 @@
 //
 // Protocol (MPI_COMM_WORLD, rank 0's service thread answers; a worker rank's threads take
 // turns under a mutex, so MPI_THREAD_SERIALIZED suffices):
-//   worker -> 0  kRequest (empty)               0 -> worker  kIndex: int64 run, -1 = none
+//   worker -> 0  kRequest (empty)               0 -> worker  kIndex: NextRun (int64 run,
+//                                                                  -1 none, -2 not yet; double)
 //   worker -> 0  kRow: int64 run, ok byte, the row's JSON text
 //   worker -> 0  kFinished (empty) once its threads are done
 // Built without MPI (no libopenmpi-dev at configure time), a launch by mpirun with more
@@ -15,18 +16,28 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
 
 namespace moorsim::simulation {
 
+/// What a worker does next: a run (index >= 0), with the failure time a transient run takes
+/// from its intact run (NaN: its own); kNoRun when none is left (or the batch is stopping);
+/// kNotYet when the runs left wait for rows still being made (ask again shortly).
+struct NextRun {
+  static constexpr std::int64_t kNoRun = -1;
+  static constexpr std::int64_t kNotYet = -2;
+  std::int64_t index = kNoRun;
+  double failure_time = std::numeric_limits<double>::quiet_NaN();
+};
+
 /// Where a worker thread gets its next run and where its finished row goes.
 class RunSource {
  public:
   virtual ~RunSource() = default;
-  /// The next run index, or nothing when none is left (or the batch is stopping).
-  virtual std::optional<std::int64_t> Next() = 0;
+  virtual NextRun Next() = 0;
   /// A finished run's row; `ok` says whether its status is ok.
   virtual void Deliver(std::int64_t run, const std::string& row, bool ok) = 0;
 };

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -351,6 +352,13 @@ CampaignBlock ParseBlock(const Reader& r, const YAML::Node& node) {
     if (d.probability && d.condition != analysis::DesignCondition::kIntact) {
       design->Child("probability").Fail("a fatigue sea state is an intact one (condition: intact)");
     }
+    if (const std::optional<Reader> intact = design->Find("intact")) {
+      d.intact = intact->As<std::string>();
+      d.intact_mark = intact->mark();
+      if (d.condition != analysis::DesignCondition::kTransient) {
+        intact->Fail("only a transient block takes its instants from an intact block");
+      }
+    }
     b.design = d;
   }
   const Reader seeds = r.Child("seeds");
@@ -396,6 +404,75 @@ void CheckZip(const std::string& file, const CampaignBlock& b, const std::string
 void BlocksOf(const Reader& root, const ParseContext& strict, const YAML::Node& document,
               Campaign& c);
 
+// The value `set` gives `key` last, if any.
+std::optional<std::string> SetValue(const std::vector<std::string>& set, const std::string& key) {
+  std::optional<std::string> value;
+  for (const std::string& item : set) {
+    if (item.starts_with(key + "=")) value = item.substr(key.size() + 1);
+  }
+  return value;
+}
+
+const CampaignFactor* FindFactor(const CampaignBlock& b, const std::string& key) {
+  for (const CampaignFactor& f : b.factors) {
+    if (f.key == key) return &f;
+  }
+  return nullptr;
+}
+
+// A transient block that names its intact block (design.intact) must be matchable run for
+// run: the same seeds, the intact block's listed values, the line each run parts.
+void CheckTransientBlocks(const Campaign& c) {
+  for (std::size_t i = 0; i < c.blocks.size(); ++i) {
+    const CampaignBlock& b = c.blocks[i];
+    if (!b.design || b.design->intact.empty()) continue;
+    const auto fail = [&](const std::string& what) {
+      ThrowAt(c.source_path, b.design->intact_mark, ItemPath("blocks", i) + ".design.intact", what);
+    };
+    const auto intact = std::find_if(c.blocks.begin(), c.blocks.end(), [&](const CampaignBlock& x) {
+      return x.name == b.design->intact;
+    });
+    if (intact == c.blocks.end())
+      fail("'" + b.design->intact + "' is not a block of this campaign");
+    if (!intact->design || intact->design->condition != analysis::DesignCondition::kIntact) {
+      fail("block '" + intact->name + "' is not an intact one (design: {condition: intact})");
+    }
+    if (!b.first_seed || !intact->first_seed) {
+      fail("runs are matched by seed: give this block and '" + intact->name +
+           "' explicit seeds (seeds: {from: A, to: B})");
+    }
+    if (*b.first_seed < *intact->first_seed || *b.last_seed > *intact->last_seed) {
+      fail("seeds " + std::to_string(*b.first_seed) + ".." + std::to_string(*b.last_seed) +
+           ": block '" + intact->name + "' has seeds " + std::to_string(*intact->first_seed) +
+           ".." + std::to_string(*intact->last_seed) + " only");
+    }
+    for (const CampaignFactor& f : intact->factors) {
+      if (f.kind != CampaignFactor::Kind::kValues) {
+        fail("'" + intact->name + "' draws '" + f.key +
+             "': runs are matched by listed values (values or range)");
+      }
+      const CampaignFactor* mine = FindFactor(b, f.key);
+      if (mine == nullptr || mine->kind != CampaignFactor::Kind::kValues) {
+        fail("'" + intact->name + "' varies '" + f.key + "': list its values in this block too");
+      }
+      for (const std::string& value : mine->values) {
+        if (std::find(f.values.begin(), f.values.end(), value) == f.values.end()) {
+          fail("'" + f.key + "' = " + value + ": block '" + intact->name + "' does not list it");
+        }
+      }
+    }
+    const CampaignFactor* line = FindFactor(b, "failure.line");
+    if ((line == nullptr || line->kind != CampaignFactor::Kind::kValues) &&
+        !SetValue(b.set, "failure.line") && !SetValue(c.set, "failure.line")) {
+      fail("the line each run parts: give failure.line (set or listed values)");
+    }
+    if (FindFactor(b, "failure.time") || SetValue(b.set, "failure.time") ||
+        SetValue(c.set, "failure.time")) {
+      fail("failure.time is set: the runs take it from block '" + intact->name + "'");
+    }
+  }
+}
+
 // `root` collects its errors (every top-level problem, one per block); each block is read
 // with `strict`, which stops at the block's first problem (its factors build on each other).
 void ParseDocument(const Reader& root, const ParseContext& strict, const YAML::Node& document,
@@ -425,7 +502,10 @@ void ParseDocument(const Reader& root, const ParseContext& strict, const YAML::N
   root.Attempt([&] {
     if (const std::optional<Reader> set = root.Find("set")) c.set = ParseSet(*set, document["set"]);
   });
-  root.Attempt([&] { BlocksOf(root, strict, document, c); });
+  root.Attempt([&] {
+    BlocksOf(root, strict, document, c);
+    CheckTransientBlocks(c);
+  });
   root.Attempt([&] {
     if (const std::optional<Reader> design = root.Find("design")) {
       design->CheckKeys();
@@ -587,6 +667,42 @@ CampaignRun MakeCampaignRun(const Campaign& campaign, std::int64_t index) {
   for (const auto& [key, value] : run.factors) run.overrides.push_back(key + "=" + value);
   run.overrides.push_back("simulation.seed=" + std::to_string(run.seed));
   return run;
+}
+
+std::optional<TransientSource> TransientSourceOf(const Campaign& c, const CampaignRun& run) {
+  const CampaignBlock& b = c.blocks[static_cast<std::size_t>(run.block)];
+  if (!b.design || b.design->intact.empty()) return std::nullopt;
+  TransientSource source;
+  const std::optional<std::string> line = SetValue(run.overrides, "failure.line");
+  const char* end = line ? line->data() + line->size() : nullptr;
+  if (!line || std::from_chars(line->data(), end, source.line).ptr != end || source.line < 1) {
+    throw InputError("failure.line '" + line.value_or("") +
+                     "': a transient run parts one line, numbered from 1");
+  }
+  std::int64_t start = 0;
+  std::size_t k = 0;
+  for (; c.blocks[k].name != b.design->intact; ++k) {
+    start += c.blocks[k].Points() * c.blocks[k].SeedsPerPoint();
+  }
+  const CampaignBlock& intact = c.blocks[k];
+  const std::int64_t seeds = intact.SeedsPerPoint();
+  const auto replicate = static_cast<std::int64_t>(run.seed - *intact.first_seed);
+  for (std::int64_t point = 0; point < intact.Points(); ++point) {
+    const CampaignRun candidate = MakeCampaignRun(c, start + point * seeds + replicate);
+    bool same = true;
+    for (const auto& [key, value] : candidate.factors)
+      same = same && FactorValue(run, key) == value;
+    if (same) {
+      source.intact_run = candidate.index;
+      return source;
+    }
+  }
+  throw InputError("no run of block '" + intact.name + "' has seed " + std::to_string(run.seed) +
+                   " and this run's values of its factors");
+}
+
+void SetFailureTime(CampaignRun& run, double time) {
+  run.overrides.insert(run.overrides.end() - 1, "failure.time=" + FormatNumber(time));
 }
 
 std::string ShellQuote(const std::string& text) {

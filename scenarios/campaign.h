@@ -87,6 +87,11 @@ struct CampaignBlock {
   struct Design {
     analysis::DesignCondition condition = analysis::DesignCondition::kIntact;
     std::optional<double> probability;  ///< in (0, 1]: a fatigue sea state
+    /// kTransient: the intact block whose run of the same seed and factor values gives
+    /// each run's failure time (the instant of its line's largest top tension there);
+    /// empty: the failure.time the runs are given.
+    std::string intact;
+    SourceMark intact_mark;
   };
   std::optional<Design> design;
   /// Derived seeds: this many per point. Explicit seeds: first_seed..last_seed per point.
@@ -156,6 +161,19 @@ std::uint64_t DerivedRunSeed(std::uint64_t campaign_seed, std::int64_t index);
 
 /// Run `index` (0 <= index < NumRuns()) with its seed and drawn values.
 CampaignRun MakeCampaignRun(const Campaign& campaign, std::int64_t index);
+
+/// A transient run that takes its instant from an intact run (CampaignBlock::Design::intact):
+/// that run and the line this one parts.
+struct TransientSource {
+  std::int64_t intact_run = 0;
+  int line = 0;
+};
+/// The intact run `run` takes its failure time from: the run of the named intact block
+/// with the same seed and the same value of each of that block's factors; nothing for a
+/// run of any other block. Throws InputError (naming the run) when no intact run matches.
+std::optional<TransientSource> TransientSourceOf(const Campaign& campaign, const CampaignRun& run);
+/// Gives `run` its failure time: `failure.time=<time>` just before its seed.
+void SetFailureTime(CampaignRun& run, double time);
 
 /// `text` quoted for a POSIX shell when it holds anything but [A-Za-z0-9_./:=,+-].
 std::string ShellQuote(const std::string& text);

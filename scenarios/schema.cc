@@ -1218,6 +1218,12 @@ constexpr Key kBlockDesignKeys[] = {
                  .choices = ChoiceNames<analysis::DesignCondition>(),
                  .choice_noun = ChoiceNoun<analysis::DesignCondition>()},
                 MOORSIM_DEFAULT(CampaignBlock::Design{}.condition)),
+    {.name = "intact",
+     .kind = Kind::kString,
+     .description = "transient: the intact block whose runs give the instants: each run "
+                    "parts its failure.line at the time of that line's largest top tension in "
+                    "the intact block's run of the same seed and factor values (explicit "
+                    "seeds in both blocks). Omitted: the failure.time the runs are given."},
     {.name = "probability",
      .description = "A fatigue sea state: the share of the time it holds (the scatter "
                     "diagram's), in (0, 1]. The blocks with one give the fatigue life.",

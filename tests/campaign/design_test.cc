@@ -10,13 +10,16 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "analysis/design_tension.h"
 #include "analysis/extremes.h"
 #include "campaign/batch.h"
+#include "core/format.h"
 #include "scenarios/campaign.h"
 #include "tests/support/scratch_directory.h"
 
@@ -167,18 +170,20 @@ TEST(DesignChecks, NoneWithoutTheCampaignsDesignAndTooFewRunsAreNotFitted) {
 // at 5 Hz, its chain given a breaking load and DNV's studless curve; three intact storms,
 // three with line 2 removed at 0 s (statistics from 10 s), two fatigue states. The tables
 // are the fits of the rows' records.
+constexpr const char* kDesignPlant =
+    "base: " MOORSIM_SOURCE_DIR
+    "/scenarios/library/thesis_no_failure.yaml\n"
+    "mooring:\n"
+    "  line_types:\n"
+    "    - {name: chain_seed, diameter: 0.08, mass_per_length: 275, axial_stiffness: "
+    "2.28785e8, axial_damping_ratio: 0.5, drag_normal: 0.3, drag_tangential: 1.0, "
+    "added_mass_normal: 1.5, friction_axial: 0.5, friction_lateral: 1.0, "
+    "minimum_breaking_load: 1.5e7, fatigue: {curve: studless_chain}}\n"
+    "detectors: []\n";
+
 TEST(DesignCampaignSlow, WritesItsTablesFromTheRunsRecords) {
   const std::filesystem::path dir = moorsim::testing::FreshDirectory("design_campaign");
-  std::ofstream(dir / "plant.yaml")
-      << "base: " MOORSIM_SOURCE_DIR
-         "/scenarios/library/thesis_no_failure.yaml\n"
-         "mooring:\n"
-         "  line_types:\n"
-         "    - {name: chain_seed, diameter: 0.08, mass_per_length: 275, axial_stiffness: "
-         "2.28785e8, axial_damping_ratio: 0.5, drag_normal: 0.3, drag_tangential: 1.0, "
-         "added_mass_normal: 1.5, friction_axial: 0.5, friction_lateral: 1.0, "
-         "minimum_breaking_load: 1.5e7, fatigue: {curve: studless_chain}}\n"
-         "detectors: []\n";
+  std::ofstream(dir / "plant.yaml") << kDesignPlant;
   std::ofstream(dir / "design.yaml")
       << "scenario: plant.yaml\n"
          "seed: 5\n"
@@ -244,6 +249,104 @@ TEST(DesignCampaignSlow, WritesItsTablesFromTheRunsRecords) {
   }
   EXPECT_TRUE(std::filesystem::exists(dir / "out" / "design.csv"));
   EXPECT_TRUE(std::filesystem::exists(dir / "out" / "fatigue.csv"));
+  std::filesystem::remove_all(dir);
+}
+
+std::map<std::int64_t, nlohmann::json> RowsByRun(const std::filesystem::path& dir) {
+  std::map<std::int64_t, nlohmann::json> rows;
+  for (nlohmann::json& row : ReadRows(dir)) rows.emplace(row.at("run").get<std::int64_t>(), row);
+  return rows;
+}
+
+// Transient runs part their line at the instant of its largest top tension in the intact
+// run of their seed, run after it; the row's command carries that instant. A shard runs
+// the intact runs its transient runs need, and the shards merge to the unsharded table.
+TEST(DesignCampaignSlow, ATransientRunPartsItsLineAtItsIntactRunsLargestTension) {
+  const std::filesystem::path dir = moorsim::testing::FreshDirectory("design_transient");
+  std::ofstream(dir / "plant.yaml") << kDesignPlant;
+  std::ofstream(dir / "transient.yaml")
+      << "scenario: plant.yaml\n"
+         "seed: 5\n"
+         "set: {simulation.duration: 40, simulation.output_rate_hz: 5}\n"
+         "design: {}\n"
+         "blocks:\n"
+         "  - name: storm\n"
+         "    design: {condition: intact}\n"
+         "    seeds: {from: 1, to: 3}\n"
+         "  - name: parted\n"
+         "    design: {condition: transient, intact: storm}\n"
+         "    set: {failure.mode: fairlead}\n"
+         "    factors: [{key: failure.line, values: [1, 6]}]\n"
+         "    seeds: {from: 1, to: 3}\n";
+  const auto batch = [&](const std::string& out, int shard, int shards) {
+    BatchOptions o;
+    o.campaign_path = (dir / "transient.yaml").string();
+    o.out = dir / out;
+    o.threads = 2;
+    o.progress = false;
+    o.shard_index = shard;
+    o.shard_count = shards;
+    return RunBatch(o);
+  };
+  const BatchResult whole = batch("whole", 0, 1);
+  ASSERT_EQ(whole.status, BatchStatus::kOk) << whole.message;
+  const std::map<std::int64_t, nlohmann::json> rows = RowsByRun(dir / "whole");
+  ASSERT_EQ(rows.size(), 9u);
+  for (std::int64_t run = 3; run < 9; ++run) {
+    const nlohmann::json& row = rows.at(run);
+    const int line = run < 6 ? 1 : 6;
+    const nlohmann::json& intact = rows.at((run - 3) % 3);
+    EXPECT_EQ(intact.at("seed"), row.at("seed"));
+    const double instant =
+        intact.at("design").at("lines").at(line - 1).at("time_of_max_top_tension").get<double>();
+    EXPECT_GT(instant, 0.0);
+    EXPECT_EQ(row.at("failure").at("line"), line);
+    EXPECT_EQ(row.at("failure").at("time").get<double>(), instant);
+    EXPECT_NE(row.at("command").get<std::string>().find(
+                  "--set failure.time=" + FormatNumber(instant) + " --seed"),
+              std::string::npos)
+        << row.at("command");
+    // Until the instant the transient run is its intact run, bit for bit: another line's
+    // largest tension there, if it came earlier, is reached here too (and may be passed
+    // after the instant); if both came earlier they are one. The parted line holds none
+    // from the instant on.
+    for (int k = 1; k <= 8; ++k) {
+      const nlohmann::json& mine = row.at("design").at("lines").at(k - 1);
+      const nlohmann::json& theirs = intact.at("design").at("lines").at(k - 1);
+      if (k == line) {
+        EXPECT_EQ(mine.at("max_top_tension_after_failure").get<double>(), 0.0);
+        continue;
+      }
+      if (theirs.at("time_of_max_top_tension").get<double>() < instant) {
+        EXPECT_GE(mine.at("max_top_tension").get<double>(),
+                  theirs.at("max_top_tension").get<double>())
+            << "line " << k;
+      }
+      if (mine.at("time_of_max_top_tension").get<double>() < instant &&
+          theirs.at("time_of_max_top_tension").get<double>() < instant) {
+        EXPECT_EQ(mine.at("max_top_tension"), theirs.at("max_top_tension")) << "line " << k;
+      }
+    }
+  }
+  const nlohmann::json checks = nlohmann::json::parse(std::ifstream(dir / "whole" / "design.json"));
+  std::set<int> parted;
+  for (const nlohmann::json& e : checks.at("extremes")) {
+    if (e.at("condition") == "transient") parted.insert(e.at("parted_line").get<int>());
+  }
+  EXPECT_EQ(parted, (std::set<int>{1, 6}));
+  // Shard 2 of 2 (runs 1, 3, 5, 7) also runs intact runs 0 and 2, which runs 3, 5 and 7
+  // need; with shard 1 the merge is the unsharded table.
+  const BatchResult second = batch("second", 1, 2);
+  ASSERT_EQ(second.status, BatchStatus::kOk) << second.message;
+  EXPECT_EQ(RowsByRun(dir / "second").size(), 6u);
+  ASSERT_EQ(batch("first", 0, 2).status, BatchStatus::kOk);
+  const MergeResult merged = MergeCampaigns({dir / "first", dir / "second"}, dir / "merged", "");
+  EXPECT_TRUE(merged.missing.empty());
+  const std::map<std::int64_t, nlohmann::json> merged_rows = RowsByRun(dir / "merged");
+  for (const auto& [run, row] : rows) {
+    EXPECT_EQ(merged_rows.at(run).at("command"), row.at("command"));
+    EXPECT_EQ(merged_rows.at(run).at("design"), row.at("design"));
+  }
   std::filesystem::remove_all(dir);
 }
 

@@ -271,6 +271,50 @@ blocks:
   EXPECT_EQ(ShellQuote("a/b.yaml"), "a/b.yaml");
 }
 
+// A transient block naming its intact block: each run is matched to the intact run of its
+// seed and the intact block's factor values, and parts its own failure.line.
+const std::string kTransient = R"(scenario: ../library/thesis_no_failure.yaml
+seed: 4
+blocks:
+  - name: storm
+    design: {condition: intact}
+    factors: [{key: environment.waves.hs, values: [3, 5]}]
+    seeds: {from: 10, to: 12}
+  - name: parted
+    design: {condition: transient, intact: storm}
+    set: {failure.mode: fairlead}
+    factors:
+      - {key: failure.line, values: [4, 7]}
+      - {key: environment.waves.hs, values: [5]}
+    seeds: {from: 11, to: 12}
+)";
+
+TEST(Campaign, ATransientRunTakesItsInstantFromTheIntactRunOfItsSeedAndValues) {
+  const Campaign c = ParseCampaign(kTransient, kSource);
+  ASSERT_EQ(c.NumRuns(), 10);
+  EXPECT_FALSE(TransientSourceOf(c, MakeCampaignRun(c, 4)));  // an intact run
+  // Runs 6..9: line 4 at seeds 11, 12; line 7 at seeds 11, 12; all at hs 5, the intact
+  // block's second point (runs 3..5, seeds 10..12).
+  const std::int64_t expected_intact[] = {4, 5, 4, 5};
+  const int expected_line[] = {4, 4, 7, 7};
+  for (int k = 0; k < 4; ++k) {
+    CampaignRun run = MakeCampaignRun(c, 6 + k);
+    const std::optional<TransientSource> source = TransientSourceOf(c, run);
+    ASSERT_TRUE(source);
+    EXPECT_EQ(source->intact_run, expected_intact[k]);
+    EXPECT_EQ(source->line, expected_line[k]);
+    const CampaignRun intact = MakeCampaignRun(c, source->intact_run);
+    EXPECT_EQ(intact.seed, run.seed);
+    EXPECT_EQ(intact.factors.at(0).second, "5");
+    // The instant goes just before the seed, so the run's command repeats it.
+    SetFailureTime(run, 1234.6);
+    EXPECT_EQ(run.overrides.at(run.overrides.size() - 2), "failure.time=1234.6");
+    EXPECT_NE(
+        run.Command(c, "").find("--set failure.time=1234.6 --seed " + std::to_string(run.seed)),
+        std::string::npos);
+  }
+}
+
 struct CampaignError {
   const char* name;
   std::string text;
@@ -430,6 +474,42 @@ std::vector<CampaignError> Errors() {
        "text after the document-end marker '...' (a campaign file holds one YAML document)"},
       {"SecondDocument", b + "---\nseed: 3\n", "seed: 3\n",
        "a campaign file holds one YAML document; this is a second one"},
+      // A transient block that takes its instants from an intact block.
+      {"IntactOnAnIntactBlock", Replace(kTransient, "condition: transient", "condition: damaged"),
+       "storm}\n    set",
+       "blocks[2].design.intact: only a transient block takes its instants from an intact block"},
+      {"IntactNotABlock", Replace(kTransient, "intact: storm", "intact: storms"), "storms}",
+       "blocks[2].design.intact: 'storms' is not a block of this campaign"},
+      {"IntactNotIntact", Replace(kTransient, "condition: intact", "condition: damaged"),
+       "storm}\n    set",
+       "blocks[2].design.intact: block 'storm' is not an intact one (design: {condition: "
+       "intact})"},
+      {"IntactDerivedSeeds", Replace(kTransient, "seeds: {from: 10, to: 12}", "seeds: 3"),
+       "storm}\n    set",
+       "blocks[2].design.intact: runs are matched by seed: give this block and 'storm' explicit "
+       "seeds (seeds: {from: A, to: B})"},
+      {"IntactSeedsOutside", Replace(kTransient, "from: 11, to: 12", "from: 11, to: 13"),
+       "storm}\n    set",
+       "blocks[2].design.intact: seeds 11..13: block 'storm' has seeds 10..12 only"},
+      {"IntactDrawnFactor", Replace(kTransient, "values: [3, 5]", "uniform: [3, 5]"),
+       "storm}\n    set",
+       "blocks[2].design.intact: 'storm' draws 'environment.waves.hs': runs are matched by "
+       "listed values (values or range)"},
+      {"IntactFactorNotListed",
+       Replace(kTransient, "      - {key: environment.waves.hs, values: [5]}\n", ""),
+       "storm}\n    set",
+       "blocks[2].design.intact: 'storm' varies 'environment.waves.hs': list its values in this "
+       "block too"},
+      {"IntactValueNotThere", Replace(kTransient, "values: [5]", "values: [5, 6]"),
+       "storm}\n    set",
+       "blocks[2].design.intact: 'environment.waves.hs' = 6: block 'storm' does not list it"},
+      {"TransientWithoutLine",
+       Replace(kTransient, "      - {key: failure.line, values: [4, 7]}\n", ""), "storm}\n    set",
+       "blocks[2].design.intact: the line each run parts: give failure.line (set or listed "
+       "values)"},
+      {"TransientWithTime", Replace(kTransient, "failure.mode: fairlead", "failure.time: 9"),
+       "storm}\n    set",
+       "blocks[2].design.intact: failure.time is set: the runs take it from block 'storm'"},
   };
 }
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # moorsim batch under `mpirun -np 2` (one thread per rank) gives the rows of the same
 # campaign on two threads of one process: rank 0 deals the runs, receives the rows and
-# alone writes the results. Usage: mpi_batch_test.sh MOORSIM SOURCE_DIR
+# alone writes the results; transient runs wait for the intact runs they take their
+# instants from, wherever those ran. Usage: mpi_batch_test.sh MOORSIM SOURCE_DIR
 set -euo pipefail
 moorsim=$1
 source_dir=$2
@@ -21,6 +22,14 @@ blocks:
     seeds: 1
   - name: intact
     seeds: 2
+  - name: storm
+    design: {condition: intact}
+    seeds: {from: 1, to: 2}
+  - name: parted
+    design: {condition: transient, intact: storm}
+    set: {failure.mode: fairlead}
+    factors: [{key: failure.line, values: [2, 5]}]
+    seeds: {from: 1, to: 2}
 YAML
 
 "$moorsim" batch "$work/campaign.yaml" --out "$work/threads" --threads 2 --quiet
@@ -44,9 +53,14 @@ def rows(directory):
     return out
 
 threads, mpi = rows(sys.argv[1]), rows(sys.argv[2])
-assert len(threads) == 5, f"threaded batch: {len(threads)} rows, expected 5"
+assert len(threads) == 11, f"threaded batch: {len(threads)} rows, expected 11"
 assert threads == mpi, "rows differ between the threaded and the MPI batch"
+for run in range(7, 11):
+    intact = threads[5 + (run - 7) % 2]
+    line = threads[run]["failure"]["line"]
+    instant = intact["design"]["lines"][line - 1]["time_of_max_top_tension"]
+    assert threads[run]["failure"]["time"] == instant, f"run {run}: not at its intact instant"
 for name in ("runs.csv", "campaign.h5"):
     assert pathlib.Path(sys.argv[2], name).exists(), f"MPI batch wrote no {name}"
-print("mpi batch: 5 rows equal to the threaded batch's")
+print("mpi batch: 11 rows equal to the threaded batch's, transients at their instants")
 PY
