@@ -194,22 +194,22 @@ WeibullFit FitWeibull(std::span<const double> peaks, double threshold, double lo
   return fit;
 }
 
-Estimate WeibullFit::Mpm(double peaks) const {
-  if (!(peaks > 1.0)) throw std::invalid_argument("Weibull MPM: fewer than 2 peaks");
-  // ((x - c) / sigma)^k = ((u - c) / sigma)^k + ln N: x - c = sigma q^(1/k), with
-  // q = (t / sigma)^k + ln N, t = u - c.
+Estimate WeibullFit::Quantile(double peaks, double p) const {
+  if (!(peaks > 1.0)) throw std::invalid_argument("Weibull quantile: fewer than 2 peaks");
+  if (!(p > 0.0 && p < 1.0)) throw std::invalid_argument("Weibull quantile: p outside (0, 1)");
+  // peaks P(X > x) = -ln p: ((x - c) / sigma)^k = ((u - c) / sigma)^k + ln N - ln(-ln p),
+  // so x - c = sigma q^(1/k), with q that sum and t = u - c.
   const double t = threshold - location;
-  const double q = std::pow(t / scale, shape) + std::log(peaks);
-  const double excess = scale * std::pow(q, 1.0 / shape);
-  // Derivatives of the excess in log sigma (a) and log k (b), by central differences.
+  const double tail = std::log(peaks) - std::log(-std::log(p));
   const auto at = [&](double a, double b) {
     const double sigma = std::exp(a), k = std::exp(b);
-    return sigma * std::pow(std::pow(t / sigma, k) + std::log(peaks), 1.0 / k);
+    return sigma * std::pow(std::pow(t / sigma, k) + tail, 1.0 / k);
   };
+  // Derivatives of the excess in log sigma (a) and log k (b), by central differences.
   const double a = std::log(scale), b = std::log(shape), h = 1e-6;
   const Eigen::Vector2d gradient((at(a + h, b) - at(a - h, b)) / (2.0 * h),
                                  (at(a, b + h) - at(a, b - h)) / (2.0 * h));
-  return Interval(location + excess, gradient.dot(covariance * gradient), confidence);
+  return Interval(location + at(a, b), gradient.dot(covariance * gradient), confidence);
 }
 
 }  // namespace moorsim::analysis

@@ -16,9 +16,18 @@
 
 #include <Eigen/Dense>
 #include <span>
+#include <string_view>
 #include <vector>
 
+#include "core/choice.h"
+
 namespace moorsim::analysis {
+
+/// How a sea state's extremes are estimated: the maxima of several storms (one per seed),
+/// Gumbel-fitted; or the peaks of one long record, Weibull-fitted.
+enum class ExtremesMethod { kGumbel, kWeibull };
+inline constexpr std::string_view kExtremesMethodNames[] = {"gumbel", "weibull"};
+constexpr ChoiceInfo ChoicesOf(ExtremesMethod) { return {"extremes method", kExtremesMethodNames}; }
 
 /// A statistic with its confidence interval.
 struct Estimate {
@@ -63,9 +72,12 @@ struct WeibullFit {
   int samples = 0;
   double confidence = 0.95;
 
+  /// The largest of `peaks` peaks over the threshold not exceeded with probability p
+  /// (P(max <= x) = exp(-peaks P(X > x))), with its interval.
+  Estimate Quantile(double peaks, double p) const;
   /// The MPM of the largest of `peaks` peaks over the threshold (the value one peak in
-  /// `peaks` exceeds), with its interval.
-  Estimate Mpm(double peaks) const;
+  /// `peaks` exceeds: the quantile at exp(-1)), with its interval.
+  Estimate Mpm(double peaks) const { return Quantile(peaks, std::exp(-1.0)); }
 };
 
 /// Fits the peaks (values above `threshold`, at least 3; `threshold` not below `location`).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -36,6 +37,7 @@ struct Group {
 nlohmann::json Extreme(const std::vector<double>& maxima, const scenarios::CampaignDesign& d) {
   nlohmann::json j;
   j["runs"] = maxima.size();
+  j["method"] = "gumbel";
   if (maxima.size() < 3) {
     j["mpm"] = nullptr;
     j["note"] = "fewer than 3 runs: no fit";
@@ -51,6 +53,41 @@ nlohmann::json Extreme(const std::vector<double>& maxima, const scenarios::Campa
     j["mpm"] = nullptr;
     j["note"] = e.what();
   }
+  return j;
+}
+
+// One long run's peaks (its record's Weibull fit, `fit`, of a `duration` s record) scaled to
+// the campaign's storm, with what the design table shows of them.
+nlohmann::json ExtremeOfPeaks(const nlohmann::json& fit, double duration,
+                              const scenarios::CampaignDesign& d) {
+  nlohmann::json j;
+  j["runs"] = 1;
+  j["method"] = "weibull";
+  j["mpm"] = nullptr;
+  if (fit.is_null() || !(duration > 0.0)) {
+    j["note"] = "fewer than 10 peaks above the mean plus one standard deviation: no fit";
+    return j;
+  }
+  analysis::WeibullFit w;
+  w.threshold = fit.at("threshold").get<double>();
+  w.location = fit.at("location").get<double>();
+  w.scale = fit.at("scale").get<double>();
+  w.shape = fit.at("shape").get<double>();
+  const std::vector<double> c = fit.at("covariance").get<std::vector<double>>();
+  w.covariance << c.at(0), c.at(1), c.at(1), c.at(2);
+  w.samples = fit.at("peaks").get<int>();
+  w.confidence = d.confidence;
+  const double storm_peaks = w.samples * d.storm_duration / duration;
+  try {
+    j["mpm"] = EstimateJson(w.Mpm(storm_peaks));
+    j["quantile"] = EstimateJson(w.Quantile(storm_peaks, d.quantile));
+  } catch (const std::invalid_argument& e) {
+    j["mpm"] = nullptr;
+    j["note"] = e.what();
+  }
+  j["weibull"] = {{"threshold", w.threshold}, {"location", w.location},
+                  {"scale", w.scale},         {"shape", w.shape},
+                  {"peaks", w.samples},       {"storm_peaks", storm_peaks}};
   return j;
 }
 
@@ -112,6 +149,17 @@ nlohmann::json DesignChecks(const scenarios::Campaign& campaign,
     if (condition != analysis::DesignCondition::kIntact) where["parted_line"] = g.parted_line;
     nlohmann::json runs = nlohmann::json::array();
     for (const nlohmann::json* row : g.rows) runs.push_back(row->at("run"));
+    // The storm maxima of the point's runs (Gumbel), or its one run's record of peaks
+    // (Weibull), `peaks_of` picking the record's fit.
+    const auto extremes_of =
+        [&](const std::vector<double>& maxima,
+            const std::function<nlohmann::json(const nlohmann::json&)>& peaks_of) {
+          if (g.block->design->method == analysis::ExtremesMethod::kWeibull && !g.rows.empty()) {
+            const nlohmann::json& record = g.rows.front()->at("design");
+            return ExtremeOfPeaks(peaks_of(record), record.at("duration").get<double>(), d);
+          }
+          return Extreme(maxima, d);
+        };
     where["run_indices"] = runs;
     const std::size_t lines = g.rows.empty() ? 0 : g.rows.front()->at("design").at("lines").size();
     for (std::size_t k = 0; k < lines; ++k) {
@@ -134,7 +182,9 @@ nlohmann::json DesignChecks(const scenarios::Campaign& campaign,
       const nlohmann::json& first_line = g.rows.front()->at("design").at("lines").at(k);
       entry["line"] = k + 1;
       entry["type"] = first_line.at("type");
-      entry.update(Extreme(maxima, d));
+      entry.update(extremes_of(maxima, [k](const nlohmann::json& record) {
+        return record.at("lines").at(k).value("top_peaks", nlohmann::json());
+      }));
       entry["mean_tension"] =
           maxima.empty() ? nlohmann::json(nullptr) : nlohmann::json(mean / double(maxima.size()));
       const nlohmann::json mbl = first_line.at("minimum_breaking_load");
@@ -160,7 +210,9 @@ nlohmann::json DesignChecks(const scenarios::Campaign& campaign,
       maxima.push_back(row->at("design").at("max_offset").get<double>());
     }
     nlohmann::json offset = where;
-    offset.update(Extreme(maxima, d));
+    offset.update(extremes_of(maxima, [](const nlohmann::json& record) {
+      return record.value("offset_peaks", nlohmann::json());
+    }));
     offset["limit"] = d.offset_limit ? nlohmann::json(*d.offset_limit) : nlohmann::json(nullptr);
     offset["pass"] =
         d.offset_limit && !offset.at("mpm").is_null()
@@ -240,6 +292,7 @@ nlohmann::json DesignChecks(const scenarios::Campaign& campaign,
           {"consequence_class", d.consequence_class},
           {"quantile", d.quantile},
           {"confidence", d.confidence},
+          {"storm_duration", d.storm_duration},
           {"extremes", extremes},
           {"offsets", offsets},
           {"fatigue",
@@ -283,18 +336,20 @@ void WriteDesignTables(const std::filesystem::path& directory, const scenarios::
 
 std::string DesignExtremesCsv(const nlohmann::json& checks) {
   std::ostringstream csv;
-  csv << "block,point,condition,parted_line,line,type,runs,mpm,mpm_lower,mpm_upper,quantile,"
+  csv << "block,point,condition,parted_line,line,type,runs,method,mpm,mpm_lower,mpm_upper,"
+         "quantile,"
          "mean_tension,minimum_breaking_load,design_tension,safety_factor,required_factor,"
          "utilisation,result\n";
   if (checks.is_null()) return csv.str();
   for (const nlohmann::json& e : checks.at("extremes")) {
     csv << Cell(e.at("block")) << ',' << Cell(e.at("point")) << ',' << Cell(e.at("condition"))
         << ',' << Cell(At(e, {"parted_line"})) << ',' << Cell(e.at("line")) << ','
-        << Cell(e.at("type")) << ',' << Cell(e.at("runs")) << ',' << Cell(At(e, {"mpm", "value"}))
-        << ',' << Cell(At(e, {"mpm", "lower"})) << ',' << Cell(At(e, {"mpm", "upper"})) << ','
-        << Cell(At(e, {"quantile", "value"})) << ',' << Cell(e.at("mean_tension")) << ','
-        << Cell(e.at("minimum_breaking_load")) << ',' << Cell(At(e, {"check", "design_tension"}))
-        << ',' << Cell(At(e, {"check", "safety_factor"})) << ','
+        << Cell(e.at("type")) << ',' << Cell(e.at("runs")) << ',' << Cell(e.at("method")) << ','
+        << Cell(At(e, {"mpm", "value"})) << ',' << Cell(At(e, {"mpm", "lower"})) << ','
+        << Cell(At(e, {"mpm", "upper"})) << ',' << Cell(At(e, {"quantile", "value"})) << ','
+        << Cell(e.at("mean_tension")) << ',' << Cell(e.at("minimum_breaking_load")) << ','
+        << Cell(At(e, {"check", "design_tension"})) << ','
+        << Cell(At(e, {"check", "safety_factor"})) << ','
         << Cell(At(e, {"check", "required_factor"})) << ',' << Cell(At(e, {"check", "utilisation"}))
         << ',' << Cell(At(e, {"check", "pass"})) << '\n';
   }

@@ -2,12 +2,51 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+
+#include "analysis/extremes.h"
 
 namespace moorsim::runner {
 namespace {
 
 nlohmann::json NumberOrNull(const std::optional<double>& x) {
   return x ? nlohmann::json(*x) : nlohmann::json(nullptr);
+}
+
+struct Moments {
+  double mean = 0.0, std_dev = 0.0;
+};
+
+Moments MomentsOf(const std::vector<double>& x) {
+  Moments m;
+  for (double v : x) m.mean += v;
+  m.mean /= static_cast<double>(x.size());
+  double square = 0.0;
+  for (double v : x) square += (v - m.mean) * (v - m.mean);
+  m.std_dev = std::sqrt(square / static_cast<double>(x.size()));
+  return m;
+}
+
+// The Weibull fit of a record's peaks above its mean plus one standard deviation, measured
+// from its mean: the extremes of one long run (a campaign scales it to a storm's length).
+// Null for fewer than 10 peaks or a fit that does not converge.
+nlohmann::json PeaksFit(const std::vector<double>& x) {
+  if (x.size() < 2) return nullptr;
+  const Moments m = MomentsOf(x);
+  const double threshold = m.mean + m.std_dev;
+  const std::vector<double> peaks = analysis::PeaksOverThreshold(x, threshold);
+  if (!(m.std_dev > 0.0) || peaks.size() < 10) return nullptr;
+  try {
+    const analysis::WeibullFit fit = analysis::FitWeibull(peaks, threshold, m.mean);
+    return {{"threshold", fit.threshold},
+            {"location", fit.location},
+            {"scale", fit.scale},
+            {"shape", fit.shape},
+            {"covariance", {fit.covariance(0, 0), fit.covariance(0, 1), fit.covariance(1, 1)}},
+            {"peaks", peaks.size()}};
+  } catch (const std::invalid_argument&) {
+    return nullptr;
+  }
 }
 
 }  // namespace
@@ -65,6 +104,7 @@ void DesignRecord::Add(simulation::Simulation& sim, const simulation::Sample& sa
   }
   const double offset =
       std::hypot(sample.pose_true(0) - start_(0), sample.pose_true(1) - start_(1));
+  offsets_.push_back(offset);
   if (offset > max_offset_ || times_.size() == 1) {
     max_offset_ = offset;
     time_of_max_offset_ = sample.time;
@@ -83,18 +123,16 @@ nlohmann::json DesignRecord::Summary() const {
         line.top.breaking > 0.0 ? std::optional<double>(line.top.breaking) : std::nullopt);
     if (!top.empty()) {
       const auto largest = std::max_element(top.begin(), top.end());
-      double mean = 0.0, square = 0.0;
-      for (double t : top) mean += t;
-      mean /= static_cast<double>(top.size());
-      for (double t : top) square += (t - mean) * (t - mean);
+      const Moments moments = MomentsOf(top);
       std::optional<double> after;
       for (std::size_t i = 0; i < top.size(); ++i) {
         if (times_[i] >= failure_time_) after = std::max(after.value_or(top[i]), top[i]);
       }
       j["max_top_tension"] = *largest;
       j["time_of_max_top_tension"] = times_[static_cast<std::size_t>(largest - top.begin())];
-      j["mean_top_tension"] = mean;
-      j["std_top_tension"] = std::sqrt(square / static_cast<double>(top.size()));
+      j["mean_top_tension"] = moments.mean;
+      j["std_top_tension"] = moments.std_dev;
+      j["top_peaks"] = PeaksFit(top);
       j["max_top_tension_after_failure"] = NumberOrNull(after);
       j["max_tension_along"] = line.max_along;
     }
@@ -114,7 +152,8 @@ nlohmann::json DesignRecord::Summary() const {
           {"duration", times_.empty() ? 0.0 : times_.back() - times_.front()},
           {"lines", lines},
           {"max_offset", max_offset_},
-          {"time_of_max_offset", time_of_max_offset_}};
+          {"time_of_max_offset", time_of_max_offset_},
+          {"offset_peaks", PeaksFit(offsets_)}};
 }
 
 }  // namespace moorsim::runner

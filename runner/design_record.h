@@ -4,7 +4,8 @@
 // damage its rainflow-counted cycles do on the top section's T-N curve; its largest
 // segment tension anywhere along the line; the tension of its touchdown segment (where it
 // leaves the seabed at the run's static start) with the damage there. And the vessel's
-// largest horizontal offset from where it started.
+// largest horizontal offset from where it started. For the extremes of one long run, each
+// record's peaks above its mean plus one standard deviation, Weibull-fitted.
 //
 // It is fed every output row, so its resolution is the run's output rate
 // (simulation.output_rate_hz): the fatigue damage needs the waves' cycles, 5 Hz or more
@@ -56,6 +57,7 @@ class DesignRecord {
   double from_ = 0.0;           // rows before this time are left out
   double output_rate_ = 0.0;
   Vec3 start_ = Vec3::Zero();
+  std::vector<double> offsets_;  // per row, from start_
   double max_offset_ = 0.0, time_of_max_offset_ = 0.0;
 };
 

@@ -352,6 +352,16 @@ CampaignBlock ParseBlock(const Reader& r, const YAML::Node& node) {
     if (d.probability && d.condition != analysis::DesignCondition::kIntact) {
       design->Child("probability").Fail("a fatigue sea state is an intact one (condition: intact)");
     }
+    design->Optional("method", d.method);
+    if (d.method == analysis::ExtremesMethod::kWeibull) {
+      if (d.condition == analysis::DesignCondition::kTransient) {
+        design->Child("method").Fail(
+            "a transient's maxima come after its failure: fit them over seeds (gumbel)");
+      }
+      if (d.probability) {
+        design->Child("method").Fail("a fatigue sea state has no extremes to fit");
+      }
+    }
     if (const std::optional<Reader> intact = design->Find("intact")) {
       d.intact = intact->As<std::string>();
       d.intact_mark = intact->mark();
@@ -380,6 +390,12 @@ CampaignBlock ParseBlock(const Reader& r, const YAML::Node& node) {
                  "] (or {from: A, to: B})");
     }
     b.seed_count = count;
+  }
+  if (b.design && b.design->method == analysis::ExtremesMethod::kWeibull &&
+      b.SeedsPerPoint() != 1) {
+    r.Child("design").Child("method").Fail(
+        "weibull fits one long run per point: give the block one seed (and its runs the "
+        "length the fit needs)");
   }
   return b;
 }
@@ -517,6 +533,7 @@ void ParseDocument(const Reader& root, const ParseContext& strict, const YAML::N
       d.offset_limit = design->Maybe<double>("offset_limit");
       design->Optional("fatigue_factor", d.fatigue_factor);
       design->Optional("service_life", d.service_life);
+      design->Optional("storm_duration", d.storm_duration);
       c.design = d;
     }
   });

@@ -47,6 +47,7 @@
 #include <vector>
 
 #include "analysis/design_tension.h"
+#include "analysis/extremes.h"
 #include "scenarios/scenario.h"
 
 namespace moorsim::scenarios {
@@ -87,6 +88,9 @@ struct CampaignBlock {
   struct Design {
     analysis::DesignCondition condition = analysis::DesignCondition::kIntact;
     std::optional<double> probability;  ///< in (0, 1]: a fatigue sea state
+    /// The storm maxima of its points' seeds (Gumbel), or one long run's peaks (Weibull:
+    /// one seed per point).
+    analysis::ExtremesMethod method = analysis::ExtremesMethod::kGumbel;
     /// kTransient: the intact block whose run of the same seed and factor values gives
     /// each run's failure time (the instant of its line's largest top tension there);
     /// empty: the failure.time the runs are given.
@@ -117,6 +121,7 @@ struct CampaignDesign {
   std::optional<double> offset_limit;  ///< [m] the vessel's largest allowed offset
   double fatigue_factor = 1.0;         ///< the life must exceed service_life times this
   double service_life = 20.0;          ///< [years]
+  double storm_duration = 10800.0;     ///< [s] the storm a Weibull block's maxima are of
 };
 
 struct Campaign {

@@ -1224,6 +1224,14 @@ constexpr Key kBlockDesignKeys[] = {
                     "parts its failure.line at the time of that line's largest top tension in "
                     "the intact block's run of the same seed and factor values (explicit "
                     "seeds in both blocks). Omitted: the failure.time the runs are given."},
+    WithDefault({.name = "method",
+                 .kind = Kind::kString,
+                 .description = "How the extremes are estimated: gumbel (the maxima of the "
+                                "point's seeds, one storm each) or weibull (the peaks of one "
+                                "long run per point, scaled to the campaign's storm_duration).",
+                 .choices = ChoiceNames<analysis::ExtremesMethod>(),
+                 .choice_noun = ChoiceNoun<analysis::ExtremesMethod>()},
+                MOORSIM_DEFAULT(CampaignBlock::Design{}.method)),
     {.name = "probability",
      .description = "A fatigue sea state: the share of the time it holds (the scatter "
                     "diagram's), in (0, 1]. The blocks with one give the fatigue life.",
@@ -1302,6 +1310,9 @@ constexpr Key kCampaignDesignKeys[] = {
                  .choices = ChoiceNames<analysis::DesignStandard>(),
                  .choice_noun = ChoiceNoun<analysis::DesignStandard>()},
                 MOORSIM_DEFAULT(CampaignDesign{}.standard)),
+    WithDefault(Positive("storm_duration", "s", 1.0e6,
+                         "The storm a weibull block's maxima are of (its runs may be longer)."),
+                MOORSIM_DEFAULT(CampaignDesign{}.storm_duration)),
 };
 constexpr Block kCampaignDesign{
     "The design checks from the blocks' runs: the standard and its settings.", kCampaignDesignKeys};

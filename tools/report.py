@@ -992,8 +992,10 @@ def design_section(p: Page) -> list:
                 "dnv_os_e301": f"DNV-OS-E301, consequence class {d['consequence_class']} "
                                "(partial factors on mean and dynamic tension against 0.95 MBL)"}
     out = [f"<h2>Design checks</h2><p class='note'>By {html.escape(standard[d['standard']])}. "
-           f"MPM: the mode of a Gumbel distribution fitted by maximum likelihood to the "
-           f"storms' (seeds') maxima, with its {d['confidence']:.0%} interval; the "
+           f"MPM (method gumbel): the mode of a Gumbel distribution fitted by maximum "
+           f"likelihood to the storms' (seeds') maxima; (method weibull): the value exceeded "
+           f"once in a {d.get('storm_duration', 10800):g} s storm by the peaks of one long "
+           f"run, Weibull-fitted; with its {d['confidence']:.0%} interval; the "
            f"{d['quantile']:g} quantile beside it. Tensions in kN. Each entry's runs are in "
            f"design.json (run_indices); each run's row holds the command that repeats it. "
            f"The tables are also design.csv and fatigue.csv.</p>"]
@@ -1002,7 +1004,7 @@ def design_section(p: Page) -> list:
         check = e.get("check") or {}
         kn = lambda x: None if x is None else x / 1e3
         rows.append([e["block"], e["point"], e["condition"], e.get("parted_line", "–"), e["line"],
-                     e["type"], e["runs"],
+                     e["type"], e["runs"], e.get("method", "gumbel"),
                      interval_text({k: kn(v) for k, v in e["mpm"].items()} if e.get("mpm") else None),
                      number(kn((e.get("quantile") or {}).get("value"))),
                      number(kn(e.get("mean_tension"))), number(kn(e.get("minimum_breaking_load"))),
@@ -1011,7 +1013,7 @@ def design_section(p: Page) -> list:
                      number(check.get("utilisation"), 3), result_text(check.get("pass")),
                      e.get("runs_for_5_percent", "–"), e.get("note", "")])
     out.append(table(["block", "point", "condition", "parted line", "line", "type", "runs",
-                      "MPM [interval]", "quantile", "mean", "MBL", "design tension",
+                      "method", "MPM [interval]", "quantile", "mean", "MBL", "design tension",
                       "safety factor (required)", "utilisation", "result",
                       "seeds for ±5 %", "note"], rows))
     out.append("<p class='note'>The vessel's largest offset from its initial pose [m].</p>")

@@ -224,7 +224,7 @@ def read_design(directory):
         checks = json.load(f)
     offsets = pd.DataFrame([
         {"block": o["block"], "point": o["point"], "condition": o["condition"], "runs": o["runs"],
-         "mpm": (o.get("mpm") or {}).get("value"), "mpm_lower": (o.get("mpm") or {}).get("lower"),
+         "method": o.get("method"), "mpm": (o.get("mpm") or {}).get("value"), "mpm_lower": (o.get("mpm") or {}).get("lower"),
          "mpm_upper": (o.get("mpm") or {}).get("upper"), "limit": o.get("limit"),
          "pass": o.get("pass")}
         for o in checks["offsets"]])

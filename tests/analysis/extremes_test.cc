@@ -125,6 +125,14 @@ TEST(LinearResponse, TheMpmOfRayleighPeaksIsTheClosedFormByBothFits) {
   EXPECT_LT(w.lower, exceeded_once);
   EXPECT_GT(w.upper, exceeded_once);
   EXPECT_NEAR(w.value / exceeded_once, 1.0, 0.02);
+  // The storm maximum's 90 % quantile: exp(-N exp(-x^2 / (2 sigma^2))) = 0.9.
+  const double q90 = sigma * std::sqrt(2.0 * (std::log(n) - std::log(-std::log(0.9))));
+  const Estimate wq = weibull.Quantile(over, 0.9);
+  EXPECT_LT(wq.lower, q90);
+  EXPECT_GT(wq.upper, q90);
+  EXPECT_NEAR(wq.value / q90, 1.0, 0.02);
+  EXPECT_GT(wq.value, w.value);
+  EXPECT_THROW(weibull.Quantile(over, 1.0), std::invalid_argument);
 }
 
 TEST(PeaksOverThreshold, EachExcursionCountsItsHighestValueOnce) {

@@ -13,6 +13,7 @@
 #include <map>
 #include <random>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -145,13 +146,63 @@ TEST(DesignChecks, TheTablesAreTheFitsTheStandardAndTheWeightedDamage) {
   // The tables.
   const std::string csv = DesignExtremesCsv(checks);
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
-            "block,point,condition,parted_line,line,type,runs,mpm,mpm_lower,mpm_upper,quantile,"
-            "mean_tension,minimum_breaking_load,design_tension,safety_factor,required_factor,"
-            "utilisation,result");
+            "block,point,condition,parted_line,line,type,runs,method,mpm,mpm_lower,mpm_upper,"
+            "quantile,mean_tension,minimum_breaking_load,design_tension,safety_factor,"
+            "required_factor,utilisation,result");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);
   const std::string fatigue_csv = DesignFatigueCsv(checks);
   EXPECT_EQ(std::count(fatigue_csv.begin(), fatigue_csv.end(), '\n'), 5);
   EXPECT_NE(fatigue_csv.find("1,touchdown,wire,,,\n"), std::string::npos) << fatigue_csv;
+}
+
+// A weibull block's one long run: its record's fit of the peaks, scaled from the record's
+// length to the campaign's storm.
+TEST(DesignChecks, AWeibullBlockScalesItsRunsPeaksToTheStorm) {
+  const scenarios::Campaign campaign = scenarios::ParseCampaign(
+      "scenario: seed_tapm.yaml\nseed: 1\n"
+      "design: {storm_duration: 10800, quantile: 0.9}\n"
+      "blocks: [{name: long, design: {method: weibull}, seeds: 1}]\n",
+      "design.yaml", false);
+  std::mt19937_64 random(4);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<double> peaks;
+  const double sigma = 1.0e5, mean = 2.0e6;
+  for (int i = 0; i < 20000; ++i) {
+    const double p = mean + sigma * std::sqrt(-2.0 * std::log(1.0 - u(random)));
+    if (p > mean + sigma) peaks.push_back(p);
+  }
+  const analysis::WeibullFit fit = analysis::FitWeibull(peaks, mean + sigma, mean);
+  const nlohmann::json record = {
+      {"threshold", fit.threshold},
+      {"location", fit.location},
+      {"scale", fit.scale},
+      {"shape", fit.shape},
+      {"covariance", {fit.covariance(0, 0), fit.covariance(0, 1), fit.covariance(1, 1)}},
+      {"peaks", peaks.size()}};
+  nlohmann::json row = Row(0, "long", {2.1e6, 2.1e6}, 0, 0.0, 10.0);
+  // A 36 000 s record: the storm holds 0.3 of its peaks.
+  row["design"]["duration"] = 36000.0;
+  row["design"]["lines"][0]["top_peaks"] = record;
+  row["design"]["lines"][1]["top_peaks"] = nullptr;
+  row["design"]["offset_peaks"] = record;
+  const nlohmann::json checks = DesignChecks(campaign, {row});
+  const nlohmann::json& line1 = checks.at("extremes").at(0);
+  EXPECT_EQ(line1.at("method"), "weibull");
+  const double storm_peaks = 0.3 * static_cast<double>(peaks.size());
+  EXPECT_DOUBLE_EQ(line1.at("weibull").at("storm_peaks").get<double>(), storm_peaks);
+  EXPECT_DOUBLE_EQ(line1.at("mpm").at("value").get<double>(), fit.Mpm(storm_peaks).value);
+  EXPECT_DOUBLE_EQ(line1.at("mpm").at("upper").get<double>(), fit.Mpm(storm_peaks).upper);
+  EXPECT_DOUBLE_EQ(line1.at("quantile").at("value").get<double>(),
+                   fit.Quantile(storm_peaks, 0.9).value);
+  // 6000 peaks in the storm: near mean + sigma sqrt(2 ln 6000) (Rayleigh).
+  EXPECT_NEAR(line1.at("mpm").at("value").get<double>(),
+              mean + sigma * std::sqrt(2.0 * std::log(6000.0)), 0.02 * sigma * 4.2);
+  const nlohmann::json& line2 = checks.at("extremes").at(1);
+  EXPECT_TRUE(line2.at("mpm").is_null());
+  EXPECT_EQ(line2.at("note"),
+            "fewer than 10 peaks above the mean plus one standard deviation: no fit");
+  EXPECT_DOUBLE_EQ(checks.at("offsets").at(0).at("mpm").at("value").get<double>(),
+                   fit.Mpm(storm_peaks).value);
 }
 
 TEST(DesignChecks, NoneWithoutTheCampaignsDesignAndTooFewRunsAreNotFitted) {
@@ -252,6 +303,26 @@ TEST(DesignCampaignSlow, WritesItsTablesFromTheRunsRecords) {
   std::filesystem::remove_all(dir);
 }
 
+// The library's design campaign on the seed mooring: every run loads, and each transient
+// run takes its instant from the intact storm of its seed.
+TEST(DesignCampaign, TheSeedMooringsCampaignPreparesAndMatchesItsTransients) {
+  const PreparedCampaign p =
+      PrepareCampaign(MOORSIM_SOURCE_DIR "/scenarios/campaigns/seed_design.yaml");
+  const scenarios::Campaign& c = p.campaign;
+  ASSERT_EQ(c.blocks.at(0).name, "storm");
+  ASSERT_EQ(p.transients.size(), 80u);
+  for (const auto& [index, source] : p.transients) {
+    const scenarios::CampaignRun run = scenarios::MakeCampaignRun(c, index);
+    const scenarios::CampaignRun intact = scenarios::MakeCampaignRun(c, source.intact_run);
+    EXPECT_EQ(c.blocks.at(static_cast<std::size_t>(intact.block)).name, "storm");
+    EXPECT_EQ(intact.seed, run.seed);
+    EXPECT_EQ(run.factors.at(0).second, std::to_string(source.line));
+  }
+  std::ostringstream listing;
+  DescribeCampaign(p, 2, listing);
+  EXPECT_NE(listing.str().find("line 8 at its largest tension in run 9"), std::string::npos);
+}
+
 std::map<std::int64_t, nlohmann::json> RowsByRun(const std::filesystem::path& dir) {
   std::map<std::int64_t, nlohmann::json> rows;
   for (nlohmann::json& row : ReadRows(dir)) rows.emplace(row.at("run").get<std::int64_t>(), row);
@@ -327,6 +398,19 @@ TEST(DesignCampaignSlow, ATransientRunPartsItsLineAtItsIntactRunsLargestTension)
         EXPECT_EQ(mine.at("max_top_tension"), theirs.at("max_top_tension")) << "line " << k;
       }
     }
+  }
+  // A transient row's run repeats alone from its command's overrides: the same record.
+  {
+    const PreparedCampaign p = PrepareCampaign((dir / "transient.yaml").string());
+    scenarios::CampaignRun run = scenarios::MakeCampaignRun(p.campaign, 7);
+    scenarios::SetFailureTime(run, rows.at(7).at("failure").at("time").get<double>());
+    runner::RunRequest request;
+    request.scenario_path = p.campaign.scenario_path;
+    request.overrides = run.overrides;
+    request.write_files = false;
+    const runner::RunResult alone = runner::RunScenario(request);
+    ASSERT_EQ(alone.status, runner::RunStatus::kOk) << alone.message;
+    EXPECT_EQ(alone.summary.at("design"), rows.at(7).at("design"));
   }
   const nlohmann::json checks = nlohmann::json::parse(std::ifstream(dir / "whole" / "design.json"));
   std::set<int> parted;

@@ -474,6 +474,17 @@ std::vector<CampaignError> Errors() {
        "text after the document-end marker '...' (a campaign file holds one YAML document)"},
       {"SecondDocument", b + "---\nseed: 3\n", "seed: 3\n",
        "a campaign file holds one YAML document; this is a second one"},
+      {"WeibullOverSeeds",
+       Replace(b, "seeds: {from: 5, to: 7}",
+               "design: {method: weibull}\n    seeds: {from: 5, to: 7}"),
+       "weibull}",
+       "blocks[2].design.method: weibull fits one long run per point: give the block one seed "
+       "(and its runs the length the fit needs)"},
+      {"WeibullTransient",
+       Replace(kTransient, "condition: transient,", "condition: transient, method: weibull,"),
+       "weibull,",
+       "blocks[2].design.method: a transient's maxima come after its failure: fit them over "
+       "seeds (gumbel)"},
       // A transient block that takes its instants from an intact block.
       {"IntactOnAnIntactBlock", Replace(kTransient, "condition: transient", "condition: damaged"),
        "storm}\n    set",

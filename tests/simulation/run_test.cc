@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/extremes.h"
 #include "analysis/fatigue.h"
 #include "core/angles.h"
 #include "core/error.h"
@@ -450,6 +451,52 @@ TEST_F(RunTest, TheDesignRecordIsTheRowsExtremesAndTheirDamage) {
   }
   // Line 3 parted at its fairlead: nothing at its top after the failure.
   EXPECT_EQ(design.at("lines").at(2).at("max_top_tension_after_failure").get<double>(), 0.0);
+}
+
+// The record's Weibull fits of the peaks (the extremes of one long run) are those of the
+// rows: each top tension's peaks above mean plus one standard deviation; none for the
+// offset, whose slow drift gives too few peaks in 500 s.
+TEST_F(RunTest, TheDesignRecordFitsTheRowsPeaks) {
+  RunRequest request;
+  request.scenario_path = kThesis;
+  request.overrides = {"simulation.duration=600", "simulation.output_rate_hz=5",
+                       "simulation.statistics_from=100"};
+  request.write_files = false;
+  std::vector<std::vector<double>> series(9);  // eight top tensions, then the offset
+  const Vec3 start =
+      scenarios::ToPlantModel(scenarios::LoadScenario(kThesis, request.overrides)).initial_pose;
+  request.on_row = [&](const Sample& s) {
+    if (s.time < 100.0) return;
+    for (std::size_t k = 0; k < 8; ++k) series[k].push_back(s.fairlead_tension[k]);
+    series[8].push_back(std::hypot(s.pose_true(0) - start(0), s.pose_true(1) - start(1)));
+  };
+  const RunResult r = RunScenario(request);
+  ASSERT_EQ(r.status, RunStatus::kOk) << r.message;
+  const nlohmann::json& design = r.summary.at("design");
+  for (std::size_t k = 0; k < 9; ++k) {
+    SCOPED_TRACE("series " + std::to_string(k));
+    const std::vector<double>& x = series[k];
+    double mean = 0.0, square = 0.0;
+    for (double v : x) mean += v;
+    mean /= static_cast<double>(x.size());
+    for (double v : x) square += (v - mean) * (v - mean);
+    const double threshold = mean + std::sqrt(square / static_cast<double>(x.size()));
+    const std::vector<double> peaks = analysis::PeaksOverThreshold(x, threshold);
+    const nlohmann::json& record =
+        k < 8 ? design.at("lines").at(k).at("top_peaks") : design.at("offset_peaks");
+    if (k == 8) {  // the offset drifts slowly: too few peaks in 500 s for a fit
+      ASSERT_LT(peaks.size(), 10u);
+      EXPECT_TRUE(record.is_null());
+      continue;
+    }
+    ASSERT_GE(peaks.size(), 10u);
+    const analysis::WeibullFit fit = analysis::FitWeibull(peaks, threshold, mean);
+    ASSERT_TRUE(record.is_object()) << record;
+    EXPECT_EQ(record.at("peaks").get<std::size_t>(), peaks.size());
+    EXPECT_NEAR(record.at("threshold").get<double>(), threshold, 1e-9 * std::abs(threshold));
+    EXPECT_NEAR(record.at("scale").get<double>(), fit.scale, 1e-6 * fit.scale);
+    EXPECT_NEAR(record.at("shape").get<double>(), fit.shape, 1e-6 * fit.shape);
+  }
 }
 
 }  // namespace
