@@ -890,10 +890,24 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
     if (it == options.end()) return std::nullopt;
     return it->second;
   };
-  const auto depth = option("wtrdpth");
-  if (!depth) problems.Add(1, "no WtrDpth option: the water depth is needed");
+  // MoorDyn's water depth: WtrDpth (0 unless given), deepened to any point listed below it
+  // (MoorDyn v2 warns and does the same, so a file may leave WtrDpth out).
+  std::optional<std::pair<double, int>> depth = option("wtrdpth");
+  for (const Point& p : points) {
+    if (-p.z > (depth ? depth->first : 0.0)) {
+      if (depth) {
+        warn(p.line, "point " + p.id + " lies below the water depth WtrDpth (" +
+                         FormatNumber(depth->first) + " m): the depth is taken to it (" +
+                         FormatNumber(-p.z) + " m), as MoorDyn does");
+      }
+      depth = std::make_pair(-p.z, p.line);
+    }
+  }
+  if (!depth) problems.Add(1, "no WtrDpth option and no point below the water: no water depth");
   if (chains.empty()) problems.Add(1, "no line moorsim can hold");
   problems.ThrowIfAny();
+  const bool depth_given =
+      options.contains("wtrdpth") && depth->second == options.at("wtrdpth").second;
 
   // Vessel points far from MoorDyn's origin (a Coupled point given where it starts, a line
   // driven at its end): the model moves horizontally so that their centre is moorsim's
@@ -966,8 +980,11 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
     << "density: " << FormatNumber(rho ? rho->first : 1025.0) << ", "
     << from(gravity ? gravity->second : 0, "option g")
     << "gravity: " << FormatNumber(gravity ? gravity->first : 9.81) << ", "
-    << from(depth->second, "option WtrDpth") << "depth: " << FormatNumber(depth->first)
-    << "}  # WtrDpth (line " << depth->second << ")";
+    << from(depth->second, depth_given ? "option WtrDpth" : "the deepest point")
+    << "depth: " << FormatNumber(depth->first) << "}  # "
+    << (depth_given ? "WtrDpth (line " + std::to_string(depth->second) + ")"
+                    : "the deepest point's depth (line " + std::to_string(depth->second) +
+                          "), as MoorDyn takes it");
   y << (rho ? ", WtrDnsty (line " + std::to_string(rho->second) + ")"
             : ", MoorDyn's default density");
   y << (gravity ? ", g (line " + std::to_string(gravity->second) + ")"

@@ -93,6 +93,41 @@ TEST(MoorDynImport, LinesPointsAndOptionsArriveConverted) {
   fs::remove_all(dir);
 }
 
+// MoorDyn's water depth: WtrDpth, deepened to a point below it (with a warning), and the
+// deepest point's depth when the file gives none.
+TEST(MoorDynImport, TheWaterDepthIsWtrDpthOrTheDeepestPointsAsInMoorDyn) {
+  const fs::path dir = moorsim::testing::FreshDirectory("moordyn_depth");
+  std::string deeper = kSpread;
+  deeper.replace(deeper.find("200           WtrDpth"), 3, "150");
+  const fs::path shallow = Write(dir, "shallow.txt", deeper);
+  const MoorDynImport below = ImportMoorDyn(shallow.string(), "test");
+  ASSERT_EQ(below.warnings.size(), 1u);
+  EXPECT_EQ(below.warnings[0], shallow.string() +
+                                   ":11: point 1 lies below the water depth WtrDpth (150 m): the "
+                                   "depth is taken to it (200 m), as MoorDyn does");
+  EXPECT_EQ(ParseScenario(below.yaml, "shallow.yaml").mooring.water.depth, 200.0);
+  std::string none = kSpread;
+  none.erase(none.find("200           WtrDpth"),
+             std::string("200           WtrDpth       water depth (m)\n").size());
+  ASSERT_EQ(none.find("WtrDpth"), std::string::npos);
+  const MoorDynImport deepest = ImportMoorDyn(Write(dir, "none.txt", none).string(), "test");
+  EXPECT_TRUE(deepest.warnings.empty());
+  EXPECT_EQ(ParseScenario(deepest.yaml, "none.yaml").mooring.water.depth, 200.0);
+  EXPECT_NE(deepest.yaml.find("# the deepest point's depth (line 11), as MoorDyn takes it"),
+            std::string::npos)
+      << deepest.yaml;
+  // No depth given and nothing under water: nothing to take it from.
+  std::string dry = none;
+  for (std::size_t at; (at = dry.find("-200")) != std::string::npos;) dry.replace(at, 4, "0");
+  for (std::size_t at; (at = dry.find("-190")) != std::string::npos;) dry.replace(at, 4, "0");
+  for (std::size_t at; (at = dry.find("-15 ")) != std::string::npos;) dry.replace(at, 4, "0  ");
+  const fs::path dry_file = Write(dir, "dry.txt", dry);
+  EXPECT_EQ(
+      ErrorOf(dry_file),
+      dry_file.string() + ":1: no WtrDpth option and no point below the water: no water depth");
+  fs::remove_all(dir);
+}
+
 // MoorDyn v1's layout: other column names and order, CONNECTION PROPERTIES with Connect
 // points, LINE PROPERTIES; EI is left out with a warning.
 TEST(MoorDynImport, TheOlderLayoutReadsByColumnName) {
