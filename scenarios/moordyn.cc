@@ -535,6 +535,13 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
                                                            "seafloor", "bathymetry"};
         if (name == "seafloorfile") {
           seafloor = {row.fields[0], row.line};
+        } else if (name == "wavekin" && value == 1.0) {
+          // Waves driven through the API: the file holds none, the coupling program gives
+          // them step by step; without it MoorDyn's water is still too.
+          warn(row.line,
+               "option WaveKin 1: the wave kinematics come from the coupling program through "
+               "MoorDyn's API; the imported model sees still water (or moorsim's own waves, "
+               "environment.waves with on_lines)");
         } else if (kUnsupported.count(name) > 0 && row.fields[0] != "0") {
           problems.Add(row.line, "option " + row.fields[1] + " " + row.fields[0] +
                                      " is not supported (a flat seabed and still water, or "

@@ -128,6 +128,29 @@ TEST(MoorDynImport, TheWaterDepthIsWtrDpthOrTheDeepestPointsAsInMoorDyn) {
   fs::remove_all(dir);
 }
 
+// WaveKin 1 says the coupling program gives the waves through MoorDyn's API: the file holds
+// none, so the model imports in still water with a warning; a wave grid is still refused.
+TEST(MoorDynImport, WavesFromTheApiImportAsStillWaterAndAGridIsRefused) {
+  const fs::path dir = moorsim::testing::FreshDirectory("moordyn_wavekin");
+  std::string text = kSpread;
+  text.replace(text.find("200           WtrDpth"), 0, "1             WaveKin       from the API\n");
+  const fs::path api = Write(dir, "api.txt", text);
+  const MoorDynImport imported = ImportMoorDyn(api.string(), "test");
+  ASSERT_EQ(imported.warnings.size(), 1u);
+  EXPECT_EQ(imported.warnings[0],
+            api.string() +
+                ":30: option WaveKin 1: the wave kinematics come from the coupling program "
+                "through MoorDyn's API; the imported model sees still water (or moorsim's own "
+                "waves, environment.waves with on_lines)");
+  EXPECT_FALSE(ParseScenario(imported.yaml, "api.yaml").environment.waves.enabled);
+  text.replace(text.find("1             WaveKin"), 1, "2");
+  const fs::path grid = Write(dir, "grid.txt", text);
+  EXPECT_EQ(ErrorOf(grid), grid.string() +
+                               ":30: option WaveKin 2 is not supported (a flat seabed and still "
+                               "water, or moorsim's own current and waves)");
+  fs::remove_all(dir);
+}
+
 // MoorDyn v1's layout: other column names and order, CONNECTION PROPERTIES with Connect
 // points, LINE PROPERTIES; EI is left out with a warning.
 TEST(MoorDynImport, TheOlderLayoutReadsByColumnName) {
