@@ -32,6 +32,13 @@
 //       seeds: 50                     # a count (each run's seed derived from the campaign
 //                                     # seed and the run index) or {from: 1, to: 50}
 //                                     # (these simulator seeds, for each point)
+//       design: {condition: transient, intact: storm}  # optional: its part in the design
+//                                     # checks (campaign/design.h): intact, damaged or
+//                                     # transient (with `intact`, each run parts its line at
+//                                     # its largest tension in that block's run of its seed),
+//                                     # method gumbel or weibull, or a fatigue sea state
+//                                     # {probability: p}
+//   design: {standard: api_rp_2sk}    # optional: the design checks' settings
 //
 // Runs are numbered from 0 in order: block by block, the points of the block (grid or zip
 // order), and within a point its seeds. Random factors are drawn per run from a stream
