@@ -673,7 +673,7 @@ std::string RunLocation(const scenarios::Campaign& c, const scenarios::CampaignR
 double PreparedCampaign::EstimatedDuration(std::int64_t index) const {
   for (std::size_t b = 0; b < campaign.blocks.size(); ++b) {
     const scenarios::CampaignBlock& block = campaign.blocks[b];
-    const std::int64_t size = block.Points() * block.SeedsPerPoint();
+    const std::int64_t size = block.Runs();
     if (index < size) return block_durations[b];
     index -= size;
   }
@@ -702,15 +702,14 @@ struct LoadedRun {
 LoadedRun LoadRun(const scenarios::Campaign& c, const scenarios::CampaignRun& run) {
   // A transient run whose instant is not yet known (checked before its intact run has run)
   // is loaded with one at 0 s: any instant in the run is checked alike.
-  const scenarios::CampaignBlock& b = c.blocks[static_cast<std::size_t>(run.block)];
-  std::vector<std::string> overrides = run.overrides;
-  if (b.design && !b.design->intact.empty() &&
-      std::none_of(overrides.begin(), overrides.end(),
+  scenarios::CampaignRun loadable = run;
+  if (c.blocks[static_cast<std::size_t>(run.block)].TakesIntactInstants() &&
+      std::none_of(run.overrides.begin(), run.overrides.end(),
                    [](const std::string& o) { return o.starts_with("failure.time="); })) {
-    overrides.insert(overrides.end() - 1, "failure.time=0");
+    scenarios::SetFailureTime(loadable, 0.0);
   }
   try {
-    LoadedRun loaded{scenarios::LoadScenario(c.scenario_path, overrides), {}};
+    LoadedRun loaded{scenarios::LoadScenario(c.scenario_path, loadable.overrides), {}};
     loaded.truth = TruthOf(loaded.scenario);
     return loaded;
   } catch (const InputError& e) {
@@ -841,10 +840,12 @@ PreparedCampaign PrepareCampaign(const std::string& campaign_path,
     }
   }
   shown.Show(p.checked_runs.size(), p.checked_runs.size(), true);
-  std::int64_t start = 0;
-  for (const scenarios::CampaignBlock& b : c.blocks) {
-    const std::int64_t size = b.Points() * b.SeedsPerPoint();
-    for (std::int64_t i = start; b.design && !b.design->intact.empty() && i < start + size; ++i) {
+  for (std::size_t k = 0; k < c.blocks.size(); ++k) {
+    const std::int64_t first = c.FirstRunOf(k);
+    p.block_durations.push_back(
+        durations.at(ConfigurationOf(scenarios::MakeCampaignRun(c, first))));
+    for (std::int64_t i = first;
+         c.blocks[k].TakesIntactInstants() && i < first + c.blocks[k].Runs(); ++i) {
       const scenarios::CampaignRun run = scenarios::MakeCampaignRun(c, i);
       try {
         p.transients.emplace(i, *scenarios::TransientSourceOf(c, run));
@@ -852,13 +853,6 @@ PreparedCampaign PrepareCampaign(const std::string& campaign_path,
         throw InputError(RunLocation(c, run, e.what()));
       }
     }
-    start += size;
-  }
-  std::int64_t first = 0;
-  for (const scenarios::CampaignBlock& b : c.blocks) {
-    p.block_durations.push_back(
-        durations.at(ConfigurationOf(scenarios::MakeCampaignRun(c, first))));
-    first += b.Points() * b.SeedsPerPoint();
   }
   // The identity (CampaignIdentity, in its order). The kinds' names are part of the hash.
   CampaignIdentity& id = p.identity;
@@ -901,7 +895,7 @@ void DescribeCampaign(const PreparedCampaign& p, int threads, std::ostream& out)
       << c.scenario_path << ", campaign seed " << c.seed << "\n";
   for (const scenarios::CampaignBlock& b : c.blocks) {
     out << "  block " << b.name << ": " << b.Points() << " points x " << b.SeedsPerPoint()
-        << " seeds = " << b.Points() * b.SeedsPerPoint() << " runs\n";
+        << " seeds = " << b.Runs() << " runs\n";
   }
   out << "run\tblock\tseed\tfailure\tduration\tfactors\n";
   std::string previous;  // the configuration `truth` is of
@@ -1077,9 +1071,9 @@ class LocalRunSource final : public RunSource {
       const std::int64_t run = row.at("run").get<std::int64_t>();
       if (needed_.count(run)) intact_rows_.emplace(run, row);
     }
+    const std::set<std::int64_t> pending_runs(pending_.begin(), pending_.end());
     for (const std::int64_t run : needed_) {
-      if (!intact_rows_.count(run) &&
-          std::find(pending_.begin(), pending_.end(), run) == pending_.end()) {
+      if (!intact_rows_.count(run) && !pending_runs.count(run)) {
         throw ContractError("batch: intact run " + std::to_string(run) +
                             " neither done nor pending");
       }

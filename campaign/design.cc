@@ -99,10 +99,8 @@ nlohmann::json DesignChecks(const scenarios::Campaign& campaign,
   const scenarios::CampaignDesign& d = *campaign.design;
   // The run index where each block starts.
   std::map<std::string, std::pair<const scenarios::CampaignBlock*, std::int64_t>> blocks;
-  std::int64_t first = 0;
-  for (const scenarios::CampaignBlock& b : campaign.blocks) {
-    blocks[b.name] = {&b, first};
-    first += b.Points() * b.SeedsPerPoint();
+  for (std::size_t k = 0; k < campaign.blocks.size(); ++k) {
+    blocks[campaign.blocks[k].name] = {&campaign.blocks[k], campaign.FirstRunOf(k)};
   }
   std::map<std::pair<std::string, std::int64_t>, Group> groups;
   std::vector<std::pair<std::string, std::int64_t>> order;

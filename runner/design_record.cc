@@ -29,10 +29,9 @@ Moments MomentsOf(const std::vector<double>& x) {
 
 // The Weibull fit of a record's peaks above its mean plus one standard deviation, measured
 // from its mean: the extremes of one long run (a campaign scales it to a storm's length).
-// Null for fewer than 10 peaks or a fit that does not converge.
-nlohmann::json PeaksFit(const std::vector<double>& x) {
+// `m`: the record's moments. Null for fewer than 10 peaks or a fit that does not converge.
+nlohmann::json PeaksFit(const std::vector<double>& x, const Moments& m) {
   if (x.size() < 2) return nullptr;
-  const Moments m = MomentsOf(x);
   const double threshold = m.mean + m.std_dev;
   const std::vector<double> peaks = analysis::PeaksOverThreshold(x, threshold);
   if (!(m.std_dev > 0.0) || peaks.size() < 10) return nullptr;
@@ -132,7 +131,7 @@ nlohmann::json DesignRecord::Summary() const {
       j["time_of_max_top_tension"] = times_[static_cast<std::size_t>(largest - top.begin())];
       j["mean_top_tension"] = moments.mean;
       j["std_top_tension"] = moments.std_dev;
-      j["top_peaks"] = PeaksFit(top);
+      j["top_peaks"] = PeaksFit(top, moments);
       j["max_top_tension_after_failure"] = NumberOrNull(after);
       j["max_tension_along"] = line.max_along;
     }
@@ -153,7 +152,8 @@ nlohmann::json DesignRecord::Summary() const {
           {"lines", lines},
           {"max_offset", max_offset_},
           {"time_of_max_offset", time_of_max_offset_},
-          {"offset_peaks", PeaksFit(offsets_)}};
+          {"offset_peaks",
+           offsets_.empty() ? nlohmann::json(nullptr) : PeaksFit(offsets_, MomentsOf(offsets_))}};
 }
 
 }  // namespace moorsim::runner

@@ -441,7 +441,7 @@ const CampaignFactor* FindFactor(const CampaignBlock& b, const std::string& key)
 void CheckTransientBlocks(const Campaign& c) {
   for (std::size_t i = 0; i < c.blocks.size(); ++i) {
     const CampaignBlock& b = c.blocks[i];
-    if (!b.design || b.design->intact.empty()) continue;
+    if (!b.TakesIntactInstants()) continue;
     const auto fail = [&](const std::string& what) {
       ThrowAt(c.source_path, b.design->intact_mark, ItemPath("blocks", i) + ".design.intact", what);
     };
@@ -561,7 +561,7 @@ void BlocksOf(const Reader& root, const ParseContext& strict, const YAML::Node& 
       if (block_runs + static_cast<double>(runs) > static_cast<double>(kMaxRuns)) {
         items[i].Fail("the campaign would have more than " + std::to_string(kMaxRuns) + " runs");
       }
-      runs += b.Points() * b.SeedsPerPoint();
+      runs += b.Runs();
       c.blocks.push_back(std::move(b));
     });
   }
@@ -591,10 +591,12 @@ std::int64_t CampaignBlock::SeedsPerPoint() const {
   return seed_count;
 }
 
-std::int64_t Campaign::NumRuns() const {
-  std::int64_t runs = 0;
-  for (const CampaignBlock& b : blocks) runs += b.Points() * b.SeedsPerPoint();
-  return runs;
+std::int64_t Campaign::NumRuns() const { return FirstRunOf(blocks.size()); }
+
+std::int64_t Campaign::FirstRunOf(std::size_t block) const {
+  std::int64_t first = 0;
+  for (std::size_t k = 0; k < block; ++k) first += blocks[k].Runs();
+  return first;
 }
 
 std::vector<std::string> Campaign::FactorKeys() const {
@@ -622,7 +624,7 @@ CampaignRun MakeCampaignRun(const Campaign& campaign, std::int64_t index) {
   std::int64_t offset = index;
   while (true) {
     const CampaignBlock& b = campaign.blocks[static_cast<std::size_t>(run.block)];
-    const std::int64_t size = b.Points() * b.SeedsPerPoint();
+    const std::int64_t size = b.Runs();
     if (offset < size) break;
     offset -= size;
     ++run.block;
@@ -688,7 +690,7 @@ CampaignRun MakeCampaignRun(const Campaign& campaign, std::int64_t index) {
 
 std::optional<TransientSource> TransientSourceOf(const Campaign& c, const CampaignRun& run) {
   const CampaignBlock& b = c.blocks[static_cast<std::size_t>(run.block)];
-  if (!b.design || b.design->intact.empty()) return std::nullopt;
+  if (!b.TakesIntactInstants()) return std::nullopt;
   TransientSource source;
   const std::optional<std::string> line = SetValue(run.overrides, "failure.line");
   const char* end = line ? line->data() + line->size() : nullptr;
@@ -696,12 +698,10 @@ std::optional<TransientSource> TransientSourceOf(const Campaign& c, const Campai
     throw InputError("failure.line '" + line.value_or("") +
                      "': a transient run parts one line, numbered from 1");
   }
-  std::int64_t start = 0;
   std::size_t k = 0;
-  for (; c.blocks[k].name != b.design->intact; ++k) {
-    start += c.blocks[k].Points() * c.blocks[k].SeedsPerPoint();
-  }
+  while (c.blocks[k].name != b.design->intact) ++k;
   const CampaignBlock& intact = c.blocks[k];
+  const std::int64_t start = c.FirstRunOf(k);
   const std::int64_t seeds = intact.SeedsPerPoint();
   const auto replicate = static_cast<std::int64_t>(run.seed - *intact.first_seed);
   for (std::int64_t point = 0; point < intact.Points(); ++point) {

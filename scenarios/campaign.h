@@ -112,6 +112,9 @@ struct CampaignBlock {
   /// Points (combinations of the listed values) and runs of the block.
   std::int64_t Points() const;
   std::int64_t SeedsPerPoint() const;
+  std::int64_t Runs() const { return Points() * SeedsPerPoint(); }
+  /// A transient block whose runs take their instants from an intact block (Design::intact).
+  bool TakesIntactInstants() const { return design && !design->intact.empty(); }
 };
 
 inline constexpr std::string_view kFunctionNames[] = {"cos", "sin"};
@@ -141,6 +144,8 @@ struct Campaign {
   std::vector<CampaignBlock> blocks;
   std::optional<CampaignDesign> design;
   std::int64_t NumRuns() const;
+  /// The index of block `block`'s first run.
+  std::int64_t FirstRunOf(std::size_t block) const;
   /// Every factor key of every block, first appearance first (the results' columns).
   std::vector<std::string> FactorKeys() const;
 };
