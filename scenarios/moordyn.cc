@@ -900,6 +900,7 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
   // MoorDyn's water depth: WtrDpth (0 unless given), deepened to any point listed below it
   // (MoorDyn v2 warns and does the same, so a file may leave WtrDpth out).
   std::optional<std::pair<double, int>> depth = option("wtrdpth");
+  bool depth_given = true;  // false: a point's
   for (const Point& p : points) {
     if (-p.z > (depth ? depth->first : 0.0)) {
       if (depth) {
@@ -908,13 +909,12 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
                          FormatNumber(-p.z) + " m), as MoorDyn does");
       }
       depth = std::make_pair(-p.z, p.line);
+      depth_given = false;
     }
   }
   if (!depth) problems.Add(1, "no WtrDpth option and no point below the water: no water depth");
   if (chains.empty()) problems.Add(1, "no line moorsim can hold");
   problems.ThrowIfAny();
-  const bool depth_given =
-      options.contains("wtrdpth") && depth->second == options.at("wtrdpth").second;
 
   // Vessel points far from MoorDyn's origin (a Coupled point given where it starts, a line
   // driven at its end): the model moves horizontally so that their centre is moorsim's
