@@ -3,6 +3,7 @@
 // Newton iteration sees no kinks (docs/design.md section 8.3).
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "core/types.h"
@@ -11,23 +12,36 @@
 
 namespace moorsim::mooring_fem {
 
-/// Horizontal current whose speed is piecewise linear in depth (constant beyond the ends).
+/// The current where the lines are: a horizontal velocity whose speed is piecewise linear
+/// in depth (constant beyond the ends), or a table over position and time (CurrentTable).
 class CurrentField {
  public:
   CurrentField() = default;
   explicit CurrentField(const CurrentProfile& profile);
 
-  bool empty() const { return depth_.empty(); }
-  /// Water velocity at depth z (NED z, down positive) [m/s], Earth frame.
-  Vec3 VelocityAt(double z) const;
-  /// d(velocity)/dz at depth z [1/s].
-  Vec3 GradientAt(double z) const;
+  bool empty() const { return depth_.empty() && table_ == nullptr; }
+  /// Water velocity at `r` (NED) and time t [m/s], Earth frame.
+  Vec3 VelocityAt(double t, const Vec3& r) const {
+    if (table_ != nullptr) return TableVelocity(t, r, nullptr);
+    return ProfileVelocity(r.z());
+  }
+  /// d(velocity)/dr at `r` and t [1/s] (columns: x, y, z).
+  Mat3 GradientAt(double t, const Vec3& r) const;
 
  private:
+  Vec3 ProfileVelocity(double z) const;
+  Vec3 TableVelocity(double t, const Vec3& r, Mat3* gradient) const;
+
   Vec3 direction_ = Vec3::Zero();  // unit horizontal vector the water flows toward
   std::vector<double> depth_;
   std::vector<double> speed_;
+  std::shared_ptr<const CurrentTable> table_;
 };
+
+/// Throws moorsim::InputError naming the table's source and what is wrong: an axis empty or
+/// not strictly increasing or not finite, a velocity count that is not the grid's, a
+/// velocity not finite, a period not longer than the times it repeats.
+void CheckCurrentTable(const CurrentTable& table);
 
 /// Where a node touches the seabed: the unit normal into the seabed and the penetration
 /// along it (seabed.h).

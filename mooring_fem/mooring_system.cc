@@ -879,7 +879,7 @@ void MooringSystem::NodeForceIn(const Chain& c, int k, Vec3* F_out, NodeMass* M_
   const NodeShare& share = ShareAt(c, k, &end);
   const Vec3& r = pos_[k];
   const Vec3& v = vel_[k];
-  Vec3 u = v - current_.VelocityAt(r.z());
+  Vec3 u = v - current_.VelocityAt(time_, r);
   Vec3 water_acceleration = Vec3::Zero();
   if constexpr (kWaves) {
     const WaterMotion water = waves_->At(time_, r, false);
@@ -955,11 +955,10 @@ void MooringSystem::NodeForceJacobian(const Chain& c, int k, const Vec3& a, Node
   const Vec3& v = vel_[k];
   std::optional<WaterMotion> water;
   if (waves_ != nullptr) water = waves_->At(time_, r, true);
-  Vec3 u = v - current_.VelocityAt(r.z());
+  Vec3 u = v - current_.VelocityAt(time_, r);
   if (water) u -= water->velocity;
-  // du/dr = -dvc/dz e_z^T (the current: only the z column) - d(wave velocity)/dr.
-  Mat3 du_dr = Mat3::Zero();
-  du_dr.col(2) = -current_.GradientAt(r.z());
+  // du/dr = -d(current)/dr - d(wave velocity)/dr.
+  Mat3 du_dr = -current_.GradientAt(time_, r);
   if (water) du_dr -= water->d_velocity;
 
   // sigma = dl/dr_k for the segment (l = r_upper - r_lower): -1 above, +1 below.
@@ -1138,7 +1137,7 @@ void MooringSystem::PointBodyLoad(int q, const double* x) {
   const PointBodyProperties& body = point_bodies_[q];
   const Vec3 r(x + 6 * q);
   const Vec3 v(x + 6 * q + 3);
-  Vec3 u = v - current_.VelocityAt(r.z());
+  Vec3 u = v - current_.VelocityAt(time_, r);
   point_force_[q] = body.weight * kDown;
   if (waves_ != nullptr) {
     const WaterMotion water = waves_->At(time_, r, false);
@@ -1231,9 +1230,8 @@ void MooringSystem::Jacobian(const double* x, std::span<const PointKinematics> f
       const Vec3 v(x + 6 * q + 3);
       std::optional<WaterMotion> water;
       if (waves_ != nullptr) water = waves_->At(time_, r, true);
-      Vec3 u = v - current_.VelocityAt(r.z());
-      Mat3 du_dr = Mat3::Zero();
-      du_dr.col(2) = -current_.GradientAt(r.z());
+      Vec3 u = v - current_.VelocityAt(time_, r);
+      Mat3 du_dr = -current_.GradientAt(time_, r);
       if (water) {
         u -= water->velocity;
         du_dr -= water->d_velocity;

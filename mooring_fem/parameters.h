@@ -6,6 +6,7 @@
 // unless a name says otherwise; angles in radians. Line numbers are 1-based.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -58,14 +59,31 @@ struct Seabed {
   DepthGrid grid;                ///< a depth grid in place of the plane (empty: none)
 };
 
+/// A current given as a table: the water's velocity (north, east, down) [m/s] at the nodes
+/// of a grid over north x, east y, depth z and time t, interpolated linearly along each axis
+/// (quadrilinear) and held constant beyond each axis's ends. An axis of one point makes the
+/// current uniform along it: a steady profile has one x, one y and one t. With a `period`
+/// the table repeats in time: at t the current of t0 + (t - t0) mod period (t0 the first
+/// time), running from the last time's back to the first's over the gap to the period's
+/// end; the period must exceed the last time minus the first.
+struct CurrentTable {
+  std::vector<double> x, y, z, t;  ///< strictly increasing, at least one point each
+  /// The velocity at (x[i], y[j], z[k], t[l]): velocity[((i * ny + j) * nz + k) * nt + l].
+  std::vector<Vec3> velocity;
+  double period = 0.0;  ///< [s]; 0 = not repeating
+  std::string source;   ///< where it came from (a file name), for messages
+};
+
 /// Current: a horizontal velocity whose speed varies piecewise linearly with depth and is
 /// held constant beyond the first and last points. `direction` is the direction the water
-/// flows TO, measured from north toward east [rad].
+/// flows TO, measured from north toward east [rad]. Or, with a table, the table's.
 struct CurrentProfile {
   double direction = 0.0;
   std::vector<double> depth;  ///< strictly increasing depths [m], >= 0
   std::vector<double> speed;  ///< speeds at those depths [m/s], >= 0
-  /// Speed at the surface [m/s] (0 without a profile).
+  /// In place of the profile (then depth and speed are empty); shared, as it can be large.
+  std::shared_ptr<const CurrentTable> table;
+  /// Speed at the surface [m/s] (0 without a profile; a table's is not one number).
   double SurfaceSpeed() const { return speed.empty() ? 0.0 : speed.front(); }
 };
 

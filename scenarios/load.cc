@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <sstream>
@@ -22,6 +23,7 @@
 #include "core/error.h"
 #include "core/format.h"
 #include "mooring_fem/catenary.h"
+#include "mooring_fem/environment.h"
 #include "mooring_fem/seabed.h"
 #include "scenarios/convert.h"
 #include "scenarios/depth_grid.h"
@@ -75,8 +77,35 @@ void ParseSeabed(const Reader& r, Seabed& seabed) {
 
 void ParseCurrent(const Reader& r, CurrentProfile& current) {
   r.CheckKeys();
-  current.direction = AngleDegrees(r.Child("direction_deg"));
-  const Reader profile = r.Child("profile");
+  if (std::optional<Reader> file = r.Find("file")) {
+    for (const char* key : {"direction_deg", "profile"}) {
+      if (std::optional<Reader> k = r.Find(key)) k->Fail("give a profile or a file, not both");
+    }
+    // A relative path is relative to the folder of the file it is written in.
+    std::filesystem::path path = file->As<std::string>();
+    if (path.is_relative()) path = std::filesystem::path(file->File()).parent_path() / path;
+    auto table = std::make_shared<mooring_fem::CurrentTable>();
+    try {
+      *table = ReadCurrentTable(path.lexically_normal().string());
+    } catch (const InputError& error) {
+      file->Fail(error.what());
+    }
+    if (std::optional<Reader> period = r.Find("period")) {
+      table->period = period->As<double>();
+      try {
+        mooring_fem::CheckCurrentTable(*table);
+      } catch (const InputError& error) {
+        period->Fail(error.what());
+      }
+    }
+    current.table = std::move(table);
+    return;
+  }
+  if (std::optional<Reader> period = r.Find("period")) {
+    period->Fail("repeats a current table: give it with file");
+  }
+  current.direction = AngleDegrees(r.Needed("direction_deg"));
+  const Reader profile = r.Needed("profile");
   const std::vector<Reader> points = profile.Items();
   if (points.empty()) profile.Fail("[] must hold at least one {depth, speed} point");
   profile.ForEachItem([&](const Reader& point, std::size_t) {
@@ -435,12 +464,31 @@ void ParseEnvironment(const Reader& r, Scenario& scenario) {
   if (std::optional<Reader> w = r.Find("waves")) {
     w->CheckKeys();
     e.waves.enabled = true;
-    e.waves.significant_height = w->Required<double>("hs");
-    e.waves.peak_period = w->Required<double>("tp");
-    w->Optional("gamma", e.waves.gamma);
-    e.waves.direction_toward = AngleDegrees(w->Child("direction_toward_deg"));
-    e.waves.spreading = w->Maybe<double>("spreading");
-    w->Optional("components", e.waves.components);
+    if (std::optional<Reader> trains = w->Find("trains")) {
+      for (const char* key :
+           {"hs", "tp", "gamma", "direction_toward_deg", "spreading", "components"}) {
+        if (std::optional<Reader> k = w->Find(key)) {
+          k->Fail("give the JONSWAP sea (hs, tp, ...) or trains, not both");
+        }
+      }
+      if (trains->Items().empty()) trains->Fail("[] must hold at least one regular wave");
+      trains->ForEachItem([&](const Reader& train, std::size_t) {
+        train.CheckKeys();
+        vessel::WaveComponent c;
+        c.omega = 2.0 * std::numbers::pi / train.Required<double>("period");
+        c.amplitude = train.Required<double>("amplitude");
+        c.phase = AngleDegrees(train.Child("phase_deg"));
+        c.direction = AngleDegrees(train.Child("direction_toward_deg"));
+        e.waves.trains.push_back(c);
+      });
+    } else {
+      w->Attempt([&] { e.waves.significant_height = w->Needed("hs").As<double>(); });
+      w->Attempt([&] { e.waves.peak_period = w->Needed("tp").As<double>(); });
+      w->Optional("gamma", e.waves.gamma);
+      e.waves.direction_toward = AngleDegrees(w->Needed("direction_toward_deg"));
+      e.waves.spreading = w->Maybe<double>("spreading");
+      w->Optional("components", e.waves.components);
+    }
     w->Optional("on_lines", e.waves.on_lines);
     w->Optional("stretching", e.waves.stretching);
   }
@@ -1142,14 +1190,32 @@ void CheckVessel(const Checker& check, const VesselSpec& v) {
 void CheckEnvironment(const Checker& check, const Scenario& scenario) {
   const EnvironmentSpec& e = scenario.environment;
   if (!e.waves.enabled) return;
-  if (!scenario.vessel) {
-    check.Fail("environment.waves", "waves need a vessel section (its RAOs and drift)");
+  if (!scenario.vessel && !e.waves.on_lines) {
+    check.Fail("environment.waves",
+               "waves need a vessel section (its RAOs and drift) or on_lines: true (the lines "
+               "feel them)");
+  }
+  const double g = scenario.mooring.water.gravity;
+  if (!e.waves.trains.empty()) {
+    // Each regular wave's steepness 2 a / L, L = g T^2 / (2 pi) its deep-water length:
+    // regular waves break at 1/7 (Michell 1893).
+    for (std::size_t i = 0; i < e.waves.trains.size(); ++i) {
+      const vessel::WaveComponent& c = e.waves.trains[i];
+      const double steepness = 2.0 * c.amplitude * c.omega * c.omega / (2.0 * std::numbers::pi * g);
+      if (!(steepness <= 1.0 / 7.0)) {
+        check.Fail(ItemPath("environment.waves.trains", i) + ".amplitude",
+                   WithUnit(c.amplitude, "m") + " is too steep for period " +
+                       WithUnit(2.0 * std::numbers::pi / c.omega, "s") + ": 2 a / L = " +
+                       Significant(steepness, 3) + " must be <= 1/7 (such waves break)");
+      }
+    }
+    return;
   }
   const double hs = e.waves.significant_height;
   const double tp = e.waves.peak_period;
   // Steepness Hs / Lp, Lp = g Tp^2 / (2 pi) the deep-water length of the peak wave: waves
   // break at 1/7 (Michell 1893), and Hs is below the highest waves of the sea state.
-  const double steepness = hs * 2.0 * std::numbers::pi / (scenario.mooring.water.gravity * tp * tp);
+  const double steepness = hs * 2.0 * std::numbers::pi / (g * tp * tp);
   if (!(steepness <= 1.0 / 7.0)) {
     check.Fail("environment.waves.hs",
                WithUnit(hs, "m") + " is too steep for tp " + WithUnit(tp, "s") +

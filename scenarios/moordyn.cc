@@ -4,9 +4,12 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <complex>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -15,9 +18,12 @@
 #include <string>
 #include <vector>
 
+#include "core/angles.h"
 #include "core/error.h"
 #include "core/format.h"
+#include "core/types.h"
 #include "core/version.h"
+#include "mooring_fem/wave_kinematics.h"
 #include "scenarios/load.h"
 #include "scenarios/schema.h"
 #include "scenarios/strict_yaml.h"
@@ -276,6 +282,333 @@ std::filesystem::path FindBesideInput(const std::string& path, const std::string
   throw InputError(where + ": not found beside the input file or in a folder above it");
 }
 
+// The lines of a file MoorDyn reads beside the input file (`name`), as MoorDyn reads them:
+// every line kept, blank ones too, its fields split at white space.
+std::vector<std::vector<std::string>> BesideFileRows(const std::string& path,
+                                                     const std::string& name,
+                                                     const std::string& where) {
+  const std::filesystem::path found = FindBesideInput(path, name, where);
+  const std::string text = strict_yaml::ReadInputFile(found.string(), kMaxFileBytes, "MoorDyn");
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(text);
+  for (std::string row; std::getline(in, row);) rows.push_back(Fields(row));
+  return rows;
+}
+
+// A field as a number, or InputError naming the file's line.
+double NumberAt(const std::vector<std::string>& fields, std::size_t k, const std::string& where,
+                std::size_t row) {
+  if (k >= fields.size()) {
+    throw InputError(where + ", line " + std::to_string(row + 1) + ": " +
+                     std::to_string(fields.size()) + " fields where " + std::to_string(k + 1) +
+                     " or more are needed");
+  }
+  const std::optional<double> value = ToNumber(fields[k]);
+  if (!value) {
+    throw InputError(where + ", line " + std::to_string(row + 1) + ": '" + fields[k] +
+                     "' is not a number");
+  }
+  return *value;
+}
+
+// An angle in degrees, in (-180, 180].
+double Degrees(double radians) { return WrapAngle(radians) * 180.0 / std::numbers::pi + 0.0; }
+
+// One regular wave in MoorDyn's frame (z up, y to port): elevation
+// amplitude cos(omega t - k (x cos(beta) + y sin(beta)) + phase).
+struct MdWave {
+  double omega = 0.0, amplitude = 0.0, phase = 0.0, beta = 0.0;
+};
+
+// MoorDyn's wave_frequencies.txt: rows "omega re im [beta]", the first at 0 rad/s. WaveKin 7
+// sums them as they are, as |A| sin(omega t - k x + arg A); WaveKin 2 first puts them on an
+// even grid of the smallest spacing (complex amplitude and direction joined by straight
+// lines) and inverse-transforms them, |A| cos(omega t - k x + arg A), its top bin (the
+// transform's Nyquist bin) taking half its real part. The 0 rad/s row is a constant level,
+// not a wave: left out (with a warning if it is not zero).
+std::vector<MdWave> SpectrumWaves(const std::string& path, int line, int wavekin,
+                                  const std::function<void(const std::string&)>& warn) {
+  const std::string where = path + ":" + std::to_string(line) + ": WaveKin " +
+                            std::to_string(wavekin) + ": wave_frequencies.txt";
+  struct Row {
+    double omega;
+    std::complex<double> a;
+    double beta;
+  };
+  std::vector<Row> rows;
+  const auto lines = BesideFileRows(path, "wave_frequencies.txt", where);
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    if (lines[i].empty()) continue;
+    if (lines[i].size() < 3 || lines[i].size() > 4) {
+      throw InputError(where + ", line " + std::to_string(i + 1) +
+                       ": a row is omega [rad/s], the amplitude's real and imaginary parts "
+                       "[m] and optionally the direction [rad]");
+    }
+    Row r{NumberAt(lines[i], 0, where, i),
+          {NumberAt(lines[i], 1, where, i), NumberAt(lines[i], 2, where, i)},
+          lines[i].size() == 4 ? NumberAt(lines[i], 3, where, i) : 0.0};
+    if (std::abs(r.beta) > 2.0 * std::numbers::pi) {
+      throw InputError(where + ", line " + std::to_string(i + 1) +
+                       ": the direction must be within +-2 pi rad");
+    }
+    if (!rows.empty() && !(r.omega > rows.back().omega)) {
+      throw InputError(where + ", line " + std::to_string(i + 1) +
+                       ": the frequencies must increase");
+    }
+    rows.push_back(r);
+  }
+  if (rows.size() < 2 || rows.front().omega != 0.0) {
+    throw InputError(where + ": at least two rows, the first at 0 rad/s");
+  }
+  if (std::abs(rows.front().a) > 0.0) {
+    warn("WaveKin " + std::to_string(wavekin) +
+         ": wave_frequencies.txt's 0 rad/s row is a constant water level, not a wave: left out");
+  }
+  std::vector<MdWave> waves;
+  if (wavekin == 7) {
+    for (std::size_t i = 1; i < rows.size(); ++i) {
+      const Row& r = rows[i];
+      if (std::abs(r.a) == 0.0) continue;
+      waves.push_back({r.omega, std::abs(r.a), std::arg(r.a) - std::numbers::pi / 2.0, r.beta});
+    }
+    return waves;
+  }
+  double dw = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 1; i < rows.size(); ++i)
+    dw = std::min(dw, rows[i].omega - rows[i - 1].omega);
+  const std::size_t nw = static_cast<std::size_t>(std::floor(rows.back().omega / dw)) + 1;
+  if (nw > 1000000) throw InputError(where + ": more than 1e6 frequencies on its even grid");
+  std::size_t j = 1;
+  for (std::size_t i = 1; i < nw; ++i) {
+    const double omega = static_cast<double>(i) * dw;
+    while (j + 1 < rows.size() && rows[j].omega < omega) ++j;
+    const double f =
+        std::clamp((omega - rows[j - 1].omega) / (rows[j].omega - rows[j - 1].omega), 0.0, 1.0);
+    std::complex<double> a = rows[j - 1].a + f * (rows[j].a - rows[j - 1].a);
+    const double beta = rows[j - 1].beta + f * (rows[j].beta - rows[j - 1].beta);
+    if (i == nw - 1) a = 0.5 * a.real();  // the inverse transform's Nyquist bin
+    if (std::abs(a) == 0.0) continue;
+    waves.push_back({omega, std::abs(a), std::arg(a), beta});
+  }
+  return waves;
+}
+
+// MoorDyn's wave_elevation.txt (WaveKin 3): rows "t zeta" at the origin, waves travelling
+// along x. MoorDyn resamples it every dtWave from 0 (straight lines between the rows, held
+// beyond the last), drops a last sample to make the count even, Fourier-transforms it and
+// keeps the frequencies up to 0.5 Hz: those are the regular waves, of period N dtWave / n.
+std::vector<MdWave> ElevationWaves(const std::string& path, int line, double dt_wave,
+                                   const std::function<void(const std::string&)>& warn) {
+  const std::string where = path + ":" + std::to_string(line) + ": WaveKin 3: wave_elevation.txt";
+  if (!(dt_wave > 0.0)) throw InputError(where + ": dtWave must be > 0");
+  std::vector<double> times, elevations;
+  const auto lines = BesideFileRows(path, "wave_elevation.txt", where);
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    if (lines[i].empty()) continue;
+    const double t = NumberAt(lines[i], 0, where, i);
+    if (!times.empty() && !(t > times.back())) {
+      throw InputError(where + ", line " + std::to_string(i + 1) + ": the times must increase");
+    }
+    times.push_back(t);
+    elevations.push_back(NumberAt(lines[i], 1, where, i));
+  }
+  if (times.size() < 2) throw InputError(where + ": at least two rows \"t zeta\"");
+  const double samples_wanted = std::floor(times.back() / dt_wave) + 1.0;
+  if (!(samples_wanted >= 2.0) || samples_wanted > 1e6) {
+    throw InputError(where + ": " + FormatNumber(samples_wanted) +
+                     " samples at dtWave; 2 to 1e6 are needed");
+  }
+  std::size_t n = static_cast<std::size_t>(samples_wanted);
+  if (n % 2 != 0) --n;
+  std::vector<double> zeta(n);
+  std::size_t j = 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = static_cast<double>(i) * dt_wave;
+    while (j + 1 < times.size() && times[j] < t) ++j;
+    const double f = std::clamp((t - times[j - 1]) / (times[j] - times[j - 1]), 0.0, 1.0);
+    zeta[i] = elevations[j - 1] + f * (elevations[j] - elevations[j - 1]);
+  }
+  const double dw = std::numbers::pi / (dt_wave * static_cast<double>(n / 2));
+  std::vector<MdWave> waves;
+  double mean = 0.0;
+  for (double z : zeta) mean += z;
+  if (std::abs(mean / static_cast<double>(n)) > 1e-9) {
+    warn("WaveKin 3: wave_elevation.txt's mean level " +
+         FormatNumber(mean / static_cast<double>(n)) + " m is not a wave: left out");
+  }
+  for (std::size_t k = 1; k <= n / 2; ++k) {
+    if (static_cast<double>(k) * dw > 0.5 * 2.0 * std::numbers::pi) break;  // as MoorDyn cuts
+    std::complex<double> x = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      x += zeta[i] * std::polar(1.0, -2.0 * std::numbers::pi * static_cast<double>(k * i % n) /
+                                         static_cast<double>(n));
+    }
+    // Amplitude 2 |X| / N, but the Nyquist bin's real part once.
+    const std::complex<double> a = k == n / 2
+                                       ? std::complex<double>(x.real() / static_cast<double>(n))
+                                       : 2.0 * x / static_cast<double>(n);
+    if (std::abs(a) < 1e-12) continue;
+    waves.push_back({static_cast<double>(k) * dw, std::abs(a), std::arg(a), 0.0});
+  }
+  return waves;
+}
+
+// MoorDyn's current files (Currents 1, 2, 5) as a table in MoorDyn's frame: axes x, y, z
+// (up) and t, velocities (ux, uy, uz) at ((ix ny + iy) nz + iz) nt + it.
+struct MdCurrent {
+  std::vector<double> x{0.0}, y{0.0}, z, t{0.0};
+  std::vector<Vec3> velocity;
+  double period = 0.0;  // MoorDyn repeats a table sampled in time (Currents 2 and 5)
+  std::string file;
+};
+
+// A strictly increasing axis read from fields [first, first + count).
+std::vector<double> AxisOf(const std::vector<std::string>& fields, std::size_t first,
+                           std::size_t count, const std::string& where, std::size_t row,
+                           const std::string& name) {
+  std::vector<double> axis;
+  for (std::size_t k = first; k < first + count; ++k) {
+    axis.push_back(NumberAt(fields, k, where, row));
+    if (axis.size() > 1 && !(axis.back() > axis[axis.size() - 2])) {
+      throw InputError(where + ", line " + std::to_string(row + 1) + ": the " + name +
+                       " values must increase");
+    }
+  }
+  if (axis.empty()) {
+    throw InputError(where + ", line " + std::to_string(row + 1) + ": no " + name + " values");
+  }
+  return axis;
+}
+
+// MoorDyn samples a table given in time every smallest step from 0 and repeats it after
+// as many steps as reach the last time, plus one.
+double RepeatPeriod(const std::vector<double>& t) {
+  if (t.size() < 2) return 0.0;
+  double dt = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 1; i < t.size(); ++i) dt = std::min(dt, t[i] - t[i - 1]);
+  return (std::floor(t.back() / dt) + 1.0) * dt;
+}
+
+MdCurrent CurrentFile(const std::string& path, int line, int mode) {
+  MdCurrent c;
+  c.file = mode == 1 ? "current_profile.txt"
+                     : (mode == 2 ? "current_profile_dynamic.txt" : "current_profile_4d.txt");
+  const std::string where =
+      path + ":" + std::to_string(line) + ": Currents " + std::to_string(mode) + ": " + c.file;
+  const auto lines = BesideFileRows(path, c.file, where);
+  const auto velocity_at = [&](std::size_t ix, std::size_t iy, std::size_t iz,
+                               std::size_t it) -> Vec3& {
+    return c.velocity[((ix * c.y.size() + iy) * c.z.size() + iz) * c.t.size() + it];
+  };
+  if (mode == 1) {
+    // Three header lines, then rows "z ux [uy [uz]]".
+    std::vector<Vec3> rows;
+    for (std::size_t i = 3; i < lines.size(); ++i) {
+      if (lines[i].empty()) continue;
+      const std::vector<std::string>& f = lines[i];
+      c.z.push_back(NumberAt(f, 0, where, i));
+      if (c.z.size() > 1 && !(c.z.back() > c.z[c.z.size() - 2])) {
+        throw InputError(where + ", line " + std::to_string(i + 1) + ": z must increase");
+      }
+      rows.emplace_back(NumberAt(f, 1, where, i), f.size() > 2 ? NumberAt(f, 2, where, i) : 0.0,
+                        f.size() > 3 ? NumberAt(f, 3, where, i) : 0.0);
+    }
+    if (rows.empty()) throw InputError(where + ": no rows \"z ux uy uz\" after its three headers");
+    c.velocity = rows;
+    return c;
+  }
+  if (mode == 2) {
+    // Line 5: the z values; from line 7: "t ux(z1..zn) [uy(z1..zn) [uz(z1..zn)]]".
+    if (lines.size() < 7) throw InputError(where + ": the z values on line 5, rows from line 7");
+    c.z = AxisOf(lines[4], 0, lines[4].size(), where, 4, "z");
+    const std::size_t nz = c.z.size();
+    std::vector<std::vector<Vec3>> rows;
+    c.t.clear();
+    for (std::size_t i = 6; i < lines.size(); ++i) {
+      if (lines[i].empty()) continue;
+      const std::vector<std::string>& f = lines[i];
+      if (f.size() != nz + 1 && f.size() != 2 * nz + 1 && f.size() != 3 * nz + 1) {
+        throw InputError(where + ", line " + std::to_string(i + 1) + ": " +
+                         std::to_string(f.size()) + " fields; a row is t and " +
+                         std::to_string(nz) + " values of ux (then of uy, then of uz)");
+      }
+      c.t.push_back(NumberAt(f, 0, where, i));
+      if (c.t.size() > 1 && !(c.t.back() > c.t[c.t.size() - 2])) {
+        throw InputError(where + ", line " + std::to_string(i + 1) + ": t must increase");
+      }
+      std::vector<Vec3> profile(nz, Vec3::Zero());
+      for (std::size_t k = 0; k < nz; ++k) {
+        for (std::size_t m = 0; m < 3 && (m + 1) * nz + 1 <= f.size(); ++m) {
+          profile[k](static_cast<Eigen::Index>(m)) = NumberAt(f, 1 + m * nz + k, where, i);
+        }
+      }
+      rows.push_back(profile);
+    }
+    if (rows.empty()) throw InputError(where + ": no rows from line 7");
+    c.velocity.assign(nz * c.t.size(), Vec3::Zero());
+    for (std::size_t it = 0; it < c.t.size(); ++it) {
+      for (std::size_t iz = 0; iz < nz; ++iz) velocity_at(0, 0, iz, it) = rows[it][iz];
+    }
+    c.period = RepeatPeriod(c.t);
+    return c;
+  }
+  // Currents 5: line 1 the counts nx ny nz nt, lines 2-5 the axes, then one row per point
+  // "x y z t ux uy uz".
+  if (lines.size() < 6) throw InputError(where + ": the counts, four axes, then the rows");
+  std::size_t counts[4];
+  for (std::size_t a = 0; a < 4; ++a) {
+    const double n = NumberAt(lines[0], a, where, 0);
+    if (!(n >= 1.0 && n <= 1e6 && n == std::floor(n))) {
+      throw InputError(where + ", line 1: the counts nx ny nz nt must be whole numbers >= 1");
+    }
+    counts[a] = static_cast<std::size_t>(n);
+  }
+  c.x = AxisOf(lines[1], 0, counts[0], where, 1, "x");
+  c.y = AxisOf(lines[2], 0, counts[1], where, 2, "y");
+  c.z = AxisOf(lines[3], 0, counts[2], where, 3, "z");
+  c.t = AxisOf(lines[4], 0, counts[3], where, 4, "t");
+  const double points = static_cast<double>(counts[0]) * static_cast<double>(counts[1]) *
+                        static_cast<double>(counts[2]) * static_cast<double>(counts[3]);
+  if (points > 1e7) throw InputError(where + ": more than 1e7 grid points");
+  c.velocity.assign(static_cast<std::size_t>(points), Vec3::Zero());
+  std::vector<char> seen(c.velocity.size(), 0);
+  std::size_t given = 0;
+  const auto index_on = [&](const std::vector<double>& axis, double v, std::size_t i,
+                            const char* name) {
+    const auto it = std::find(axis.begin(), axis.end(), v);
+    if (it == axis.end()) {
+      throw InputError(where + ", line " + std::to_string(i + 1) + ": " + name + " " +
+                       FormatNumber(v) + " is not on its axis");
+    }
+    return static_cast<std::size_t>(it - axis.begin());
+  };
+  for (std::size_t i = 5; i < lines.size(); ++i) {
+    if (lines[i].empty()) continue;
+    const std::vector<std::string>& f = lines[i];
+    if (f.size() != 7) {
+      throw InputError(where + ", line " + std::to_string(i + 1) + ": a row is x y z t ux uy uz");
+    }
+    const std::size_t ix = index_on(c.x, NumberAt(f, 0, where, i), i, "x");
+    const std::size_t iy = index_on(c.y, NumberAt(f, 1, where, i), i, "y");
+    const std::size_t iz = index_on(c.z, NumberAt(f, 2, where, i), i, "z");
+    const std::size_t it = index_on(c.t, NumberAt(f, 3, where, i), i, "t");
+    const std::size_t k = ((ix * c.y.size() + iy) * c.z.size() + iz) * c.t.size() + it;
+    if (seen[k]) {
+      throw InputError(where + ", line " + std::to_string(i + 1) + ": the point is given twice");
+    }
+    seen[k] = 1;
+    ++given;
+    c.velocity[k] =
+        Vec3(NumberAt(f, 4, where, i), NumberAt(f, 5, where, i), NumberAt(f, 6, where, i));
+  }
+  if (given != c.velocity.size()) {
+    throw InputError(where + ": " + std::to_string(given) + " rows for " +
+                     std::to_string(c.velocity.size()) + " grid points");
+  }
+  c.period = RepeatPeriod(c.t);
+  return c;
+}
+
 std::string SeafloorGrid(const std::string& path, int line, const std::string& name, double shift_x,
                          double shift_y) {
   const std::string where = path + ":" + std::to_string(line) + ": SeafloorFile " + name;
@@ -531,10 +864,21 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
         options[name] = {value.value_or(std::nan("")), row.line};
         static const std::set<std::string> kModel = {
             "wtrdpth", "wtrdnsty", "g", "gravity", "kbot", "cbot", "frictioncoefficient"};
-        static const std::set<std::string> kUnsupported = {"wavekin", "currents", "watrkin",
-                                                           "seafloor", "bathymetry"};
+        static const std::set<std::string> kUnsupported = {"watrkin", "seafloor", "bathymetry"};
         if (name == "seafloorfile") {
           seafloor = {row.fields[0], row.line};
+        } else if ((name == "wavekin" && value != 1.0) || name == "currents") {
+          // Read after the tables (the files MoorDyn reads for them sit beside the input).
+          static const std::set<double> kWaveKin = {0.0, 2.0, 3.0, 7.0};
+          static const std::set<double> kCurrents = {0.0, 1.0, 2.0, 5.0};
+          const std::set<double>& known = name == "wavekin" ? kWaveKin : kCurrents;
+          if (!value || known.count(*value) == 0) {
+            problems.Add(row.line,
+                         "option " + row.fields[1] + " " + row.fields[0] +
+                             " is not supported (WaveKin 0, 1, 2, 3 or 7 and Currents 0, 1, 2 "
+                             "or 5 are: MoorDyn v2.7.1 does not implement its node approaches "
+                             "either)");
+          }
         } else if (name == "wavekin" && value == 1.0) {
           // Waves driven through the API: the file holds none, the coupling program gives
           // them step by step; without it MoorDyn's water is still too.
@@ -952,6 +1296,113 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
     problems.ThrowIfAny();
   }
 
+  // MoorDyn's waves and current, read from the files beside the input.
+  const auto wavekin = option("wavekin");
+  const auto currents = option("currents");
+  std::vector<vessel::WaveComponent> trains;
+  std::optional<MdCurrent> current;
+  const auto warn_at = [&](int line) {
+    return std::function<void(const std::string&)>(
+        [&, line](const std::string& what) { warn(line, what); });
+  };
+  if (wavekin && (wavekin->first == 2.0 || wavekin->first == 3.0 || wavekin->first == 7.0)) {
+    problems.Attempt([&] {
+      const int mode = static_cast<int>(wavekin->first);
+      const auto dt_wave = option("dtwave");
+      const std::vector<MdWave> waves =
+          mode == 3 ? ElevationWaves(path, wavekin->second, dt_wave ? dt_wave->first : 0.25,
+                                     warn_at(wavekin->second))
+                    : SpectrumWaves(path, wavekin->second, mode, warn_at(wavekin->second));
+      const double depth_m = depth->first;
+      const auto g = option("g") ? option("g") : option("gravity");
+      for (const MdWave& w : waves) {
+        // Moved with the model: the phase at the new origin. Then y and the direction
+        // mirrored (MoorDyn's y points to port).
+        const double k =
+            mooring_fem::WaveKinematics::WaveNumber(w.omega, depth_m, g ? g->first : 9.81);
+        const double phase =
+            w.phase - k * (shift_x * std::cos(w.beta) + shift_y * std::sin(w.beta));
+        trains.push_back({w.omega, w.amplitude, phase, -w.beta});
+      }
+      if (trains.empty()) warn(wavekin->second, "WaveKin: the waves' files hold no wave");
+    });
+  }
+  if (currents && currents->first != 0.0) {
+    problems.Attempt(
+        [&] { current = CurrentFile(path, currents->second, static_cast<int>(currents->first)); });
+  }
+  problems.ThrowIfAny();
+  std::string seabed_file;
+  if (!out.files.empty()) seabed_file = out.files.front().first;
+  // A current that is one direction at every depth and steady is moorsim's profile;
+  // otherwise a table beside the scenario.
+  std::optional<std::pair<double, std::vector<std::pair<double, double>>>> profile;
+  std::string current_file;
+  if (current) {
+    const MdCurrent& c = *current;
+    Vec3 along = Vec3::Zero();
+    bool one_direction = c.x.size() == 1 && c.y.size() == 1 && c.t.size() == 1;
+    for (const Vec3& v : c.velocity) {
+      if (v.z() != 0.0) one_direction = false;
+      if (along.isZero() && !v.isZero()) along = v.normalized();
+      if (!v.isZero() && (v - v.norm() * along).norm() > 1e-12 * v.norm()) one_direction = false;
+    }
+    if (one_direction) {
+      // moorsim: direction from north (x) toward east (-y); depths down, from the surface.
+      const double direction = std::atan2(-along.y(), along.x());
+      std::vector<std::pair<double, double>> points;  // depth, speed
+      for (std::size_t k = c.z.size(); k-- > 0;) {
+        if (c.z[k] <= 0.0) points.push_back({-c.z[k] + 0.0, c.velocity[k].norm()});
+      }
+      // Points above the mean surface are left out, and the surface's value added where
+      // the points straddle it.
+      const auto above = std::find_if(c.z.begin(), c.z.end(), [](double z) { return z > 0.0; });
+      if (above != c.z.end() && above != c.z.begin() && *(above - 1) < 0.0) {
+        const std::size_t k = static_cast<std::size_t>(above - c.z.begin());
+        const double f = -c.z[k - 1] / (c.z[k] - c.z[k - 1]);
+        const double speed =
+            c.velocity[k - 1].norm() + f * (c.velocity[k].norm() - c.velocity[k - 1].norm());
+        points.insert(points.begin(), {0.0, speed});
+      }
+      if (points.empty()) points.push_back({0.0, c.velocity.back().norm()});
+      profile = {along.isZero() ? 0.0 : direction, points};
+    } else {
+      const std::string stem =
+          files_stem.empty() ? std::filesystem::path(path).stem().string() : files_stem;
+      current_file = stem + "_current.txt";
+      std::ostringstream table;
+      table << "# The water's velocity [m/s] over north x, east y, depth [m] and time [s]: "
+               "MoorDyn's "
+            << c.file << " (Currents " << currents->first
+            << "), y and z reversed (MoorDyn's y points to port and its z up)";
+      if (shift_x != 0.0 || shift_y != 0.0) table << ", moved with the model";
+      table << "\nx:";
+      for (double x : c.x) table << " " << FormatNumber(x - shift_x);
+      table << "\ny:";
+      for (std::size_t j = c.y.size(); j-- > 0;)
+        table << " " << FormatNumber(-(c.y[j] - shift_y) + 0.0);
+      table << "\ndepth:";
+      for (std::size_t k = c.z.size(); k-- > 0;) table << " " << FormatNumber(-c.z[k] + 0.0);
+      table << "\ntime:";
+      for (double t : c.t) table << " " << FormatNumber(t);
+      table << "\n# x, y, depth, time, velocity north, east, down\n";
+      for (std::size_t i = 0; i < c.x.size(); ++i) {
+        for (std::size_t j = c.y.size(); j-- > 0;) {
+          for (std::size_t k = c.z.size(); k-- > 0;) {
+            for (std::size_t l = 0; l < c.t.size(); ++l) {
+              const Vec3& v = c.velocity[((i * c.y.size() + j) * c.z.size() + k) * c.t.size() + l];
+              table << FormatNumber(c.x[i] - shift_x) << " "
+                    << FormatNumber(-(c.y[j] - shift_y) + 0.0) << " " << FormatNumber(-c.z[k] + 0.0)
+                    << " " << FormatNumber(c.t[l]) << " " << FormatNumber(v.x()) << " "
+                    << FormatNumber(-v.y() + 0.0) << " " << FormatNumber(-v.z() + 0.0) << "\n";
+            }
+          }
+        }
+      }
+      out.files.push_back({current_file, table.str()});
+    }
+  }
+
   // The scenario.
   std::ostringstream y;
   Origins from(y);
@@ -1003,9 +1454,9 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
     << "stiffness: " << FormatNumber(kbot ? kbot->first : 3.0e6) << ", "
     << from(cbot ? cbot->second : 0, "option cBot")
     << "damping: " << FormatNumber(cbot ? cbot->first : 3.0e5);
-  if (!out.files.empty()) {
+  if (!seabed_file.empty()) {
     y << ", " << from(seafloor->second, "option SeafloorFile " + seafloor->first)
-      << "grid: " << Text(out.files.front().first);
+      << "grid: " << Text(seabed_file);
   }
   y << "}  # kBot and cBot" << (kbot || cbot ? "" : " (MoorDyn's defaults)")
     << ", per unit of contact area";
@@ -1152,6 +1603,42 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
         << from(p.line, of + "Ca") << "added_mass: " << FormatNumber(p.ca) << ", "
         << from(p.line, of + "CdA") << "drag_area: " << FormatNumber(p.cda) << "}  # point " << p.id
         << " (line " << p.line << ")\n";
+    }
+  }
+  if (!trains.empty() || current) {
+    y << "environment:\n";
+    if (!trains.empty()) {
+      const int mode = static_cast<int>(wavekin->first);
+      y << from(wavekin->second, "option WaveKin") << "  waves:  # WaveKin " << mode << " (line "
+        << wavekin->second << "): "
+        << (mode == 7   ? "wave_frequencies.txt's components, summed as they are"
+            : mode == 2 ? "wave_frequencies.txt's components on MoorDyn's even grid"
+                        : "wave_elevation.txt's Fourier components up to 0.5 Hz")
+        << "; moorsim evaluates them at the nodes (MoorDyn "
+        << (mode == 7 ? "too" : "interpolates them from its grid, water_grid.txt") << ")\n";
+      y << "    on_lines: true\n    stretching: wheeler\n    trains:\n";
+      for (const vessel::WaveComponent& c : trains) {
+        y << "      - {period: " << FormatNumber(2.0 * std::numbers::pi / c.omega)
+          << ", amplitude: " << FormatNumber(c.amplitude)
+          << ", phase_deg: " << FormatNumber(Degrees(c.phase))
+          << ", direction_toward_deg: " << FormatNumber(Degrees(c.direction)) << "}\n";
+      }
+    }
+    if (profile) {
+      y << from(currents->second, "option Currents") << "  current:  # Currents " << currents->first
+        << " (line " << currents->second << "): " << current->file
+        << ", one direction at every depth\n";
+      y << "    direction_deg: " << FormatNumber(Degrees(profile->first)) << "\n";
+      y << "    profile:\n";
+      for (const auto& [d, v] : profile->second) {
+        y << "      - {depth: " << FormatNumber(d) << ", speed: " << FormatNumber(v) << "}\n";
+      }
+    } else if (current) {
+      y << from(currents->second, "option Currents") << "  current: {file: " << Text(current_file);
+      if (current->period > 0.0) y << ", period: " << FormatNumber(current->period);
+      y << "}  # Currents " << currents->first << " (line " << currents->second
+        << "): " << current->file
+        << (current->period > 0.0 ? ", repeated as MoorDyn repeats it" : "") << "\n";
     }
   }
   out.yaml = y.str();

@@ -36,16 +36,28 @@
 //     stiffness and damping as moorsim's), FrictionCoefficient (both of moorsim's
 //     friction coefficients of every line type), SeafloorFile (the bathymetry, looked for
 //     beside the input file and in the folders above it, written as moorsim's depth grid
-//     beside the scenario: MoorDynImport::files).
+//     beside the scenario: MoorDynImport::files), dtWave.
+//   * MoorDyn's waves, from the files it reads beside the input file: WaveKin 7
+//     (wave_frequencies.txt's rows "omega re im [beta]", summed as
+//     |A| sin(omega t - k (x cos(beta) + y sin(beta)) + arg A)), WaveKin 2 (the same rows on
+//     an even grid of the smallest spacing, inverse-transformed: |A| cos(...), the top bin
+//     half its real part) and WaveKin 3 (wave_elevation.txt sampled every dtWave from 0, an
+//     even count, Fourier-transformed, frequencies above 0.5 Hz cut, travelling along x):
+//     moorsim's environment.waves.trains, felt by the lines, phases moved with the model.
+//   * MoorDyn's currents: Currents 1 (current_profile.txt, rows "z ux uy uz") as moorsim's
+//     depth profile where the velocity keeps one direction, else as a current table beside
+//     the scenario, as are Currents 2 (current_profile_dynamic.txt: z values, then rows
+//     "t ux(z) [uy(z) [uz(z)]]") and 5 (current_profile_4d.txt: counts, four axes, rows
+//     "x y z t ux uy uz"), repeating every (floor(t_last / dt) + 1) dt as MoorDyn does.
 // Frames: MoorDyn's z points up from the still water level; moorsim's Earth and body
 // frames point z down and y to starboard: (x, y, z) -> (x, -y, -z).
 //
 // What does not map is one located line each ("<file>:<line>: <what>"): rods, bodies,
 // lines between two fixed or two vessel points, a line ending nowhere, SYROPE ropes and
-// visco-elastic ropes on a table, and MoorDyn's
-// own wave or current kinematics options. These are errors (InputError, every line at
-// once). Properties moorsim does not model are imported without them and reported as
-// warnings: bending stiffness EI, vortex-induced vibration. Integration options (time
+// visco-elastic ropes on a table, and MoorDyn's node approaches to waves and currents
+// (WaveKin 4-6, Currents 3 and 4, which MoorDyn v2.7.1 does not implement either). These are errors
+// (InputError, every line at once). Properties moorsim does not model are imported without them and
+// reported as warnings: bending stiffness EI, vortex-induced vibration. Integration options (time
 // step, scheme, initial-condition settings, outputs) are not part of the model and are
 // listed in a comment.
 #pragma once
@@ -59,7 +71,7 @@ namespace moorsim::scenarios {
 struct MoorDynImport {
   std::string yaml;  ///< the scenario, with comments
   /// Files the scenario names, to be written beside it: (file name, contents). The depth
-  /// grid of a SeafloorFile.
+  /// grid of a SeafloorFile, then the current table of a current that is not a profile.
   std::vector<std::pair<std::string, std::string>> files;
   std::vector<std::string> warnings;  ///< "<file>:<line>: <what>", one per approximation
   int lines = 0;                      ///< moorsim lines written
@@ -67,7 +79,8 @@ struct MoorDynImport {
 
 /// Reads the MoorDyn input file at `path` (InputError naming it if it cannot be read) and
 /// converts it as described above. `command` is recorded in the scenario's first comment.
-/// `files_stem` names the files written beside the scenario (`<stem>_seabed.csv`); empty:
+/// `files_stem` names the files written beside the scenario (`<stem>_seabed.csv`,
+/// `<stem>_current.txt`); empty:
 /// the input file's stem.
 MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
                             const std::string& files_stem = "");

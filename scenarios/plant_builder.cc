@@ -232,6 +232,7 @@ simulation::SeaModel ToSeaModel(const WavesSpec& spec, double gravity) {
   sea.realisation.spreading_exponent = spec.spreading;
   sea.realisation.components = spec.components;
   sea.realisation.gravity = gravity;
+  sea.trains = spec.trains;
   if (spec.on_lines) {
     sea.on_lines = spec.stretching;
   }

@@ -18,6 +18,7 @@
 #include "vessel/controller.h"
 #include "vessel/sensors.h"
 #include "vessel/turret.h"
+#include "vessel/waves.h"
 
 namespace moorsim::scenarios {
 
@@ -196,6 +197,9 @@ struct WavesSpec {
   double direction_toward = 0.0;    ///< mean direction the waves travel TOWARD [rad]
   std::optional<double> spreading;  ///< cos-2s exponent s; unset = long-crested
   int components = 200;
+  /// A given sea in place of the JONSWAP one: these regular waves, summed as they are
+  /// (the spectrum's fields above are then unused).
+  std::vector<vessel::WaveComponent> trains;
   /// The lines see the waves' water velocity and acceleration (finite-depth Airy,
   /// mooring_fem/wave_kinematics.h) in their drag and inertia; off: only the hull does.
   bool on_lines = false;

@@ -198,12 +198,26 @@ constexpr Key kCurrentPointKeys[] = {
 constexpr Block kCurrentPoint{"One point of the current profile.", kCurrentPointKeys};
 
 constexpr Key kCurrentKeys[] = {
-    Angle("direction_deg", "Direction the water flows TOWARD, from north, clockwise (east = 90).",
-          true),
+    Angle("direction_deg",
+          "Direction the water flows TOWARD, from north, clockwise (east = 90). Required with "
+          "profile.",
+          false),
+    {.name = "file",
+     .kind = Kind::kString,
+     .description = "A current table file, relative to this file's folder, in place of "
+                    "direction_deg and profile: the water's velocity (north, east, down) over "
+                    "north, east, depth and time; quadrilinear, held at the ends beyond."},
+    Positive("period", "s", 1e6,
+             "With file: the table repeats in time with this period (longer than its times "
+             "span); omitted = held at its first and last times.",
+             "eleven days"),
     List("profile", kCurrentPoint,
-         "Speed against depth, piecewise linear, held constant beyond the end points.", true, 1),
+         "Speed against depth, piecewise linear, held constant beyond the end points. Required "
+         "without file.",
+         false, 1),
 };
-constexpr Block kCurrent{"A steady current; omitted = no current.", kCurrentKeys};
+constexpr Block kCurrent{"A current (a depth profile or a table); omitted = no current.",
+                         kCurrentKeys};
 
 constexpr Key kStrainTensionKeys[] = {
     Required(Positive("strain", "", 1.0, "Strain (stretched length / unstretched - 1).")),
@@ -448,7 +462,7 @@ constexpr Block kLine{
     kLineKeys};
 
 constexpr Key kMooringKeys[] = {
-    Map("current", kCurrent, "A steady current (or give it under environment.current)."),
+    Map("current", kCurrent, "A current (or give it under environment.current)."),
     Map("defaults", kDefaults, "Values that apply to every line unless it says otherwise."),
     List("line_types", kLineType, "The cable types the lines use.", true),
     List("lines", kLine, "The mooring lines, numbered 1..N.", true),
@@ -705,6 +719,18 @@ constexpr Block kVessel{"The 6-DOF vessel.", kVesselKeys};
 // ---------------------------------------------------------------------------------------
 // environment
 
+constexpr Key kWaveTrainKeys[] = {
+    Required(NonNegative("amplitude", "m", 30.0, "Elevation amplitude.",
+                         "the highest sea states measured")),
+    Angle("direction_toward_deg", "Direction it travels TOWARD, from north, clockwise.", true),
+    Required(Positive("period", "s", 1e4, "Period 2 pi / omega.", "tides are slower")),
+    Angle("phase_deg",
+          "Phase phi: the elevation is amplitude cos(omega t - k (x cos(theta) + y sin(theta)) + "
+          "phi).",
+          true),
+};
+constexpr Block kWaveTrain{"One regular wave of a given sea.", kWaveTrainKeys};
+
 constexpr Key kWavesKeys[] = {
     WithDefault({.name = "components",
                  .kind = Kind::kInteger,
@@ -712,15 +738,16 @@ constexpr Key kWavesKeys[] = {
                  .minimum = AtLeast(1.0),
                  .maximum = AtMost(100000.0)},
                 MOORSIM_DEFAULT(WavesSpec{}.components)),
-    Angle("direction_toward_deg", "Mean direction the waves travel TOWARD.", true),
+    Angle("direction_toward_deg",
+          "Mean direction the waves travel TOWARD. Required without trains.", false),
     WithDefault({.name = "gamma",
                  .description = "JONSWAP peak enhancement.",
                  .minimum = AtLeast(1.0),
                  .maximum = AtMost(10.0),
                  .interval = true},
                 MOORSIM_DEFAULT(WavesSpec{}.gamma)),
-    Required(
-        Positive("hs", "m", 30.0, "Significant wave height.", "the highest sea states measured")),
+    Positive("hs", "m", 30.0, "Significant wave height. Required without trains.",
+             "the highest sea states measured"),
     WithDefault({.name = "on_lines",
                  .kind = Kind::kBoolean,
                  .description = "The lines see the waves' water velocity and acceleration in "
@@ -739,13 +766,17 @@ constexpr Key kWavesKeys[] = {
                 MOORSIM_DEFAULT(WavesSpec{}.stretching)),
     {.name = "tp",
      .unit = "s",
-     .description = "Peak period.",
-     .required = true,
+     .description = "Peak period. Required without trains.",
      .minimum = AtLeast(1.0),
      .maximum = AtMost(40.0, "wind sea and swell"),
      .interval = true},
+    List("trains", kWaveTrain,
+         "A given sea, in place of the JONSWAP one (hs, tp, gamma, spreading, components): "
+         "regular waves summed as they are, no random draw.",
+         false, 1),
 };
-constexpr Block kWaves{"An irregular JONSWAP sea; omitted = calm water.", kWavesKeys};
+constexpr Block kWaves{"An irregular JONSWAP sea, or a given one; omitted = calm water.",
+                       kWavesKeys};
 
 constexpr Key kWindKeys[] = {
     WithDefault({.name = "components",
@@ -765,7 +796,7 @@ constexpr Key kWindKeys[] = {
 constexpr Block kWind{"Wind; omitted = no wind.", kWindKeys};
 
 constexpr Key kEnvironmentKeys[] = {
-    Map("current", kCurrent, "A steady current (or give it under mooring.current)."),
+    Map("current", kCurrent, "A current (or give it under mooring.current)."),
     WithDefault({.name = "hull_viscous_drag",
                  .kind = Kind::kBoolean,
                  .description = "Quadratic hull drag on the velocity relative to the water."},

@@ -38,6 +38,8 @@ namespace moorsim::simulation {
 struct SeaModel {
   vessel::JonswapParameters spectrum;
   vessel::WaveRealisationOptions realisation;
+  /// A given sea in place of the spectrum's realisation (empty: the spectrum's).
+  std::vector<vessel::WaveComponent> trains;
   std::optional<mooring_fem::WaveStretching> on_lines;
 };
 

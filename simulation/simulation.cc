@@ -23,6 +23,7 @@
 #include "detectors/innovation_covariance.h"
 #include "detectors/passive_observer.h"
 #include "detectors/registry.h"
+#include "mooring_fem/environment.h"
 #include "mooring_fem/line_simulation.h"
 #include "simulation/shared_parts.h"
 #include "vessel/controller.h"
@@ -61,23 +62,41 @@ class ExternalLoad final : public vessel::EnvironmentLoad {
   Vec3 load_ = Vec3::Zero();
 };
 
-/// Viscous hull load from the velocity relative to the (uniform, surface-speed) current.
+/// Viscous hull load from the velocity relative to the current: the profile's surface
+/// speed, or a table's horizontal velocity at the surface where the vessel is (its
+/// variation over the vessel's position is left out of the Jacobian, which only steers
+/// Newton's iteration).
 class HullCurrentLoad final : public vessel::EnvironmentLoad {
  public:
-  HullCurrentLoad(const vessel::HullGeometry& hull, const Vec3& current_ned)
-      : load_(hull), current_(current_ned) {}
-  std::string_view name() const override { return "current"; }
-  Vec6 Load(double /*t*/, const Vec6& eta, const Vec6& nu) const override {
-    return load_.Load(eta, nu, current_);
+  HullCurrentLoad(const vessel::HullGeometry& hull, const mooring_fem::CurrentProfile& current)
+      : load_(hull), table_(current.table) {
+    if (table_ != nullptr) {
+      field_ = mooring_fem::CurrentField(current);
+    } else {
+      current_ = current.SurfaceSpeed() *
+                 Vec3(std::cos(current.direction), std::sin(current.direction), 0.0);
+    }
   }
-  void Jacobian(double /*t*/, const Vec6& eta, const Vec6& nu, Mat6* J_eta,
-                Mat6* J_nu) const override {
-    load_.Jacobian(eta, nu, current_, J_eta, J_nu);
+  std::string_view name() const override { return "current"; }
+  Vec6 Load(double t, const Vec6& eta, const Vec6& nu) const override {
+    return load_.Load(eta, nu, CurrentAt(t, eta));
+  }
+  void Jacobian(double t, const Vec6& eta, const Vec6& nu, Mat6* J_eta, Mat6* J_nu) const override {
+    load_.Jacobian(eta, nu, CurrentAt(t, eta), J_eta, J_nu);
   }
 
  private:
+  Vec3 CurrentAt(double t, const Vec6& eta) const {
+    if (table_ == nullptr) return current_;
+    Vec3 c = field_.VelocityAt(t, Vec3(eta(0), eta(1), 0.0));
+    c.z() = 0.0;
+    return c;
+  }
+
   vessel::CurrentLoad load_;
-  Vec3 current_;
+  std::shared_ptr<const mooring_fem::CurrentTable> table_;
+  mooring_fem::CurrentField field_;
+  Vec3 current_ = Vec3::Zero();
 };
 
 /// Wind on the superstructure: mean speed plus the NPD gust, from a fixed direction. Its
@@ -110,6 +129,7 @@ class HullWindLoad final : public vessel::EnvironmentLoad {
 }  // namespace
 
 vessel::WaveRealisation RealiseSea(const SeaModel& sea, std::uint64_t seed) {
+  if (!sea.trains.empty()) return vessel::WaveRealisation(sea.trains, sea.realisation.gravity);
   const vessel::JonswapSpectrum spectrum(sea.spectrum);
   RandomStream stream = RandomStream::Derive(seed, "waves");
   return vessel::WaveRealisation(spectrum, sea.realisation, stream);
@@ -188,9 +208,7 @@ Simulation::Simulation(const PlantModel& model, std::uint64_t seed)
   plant_->SetTurret(model_.turret);
   plant_->AddLoad(&parts_->external);
   if (model_.hull_drag) {
-    const mooring_fem::CurrentProfile& c = model_.mooring.current;
-    const Vec3 current = c.SurfaceSpeed() * Vec3(std::cos(c.direction), std::sin(c.direction), 0);
-    parts_->current.emplace(*model_.hull_drag, current);
+    parts_->current.emplace(*model_.hull_drag, model_.mooring.current);
     plant_->AddLoad(&*parts_->current);
   }
   if (model_.waves) {

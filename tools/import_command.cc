@@ -76,12 +76,14 @@ Command AddImportCommand(CLI::App& app) {
       "    coupled: fairleads; free points joining two lines: the joints of a composite\n"
       "    line; other free points: moorsim's free points, with their mass, volume, CdA and\n"
       "    Ca) and lines, water depth and density, gravity, seabed stiffness, damping and\n"
-      "    friction, and a SeafloorFile as a depth grid written beside the scenario. Frames\n"
-      "    are converted (MoorDyn's z up and y to port to moorsim's z down and y to\n"
-      "    starboard) and the tangential drag coefficient multiplied by pi (MoorDyn applies\n"
-      "    it to the circumference). Rods, bodies, SYROPE ropes and MoorDyn's own wave\n"
-      "    and current kinematics are refused, one line each; bending stiffness is left out\n"
-      "    with a warning. The scenario holds the mooring only: `moorsim static` and\n"
+      "    friction, a SeafloorFile as a depth grid written beside the scenario, MoorDyn's\n"
+      "    waves (WaveKin 2, 3, 7) as the regular waves they are made of, felt by the\n"
+      "    lines, and its currents (Currents 1, 2, 5) as a depth profile or as a current\n"
+      "    table written beside the scenario. Frames are converted (MoorDyn's z up and y to\n"
+      "    port to moorsim's z down and y to starboard) and the tangential drag coefficient\n"
+      "    multiplied by pi (MoorDyn applies it to the circumference). Rods, bodies and\n"
+      "    SYROPE ropes are refused, one line each; bending stiffness is left out with a\n"
+      "    warning. The scenario holds the mooring only: `moorsim static` and\n"
       "    `moorsim simulate-lines` run it; add a vessel for `moorsim run`.\n" +
       std::string(kScenarioOutNote));
   sub->add_option("format", o->format, "the model's format: moordyn")->required();

@@ -219,14 +219,44 @@ WaveRealisation::WaveRealisation(const WaveSpectrum& spectrum,
         spreading ? spreading->Quantile(direction_draw) : WrapAngle(options.mean_direction);
   }
 
+  FillSums(options.gravity);
+}
+
+WaveRealisation::WaveRealisation(std::vector<WaveComponent> given, double gravity)
+    : components_(std::move(given)) {
+  if (components_.empty()) ThrowBadValue("waves.trains", 0, "", "must hold at least one wave");
+  if (!(gravity > 0.0) || !std::isfinite(gravity)) {
+    ThrowBadValue("waves.gravity", gravity, "m/s^2", "must be > 0 and finite");
+  }
+  omega_min_ = omega_max_ = components_.front().omega;
+  for (std::size_t i = 0; i < components_.size(); ++i) {
+    const WaveComponent& c = components_[i];
+    const std::string name = "waves.trains[" + std::to_string(i + 1) + "]";
+    if (!(c.omega > 0.0) || !std::isfinite(c.omega)) {
+      ThrowBadValue(name + ".omega", c.omega, "rad/s", "must be > 0 and finite");
+    }
+    if (!(c.amplitude >= 0.0) || !std::isfinite(c.amplitude)) {
+      ThrowBadValue(name + ".amplitude", c.amplitude, "m", "must be >= 0 and finite");
+    }
+    if (!std::isfinite(c.phase) || !std::isfinite(c.direction)) {
+      ThrowBadValue(name + ".phase", c.phase, "rad", "and its direction must be finite");
+    }
+    omega_min_ = std::min(omega_min_, c.omega);
+    omega_max_ = std::max(omega_max_, c.omega);
+  }
+  FillSums(gravity);
+}
+
+void WaveRealisation::FillSums(double gravity) {
+  const Eigen::Index n = static_cast<Eigen::Index>(components_.size());
   omega_.resize(n);
   amplitude_.resize(n);
   phase_.resize(n);
   wave_number_north_.resize(n);
   wave_number_east_.resize(n);
-  for (int i = 0; i < n; ++i) {
+  for (Eigen::Index i = 0; i < n; ++i) {
     const WaveComponent& c = components_[i];
-    const double k = DeepWaterWaveNumber(c.omega, options.gravity);
+    const double k = DeepWaterWaveNumber(c.omega, gravity);
     omega_[i] = c.omega;
     amplitude_[i] = c.amplitude;
     phase_[i] = c.phase;

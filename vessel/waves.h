@@ -196,6 +196,10 @@ class WaveRealisation {
   /// inverted frequency range, negative spreading exponent, g <= 0 or a non-finite value.
   WaveRealisation(const WaveSpectrum& spectrum, const WaveRealisationOptions& options,
                   RandomStream& stream);
+  /// A given sea: these components as they are (no draw; bin_width() is 0). Throws
+  /// moorsim::InputError for none, a frequency not > 0, an amplitude < 0, a value not
+  /// finite, or g <= 0.
+  WaveRealisation(std::vector<WaveComponent> given, double gravity);
 
   /// Surface elevation eta [m], positive up, at time t [s] and horizontal position
   /// (x north, y east) [m]. Allocation-free; cost N cosines.
@@ -231,6 +235,8 @@ class WaveRealisation {
   Eigen::ArrayXd phase_;
   Eigen::ArrayXd wave_number_north_;
   Eigen::ArrayXd wave_number_east_;
+
+  void FillSums(double gravity);  // the arrays above from components_
 };
 
 }  // namespace moorsim::vessel

@@ -224,6 +224,34 @@ TEST(MooringJacobian, LinesInWavesMatchFiniteDifferences) {
   }
 }
 
+TEST(MooringJacobian, ACurrentTableMatchesFiniteDifferences) {
+  // A current over north, east, depth and time that turns and shears, different in every
+  // cell and strongly so (up to 0.04 /s across a 50 m cell, so that its gradient's share of
+  // the drag's Jacobian is well above the check's tolerance): drag on the velocity
+  // relative to it, with its gradient in all three directions.
+  MooringParameters spec = TestSpec(12);
+  auto table = std::make_shared<CurrentTable>();
+  for (int i = 0; i <= 30; ++i) table->x.push_back(-3000.0 + 200.0 * i);
+  for (int j = 0; j <= 30; ++j) table->y.push_back(-3000.0 + 200.0 * j);
+  for (int k = 0; k <= 22; ++k) table->z.push_back(50.0 * k);
+  table->t = {0.0, 30.0};
+  for (int i = 0; i <= 30; ++i) {
+    for (int j = 0; j <= 30; ++j) {
+      for (int k = 0; k <= 22; ++k) {
+        for (int l = 0; l < 2; ++l) {
+          table->velocity.emplace_back(std::sin(1.3 * i + 0.7 * k) + 0.1 * l,
+                                       std::cos(0.9 * j - 1.1 * k), 0.2 * std::sin(i + j + k + l));
+        }
+      }
+    }
+  }
+  spec.current = {};
+  spec.current.table = table;
+  Fixture f(spec);
+  f.mooring.SetTime(11.0);
+  ExpectJacobianMatchesFiniteDifferences(f.mooring, f.x, f.fairleads);
+}
+
 TEST(MooringJacobian, GroundedNodesAreExercised) {
   // The test above is only meaningful if some nodes are in seabed contact, in the
   // smoothed zone and beyond it.

@@ -288,6 +288,17 @@ inline const BadInput kParseErrors[] = {
      "displaced_volume, draught, form_factor, kinematic_viscosity, length, wetted_surface)"},
     {"WavesMissingHs", "environment:", "{hs: 2.5, tp: 7", "{tp: 7", "{tp",
      "environment.waves: required key 'hs' is missing"},
+    {"WaveTrainsAndHs", "environment:", "{hs: 2.5, tp: 7",
+     "{hs: 2.5, trains: [{period: 10, amplitude: 1, phase_deg: 0, direction_toward_deg: 0}], tp: 7",
+     "hs: ^2.5", "environment.waves.hs: give the JONSWAP sea (hs, tp, ...) or trains, not both"},
+    {"WaveTrainWithoutPeriod", "environment:",
+     "{hs: 2.5, tp: 7, gamma: 3.3, direction_toward_deg: 315, spreading: 10, components: 200}",
+     "{trains: [{amplitude: 1, phase_deg: 0, direction_toward_deg: 0}]}", "{amplitude",
+     "environment.waves.trains[1]: required key 'period' is missing"},
+    {"CurrentFileAndProfile", "", "direction_deg: 90", "file: flow.txt\n    direction_deg: 90",
+     "direction_deg: ^90", "mooring.current.direction_deg: give a profile or a file, not both"},
+    {"CurrentPeriodWithoutFile", "", "direction_deg: 90", "period: 60\n    direction_deg: 90",
+     "period: ^60", "mooring.current.period: repeats a current table: give it with file"},
     {"ControllerGainNotAList", "controller:", "kp: [1.0e5, 1.0e6, 1.0e3]", "kp: 1.0e5",
      "kp: ^1.0e5", "controller.kp: 1.0e5 must be a list of 3 numbers [x, y, z]"},
     {"SeedNegative", "simulation:", "seed: 7", "seed: -7", "seed: ^-7",
@@ -651,6 +662,13 @@ inline const BadInput kValidationErrors[] = {
     {"WavesTooSteep", "environment:", "hs: 2.5", "hs: 12", "12",
      "environment.waves.hs: 12 m is too steep for tp 7 s: Hs / (g Tp^2 / (2 pi)) = 0.157 must "
      "be <= 1/7 (such waves break)"},
+    // 2 a / L with L = g T^2 / (2 pi) = 9.81 x 9 / (2 pi) = 14.05 m: 4 / 14.05 = 0.285.
+    {"WaveTrainTooSteep", "environment:",
+     "{hs: 2.5, tp: 7, gamma: 3.3, direction_toward_deg: 315, spreading: 10, components: 200}",
+     "{trains: [{period: 3, amplitude: 2, phase_deg: 0, direction_toward_deg: 0}]}",
+     "amplitude: ^2",
+     "environment.waves.trains[1].amplitude: 2 m is too steep for period 3 s: "
+     "2 a / L = 0.285 must be <= 1/7 (such waves break)"},
     {"WavesSpreadingHuge", "environment:", "spreading: 10", "spreading: 200", "200",
      "environment.waves.spreading: 200 must be <= 100 (s = 75 is narrow swell; omit it for "
      "long-crested waves)"},

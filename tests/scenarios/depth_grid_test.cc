@@ -11,6 +11,7 @@
 
 #include "bad_input_cases.h"
 #include "core/error.h"
+#include "mooring_fem/environment.h"
 #include "scenarios/load.h"
 #include "tests/support/scratch_directory.h"
 
@@ -128,6 +129,95 @@ TEST(DepthGrid, AScenarioReadsItsGridBesideItAndChecksTheAnchorsOnIt) {
   EXPECT_NE(GridScenarioError(dir / "both.yaml")
                 .find("mooring.seabed.grid: a depth grid cannot be combined with slope_deg"),
             std::string::npos);
+}
+
+std::string CurrentError(const std::string& text) {
+  const std::string path = WriteText(testing::FreshDirectory("flow") / "flow.txt", text);
+  try {
+    ReadCurrentTable(path);
+  } catch (const InputError& e) {
+    std::string message = e.what();
+    return message.substr(message.find("flow.txt"));
+  }
+  return "(no error)";
+}
+
+constexpr const char* kFlow =
+    "# a profile that turns and strengthens in 10 minutes\n"
+    "x: 0\ny: 0\ndepth: 0, 50\ntime: 0 600\n"
+    "0, 0, 50, 600, 0.3, 0.0, 0.0\n"
+    "0, 0,  0,   0, 0.5, 0.0, 0.0\n"
+    "0 0 50 0 0.2 0 0\n"
+    "0, 0,  0, 600, 0.8, 0.1, -0.01\r\n";
+
+TEST(CurrentTableFile, ReadsItsAxesAndItsPointsInAnyOrder) {
+  const mooring_fem::CurrentTable table =
+      ReadCurrentTable(WriteText(testing::FreshDirectory("flow_read") / "flow.txt", kFlow));
+  EXPECT_EQ(table.z, (std::vector<double>{0.0, 50.0}));
+  EXPECT_EQ(table.t, (std::vector<double>{0.0, 600.0}));
+  ASSERT_EQ(table.velocity.size(), 4u);
+  // ((x y) depth) time order: (0, 0), (0, 600), (50, 0), (50, 600).
+  EXPECT_EQ(table.velocity[0], Vec3(0.5, 0.0, 0.0));
+  EXPECT_EQ(table.velocity[1], Vec3(0.8, 0.1, -0.01));
+  EXPECT_EQ(table.velocity[2], Vec3(0.2, 0.0, 0.0));
+  EXPECT_EQ(table.velocity[3], Vec3(0.3, 0.0, 0.0));
+}
+
+TEST(CurrentTableFile, EachBadTableIsOneLineNamingTheFileLineAndValue) {
+  const std::string axes = "x: 0\ny: 0\ndepth: 0 50\ntime: 0\n";
+  EXPECT_EQ(CurrentError("x: 0\ndepth: 0\n"),
+            "flow.txt:2: expected the y: axis (the four axes x:, y:, depth:, time: come first, "
+            "in this order)");
+  EXPECT_EQ(CurrentError("x: 0\ny: 5 5\n"),
+            "flow.txt:2: the y: axis must be numbers, strictly increasing");
+  EXPECT_EQ(CurrentError("x: 0\ny:\n"), "flow.txt:2: the axis has no values");
+  EXPECT_EQ(CurrentError(axes + "0 0 0 0 0.5 0\n"),
+            "flow.txt:5: 6 fields; a row is x, y, depth, time and the velocity north, east, "
+            "down [m/s]");
+  EXPECT_EQ(CurrentError(axes + "0 0 20 0 0.5 0 0\n"),
+            "flow.txt:5: depth: 20 is not on the table's depth: axis");
+  EXPECT_EQ(CurrentError(axes + "0 0 0 0 0.5 0 0\n0 0 0 0 0.4 0 0\n"),
+            "flow.txt:6: the point is given twice (also on line 5)");
+  EXPECT_EQ(CurrentError(axes + "0 0 0 0 fast 0 0\n"), "flow.txt:5: 'fast' is not a number");
+  EXPECT_EQ(CurrentError(axes + "0 0 0 0 0.5 0 0\n"),
+            "flow.txt: 1 rows for a grid of 2 points; none for x 0, y 0, depth 50, time 0");
+  EXPECT_EQ(CurrentError("x: 0\ny: 0\n"), "flow.txt: the depth: axis is missing");
+}
+
+TEST(CurrentTableFile, AScenarioReadsItsTableBesideItAndTheLinesFeelIt) {
+  const std::filesystem::path dir = testing::FreshDirectory("flow_scenario");
+  WriteText(dir / "flow.txt", kFlow);
+  const auto with_current = [](const std::string& current) {
+    return test_cases::Edit(test_cases::kBase, "",
+                            "current:\n    direction_deg: 90\n    profile:\n      - {depth: 0, "
+                            "speed: 0.2}\n      - {depth: 500, speed: 0.1}",
+                            "current: " + current);
+  };
+  WriteText(dir / "ok.yaml", with_current("{file: flow.txt, period: 1200}"));
+  const Scenario s = LoadScenario((dir / "ok.yaml").string());
+  ASSERT_NE(s.mooring.current.table, nullptr);
+  EXPECT_EQ(s.mooring.current.table->period, 1200.0);
+  const mooring_fem::CurrentField field(s.mooring.current);
+  // Half way in time and in depth; then repeated, and back to the start over the gap.
+  EXPECT_LT((field.VelocityAt(300.0, Vec3(40.0, -7.0, 25.0)) -
+             0.25 * (Vec3(0.5, 0, 0) + Vec3(0.8, 0.1, -0.01) + Vec3(0.2, 0, 0) + Vec3(0.3, 0, 0)))
+                .norm(),
+            1e-15);
+  EXPECT_LT(
+      (field.VelocityAt(1500.0, Vec3(0, 0, 0)) - field.VelocityAt(300.0, Vec3(0, 0, 0))).norm(),
+      1e-15);
+  EXPECT_LT((field.VelocityAt(900.0, Vec3(0, 0, 0)) - Vec3(0.65, 0.05, -0.005)).norm(), 1e-15);
+
+  WriteText(dir / "short.yaml", with_current("{file: flow.txt, period: 600}"));
+  EXPECT_NE(GridScenarioError(dir / "short.yaml")
+                .find("mooring.current.period: " + (dir / "flow.txt").string() +
+                      ": the period must be longer than the times it repeats (600 s)"),
+            std::string::npos)
+      << GridScenarioError(dir / "short.yaml");
+  WriteText(dir / "missing.yaml", with_current("{file: nowhere.txt}"));
+  EXPECT_NE(
+      GridScenarioError(dir / "missing.yaml").find("nowhere.txt: cannot read the current table"),
+      std::string::npos);
 }
 
 TEST(SlopingSeabed, TheAnchorsMustLieOnThePlane) {

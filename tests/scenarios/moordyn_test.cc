@@ -13,8 +13,14 @@
 #include <fstream>
 #include <numbers>
 #include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 #include "core/error.h"
+#include "core/format.h"
+#include "mooring_fem/environment.h"
+#include "mooring_fem/wave_kinematics.h"
 #include "scenarios/load.h"
 #include "tests/support/moordyn_spread.h"
 #include "tests/support/scratch_directory.h"
@@ -129,8 +135,10 @@ TEST(MoorDynImport, TheWaterDepthIsWtrDpthOrTheDeepestPointsAsInMoorDyn) {
 }
 
 // WaveKin 1 says the coupling program gives the waves through MoorDyn's API: the file holds
-// none, so the model imports in still water with a warning; a wave grid is still refused.
-TEST(MoorDynImport, WavesFromTheApiImportAsStillWaterAndAGridIsRefused) {
+// none, so the model imports in still water with a warning. MoorDyn's node approaches
+// (WaveKin 4 to 6, Currents 3 and 4), which it does not implement either, are refused, and
+// a wave input whose file is missing is one located line.
+TEST(MoorDynImport, WavesFromTheApiImportAsStillWaterAndUnknownInputsAreRefused) {
   const fs::path dir = moorsim::testing::FreshDirectory("moordyn_wavekin");
   std::string text = kSpread;
   text.replace(text.find("200           WtrDpth"), 0, "1             WaveKin       from the API\n");
@@ -143,11 +151,175 @@ TEST(MoorDynImport, WavesFromTheApiImportAsStillWaterAndAGridIsRefused) {
                 "through MoorDyn's API; the imported model sees still water (or moorsim's own "
                 "waves, environment.waves with on_lines)");
   EXPECT_FALSE(ParseScenario(imported.yaml, "api.yaml").environment.waves.enabled);
-  text.replace(text.find("1             WaveKin"), 1, "2");
-  const fs::path grid = Write(dir, "grid.txt", text);
-  EXPECT_EQ(ErrorOf(grid), grid.string() +
-                               ":30: option WaveKin 2 is not supported (a flat seabed and still "
-                               "water, or moorsim's own current and waves)");
+  text.replace(text.find("1             WaveKin"), 1, "4");
+  const fs::path node = Write(dir, "node.txt", text);
+  EXPECT_EQ(ErrorOf(node), node.string() +
+                               ":30: option WaveKin 4 is not supported (WaveKin 0, 1, 2, 3 or 7 "
+                               "and Currents 0, 1, 2 or 5 are: MoorDyn v2.7.1 does not implement "
+                               "its node approaches either)");
+  text.replace(text.find("4             WaveKin"), 1, "7");
+  const fs::path missing = Write(dir, "missing.txt", text);
+  EXPECT_EQ(ErrorOf(missing), missing.string() +
+                                  ":30: WaveKin 7: wave_frequencies.txt: not found beside the "
+                                  "input file or in a folder above it");
+  fs::remove_all(dir);
+}
+
+// The test spread with one more option line before WtrDpth (line 30).
+std::string WithOption(const std::string& option) {
+  std::string text = kSpread;
+  text.replace(text.find("200           WtrDpth"), 0, option + "\n");
+  return text;
+}
+
+// The finite-depth wave number, omega^2 = g k tanh(k h), by bisection: this test's own.
+double WaveNumberOf(double omega, double depth, double g) {
+  double low = 0.0, high = 10.0 * omega * omega / g + 10.0;
+  for (int i = 0; i < 200; ++i) {
+    const double k = 0.5 * (low + high);
+    (g * k * std::tanh(k * depth) < omega * omega ? low : high) = k;
+  }
+  return 0.5 * (low + high);
+}
+
+// MoorDyn's waves: WaveKin 7 sums wave_frequencies.txt's rows (omega, re, im, direction) as
+// |A| sin(omega t - k (x cos(beta) + y sin(beta)) + arg A); the imported sea, in moorsim's
+// frame (y and the direction mirrored), has the same elevation everywhere. WaveKin 2 puts
+// the rows on an even grid first; WaveKin 3 takes the Fourier components of
+// wave_elevation.txt sampled every dtWave.
+TEST(MoorDynImport, WaveInputsBecomeTheSameRegularWaves) {
+  const fs::path dir = moorsim::testing::FreshDirectory("moordyn_waves");
+  const double h = 200.0, g = 9.81;
+  Write(dir, "wave_frequencies.txt", "0.0 0.0 0.0\n0.4 0.3 -0.4 0.5\n0.9 0.0 0.2\n");
+  const MoorDynImport summed =
+      ImportMoorDyn(Write(dir, "sum.txt", WithOption("7 WaveKin")).string(), "test");
+  const Scenario s = ParseScenario(summed.yaml, "sum.yaml");
+  ASSERT_EQ(s.environment.waves.trains.size(), 2u);
+  EXPECT_TRUE(s.environment.waves.on_lines);
+  const auto elevation_of = [&](const Scenario& scenario) {
+    std::vector<mooring_fem::WaveTrain> trains;
+    for (const vessel::WaveComponent& c : scenario.environment.waves.trains) {
+      trains.push_back({c.omega, c.amplitude, c.phase, c.direction});
+    }
+    return mooring_fem::WaveKinematics(trains, h, g, mooring_fem::WaveStretching::kWheeler);
+  };
+  const mooring_fem::WaveKinematics sum = elevation_of(s);
+  for (const auto& [t, x, y] : {std::tuple{0.0, 0.0, 0.0}, std::tuple{13.7, 40.0, -25.0},
+                                std::tuple{101.2, -300.0, 180.0}}) {
+    const double k1 = WaveNumberOf(0.4, h, g), k2 = WaveNumberOf(0.9, h, g);
+    const double moordyn = 0.5 * std::sin(0.4 * t - k1 * (x * std::cos(0.5) + y * std::sin(0.5)) +
+                                          std::atan2(-0.4, 0.3)) +
+                           0.2 * std::sin(0.9 * t - k2 * x + std::numbers::pi / 2.0);
+    EXPECT_NEAR(sum.Elevation(t, x, -y), moordyn, 1e-9) << t;
+  }
+
+  // On the even grid of the smallest spacing (0.25 rad/s): the row at 0.5 rad/s lies half
+  // way between the given ones; the top bin (0.75) takes half its real part: none here.
+  Write(dir, "wave_frequencies.txt", "0.0 0.0 0.0\n0.25 0.5 0.0\n0.75 0.0 0.5\n");
+  const Scenario even = ParseScenario(
+      ImportMoorDyn(Write(dir, "even.txt", WithOption("2 WaveKin")).string(), "test").yaml,
+      "even.yaml");
+  ASSERT_EQ(even.environment.waves.trains.size(), 2u);
+  EXPECT_NEAR(even.environment.waves.trains[0].omega, 0.25, 1e-15);
+  EXPECT_NEAR(even.environment.waves.trains[0].amplitude, 0.5, 1e-15);
+  EXPECT_NEAR(even.environment.waves.trains[1].omega, 0.5, 1e-15);
+  EXPECT_NEAR(even.environment.waves.trains[1].amplitude, std::hypot(0.25, 0.25), 1e-15);
+  EXPECT_NEAR(even.environment.waves.trains[1].phase, std::numbers::pi / 4.0, 1e-15);
+
+  // 0.5 cos(2 pi t / 10) + 0.2 sin(2 pi t / 4) over 40 s: at dtWave 0.5 s, 80 samples,
+  // both periods whole in the record: exactly two waves, toward MoorDyn's x (north).
+  std::string series;
+  const auto zeta = [](double t) {
+    return 0.5 * std::cos(2.0 * std::numbers::pi * t / 10.0) +
+           0.2 * std::sin(2.0 * std::numbers::pi * t / 4.0);
+  };
+  for (int i = 0; i <= 160; ++i) {
+    series += FormatNumber(0.25 * i) + " " + FormatNumber(zeta(0.25 * i)) + "\n";
+  }
+  Write(dir, "wave_elevation.txt", series);
+  const Scenario record = ParseScenario(
+      ImportMoorDyn(Write(dir, "record.txt", WithOption("3 WaveKin\n0.5 dtWave")).string(), "test")
+          .yaml,
+      "record.yaml");
+  ASSERT_EQ(record.environment.waves.trains.size(), 2u);
+  const mooring_fem::WaveKinematics waves = elevation_of(record);
+  const double k10 = WaveNumberOf(2.0 * std::numbers::pi / 10.0, h, g);
+  const double k4 = WaveNumberOf(2.0 * std::numbers::pi / 4.0, h, g);
+  for (const auto& [t, x] : {std::pair{0.0, 0.0}, std::pair{3.3, 0.0}, std::pair{17.1, 30.0}}) {
+    const double expected = 0.5 * std::cos(2.0 * std::numbers::pi * t / 10.0 - k10 * x) +
+                            0.2 * std::sin(2.0 * std::numbers::pi * t / 4.0 - k4 * x);
+    EXPECT_NEAR(waves.Elevation(t, x, 12.0), expected, 1e-9) << t;
+  }
+  fs::remove_all(dir);
+}
+
+// MoorDyn's currents: a steady profile of one direction is moorsim's profile (points above
+// the surface left out, the surface's value added); a dynamic profile (Currents 2) and a
+// 4-D grid (Currents 5) are a table beside the scenario, in moorsim's frame, repeating as
+// MoorDyn repeats them.
+TEST(MoorDynImport, CurrentInputsBecomeAProfileOrATable) {
+  const fs::path dir = moorsim::testing::FreshDirectory("moordyn_currents");
+  Write(dir, "current_profile.txt",
+        "--- steady ---\nheader\nz ux uy uz\n-200 0.1 -0.1 0\n-100 0.3 -0.3 0\n2 0.5 -0.5 0\n");
+  const Scenario steady = ParseScenario(
+      ImportMoorDyn(Write(dir, "steady.txt", WithOption("1 Currents")).string(), "test").yaml,
+      "steady.yaml");
+  const mooring_fem::CurrentProfile& profile = steady.mooring.current;
+  EXPECT_EQ(profile.table, nullptr);
+  EXPECT_NEAR(profile.direction, std::numbers::pi / 4.0, 1e-15);  // MoorDyn's (1, -1): NE
+  EXPECT_EQ(profile.depth, (std::vector<double>{0.0, 100.0, 200.0}));
+  ASSERT_EQ(profile.speed.size(), 3u);
+  EXPECT_NEAR(profile.speed[0], (0.3 + 0.2 * 100.0 / 102.0) * std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(profile.speed[2], 0.1 * std::sqrt(2.0), 1e-15);
+
+  // Rows "t ux(z) uy(z) uz(z)" at z = -200, -100, 0.
+  Write(dir, "current_profile_dynamic.txt",
+        "--- dynamic ---\nheader\n2\n3\n-200 -100 0\n\n"
+        "0  0.1 0.2 0.3  0.0 0.0 0.0  0.0 0.0 0.0\n"
+        "10 0.3 0.4 0.5  0.1 0.1 0.1  0.0 0.01 0.0\n"
+        "20 0.1 0.2 0.3  0.0 0.0 0.0  0.0 0.0 0.0\n");
+  const fs::path dynamic_file = Write(dir, "dynamic.txt", WithOption("2 Currents"));
+  const MoorDynImport dynamic = ImportMoorDyn(dynamic_file.string(), "test");
+  ASSERT_EQ(dynamic.files.size(), 1u);
+  EXPECT_EQ(dynamic.files[0].first, "dynamic_current.txt");
+  Write(dir, dynamic.files[0].first, dynamic.files[0].second);
+  Write(dir, "dynamic.yaml", dynamic.yaml);
+  const Scenario with_table = LoadScenario((dir / "dynamic.yaml").string());
+  ASSERT_NE(with_table.mooring.current.table, nullptr);
+  EXPECT_EQ(with_table.mooring.current.table->period, 30.0);  // 3 steps of 10 s
+  const mooring_fem::CurrentField field(with_table.mooring.current);
+  // Depth 50 (z -50) at 5 s: half way between z -100 and 0 and between 0 and 10 s.
+  EXPECT_LT((field.VelocityAt(5.0, Vec3(7.0, 3.0, 50.0)) -
+             Vec3(0.25 * (0.2 + 0.3 + 0.4 + 0.5), -0.25 * (0.1 + 0.1), -0.25 * 0.01))
+                .norm(),
+            1e-15);
+  EXPECT_LT(
+      (field.VelocityAt(35.0, Vec3(0, 0, 50.0)) - field.VelocityAt(5.0, Vec3(0, 0, 50.0))).norm(),
+      1e-15);
+
+  // A 4-D grid of u = (0.01 x + 0.1 t, 0.02 y, 0.001 z), which the table holds exactly.
+  std::string grid = "2 2 2 2\n-10 10\n-5 5\n-50 0\n0 5\n";
+  for (double x : {-10.0, 10.0}) {
+    for (double y : {-5.0, 5.0}) {
+      for (double z : {-50.0, 0.0}) {
+        for (double t : {0.0, 5.0}) {
+          grid += FormatNumber(x) + " " + FormatNumber(y) + " " + FormatNumber(z) + " " +
+                  FormatNumber(t) + " " + FormatNumber(0.01 * x + 0.1 * t) + " " +
+                  FormatNumber(0.02 * y) + " " + FormatNumber(0.001 * z) + "\n";
+        }
+      }
+    }
+  }
+  Write(dir, "current_profile_4d.txt", grid);
+  const MoorDynImport four_d =
+      ImportMoorDyn(Write(dir, "four_d.txt", WithOption("5 Currents")).string(), "test");
+  Write(dir, four_d.files[0].first, four_d.files[0].second);
+  Write(dir, "four_d.yaml", four_d.yaml);
+  const mooring_fem::CurrentField grid_field(
+      LoadScenario((dir / "four_d.yaml").string()).mooring.current);
+  // moorsim's (2, -3, depth 20) is MoorDyn's (2, 3, -20).
+  EXPECT_LT((grid_field.VelocityAt(1.0, Vec3(2.0, -3.0, 20.0)) - Vec3(0.12, -0.06, 0.02)).norm(),
+            1e-15);
   fs::remove_all(dir);
 }
 

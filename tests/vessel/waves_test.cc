@@ -17,6 +17,7 @@
 #include <limits>
 #include <numbers>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "core/error.h"
@@ -474,6 +475,39 @@ WaveRealisationOptions WithOptions(const std::function<void(WaveRealisationOptio
   WaveRealisationOptions options;
   change(options);
   return options;
+}
+
+// A given sea: the components as they are, the deep-water wave number for the hull;
+// nothing drawn. A bad component is refused naming it.
+TEST(WaveRealisationTest, AGivenSeaIsItsComponents) {
+  const std::vector<WaveComponent> given = {{0.5, 1.2, 0.3, 0.7}, {1.1, 0.4, -2.0, -1.9}};
+  const WaveRealisation sea(given, 9.81);
+  ASSERT_EQ(sea.components().size(), 2u);
+  EXPECT_EQ(sea.bin_width(), 0.0);
+  EXPECT_EQ(sea.omega_min(), 0.5);
+  EXPECT_EQ(sea.omega_max(), 1.1);
+  for (const auto& [t, x, y] : {std::tuple{0.0, 0.0, 0.0}, std::tuple{12.5, 80.0, -30.0}}) {
+    double expected = 0.0;
+    for (const WaveComponent& c : given) {
+      const double k = c.omega * c.omega / 9.81;
+      expected += c.amplitude *
+                  std::cos(c.omega * t -
+                           k * (x * std::cos(c.direction) + y * std::sin(c.direction)) + c.phase);
+    }
+    EXPECT_NEAR(sea.Elevation(t, x, y), expected, 1e-12);
+  }
+  const auto message = [](std::vector<WaveComponent> bad) {
+    try {
+      WaveRealisation(std::move(bad), 9.81);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  EXPECT_NE(message({{0.5, 1.0, 0.0, 0.0}, {0.0, 1.0, 0.0, 0.0}}).find("waves.trains[2].omega"),
+            std::string::npos);
+  EXPECT_NE(message({{0.5, -1.0, 0.0, 0.0}}).find("waves.trains[1].amplitude"), std::string::npos);
+  EXPECT_NE(message({}).find("waves.trains"), std::string::npos);
 }
 
 TEST(WavesBadInputTest, EveryBadValueIsNamed) {
