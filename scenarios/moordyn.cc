@@ -909,7 +909,7 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
                        {"mass", {"mass/m", "massden", "massdeninair", "mass", "m"}},
                        {"unused", {"tbd"}},
                        {"EA", {"ea"}},
-                       {"BA", {"ba/-zeta", "ba", "ba/zeta", "c"}},
+                       {"BA", {"ba/-zeta", "ba", "ba/zeta", "c", "cintdamp"}},
                        {"EI", {"ei"}},
                        {"Cd", {"cd", "cdn"}},
                        {"Ca", {"ca", "can"}},
@@ -1450,16 +1450,41 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
     << "\n";
   const auto kbot = option("kbot");
   const auto cbot = option("cbot");
+  const double seabed_stiffness = kbot ? kbot->first : 3.0e6;
+  // MoorDyn's contact is linear from the first touch; moorsim ramps its stiffness up over
+  // contact_smoothing (0.5 m by default), which would let a line on a soft seabed sink
+  // deeper than in MoorDyn. A tenth of the shallowest resting penetration of the sinking
+  // line types, w / (kBot d), keeps them at MoorDyn's depth within a twentieth of it
+  // (between 1 cm, below which landing nodes cost the integrator steps, and 0.5 m).
+  std::optional<double> penetration;
+  for (const MdLineType& t : types) {
+    const double w =
+        (t.mass - (rho ? rho->first : 1025.0) * std::numbers::pi * t.diameter * t.diameter / 4.0) *
+        (gravity ? gravity->first : 9.81);
+    if (w > 0.0 && t.diameter > 0.0 && seabed_stiffness > 0.0) {
+      const double p = w / (seabed_stiffness * t.diameter);
+      penetration = penetration ? std::min(*penetration, p) : p;
+    }
+  }
   y << "  seabed: {" << from(kbot ? kbot->second : 0, "option kBot")
-    << "stiffness: " << FormatNumber(kbot ? kbot->first : 3.0e6) << ", "
+    << "stiffness: " << FormatNumber(seabed_stiffness) << ", "
     << from(cbot ? cbot->second : 0, "option cBot")
     << "damping: " << FormatNumber(cbot ? cbot->first : 3.0e5);
+  if (penetration) {
+    y << ", contact_smoothing: "
+      << FormatNumber(std::clamp(std::round(1e3 * 0.1 * *penetration) / 1e3, 0.01, 0.5));
+  }
   if (!seabed_file.empty()) {
     y << ", " << from(seafloor->second, "option SeafloorFile " + seafloor->first)
       << "grid: " << Text(seabed_file);
   }
   y << "}  # kBot and cBot" << (kbot || cbot ? "" : " (MoorDyn's defaults)")
     << ", per unit of contact area";
+  if (penetration) {
+    y << "; contact_smoothing a tenth of the shallowest line's resting penetration ("
+      << FormatNumber(std::round(1e4 * *penetration) / 1e4)
+      << " m), as MoorDyn's contact is linear from the first touch";
+  }
   if (seafloor) y << "; SeafloorFile (line " << seafloor->second << ") as a depth grid";
   y << "\n";
   const auto friction = option("frictioncoefficient");

@@ -33,7 +33,10 @@
 //     "strain tension", looked for as the SeafloorFile is): the line type's tension_strain
 //     (MoorDyn joins the points by straight lines, moorsim by a monotone cubic).
 //   * OPTIONS: WtrDpth, WtrDnsty, g (gravity), kBot and cBot (the same per-area seabed
-//     stiffness and damping as moorsim's), FrictionCoefficient (both of moorsim's
+//     stiffness and damping as moorsim's; MoorDyn's contact is linear from the first touch,
+//     so moorsim's contact ramp is narrowed to a tenth of the shallowest resting
+//     penetration w / (kBot d) of the sinking line types, within [1 cm, 0.5 m]),
+//     FrictionCoefficient (both of moorsim's
 //     friction coefficients of every line type), SeafloorFile (the bathymetry, looked for
 //     beside the input file and in the folders above it, written as moorsim's depth grid
 //     beside the scenario: MoorDynImport::files), dtWave.

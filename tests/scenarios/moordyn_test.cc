@@ -165,6 +165,34 @@ TEST(MoorDynImport, WavesFromTheApiImportAsStillWaterAndUnknownInputsAreRefused)
   fs::remove_all(dir);
 }
 
+// MoorDyn's seabed pushes back linearly from the first touch: the import narrows moorsim's
+// smooth contact ramp to a tenth of the shallowest resting penetration w / (kBot d) of the
+// sinking line types (the wire: (40 - 1020 pi 0.08^2 / 4) 9.81 = 342.1 N/m), between 1 cm
+// and 0.5 m, so the lines rest as deep as in MoorDyn.
+TEST(MoorDynImport, TheSeabedContactIsAsSharpAsMoorDyns) {
+  const fs::path dir = moorsim::testing::FreshDirectory("moordyn_contact");
+  const Scenario stiff = ParseScenario(
+      ImportMoorDyn(Write(dir, "stiff.txt", kSpread).string(), "test").yaml, "stiff.yaml");
+  EXPECT_EQ(stiff.mooring.seabed.contact_smoothing, 0.01);  // 2.1 mm deep: the floor
+  std::string text = kSpread;
+  text.replace(text.find("2.0e6         kBot"), 5, "1.0e4");
+  const Scenario soft =
+      ParseScenario(ImportMoorDyn(Write(dir, "soft.txt", text).string(), "test").yaml, "soft.yaml");
+  EXPECT_EQ(soft.mooring.seabed.contact_smoothing, 0.043);  // 0.428 m deep
+  fs::remove_all(dir);
+}
+
+// Some of MoorDyn's own files name the damping column cIntDamp: it is BA/-zeta.
+TEST(MoorDynImport, TheDampingColumnNamedCIntDampIsBa) {
+  const fs::path dir = moorsim::testing::FreshDirectory("moordyn_cintdamp");
+  std::string text = kSpread;
+  text.replace(text.find("BA/-zeta"), 8, "cIntDamp");
+  const Scenario s = ParseScenario(
+      ImportMoorDyn(Write(dir, "damping.txt", text).string(), "test").yaml, "damping.yaml");
+  EXPECT_EQ(s.mooring.line_types[0].axial_damping_ratio.value(), 0.6);
+  fs::remove_all(dir);
+}
+
 // The test spread with one more option line before WtrDpth (line 30).
 std::string WithOption(const std::string& option) {
   std::string text = kSpread;
