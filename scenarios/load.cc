@@ -265,6 +265,13 @@ LineSpec ParseLine(const Reader& r, int entry, int default_segments,
   line.id = entry;
   r.Optional("id", line.id);
   line.lower_point = ParseLineEnd(r, "anchor", "from", &line.anchor, &line.from, points);
+  if (std::optional<Reader> held = r.Find("anchor_in_water")) {
+    line.anchor_in_water = held->As<bool>();
+    if (line.anchor_in_water && line.lower_point >= 0) {
+      held->Fail("the line starts at a free point ('" + line.from +
+                 "'), not at an anchor to hold in the water");
+    }
+  }
   line.upper_point = ParseLineEnd(r, "fairlead", "to", &line.fairlead_body, &line.to, points);
   line.mark = r.mark();
   const std::optional<Reader> sections = r.Find("sections");
@@ -854,7 +861,8 @@ std::string LineGeometryProblem(const LineSpec& line, const Vec3& fairlead) {
   }
   const double span = (line.anchor - fairlead).head<2>().norm();
   const double height = line.anchor.z() - fairlead.z();
-  if (!(length < span + height)) {
+  // A line from an anchor held in the water may hang below it.
+  if (!line.anchor_in_water && !(length < span + height)) {
     return WithUnit(length, "m") +
            " must be shorter than the horizontal anchor-fairlead distance plus the fairlead's "
            "height above the anchor, " +
@@ -923,10 +931,17 @@ void CheckLines(const Checker& check, const MooringSpec& mooring) {
                                        " is level with the fairlead; it must be below it (z "
                                        "points down)");
     }
-    if (line.anchor.z() < depth - kAnchorAboveSeabed) {
+    if (line.anchor_in_water) {
+      if (!(line.anchor.z() > 0.0)) {
+        check.Fail(path + ".anchor", "z = " + WithUnit(line.anchor.z(), "m") +
+                                         " is not below the water surface (z points down, 0 at "
+                                         "the surface)");
+      }
+    } else if (line.anchor.z() < depth - kAnchorAboveSeabed) {
       check.Fail(path + ".anchor", "z = " + WithUnit(line.anchor.z(), "m") + " is above " +
                                        seabed_there + " (an anchor lies on the seabed, within " +
-                                       WithUnit(kAnchorAboveSeabed, "m") + ")");
+                                       WithUnit(kAnchorAboveSeabed, "m") +
+                                       "; one held in the water says anchor_in_water: true)");
     }
     if (const std::string problem = LineGeometryProblem(line, fairlead); !problem.empty()) {
       check.Fail(path + (line.written_in_sections ? ".sections" : ".length"), problem);
@@ -1342,6 +1357,15 @@ void CheckDetectors(const Checker& check, const Scenario& scenario) {
     }
   }
   if (!d.empty() && !scenario.vessel) check.Fail("detectors", "needs a vessel section");
+  // The detectors' line models lay each plain line from an anchor on the seabed.
+  const std::vector<LineSpec>& lines = scenario.mooring.lines;
+  for (std::size_t i = 0; i < lines.size() && !d.empty(); ++i) {
+    if (lines[i].anchor_in_water) {
+      check.Fail(LinePath(lines[i], i) + ".anchor_in_water",
+                 "the detectors' line models have no line held in the water; run this "
+                 "mooring without detectors");
+    }
+  }
 }
 
 void CheckSimulation(const Checker& check, const SimulationSpec& s) {

@@ -1589,6 +1589,11 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
       y << from(anchor.line, "point " + anchor.id) << "      from: " << PointName(anchor);
     }
     y << "  # point " << anchor.id << " (line " << anchor.line << ")\n";
+    // A fixed point above a flat seabed holds the line's end in the water (a jumper).
+    if (anchor.kind == PointKind::kFixed && !seafloor && -anchor.z < depth->first - 1.0) {
+      y << from(anchor.line, "point " + anchor.id + ", Z") << "      anchor_in_water: true  # "
+        << FormatNumber(depth->first + anchor.z) << " m above the seabed\n";
+    }
     if (fairlead.kind == PointKind::kVessel) {
       y << from(fairlead.line, "point " + fairlead.id + ", X Y Z")
         << "      fairlead: " << Vector(fairlead.x, fairlead.y, fairlead.z);

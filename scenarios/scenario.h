@@ -65,6 +65,9 @@ struct LineSpec : mooring_fem::LineParameters {
   std::string from, to;
   SourceMark length_mark;  ///< the `length` key's value, or `sections` (for the distance check)
   bool written_in_sections = false;  ///< given as `sections` (messages name them)
+  /// The lower end is a fixed point held in the water (a jumper's or a riser's base), not an
+  /// anchor on the seabed: it may lie anywhere under water and the line may hang below it.
+  bool anchor_in_water = false;
   /// 1-based position of the entry in the YAML list (0 = not from YAML). Lines are sorted
   /// by id after loading, so messages use this to name the entry the user wrote.
   int entry = 0;

@@ -419,6 +419,12 @@ constexpr Key kLineKeys[] = {
      .unit = "m",
      .description = "Anchor, Earth frame NED (z down: on a 1000 m seabed z = +1000); or from.",
      .required = false},
+    WithDefault({.name = "anchor_in_water",
+                 .kind = Kind::kBoolean,
+                 .description = "The anchor is a fixed point held in the water (a jumper's or "
+                                "riser's base): anywhere under water, the line may hang below "
+                                "it; false: it lies on the seabed. Not with detectors."},
+                MOORSIM_DEFAULT(LineSpec{}.anchor_in_water)),
     List("bodies", kBody, "Clump weights and buoys on the joints between sections."),
     {.name = "fairlead",
      .kind = Kind::kVector,

@@ -81,10 +81,12 @@ Command AddImportCommand(CLI::App& app) {
       "    lines, and its currents (Currents 1, 2, 5) as a depth profile or as a current\n"
       "    table written beside the scenario. Frames are converted (MoorDyn's z up and y to\n"
       "    port to moorsim's z down and y to starboard) and the tangential drag coefficient\n"
-      "    multiplied by pi (MoorDyn applies it to the circumference). Rods, bodies and\n"
-      "    SYROPE ropes are refused, one line each; bending stiffness is left out with a\n"
-      "    warning. The scenario holds the mooring only: `moorsim static` and\n"
-      "    `moorsim simulate-lines` run it; add a vessel for `moorsim run`.\n" +
+      "    multiplied by pi (MoorDyn applies it to the circumference); a fixed point above\n"
+      "    the seabed holds its line's end in the water (anchor_in_water). Rods, bodies,\n"
+      "    SYROPE ropes and lines between two fixed points are refused, one line each;\n"
+      "    bending stiffness is left out with a warning. The scenario holds the mooring\n"
+      "    only: `moorsim static` and `moorsim simulate-lines` run it; add a vessel for\n"
+      "    `moorsim run`.\n" +
       std::string(kScenarioOutNote));
   sub->add_option("format", o->format, "the model's format: moordyn")->required();
   sub->add_option("FILE", o->file, "the model's input file")->required();

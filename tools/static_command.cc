@@ -1,5 +1,6 @@
 // `moorsim static`: the mooring's static loads on the vessel at a given pose, from the FEM
 // lines settled to rest.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -105,10 +106,14 @@ int RunStatic(const StaticOptions& o) {
       StaticLineResult& r = results[lp.id - 1];
       r.force = loads[i].upper_end_force;
       r.grounded_length = loads[i].grounded_length;
-      // The catenary from the anchor to the fairlead; none for a line with a free point end.
+      // The catenary from the anchor on the seabed to the fairlead; none for a line with a
+      // free point end or from an anchor held in the water.
       r.at_vessel = lp.upper_point < 0;
+      const bool held = std::any_of(
+          scenario.mooring.lines.begin(), scenario.mooring.lines.end(),
+          [&](const scenarios::LineSpec& l) { return l.id == lp.id && l.anchor_in_water; });
       r.catenary_tension =
-          lp.lower_point < 0 && lp.upper_point < 0
+          lp.lower_point < 0 && lp.upper_point < 0 && !held
               ? mooring_fem::CatenaryFairleadTension(lp, positions[i], mooring.seabed().surface)
               : kNaN;
     }

@@ -189,6 +189,58 @@ MooringSystem LineOne(const Vec3& anchor, double length) {
   return MooringSystem(s.mooring);
 }
 
+// The elastic catenary of a line hanging between two held points (Irvine 1981): with H the
+// horizontal tension, V the vertical force the lower end takes (negative: the line first
+// dips below it) and w the weight per unstretched metre, the upper end sits at
+//   x = H/w [asinh((V + w L)/H) - asinh(V/H)] + H L/EA
+//   z = H/w [sqrt(1 + ((V + w L)/H)^2) - sqrt(1 + (V/H)^2)] + (V L + w L^2/2)/EA
+// above the lower end; solved here for H and V by Newton's method with its own differences.
+double HeldCatenaryTopTension(double w, double ea, double length, double span, double rise) {
+  const auto ends = [&](double h, double v) {
+    const double top = v + w * length;
+    return Eigen::Vector2d(
+        h / w * (std::asinh(top / h) - std::asinh(v / h)) + h * length / ea - span,
+        h / w * (std::hypot(1.0, top / h) - std::hypot(1.0, v / h)) +
+            (v * length + 0.5 * w * length * length) / ea - rise);
+  };
+  double h = 0.1 * w * length, v = 0.0;
+  for (int i = 0; i < 100; ++i) {
+    const Eigen::Vector2d f = ends(h, v);
+    const double dh = 1e-6 * h, dv = 1e-6 * w * length;
+    Eigen::Matrix2d J;
+    J.col(0) = (ends(h + dh, v) - f) / dh;
+    J.col(1) = (ends(h, v + dv) - f) / dv;
+    const Eigen::Vector2d step = J.fullPivLu().solve(-f);
+    h = std::max(0.5 * h, h + step(0));
+    v += step(1);
+    if (f.norm() < 1e-10 * length) break;
+  }
+  return std::hypot(h, v + w * length);
+}
+
+TEST(StaticFem, ALineHeldInTheWaterHangsAsTheElasticCatenary) {
+  // 800 m of the seed chain from a point held 500 m above the seabed, 480 m from the
+  // fairlead: it dips below its lower end (the loader's anchor_in_water). The lower end is
+  // not on the seabed, so the start hangs it free and the FEM settles onto the catenary.
+  MooringSystem mooring = LineOne(Vec3(-480.0, 0.0, 500.0), 800.0);
+  const auto fairleads = FairleadsAt(mooring, {});
+  const std::vector<double> x = StaticState(mooring, {});
+  const LineProperties& lp = mooring.line(0);
+  const Vec3 chord = fairleads[0].position - lp.anchor;
+  const double expected = HeldCatenaryTopTension(lp.sections.front().weight_per_length,
+                                                 lp.sections.front().axial_stiffness, 800.0,
+                                                 chord.head<2>().norm(), -chord.z());
+  const Vec3 f = mooring.LineLoads(x.data(), fairleads)[0].fairlead_force;
+  EXPECT_NEAR(f.norm() / expected, 1.0, 2e-3) << f.norm() << " vs " << expected;
+  // It hangs below its lower end and stays off the seabed.
+  double deepest = 0.0;
+  for (int k = 0; k <= lp.segments; ++k) {
+    deepest = std::max(deepest, mooring.NodePosition(x.data(), 0, k, fairleads).z());
+  }
+  EXPECT_GT(deepest, 510.0);
+  EXPECT_LT(deepest, 990.0);
+}
+
 TEST(StaticFem, SlackSegmentsInTheCatenaryPlacementStillSettle) {
   // 2700 m to an anchor 1930 m out: H = 257 kN, so the curvature near touchdown is w/H =
   // 0.01 /m and a 54 m segment's chord falls 1.3 % short of its arc, more than the 0.11 %

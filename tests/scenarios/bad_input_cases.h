@@ -464,7 +464,7 @@ inline const BadInput kValidationErrors[] = {
      "points down)"},
     {"AnchorAboveTheSeabed", "- id: 3", "[-1950, 0, 1000]", "[-1950, 0, 990]", "[-1950",
      "mooring.lines[3].anchor: z = 990 m is above the seabed at depth 1000 m (an anchor lies on "
-     "the seabed, within 1 m)"},
+     "the seabed, within 1 m; one held in the water says anchor_in_water: true)"},
     {"FairleadFarFromTheVessel", "- id: 2", "[0, 20, 12]", "[0, 2000, 12]", "2000",
      "mooring.lines[2].fairlead[2]: 2000 m must be in [-1000, 1000] (a point on the vessel)"},
     // |(0, 1950, 1000) - (0, 20, 12)| = sqrt(1930^2 + 988^2) = 2168.189 m.
@@ -662,6 +662,10 @@ inline const BadInput kValidationErrors[] = {
     {"WavesTooSteep", "environment:", "hs: 2.5", "hs: 12", "12",
      "environment.waves.hs: 12 m is too steep for tp 7 s: Hs / (g Tp^2 / (2 pi)) = 0.157 must "
      "be <= 1/7 (such waves break)"},
+    {"AnchorInWaterWithDetectors", "- id: 1", "anchor: [1950, 0, 1000]",
+     "anchor: [1950, 0, 900]\n      anchor_in_water: true", "anchor_in_water: ^true",
+     "mooring.lines[1].anchor_in_water: the detectors' line models have no line held in the "
+     "water; run this mooring without detectors"},
     // 2 a / L with L = g T^2 / (2 pi) = 9.81 x 9 / (2 pi) = 14.05 m: 4 / 14.05 = 0.285.
     {"WaveTrainTooSteep", "environment:",
      "{hs: 2.5, tp: 7, gamma: 3.3, direction_toward_deg: 315, spreading: 10, components: 200}",

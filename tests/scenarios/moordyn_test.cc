@@ -182,6 +182,23 @@ TEST(MoorDynImport, TheSeabedContactIsAsSharpAsMoorDyns) {
   fs::remove_all(dir);
 }
 
+// A fixed point above the seabed holds its line's end in the water (a jumper's base): here
+// every anchor, in water 80 m deeper than they lie.
+TEST(MoorDynImport, AFixedPointInMidWaterHoldsItsLineThere) {
+  const fs::path dir = moorsim::testing::FreshDirectory("moordyn_jumper");
+  std::string text = kSpread;
+  text.replace(text.find("200           WtrDpth"), 3, "280");
+  const MoorDynImport imported = ImportMoorDyn(Write(dir, "jumper.txt", text).string(), "test");
+  EXPECT_NE(imported.yaml.find("anchor_in_water: true  # 80 m above the seabed"), std::string::npos)
+      << imported.yaml;
+  const Scenario s = ParseScenario(imported.yaml, "jumper.yaml");
+  for (const LineSpec& line : s.mooring.lines) {
+    EXPECT_EQ(line.anchor_in_water, line.lower_point < 0) << line.id;
+  }
+  EXPECT_EQ(s.mooring.lines[1].anchor, Vec3(-300.0, -520.0, 200.0));
+  fs::remove_all(dir);
+}
+
 // Some of MoorDyn's own files name the damping column cIntDamp: it is BA/-zeta.
 TEST(MoorDynImport, TheDampingColumnNamedCIntDampIsBa) {
   const fs::path dir = moorsim::testing::FreshDirectory("moordyn_cintdamp");
