@@ -376,8 +376,10 @@ std::vector<MdWave> SpectrumWaves(const std::string& path, int line, int wavekin
   double dw = std::numeric_limits<double>::infinity();
   for (std::size_t i = 1; i < rows.size(); ++i)
     dw = std::min(dw, rows[i].omega - rows[i - 1].omega);
-  const std::size_t nw = static_cast<std::size_t>(std::floor(rows.back().omega / dw)) + 1;
-  if (nw > 1000000) throw InputError(where + ": more than 1e6 frequencies on its even grid");
+  // The count as a double first: a spacing of 1e-300 is no size.
+  const double grid = std::floor(rows.back().omega / dw) + 1.0;
+  if (!(grid <= 1e6)) throw InputError(where + ": more than 1e6 frequencies on its even grid");
+  const std::size_t nw = static_cast<std::size_t>(grid);
   std::size_t j = 1;
   for (std::size_t i = 1; i < nw; ++i) {
     const double omega = static_cast<double>(i) * dw;
@@ -429,6 +431,16 @@ std::vector<MdWave> ElevationWaves(const std::string& path, int line, double dt_
     zeta[i] = elevations[j - 1] + f * (elevations[j] - elevations[j - 1]);
   }
   const double dw = std::numbers::pi / (dt_wave * static_cast<double>(n / 2));
+  // The transform below costs N per frequency kept: a record of N samples keeps about
+  // N dtWave / 2 of them (0.5 Hz at most). Beyond 1e8 the import would take minutes.
+  const double kept = std::min(static_cast<double>(n / 2), std::floor(std::numbers::pi / dw));
+  if (static_cast<double>(n) * kept > 1e8) {
+    throw InputError(where + ": " + std::to_string(n) + " samples at dtWave " +
+                     FormatNumber(dt_wave) + " s keep " +
+                     std::to_string(static_cast<std::size_t>(kept)) +
+                     " frequencies: more than moorsim transforms (samples x frequencies <= "
+                     "1e8); give a shorter record");
+  }
   std::vector<MdWave> waves;
   double mean = 0.0;
   for (double z : zeta) mean += z;
@@ -439,9 +451,15 @@ std::vector<MdWave> ElevationWaves(const std::string& path, int line, double dt_
   for (std::size_t k = 1; k <= n / 2; ++k) {
     if (static_cast<double>(k) * dw > 0.5 * 2.0 * std::numbers::pi) break;  // as MoorDyn cuts
     std::complex<double> x = 0.0;
+    const double angle = -2.0 * std::numbers::pi / static_cast<double>(n);
+    const std::complex<double> step = std::polar(1.0, angle * static_cast<double>(k));
+    std::complex<double> turn = 1.0;
     for (std::size_t i = 0; i < n; ++i) {
-      x += zeta[i] * std::polar(1.0, -2.0 * std::numbers::pi * static_cast<double>(k * i % n) /
-                                         static_cast<double>(n));
+      // exp(-2 pi i k i / N), advanced by a rotation and re-anchored every 1024 samples so
+      // that rounding cannot accumulate.
+      if (i % 1024 == 0) turn = std::polar(1.0, angle * static_cast<double>(k * i % n));
+      x += zeta[i] * turn;
+      turn *= step;
     }
     // Amplitude 2 |X| / N, but the Nyquist bin's real part once.
     const std::complex<double> a = k == n / 2

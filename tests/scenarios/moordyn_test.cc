@@ -288,6 +288,14 @@ TEST(MoorDynImport, WaveInputsBecomeTheSameRegularWaves) {
       "record.yaml");
   ASSERT_EQ(record.environment.waves.trains.size(), 2u);
   const mooring_fem::WaveKinematics waves = elevation_of(record);
+  // A record whose transform would take minutes is refused, not run: 2e5 s at 0.5 s.
+  Write(dir, "wave_elevation.txt", "0 0\n200000 0\n");
+  const fs::path long_record = Write(dir, "long.txt", WithOption("3 WaveKin\n0.5 dtWave"));
+  EXPECT_EQ(ErrorOf(long_record), long_record.string() +
+                                      ":30: WaveKin 3: wave_elevation.txt: 400000 samples at "
+                                      "dtWave 0.5 s keep 100000 frequencies: more than moorsim "
+                                      "transforms (samples x frequencies <= 1e8); give a shorter "
+                                      "record");
   const double k10 = WaveNumberOf(2.0 * std::numbers::pi / 10.0, h, g);
   const double k4 = WaveNumberOf(2.0 * std::numbers::pi / 4.0, h, g);
   for (const auto& [t, x] : {std::pair{0.0, 0.0}, std::pair{3.3, 0.0}, std::pair{17.1, 30.0}}) {
