@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -11,6 +13,7 @@
 #include "scenarios/plant_builder.h"
 #include "simulation/simulation.h"
 #include "tests/simulation/test_scenarios.h"
+#include "tests/support/scratch_directory.h"
 #include "vessel/hull_loads.h"
 
 namespace moorsim::simulation {
@@ -117,6 +120,33 @@ TEST(VesselConversion, TheRunUsesTheScenariosHullAndWindage) {
   const Vec6 tau_wind = LoadNamed(sim, "wind").Load(0.0, eta, nu);
   EXPECT_EQ(tau_wind, expected_wind.Load(eta, nu, 15.0, direction));
   EXPECT_NE(tau_wind, vessel::WindLoad(vessel::SeedFpsoWind()).Load(eta, nu, 15.0, direction));
+}
+
+// With a current table the hull feels the table's horizontal velocity at the surface where
+// the vessel is, at the time of the load (here a surface current that grows toward north
+// and over ten minutes, with a vertical part the hull does not feel).
+TEST(VesselConversion, TheHullFeelsACurrentTableWhereTheVesselIs) {
+  const std::filesystem::path dir = moorsim::testing::FreshDirectory("hull_current_table");
+  const std::string flow = (dir / "flow.txt").string();
+  std::ofstream(flow) << "x: -1000 1000\ny: 0\ndepth: 0 100\ntime: 0 600\n"
+                         "-1000 0 0 0 0.2 0.1 0.05\n-1000 0 0 600 0.4 0.1 0.05\n"
+                         "1000 0 0 0 0.6 0.1 0.05\n1000 0 0 600 0.8 0.1 0.05\n"
+                         "-1000 0 100 0 0 0 0\n-1000 0 100 600 0 0 0\n"
+                         "1000 0 100 0 0 0 0\n1000 0 100 600 0 0 0\n";
+  const scenarios::Scenario s = testing::SeedVesselScenario(
+      "environment:\n  current: {file: " + flow + "}\n", "  hull: {draught: 16}\n");
+  Simulation sim(scenarios::ToPlantModel(s), 1);
+  Vec6 eta = Vec6::Zero();
+  eta(0) = 500.0;  // three quarters of the way north: 0.5 at 0 s, 0.7 at 600 s
+  eta(5) = 0.3;
+  Vec6 nu = Vec6::Zero();
+  nu << 0.2, -0.1, 0.0, 0.0, 0.0, 0.001;
+  const vessel::CurrentLoad hull(scenarios::ToHullGeometry(*s.vessel, s.mooring.water.density));
+  const Vec6 tau = LoadNamed(sim, "current").Load(300.0, eta, nu);
+  const Vec6 expected = hull.Load(eta, nu, Vec3(0.6, 0.1, 0.0));
+  EXPECT_LT((tau - expected).norm(), 1e-9 * expected.norm());
+  EXPECT_GT((tau - hull.Load(eta, nu, Vec3(0.5, 0.1, 0.0))).norm(), 1e-3 * expected.norm());
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
