@@ -122,6 +122,13 @@ Vec3 CurrentField::TableVelocity(double t, const Vec3& r, Mat3* gradient) const 
   return velocity;
 }
 
+std::string CurrentSpeedProblem(const Vec3& velocity) {
+  if (velocity.norm() <= kMaxCurrentSpeed) return "";
+  return "a current of " + FormatNumber(velocity.norm()) +
+         " m/s must be <= " + FormatNumber(kMaxCurrentSpeed) +
+         " m/s (the strongest tidal races run at about 10 m/s)";
+}
+
 void CheckCurrentTable(const CurrentTable& table) {
   const std::string where = table.source.empty() ? "current table" : table.source;
   const std::pair<const std::vector<double>*, const char*> axes[] = {
@@ -143,6 +150,9 @@ void CheckCurrentTable(const CurrentTable& table) {
   }
   for (const Vec3& v : table.velocity) {
     if (!v.allFinite()) throw InputError(where + ": a velocity is not finite");
+    if (const std::string problem = CurrentSpeedProblem(v); !problem.empty()) {
+      throw InputError(where + ": " + problem);
+    }
   }
   if (!(table.period >= 0.0) || !std::isfinite(table.period) ||
       (table.period > 0.0 && !(table.period > table.t.back() - table.t.front()))) {

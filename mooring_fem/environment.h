@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "core/types.h"
@@ -38,9 +39,17 @@ class CurrentField {
   std::shared_ptr<const CurrentTable> table_;
 };
 
+/// The strongest current a table may hold [m/s]: the strongest tidal races (Saltstraumen)
+/// run at about 10 m/s.
+inline constexpr double kMaxCurrentSpeed = 10.0;
+
+/// "" for a velocity within kMaxCurrentSpeed, else what is wrong with it.
+std::string CurrentSpeedProblem(const Vec3& velocity);
+
 /// Throws moorsim::InputError naming the table's source and what is wrong: an axis empty or
 /// not strictly increasing or not finite, a velocity count that is not the grid's, a
-/// velocity not finite, a period not longer than the times it repeats.
+/// velocity not finite or faster than kMaxCurrentSpeed, a period not longer than the times
+/// it repeats.
 void CheckCurrentTable(const CurrentTable& table);
 
 /// Where a node touches the seabed: the unit normal into the seabed and the penetration

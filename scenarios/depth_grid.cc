@@ -185,6 +185,9 @@ mooring_fem::CurrentTable ReadCurrentTable(const std::string& path) {
           v(m) = Value(fields[4 + m], where);
           if (!std::isfinite(v(m))) throw InputError(where + "a velocity component is empty");
         }
+        if (const std::string problem = mooring_fem::CurrentSpeedProblem(v); !problem.empty()) {
+          throw InputError(where + problem);
+        }
         ++rows;
       });
   if (axis_count < 4) {

@@ -41,7 +41,8 @@ mooring_fem::DepthGrid ReadDepthGrid(const std::string& path);
 /// Reads the table in `path`. Throws InputError "<path>: ..." if it cannot be read, misses
 /// an axis or grid points (naming the first missing), and "<path>:<line>: ..." naming what
 /// is wrong on that line: an axis out of order or not increasing, a row of other than seven
-/// fields, a coordinate off its axis, a point given twice, a field that is not a number.
+/// fields, a coordinate off its axis, a point given twice, a field that is not a number, a
+/// current faster than mooring_fem::kMaxCurrentSpeed.
 mooring_fem::CurrentTable ReadCurrentTable(const std::string& path);
 
 }  // namespace moorsim::scenarios

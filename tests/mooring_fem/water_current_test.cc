@@ -119,6 +119,11 @@ TEST(CurrentTable, ABadTableIsRefusedNamingItsSource) {
   table = *TableOf(0.0);
   table.velocity[5].y() = std::nan("");
   EXPECT_EQ(message(table), "test table: a velocity is not finite");
+  table = *TableOf(0.0);
+  table.velocity[7] = Vec3(3.0, 4.0, 12.0);
+  EXPECT_EQ(message(table),
+            "test table: a current of 13 m/s must be <= 10 m/s (the strongest tidal races run at "
+            "about 10 m/s)");
 }
 
 }  // namespace

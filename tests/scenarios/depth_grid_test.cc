@@ -179,6 +179,9 @@ TEST(CurrentTableFile, EachBadTableIsOneLineNamingTheFileLineAndValue) {
   EXPECT_EQ(CurrentError(axes + "0 0 0 0 0.5 0 0\n0 0 0 0 0.4 0 0\n"),
             "flow.txt:6: the point is given twice (also on line 5)");
   EXPECT_EQ(CurrentError(axes + "0 0 0 0 fast 0 0\n"), "flow.txt:5: 'fast' is not a number");
+  EXPECT_EQ(CurrentError(axes + "0 0 0 0 0.5 0 0\n0 0 50 0 6 8 6\n"),
+            "flow.txt:6: a current of 11.661903789690601 m/s must be <= 10 m/s (the strongest "
+            "tidal races run at about 10 m/s)");
   EXPECT_EQ(CurrentError(axes + "0 0 0 0 0.5 0 0\n"),
             "flow.txt: 1 rows for a grid of 2 points; none for x 0, y 0, depth 50, time 0");
   EXPECT_EQ(CurrentError("x: 0\ny: 0\n"), "flow.txt: the depth: axis is missing");
