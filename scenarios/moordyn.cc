@@ -1314,6 +1314,10 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
     problems.ThrowIfAny();
   }
 
+  const auto rho = option("wtrdnsty");
+  auto gravity = option("g");
+  if (!gravity) gravity = option("gravity");
+
   // MoorDyn's waves and current, read from the files beside the input.
   const auto wavekin = option("wavekin");
   const auto currents = option("currents");
@@ -1332,12 +1336,11 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
                                      warn_at(wavekin->second))
                     : SpectrumWaves(path, wavekin->second, mode, warn_at(wavekin->second));
       const double depth_m = depth->first;
-      const auto g = option("g") ? option("g") : option("gravity");
       for (const MdWave& w : waves) {
         // Moved with the model: the phase at the new origin. Then y and the direction
         // mirrored (MoorDyn's y points to port).
-        const double k =
-            mooring_fem::WaveKinematics::WaveNumber(w.omega, depth_m, g ? g->first : 9.81);
+        const double k = mooring_fem::WaveKinematics::WaveNumber(w.omega, depth_m,
+                                                                 gravity ? gravity->first : 9.81);
         const double phase =
             w.phase - k * (shift_x * std::cos(w.beta) + shift_y * std::sin(w.beta));
         trains.push_back({w.omega, w.amplitude, phase, -w.beta});
@@ -1449,9 +1452,6 @@ MoorDynImport ImportMoorDyn(const std::string& path, const std::string& command,
   const std::string stem = std::filesystem::path(path).stem().string();
   y << "name: " << Text(stem) << "\n";
   y << "mooring:\n";
-  const auto rho = option("wtrdnsty");
-  auto gravity = option("g");
-  if (!gravity) gravity = option("gravity");
   y << "  water: {" << from(rho ? rho->second : 0, "option WtrDnsty")
     << "density: " << FormatNumber(rho ? rho->first : 1025.0) << ", "
     << from(gravity ? gravity->second : 0, "option g")

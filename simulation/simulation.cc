@@ -69,10 +69,8 @@ class ExternalLoad final : public vessel::EnvironmentLoad {
 class HullCurrentLoad final : public vessel::EnvironmentLoad {
  public:
   HullCurrentLoad(const vessel::HullGeometry& hull, const mooring_fem::CurrentProfile& current)
-      : load_(hull), table_(current.table) {
-    if (table_ != nullptr) {
-      field_ = mooring_fem::CurrentField(current);
-    } else {
+      : load_(hull), table_(current.table != nullptr), field_(current) {
+    if (!table_) {
       current_ = current.SurfaceSpeed() *
                  Vec3(std::cos(current.direction), std::sin(current.direction), 0.0);
     }
@@ -87,16 +85,16 @@ class HullCurrentLoad final : public vessel::EnvironmentLoad {
 
  private:
   Vec3 CurrentAt(double t, const Vec6& eta) const {
-    if (table_ == nullptr) return current_;
+    if (!table_) return current_;
     Vec3 c = field_.VelocityAt(t, Vec3(eta(0), eta(1), 0.0));
     c.z() = 0.0;
     return c;
   }
 
   vessel::CurrentLoad load_;
-  std::shared_ptr<const mooring_fem::CurrentTable> table_;
+  bool table_;  // the current is a table (field_), not a profile
   mooring_fem::CurrentField field_;
-  Vec3 current_ = Vec3::Zero();
+  Vec3 current_ = Vec3::Zero();  // a profile's surface current
 };
 
 /// Wind on the superstructure: mean speed plus the NPD gust, from a fixed direction. Its

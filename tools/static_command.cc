@@ -1,6 +1,5 @@
 // `moorsim static`: the mooring's static loads on the vessel at a given pose, from the FEM
 // lines settled to rest.
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -109,9 +108,7 @@ int RunStatic(const StaticOptions& o) {
       // The catenary from the anchor on the seabed to the fairlead; none for a line with a
       // free point end or from an anchor held in the water.
       r.at_vessel = lp.upper_point < 0;
-      const bool held = std::any_of(
-          scenario.mooring.lines.begin(), scenario.mooring.lines.end(),
-          [&](const scenarios::LineSpec& l) { return l.id == lp.id && l.anchor_in_water; });
+      const bool held = scenario.mooring.lines[lp.id - 1].anchor_in_water;
       r.catenary_tension =
           lp.lower_point < 0 && lp.upper_point < 0 && !held
               ? mooring_fem::CatenaryFairleadTension(lp, positions[i], mooring.seabed().surface)
